@@ -1,0 +1,179 @@
+# ballfilm: balls and particle fluids in thin liquid films.
+#
+#   make run       install missing packages, build, run the default scene,
+#                  draw its figure (out/)
+#   make test      build and run the test suite
+#   make check     the test suite under AddressSanitizer + UBSan
+#   make figures   every paper figure (long runs; see README)
+#   make bench     performance measurements (ratios measured in one run)
+#   make clean
+#
+# Debian 12 packages are installed automatically when run as root; otherwise
+# the exact apt-get line is printed.
+
+SHELL := /bin/bash
+.DEFAULT_GOAL := all
+
+BUILD_PKGS := gcc make pkg-config libsundials-dev libgsl-dev libhdf5-dev \
+              hdf5-tools libinih-dev check
+PLOT_PKGS  := python3-numpy python3-matplotlib python3-h5py
+PY         := /usr/bin/python3
+
+# ---------------------------------------------------------------- flags
+BUILD   ?= build
+BINDIR  ?= bin
+SANITIZE ?=
+GIT     := $(shell git rev-parse --short HEAD 2>/dev/null || echo unknown)
+
+CC       = gcc
+CSTD     = -std=c11 -O2 -Wall -Wextra -Werror -ffp-contract=off
+CPPFLAGS = -Iinclude -Isrc/cli -D_POSIX_C_SOURCE=200809L -DBF_GIT='"$(GIT)"' \
+           $(shell pkg-config --cflags hdf5-serial gsl 2>/dev/null)
+CFLAGS   = $(CSTD) $(SANITIZE) -MMD -MP
+LDLIBS   = $(shell pkg-config --libs hdf5-serial 2>/dev/null) -lhdf5_hl \
+           -lsundials_arkode -lsundials_nvecserial -linih \
+           $(shell pkg-config --libs gsl 2>/dev/null) -lm
+LDFLAGS  = $(SANITIZE)
+CHECK_CFLAGS = $(shell pkg-config --cflags check 2>/dev/null)
+CHECK_LIBS   = $(shell pkg-config --libs check 2>/dev/null)
+
+# ---------------------------------------------------------------- sources
+LIB_SRC  := $(sort $(filter-out src/cli/%,$(wildcard src/*/*.c)))
+CLI_SRC  := $(sort $(wildcard src/cli/*.c))
+TEST_SRC := $(sort $(wildcard tests/test_*.c))
+TEST_AUX := $(sort $(filter-out tests/test_%,$(wildcard tests/*.c)))
+BENCH_SRC := $(sort $(wildcard bench/*.c))
+
+LIB_OBJ   := $(LIB_SRC:%.c=$(BUILD)/obj/%.o)
+CLI_OBJ   := $(CLI_SRC:%.c=$(BUILD)/obj/%.o)
+TEST_OBJ  := $(TEST_SRC:%.c=$(BUILD)/obj/%.o) $(TEST_AUX:%.c=$(BUILD)/obj/%.o)
+BENCH_BIN := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%)
+LIB       := $(BUILD)/libballfilm.a
+PROG      := $(BINDIR)/ballfilm
+RUNNER    := $(BUILD)/tests/runner
+
+.PHONY: all run test check figures bench clean deps deps-plot test-run \
+        build-tests fig1
+
+all: $(PROG)
+
+$(BUILD)/obj/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(CFLAGS) -c $< -o $@
+
+$(BUILD)/obj/tests/%.o: tests/%.c $(BUILD)/tests/suites.inc
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) -I$(BUILD)/tests $(CHECK_CFLAGS) $(CFLAGS) -c $< -o $@
+
+$(LIB): $(LIB_OBJ)
+	@mkdir -p $(dir $@)
+	rm -f $@
+	ar rcs $@ $^
+
+$(PROG): $(CLI_OBJ) $(LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(LDFLAGS) -o $@ $(CLI_OBJ) $(LIB) $(LDLIBS)
+
+# Every tests/test_NAME.c defines `Suite *suite_NAME(void)`; the runner
+# collects them from this generated list, so adding a test file needs no
+# other edit.
+$(BUILD)/tests/suites.inc: $(TEST_SRC) Makefile
+	@mkdir -p $(dir $@)
+	@( $(foreach t,$(TEST_SRC),echo 'BF_SUITE($(patsubst tests/test_%.c,%,$(t)))';) ) > $@.tmp
+	@mv $@.tmp $@
+
+$(RUNNER): $(TEST_OBJ) $(LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(LDFLAGS) -o $@ $(TEST_OBJ) $(LIB) $(CHECK_LIBS) $(LDLIBS)
+
+$(BUILD)/bench/%: bench/%.c $(LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(CFLAGS) -o $@ $< $(LIB) $(LDLIBS)
+
+-include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)
+
+# ---------------------------------------------------------------- packages
+# deps: what building and testing needs; deps-plot: what the figures need.
+define need_pkgs
+	@if ! command -v dpkg-query >/dev/null; then \
+	  echo "note: not a Debian system; make sure these are installed: $(1)"; \
+	else \
+	  missing=""; \
+	  for p in $(1); do \
+	    dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'ok installed' \
+	      || missing="$$missing $$p"; \
+	  done; \
+	  if [ -n "$$missing" ]; then \
+	    if [ "$$(id -u)" = 0 ]; then \
+	      echo "installing:$$missing"; \
+	      apt-get update -q && \
+	      DEBIAN_FRONTEND=noninteractive apt-get install -y -q $$missing || exit 1; \
+	    else \
+	      echo "missing Debian packages; install them with:"; \
+	      echo "  sudo apt-get install -y$$missing"; \
+	      exit 1; \
+	    fi; \
+	  fi; \
+	fi
+endef
+
+deps:
+	$(call need_pkgs,$(BUILD_PKGS))
+
+deps-plot:
+	$(call need_pkgs,$(PLOT_PKGS))
+
+# ---------------------------------------------------------------- main job
+run:
+	@$(MAKE) --no-print-directory deps deps-plot
+	@$(MAKE) --no-print-directory all
+	@$(MAKE) --no-print-directory fig1
+	@echo
+	@echo "results:  out/bouncing_ball_verlet.h5  out/bouncing_ball_mv2m.h5"
+	@echo "figure:   out/fig1_phase.png"
+
+# Yasuda Fig. 1: the bouncing ball, Verlet beside MV2M (dt = 3e-4 s, 100 s).
+fig1: $(PROG)
+	@mkdir -p out
+	$(PROG) run runs/bouncing_ball.ini -q -o out/bouncing_ball_verlet.h5 \
+	    --set scene.integrator=verlet
+	$(PROG) run runs/bouncing_ball.ini -q -o out/bouncing_ball_mv2m.h5 \
+	    --set scene.integrator=mv2m
+	$(PY) plots/fig1_phase.py out/bouncing_ball_verlet.h5 \
+	    out/bouncing_ball_mv2m.h5 -o out/fig1_phase.png
+
+figures:
+	@$(MAKE) --no-print-directory deps deps-plot
+	@$(MAKE) --no-print-directory all
+	@$(MAKE) --no-print-directory fig1
+	@echo "figures are in out/"
+
+# ---------------------------------------------------------------- tests
+build-tests: $(PROG) $(RUNNER)
+
+test-run: build-tests
+	BALLFILM_BIN=$(abspath $(PROG)) BALLFILM_ROOT=$(CURDIR) \
+	  CK_DEFAULT_TIMEOUT=600 $(RUNNER)
+
+test:
+	@$(MAKE) --no-print-directory deps
+	@$(MAKE) --no-print-directory test-run
+
+check:
+	@$(MAKE) --no-print-directory deps
+	@$(MAKE) --no-print-directory BUILD=build/asan BINDIR=build/asan/bin \
+	  SANITIZE="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer" \
+	  build-tests
+	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
+	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	BALLFILM_BIN=$(CURDIR)/build/asan/bin/ballfilm BALLFILM_ROOT=$(CURDIR) \
+	BALLFILM_SANITIZED=1 CK_DEFAULT_TIMEOUT=3000 build/asan/tests/runner
+
+# ---------------------------------------------------------------- bench
+bench:
+	@$(MAKE) --no-print-directory deps
+	@$(MAKE) --no-print-directory all $(BENCH_BIN)
+	@for b in $(BENCH_BIN); do echo "== $$b"; $$b || exit 1; done
+
+clean:
+	rm -rf build bin

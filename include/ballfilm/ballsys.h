@@ -1,0 +1,44 @@
+/* ballsys.h: balls on a line driven by effects and advanced by an
+ * integrator.  This is the component shared by the "balls" model (balls in
+ * space, Yasuda sec. 2) and the coupled ball-film model (sec. 3).
+ *
+ * Scene keys: one [ball.N] section per ball (N = 1, 2, ... in increasing
+ * position), [scene] effects and [scene] integrator.
+ */
+#ifndef BALLFILM_BALLSYS_H
+#define BALLFILM_BALLSYS_H
+
+#include "ballfilm/effects.h"
+#include "ballfilm/integrator.h"
+#include "ballfilm/scene.h"
+
+typedef struct bf_ballsys {
+    bf_balls b;
+    bf_effect *eff;
+    size_t neff;
+    bf_integrator *it;
+    bf_ode ode;
+} bf_ballsys;
+
+extern const bf_section_spec bf_ballsys_ball_spec; /* [ball.N] */
+
+/* Read balls, create effects (env is passed to them) and the integrator.
+ * Refuses overlapping or unordered balls, naming the key. */
+bf_status bf_ballsys_create(bf_ballsys **out, const bf_scene *sc,
+                            const bf_effect_env *env, bf_err *err);
+void bf_ballsys_free(bf_ballsys *s);
+
+/* One integrator step; fails with BF_EUNSTABLE, naming the ball, if a
+ * position or velocity is not finite afterwards (the state is then that of
+ * the failed step; the caller stops). */
+bf_status bf_ballsys_step(bf_ballsys *s, double t, double dt, bf_err *err);
+
+/* Kinetic and potential energy (erg). */
+void bf_ballsys_energy(const bf_ballsys *s, double t, double *kin,
+                       double *pot);
+
+/* The ball system inside a "balls" model instance (for drivers and
+ * tests that need the state: convergence studies, return maps). */
+bf_ballsys *bf_balls_model_system(void *balls_model);
+
+#endif

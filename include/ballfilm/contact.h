@@ -1,0 +1,62 @@
+/* contact.h: Hertz contact law, shared by ball-floor, ball-ball and
+ * (later) particle contacts.
+ *
+ * Yasuda eqs 2.5-2.6 (and 3.13-3.14): the force is f = k x^{3/2} where x is
+ * the deformation of *one* ball.
+ *   floor:       x = max(R - z, 0)                   (z: centre height)
+ *   ball pair:   x = max((R_i + R_j - d)/2, 0)       (d: centre distance)
+ * For equal radii the pair rule is the paper's x = max(R - d/2, 0).
+ *
+ * Energies.  The paper's eq. 2.8 writes (2/5) k x^{5/2} for every contact.
+ * For the floor this is exact: dE/dz = -k x^{3/2}.  For a pair, x moves by
+ * half of the change of d, so -dE/dd = f needs E = (4/5) k x^{5/2}: twice
+ * the paper's value.  We use the consistent potentials; the test suite checks
+ * both against finite differences (tests/test_contact.c).
+ *
+ * Units (CGS): k in g cm^{-1/2} s^{-2}, lengths in cm, force in dyn,
+ * energy in erg.
+ */
+#ifndef BALLFILM_CONTACT_H
+#define BALLFILM_CONTACT_H
+
+#include <math.h>
+
+/* k x^{3/2} for x > 0, else 0 */
+static inline double bf_hertz_force(double k, double x)
+{
+    return x > 0 ? k * x * sqrt(x) : 0.0;
+}
+
+/* (2/5) k x^{5/2} for x > 0, else 0: the antiderivative of bf_hertz_force */
+static inline double bf_hertz_energy(double k, double x)
+{
+    return x > 0 ? 0.4 * k * x * x * sqrt(x) : 0.0;
+}
+
+/* Upward force of the floor on a ball of radius R centred at height z. */
+static inline double bf_hertz_floor_force(double k, double R, double z)
+{
+    return bf_hertz_force(k, R - z);
+}
+
+static inline double bf_hertz_floor_energy(double k, double R, double z)
+{
+    return bf_hertz_energy(k, R - z);
+}
+
+/* Repulsive force between two balls whose centres are a distance d apart
+ * (acts along the line of centres, pushing them apart). */
+static inline double bf_hertz_pair_force(double k, double Ri, double Rj,
+                                         double d)
+{
+    return bf_hertz_force(k, 0.5 * (Ri + Rj - d));
+}
+
+/* Its potential: (4/5) k x^{5/2} (see above for why not 2/5). */
+static inline double bf_hertz_pair_energy(double k, double Ri, double Rj,
+                                          double d)
+{
+    return 2.0 * bf_hertz_energy(k, 0.5 * (Ri + Rj - d));
+}
+
+#endif

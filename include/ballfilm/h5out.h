@@ -1,0 +1,71 @@
+/* h5out.h: self-describing, crash-tolerant HDF5 output.
+ *
+ * A run appends rows to "series" (extendible, chunked datasets [n] or
+ * [n x ncols]).  Rows are buffered in memory and reach the file only in
+ * bf_out_flush(), which writes every buffered row of every series, updates
+ * the extents and calls H5Fflush.  Between flushes the file on disk is
+ * therefore exactly the state of the last flush, so a run killed with SIGKILL
+ * leaves a file that opens and holds every flushed row.  bf_out_maybe_flush()
+ * flushes when a wall-clock interval has passed or the buffers grow large.
+ *
+ * Every dataset carries "unit" and "description" attributes.
+ */
+#ifndef BALLFILM_H5OUT_H
+#define BALLFILM_H5OUT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "ballfilm/error.h"
+
+typedef struct bf_out bf_out;
+typedef struct bf_series bf_series;
+
+/* Create (truncate) the file.  Parent groups of every path are created on
+ * demand. */
+bf_status bf_out_create(bf_out **out, const char *path, bf_err *err);
+/* Flush and close; *out is freed even on error. */
+bf_status bf_out_close(bf_out *out, bf_err *err);
+const char *bf_out_path(const bf_out *out);
+
+/* An extendible series: ncols == 0 gives a 1-D dataset [n], otherwise a 2-D
+ * dataset [n x ncols].  `is_int` selects int64 instead of float64. */
+bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
+                         int is_int, const char *unit, const char *doc,
+                         bf_err *err);
+/* Buffer one row (ncols values, or 1 if ncols == 0). */
+bf_status bf_series_append(bf_series *s, const double *row);
+bf_status bf_series_append_i64(bf_series *s, const int64_t *row);
+size_t bf_series_rows(const bf_series *s); /* written + buffered */
+
+/* A fixed dataset written at once: dims n0 (n1 == 0) or n0 x n1. */
+bf_status bf_out_array(bf_out *out, const char *path, const double *data,
+                       size_t n0, size_t n1, const char *unit, const char *doc,
+                       bf_err *err);
+bf_status bf_out_array_i64(bf_out *out, const char *path, const int64_t *data,
+                           size_t n0, size_t n1, const char *unit,
+                           const char *doc, bf_err *err);
+
+/* Attributes on an object ("/" for the root, or a group/dataset path; groups
+ * are created if needed). */
+bf_status bf_out_attr_str(bf_out *out, const char *obj, const char *name,
+                          const char *value, bf_err *err);
+bf_status bf_out_attr_real(bf_out *out, const char *obj, const char *name,
+                           double value, bf_err *err);
+bf_status bf_out_attr_int(bf_out *out, const char *obj, const char *name,
+                          int64_t value, bf_err *err);
+
+bf_status bf_out_flush(bf_out *out, bf_err *err);
+/* Flush if more than `seconds` of wall time passed since the last flush or
+ * more than a few MiB are buffered. */
+bf_status bf_out_maybe_flush(bf_out *out, double seconds, bf_err *err);
+
+/* ---- reading back (tests, restarts, initial profiles) ---- */
+/* Read a whole float64 dataset; *data is malloc'd, dims in n0, n1 (n1 = 0 for
+ * 1-D). */
+bf_status bf_h5_read(const char *file, const char *path, double **data,
+                     size_t *n0, size_t *n1, bf_err *err);
+bf_status bf_h5_read_attr_str(const char *file, const char *obj,
+                              const char *name, char **value, bf_err *err);
+
+#endif

@@ -1,0 +1,120 @@
+/* integrator.h: one small interface for every ODE time integrator.
+ *
+ * The system is second order in form: dx/dt = v, dv/dt = a(t, x, v), with n
+ * degrees of freedom.  Integrators know nothing of the physics: they ask the
+ * bf_ode for accelerations.  Each integrator lives in its own file and
+ * exports one constant descriptor (bf_integrator_type); registry.c lists
+ * them.  Adding an integrator touches one new file and one registry line.
+ *
+ * Methods that, like Verlet, evaluate a at the step's end point keep that
+ * value for the next step (first same as last).  The cache is keyed by the
+ * positions and by bf_ode.epoch: a model whose force field changes between
+ * steps for reasons other than x (the film under the balls) bumps the epoch.
+ */
+#ifndef BALLFILM_INTEGRATOR_H
+#define BALLFILM_INTEGRATOR_H
+
+#include <stddef.h>
+
+#include "ballfilm/error.h"
+#include "ballfilm/scene.h"
+
+/* a(t, x, v) -> acc[n].  Returns 0, or non-zero if the force cannot be
+ * evaluated (the integrator then fails the step with BF_EUNSTABLE). */
+typedef int (*bf_accel_fn)(void *ctx, double t, const double *x,
+                           const double *v, double *acc);
+
+typedef struct bf_ode {
+    size_t n;
+    bf_accel_fn accel;
+    void *ctx;
+    int velocity_dependent; /* a depends on v (Verlet-type methods refuse) */
+    unsigned long epoch;    /* bumped when the force field changes */
+} bf_ode;
+
+typedef struct bf_counters {
+    unsigned long long steps;      /* accepted steps */
+    unsigned long long evals;      /* force (acceleration) evaluations */
+    unsigned long long rejected;   /* rejected steps (adaptive methods) */
+    unsigned long long iterations; /* inner iterations (implicit methods) */
+} bf_counters;
+
+typedef struct bf_integrator bf_integrator;
+
+enum {
+    BF_INT_SYMMETRIC = 1u << 0,     /* time-symmetric (bounded energy error) */
+    BF_INT_POSITION_ONLY = 1u << 1, /* needs a(x) independent of v */
+    BF_INT_ADAPTIVE = 1u << 2,      /* takes its own internal steps */
+    BF_INT_IMPLICIT = 1u << 3
+};
+
+typedef struct bf_integrator_type {
+    const char *name;
+    const char *doc;
+    int order;          /* nominal global order */
+    int evals_per_step; /* nominal; 0 if variable */
+    unsigned flags;
+    const bf_section_spec *spec; /* keys of [integrator], or NULL */
+    /* Allocate it->work etc. for it->n unknowns and read [integrator] keys
+     * (sc may be NULL: use defaults). */
+    bf_status (*init)(bf_integrator *it, const bf_scene *sc, bf_err *err);
+    /* Advance (x, v) from t to t + dt in place.  On failure x, v are left
+     * at their values at t. */
+    bf_status (*step)(bf_integrator *it, const bf_ode *ode, double t, double dt,
+                      double *x, double *v, bf_err *err);
+    void (*free)(bf_integrator *it);
+} bf_integrator_type;
+
+struct bf_integrator {
+    const bf_integrator_type *type;
+    size_t n;
+    double *work; /* scratch owned by the type (allocated by init) */
+    void *priv;   /* type-private data */
+    bf_counters count;
+    /* first-same-as-last cache: acceleration at cache_x */
+    double *cache_x, *cache_a;
+    int cache_valid;
+    unsigned long cache_epoch;
+};
+
+const bf_integrator_type *bf_integrator_find(const char *name);
+/* All registered types, for --help and the convergence driver. */
+const bf_integrator_type *const *bf_integrator_types(size_t *n);
+
+bf_status bf_integrator_create(bf_integrator **it, const char *name, size_t n,
+                               const bf_scene *sc, bf_err *err);
+void bf_integrator_free(bf_integrator *it);
+/* Forget cached forces (after the caller changed x or the force field). */
+void bf_integrator_reset(bf_integrator *it);
+
+static inline bf_status bf_integrator_step(bf_integrator *it, const bf_ode *ode,
+                                           double t, double dt, double *x,
+                                           double *v, bf_err *err)
+{
+    return it->type->step(it, ode, t, dt, x, v, err);
+}
+
+/* Helpers for integrator implementations. */
+bf_status bf_ode_eval_failed(bf_err *err);
+/* Evaluate a(t, x, v), count it, and turn a failure into a message.
+ * Inline: it sits in every integrator's innermost loop. */
+static inline bf_status bf_ode_eval(bf_integrator *it, const bf_ode *ode,
+                                    double t, const double *x, const double *v,
+                                    double *acc, bf_err *err)
+{
+    it->count.evals++;
+    if (ode->accel(ode->ctx, t, x, v, acc))
+        return bf_ode_eval_failed(err);
+    return BF_OK;
+}
+/* a(x) at the step's start, from the cache when x and the epoch match. */
+bf_status bf_ode_eval_cached(bf_integrator *it, const bf_ode *ode, double t,
+                             const double *x, const double *v, double *acc,
+                             bf_err *err);
+/* Store a(x) computed at the step's end for the next step. */
+void bf_integrator_cache_store(bf_integrator *it, const bf_ode *ode,
+                               const double *x, const double *acc);
+/* Allocate `nvec` vectors of length n into it->work (zeroed). */
+bf_status bf_integrator_alloc_work(bf_integrator *it, size_t nvec, bf_err *err);
+
+#endif

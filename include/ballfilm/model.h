@@ -1,0 +1,60 @@
+/* model.h: a model is a solver for one kind of scene (balls on a line, the
+ * two-phase film, balls in the film, particle fluids, the MAC tank).
+ *
+ * Solver versus problem (Basilisk): a model owns its state, its parameters
+ * (declared in its section specs) and a function that advances one step.
+ * The core time loop (sim.h) owns time, output schedule, energy bookkeeping
+ * and stopping; it calls the model through this table.  Models are listed in
+ * registry.c.
+ */
+#ifndef BALLFILM_MODEL_H
+#define BALLFILM_MODEL_H
+
+#include <stdio.h>
+
+#include "ballfilm/error.h"
+#include "ballfilm/h5out.h"
+#include "ballfilm/integrator.h"
+#include "ballfilm/scene.h"
+
+enum {
+    BF_MODEL_INTEGRATOR = 1u << 0, /* uses [scene] integrator */
+    BF_MODEL_EFFECTS = 1u << 1     /* uses [scene] effects */
+};
+
+typedef struct bf_model_type {
+    const char *name;
+    const char *doc;
+    unsigned flags;
+    /* sections owned by the model, NULL-terminated (may be NULL) */
+    const bf_section_spec *const *specs;
+
+    /* Build from a resolved scene; validate physics (overlaps, stability)
+     * with messages naming the key (bf_scene_fail).  dt is [scene] dt. */
+    bf_status (*create)(void **self, const bf_scene *sc, bf_err *err);
+    void (*destroy)(void *self);
+    /* Largest stable time step for the current state (s), or 0 if the
+     * model has no such limit.  Optional. */
+    double (*stable_dt)(const void *self);
+    /* Advance from t = n dt to t + dt.  A failure message should say what
+     * went wrong and where (ball, node, cell); the loop adds step and time. */
+    bf_status (*step)(void *self, long n, double t, double dt, bf_err *err);
+    /* Kinetic and potential energy (erg).  Optional: NULL if the model has
+     * no conserved energy to monitor. */
+    void (*energy)(const void *self, double t, double *kin, double *pot);
+    /* Create the model's datasets; called once before the first row. */
+    bf_status (*output_open)(void *self, bf_out *out, bf_err *err);
+    /* Append one output row of the model's series (state at t). */
+    bf_status (*output_row)(void *self, long n, double t, bf_err *err);
+    /* Write anything collected during the run (optional). */
+    bf_status (*output_close)(void *self, bf_out *out, bf_err *err);
+    /* Counters of the time integration (optional). */
+    void (*counters)(const void *self, bf_counters *c);
+    /* Extra lines for the end-of-run summary (optional). */
+    void (*report)(const void *self, FILE *f);
+} bf_model_type;
+
+const bf_model_type *bf_model_find(const char *name);
+const bf_model_type *const *bf_model_types(size_t *n);
+
+#endif

@@ -1,0 +1,155 @@
+/* scene.h: scene files (INI) and the parameter tables that describe them.
+ *
+ * One source of truth: every key a scene may contain is declared once, in a
+ * bf_section_spec table owned by the module that uses it (the core [scene]
+ * section, each model, each effect, each integrator).  The parser validates
+ * against these tables, fills in defaults, and `ballfilm run --help` prints
+ * them.  A key that no table declares is an error, so a typo never passes
+ * silently.
+ *
+ * Sections named "NAME.N" in a table (for example "ball.N") are indexed:
+ * a scene may contain [ball.1], [ball.2], ... with consecutive indices.
+ *
+ * Life cycle:
+ *   bf_scene_load()       read the file (syntax errors, duplicate keys)
+ *   bf_scene_set()        apply a "section.key=value" override (--set)
+ *   bf_scene_resolve()    validate against the tables, parse values, fill
+ *                         defaults; after this the accessors may be used.
+ * Every error message starts with "FILE:LINE: error:" (or "FILE: error:" for
+ * a key that is missing, "--set: error:" for an override) and names the key.
+ */
+#ifndef BALLFILM_SCENE_H
+#define BALLFILM_SCENE_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "ballfilm/error.h"
+
+typedef enum bf_ptype {
+    BF_REAL,     /* a finite real number */
+    BF_INT,      /* an integer (long) */
+    BF_BOOL,     /* true/false, yes/no, on/off, 1/0 */
+    BF_STR,      /* free text (file names) */
+    BF_ENUM,     /* one word from `choices` ("a|b|c") */
+    BF_NAMES,    /* a list of words from `choices`, comma or space separated */
+    BF_REALS,    /* a list of real numbers, comma or space separated */
+    BF_INTERVAL  /* "N" steps, or "T s" simulated seconds */
+} bf_ptype;
+
+/* Constraint flags for BF_REAL / BF_INT / BF_REALS (each element). */
+enum {
+    BF_POS = 1u << 0,     /* value > 0 */
+    BF_NONNEG = 1u << 1,  /* value >= 0 */
+    BF_MIN = 1u << 2,     /* value >= lo */
+    BF_MAX = 1u << 3,     /* value <= hi */
+    BF_HIDDEN = 1u << 4   /* not listed by --help (internal/test keys) */
+};
+
+typedef struct bf_param {
+    const char *key;
+    bf_ptype type;
+    const char *unit;    /* CGS unit ("cm", "g", "s", "1" = dimensionless) */
+    const char *def;     /* default as text; NULL: the key is required */
+    const char *doc;     /* one line, shown by --help */
+    unsigned flags;
+    double lo, hi;
+    const char *choices; /* BF_ENUM, BF_NAMES: "a|b|c" */
+} bf_param;
+
+typedef struct bf_section_spec {
+    const char *name;      /* "scene", "film", "ball.N" */
+    const char *doc;
+    const bf_param *params; /* terminated by an entry with key == NULL */
+} bf_section_spec;
+
+typedef struct bf_interval {
+    int in_time;   /* 0: `steps` is set; 1: `time` is set (seconds) */
+    long steps;
+    double time;
+} bf_interval;
+
+typedef struct bf_scene bf_scene;
+
+/* Read a scene file.  On error returns BF_EINPUT (or BF_EIO) with a message
+ * naming file and line; *out is NULL then. */
+bf_status bf_scene_load(bf_scene **out, const char *path, bf_err *err);
+/* Same, from text in memory (`name` is used in messages). */
+bf_status bf_scene_load_string(bf_scene **out, const char *name,
+                               const char *text, bf_err *err);
+void bf_scene_free(bf_scene *sc);
+/* A deep copy (raw entries and overrides; resolve it again before use). */
+bf_scene *bf_scene_clone(const bf_scene *sc);
+
+/* Apply an override "section.key=value" (the key is the part after the last
+ * dot, so "ball.2.mass=0.8" sets key mass of [ball.2]).  `origin` names it in
+ * messages (for example "--set").  Invalidates a previous resolve. */
+bf_status bf_scene_set(bf_scene *sc, const char *assignment, const char *origin,
+                       bf_err *err);
+
+/* Which sections a scene may contain is decided in two stages: the root
+ * section ([scene]) is resolved first; then `select` looks at it (model,
+ * effects, integrator) and lists the further sections that are allowed.
+ * The registry (registry.h) provides the provider used by the program. */
+typedef struct bf_spec_provider {
+    const bf_section_spec *root;
+    bf_status (*select)(const bf_scene *sc, const bf_section_spec **specs,
+                        size_t cap, size_t *n, bf_err *err);
+} bf_spec_provider;
+
+/* Validate and fill defaults. */
+bf_status bf_scene_resolve_with(bf_scene *sc, const bf_spec_provider *p,
+                                bf_err *err);
+
+/* The scene text as read (for the HDF5 provenance attribute). */
+const char *bf_scene_text(const bf_scene *sc);
+const char *bf_scene_path(const bf_scene *sc);
+
+/* Accessors (valid after a successful resolve).  Asking for a key that no
+ * table declares is a programming error and aborts with a message. */
+double bf_scene_real(const bf_scene *sc, const char *section, const char *key);
+long bf_scene_int(const bf_scene *sc, const char *section, const char *key);
+int bf_scene_bool(const bf_scene *sc, const char *section, const char *key);
+const char *bf_scene_str(const bf_scene *sc, const char *section,
+                         const char *key);
+/* Index of the chosen word in the param's `choices`. */
+int bf_scene_enum(const bf_scene *sc, const char *section, const char *key);
+/* For BF_REALS and BF_NAMES: number of elements and a pointer to them
+ * (names: array of strings). */
+const double *bf_scene_reals(const bf_scene *sc, const char *section,
+                             const char *key, size_t *n);
+const char *const *bf_scene_names(const bf_scene *sc, const char *section,
+                                  const char *key, size_t *n);
+int bf_scene_has_name(const bf_scene *sc, const char *section, const char *key,
+                      const char *name);
+bf_interval bf_scene_interval(const bf_scene *sc, const char *section,
+                              const char *key);
+/* Whether the section was given in the file (or by --set), and whether a key
+ * was given explicitly rather than defaulted. */
+int bf_scene_has_section(const bf_scene *sc, const char *section);
+int bf_scene_given(const bf_scene *sc, const char *section, const char *key);
+/* Number of consecutive indexed sections NAME.1 .. NAME.n ("ball" -> n). */
+int bf_scene_count(const bf_scene *sc, const char *base);
+
+/* Report a semantic error about a key ("balls overlap", "dt above the stable
+ * limit"): the message is prefixed with the key's file and line. */
+bf_status bf_scene_fail(const bf_scene *sc, bf_err *err, const char *section,
+                        const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+
+/* Visit every resolved parameter (for provenance in the output file).  The
+ * callback receives "section.key", the value as text, the unit, and whether
+ * the value was a default. */
+typedef int (*bf_scene_visit_fn)(void *ctx, const char *name, const char *value,
+                                 const char *unit, int is_default);
+int bf_scene_visit(const bf_scene *sc, bf_scene_visit_fn fn, void *ctx);
+
+/* Print the documentation of a list of section specs (for --help). */
+void bf_scene_print_specs(FILE *f, const bf_section_spec *const *specs,
+                          size_t n);
+
+/* Parse helpers shared with the command line. */
+int bf_parse_real(const char *text, double *out);
+int bf_parse_long(const char *text, long *out);
+
+#endif

@@ -1,0 +1,10 @@
+/* cli.h: subcommands of the ballfilm program (private to src/cli). */
+#ifndef BALLFILM_CLI_H
+#define BALLFILM_CLI_H
+
+#include <stdio.h>
+
+int bf_cmd_run(int argc, char **argv);
+void bf_cli_print_keys(FILE *f);
+
+#endif

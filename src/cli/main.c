@@ -1,0 +1,49 @@
+/* main.c: the ballfilm command line.  Subcommands dispatch to cmd_*.c; the
+ * exit status is the run's bf_status (error.h): 0 ok, 2 bad input,
+ * 3 unstable, 4 no convergence, 5 I/O error, 6 interrupted. */
+#include <stdio.h>
+#include <string.h>
+
+#include "ballfilm/version.h"
+#include "cli.h"
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: ballfilm COMMAND [ARGS]\n"
+            "\n"
+            "commands:\n"
+            "  run SCENE.ini [-o OUT.h5] [--set section.key=value]... [-q]\n"
+            "                     run a scene, write HDF5 (see 'ballfilm run "
+            "--help')\n"
+            "  help               this text and every scene key\n"
+            "  version            print the version\n"
+            "\n"
+            "exit status: 0 ok, 2 bad input, 3 run unstable, 4 iteration did "
+            "not converge,\n"
+            "             5 I/O error, 6 interrupted\n");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    const char *cmd = argv[1];
+    if (!strcmp(cmd, "run"))
+        return bf_cmd_run(argc - 1, argv + 1);
+    if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
+        usage(stdout);
+        printf("\n");
+        bf_cli_print_keys(stdout);
+        return 0;
+    }
+    if (!strcmp(cmd, "version") || !strcmp(cmd, "--version")) {
+        printf("%s\n", bf_version_string());
+        return 0;
+    }
+    fprintf(stderr, "ballfilm: error: unknown command '%s'\n\n", cmd);
+    usage(stderr);
+    return 2;
+}

@@ -1,0 +1,156 @@
+/* registry.c: which sections a scene may contain, decided from its [scene]
+ * section (model, integrator, effects), and the --help listing generated
+ * from the same tables. */
+#include "ballfilm/registry.h"
+
+#include <string.h>
+
+#include "ballfilm/effects.h"
+#include "ballfilm/integrator.h"
+#include "ballfilm/model.h"
+#include "ballfilm/sim.h"
+
+static void list_names(char *buf, size_t cap, const char *const *names, size_t n)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (size_t k = 0; k < n; k++) {
+        int w = snprintf(buf + used, cap - used, "%s%s", k ? ", " : "", names[k]);
+        if (w < 0 || (size_t)w >= cap - used)
+            return;
+        used += (size_t)w;
+    }
+}
+
+static bf_status add_spec(const bf_section_spec **specs, size_t cap, size_t *n,
+                          const bf_section_spec *s, bf_err *err)
+{
+    for (size_t k = 0; k < *n; k++)
+        if (specs[k] == s || !strcmp(specs[k]->name, s->name))
+            return BF_OK;
+    if (*n == cap)
+        return bf_fail(err, BF_EINTERNAL, "too many sections");
+    specs[(*n)++] = s;
+    return BF_OK;
+}
+
+static bf_status select_specs(const bf_scene *sc, const bf_section_spec **specs,
+                              size_t cap, size_t *n, bf_err *err)
+{
+    char names[1024];
+    const char *tmp[64];
+    *n = 0;
+    const char *model = bf_scene_str(sc, "scene", "model");
+    const bf_model_type *mt = bf_model_find(model);
+    if (!mt) {
+        size_t nm;
+        const bf_model_type *const *all = bf_model_types(&nm);
+        for (size_t k = 0; k < nm && k < 64; k++)
+            tmp[k] = all[k]->name;
+        list_names(names, sizeof names, tmp, nm);
+        return bf_scene_fail(sc, err, "scene", "model",
+                             "unknown model '%s' (models: %s)", model, names);
+    }
+    bf_status st;
+    for (const bf_section_spec *const *s = mt->specs; s && *s; s++)
+        if ((st = add_spec(specs, cap, n, *s, err)))
+            return st;
+    if (mt->flags & BF_MODEL_INTEGRATOR) {
+        const char *iname = bf_scene_str(sc, "scene", "integrator");
+        const bf_integrator_type *it = bf_integrator_find(iname);
+        if (!it) {
+            size_t ni;
+            const bf_integrator_type *const *all = bf_integrator_types(&ni);
+            for (size_t k = 0; k < ni && k < 64; k++)
+                tmp[k] = all[k]->name;
+            list_names(names, sizeof names, tmp, ni);
+            return bf_scene_fail(sc, err, "scene", "integrator",
+                                 "unknown integrator '%s' (integrators: %s)",
+                                 iname, names);
+        }
+        if (it->spec && (st = add_spec(specs, cap, n, it->spec, err)))
+            return st;
+    } else if (bf_scene_given(sc, "scene", "integrator")) {
+        return bf_scene_fail(sc, err, "scene", "integrator",
+                             "model '%s' has its own time stepping and takes "
+                             "no integrator",
+                             model);
+    }
+    size_t ne;
+    const char *const *eff = bf_scene_names(sc, "scene", "effects", &ne);
+    if (ne && !(mt->flags & BF_MODEL_EFFECTS))
+        return bf_scene_fail(sc, err, "scene", "effects",
+                             "model '%s' takes no ball effects", model);
+    for (size_t k = 0; k < ne; k++) {
+        const bf_effect_type *et = bf_effect_find(eff[k]);
+        if (!et) {
+            size_t na;
+            const bf_effect_type *const *all = bf_effect_types(&na);
+            for (size_t j = 0; j < na && j < 64; j++)
+                tmp[j] = all[j]->name;
+            list_names(names, sizeof names, tmp, na);
+            return bf_scene_fail(sc, err, "scene", "effects",
+                                 "unknown effect '%s' (effects: %s)", eff[k],
+                                 names);
+        }
+        if (et->spec && (st = add_spec(specs, cap, n, et->spec, err)))
+            return st;
+    }
+    return BF_OK;
+}
+
+static const bf_spec_provider provider = {&bf_sim_scene_spec, select_specs};
+
+bf_status bf_registry_resolve(bf_scene *sc, bf_err *err)
+{
+    return bf_scene_resolve_with(sc, &provider, err);
+}
+
+void bf_registry_print_help(FILE *f)
+{
+    const bf_section_spec *one[1];
+    fprintf(f, "Scene files are INI files.  Every key, with its unit and "
+               "default:\n");
+    one[0] = &bf_sim_scene_spec;
+    bf_scene_print_specs(f, one, 1);
+
+    size_t nm, ni, ne;
+    const bf_model_type *const *models = bf_model_types(&nm);
+    const bf_integrator_type *const *ints = bf_integrator_types(&ni);
+    const bf_effect_type *const *effs = bf_effect_types(&ne);
+
+    fprintf(f, "\nModels ([scene] model):\n");
+    for (size_t k = 0; k < nm; k++)
+        fprintf(f, "  %-14s %s\n", models[k]->name, models[k]->doc);
+    fprintf(f, "\nIntegrators ([scene] integrator, models that take one):\n");
+    for (size_t k = 0; k < ni; k++)
+        fprintf(f, "  %-14s %s\n", ints[k]->name, ints[k]->doc);
+    fprintf(f, "\nEffects ([scene] effects, for ball models):\n");
+    for (size_t k = 0; k < ne; k++)
+        fprintf(f, "  %-14s %s\n", effs[k]->name, effs[k]->doc);
+
+    /* every section once, in registry order */
+    const bf_section_spec *seen[128];
+    size_t nseen = 0;
+#define SHOW(spec_ptr, owner)                                                  \
+    do {                                                                       \
+        const bf_section_spec *s_ = (spec_ptr);                                \
+        int dup_ = 0;                                                          \
+        for (size_t q_ = 0; q_ < nseen; q_++)                                  \
+            dup_ |= seen[q_] == s_;                                            \
+        if (s_ && !dup_ && nseen < 128) {                                      \
+            seen[nseen++] = s_;                                                \
+            fprintf(f, "\n-- used by %s --", owner);                           \
+            one[0] = s_;                                                       \
+            bf_scene_print_specs(f, one, 1);                                   \
+        }                                                                      \
+    } while (0)
+    for (size_t k = 0; k < nm; k++)
+        for (const bf_section_spec *const *s = models[k]->specs; s && *s; s++)
+            SHOW(*s, models[k]->name);
+    for (size_t k = 0; k < ni; k++)
+        SHOW(ints[k]->spec, ints[k]->name);
+    for (size_t k = 0; k < ne; k++)
+        SHOW(effs[k]->spec, effs[k]->name);
+#undef SHOW
+}

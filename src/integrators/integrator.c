@@ -1,0 +1,87 @@
+/* integrator.c: creation, force cache and helpers shared by all
+ * integrators (see integrator.h). */
+#include "ballfilm/integrator.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+bf_status bf_integrator_create(bf_integrator **out, const char *name, size_t n,
+                               const bf_scene *sc, bf_err *err)
+{
+    *out = NULL;
+    const bf_integrator_type *t = bf_integrator_find(name);
+    if (!t)
+        return bf_fail(err, BF_EINPUT, "unknown integrator '%s'", name);
+    bf_integrator *it = calloc(1, sizeof *it);
+    if (!it)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    it->type = t;
+    it->n = n;
+    it->cache_x = calloc(n ? n : 1, sizeof *it->cache_x);
+    it->cache_a = calloc(n ? n : 1, sizeof *it->cache_a);
+    if (!it->cache_x || !it->cache_a) {
+        bf_integrator_free(it);
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    bf_status st = t->init ? t->init(it, sc, err) : BF_OK;
+    if (st) {
+        bf_integrator_free(it);
+        return st;
+    }
+    *out = it;
+    return BF_OK;
+}
+
+void bf_integrator_free(bf_integrator *it)
+{
+    if (!it)
+        return;
+    if (it->type && it->type->free)
+        it->type->free(it);
+    free(it->work);
+    free(it->cache_x);
+    free(it->cache_a);
+    free(it);
+}
+
+void bf_integrator_reset(bf_integrator *it) { it->cache_valid = 0; }
+
+bf_status bf_integrator_alloc_work(bf_integrator *it, size_t nvec, bf_err *err)
+{
+    free(it->work);
+    it->work = calloc(nvec * (it->n ? it->n : 1), sizeof *it->work);
+    if (!it->work)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    return BF_OK;
+}
+
+bf_status bf_ode_eval_failed(bf_err *err)
+{
+    return bf_fail(err, BF_EUNSTABLE, "force undefined at the current positions");
+}
+
+bf_status bf_ode_eval_cached(bf_integrator *it, const bf_ode *ode, double t,
+                             const double *x, const double *v, double *acc,
+                             bf_err *err)
+{
+    size_t n = ode->n;
+    if (it->cache_valid && it->cache_epoch == ode->epoch &&
+        !memcmp(it->cache_x, x, n * sizeof *x)) {
+        memcpy(acc, it->cache_a, n * sizeof *acc);
+        return BF_OK;
+    }
+    bf_status st = bf_ode_eval(it, ode, t, x, v, acc, err);
+    if (!st)
+        bf_integrator_cache_store(it, ode, x, acc);
+    return st;
+}
+
+void bf_integrator_cache_store(bf_integrator *it, const bf_ode *ode,
+                               const double *x, const double *acc)
+{
+    memcpy(it->cache_x, x, ode->n * sizeof *x);
+    memcpy(it->cache_a, acc, ode->n * sizeof *acc);
+    it->cache_epoch = ode->epoch;
+    it->cache_valid = 1;
+}

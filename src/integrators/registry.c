@@ -1,0 +1,26 @@
+/* registry.c: the list of integrators.  One line per integrator. */
+#include <string.h>
+
+#include "ballfilm/integrator.h"
+
+extern const bf_integrator_type bf_integrator_verlet;
+extern const bf_integrator_type bf_integrator_mv2m;
+
+static const bf_integrator_type *const all[] = {
+    &bf_integrator_verlet,
+    &bf_integrator_mv2m,
+};
+
+const bf_integrator_type *const *bf_integrator_types(size_t *n)
+{
+    *n = sizeof all / sizeof all[0];
+    return all;
+}
+
+const bf_integrator_type *bf_integrator_find(const char *name)
+{
+    for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
+        if (!strcmp(all[k]->name, name))
+            return all[k];
+    return NULL;
+}

@@ -1,0 +1,433 @@
+/* h5out.c: buffered, extendible HDF5 series (see h5out.h for the design). */
+#include "ballfilm/h5out.h"
+
+#include <hdf5.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define FLUSH_BYTES (8u << 20) /* flush when this much is buffered */
+
+struct bf_series {
+    hid_t dset;
+    size_t ncols;    /* 0 for 1-D */
+    size_t width;    /* values per row (max(ncols, 1)) */
+    int is_int;
+    size_t written;  /* rows on disk */
+    size_t nbuf, capbuf;
+    unsigned char *buf;
+    char *path;
+};
+
+struct bf_out {
+    hid_t file;
+    char *path;
+    bf_series **series;
+    size_t nseries, capseries;
+    size_t buffered_bytes;
+    double last_flush;
+};
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void quiet_hdf5(void)
+{
+    /* We report errors ourselves, with the file and dataset named. */
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+}
+
+static hid_t lcpl_intermediate(void)
+{
+    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+    H5Pset_create_intermediate_group(lcpl, 1);
+    return lcpl;
+}
+
+bf_status bf_out_create(bf_out **out, const char *path, bf_err *err)
+{
+    quiet_hdf5();
+    *out = NULL;
+    hid_t f = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    if (f < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot create HDF5 file (directory "
+                       "missing or not writable?)", path);
+    bf_out *o = calloc(1, sizeof *o);
+    if (!o) {
+        H5Fclose(f);
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    o->file = f;
+    o->path = strdup(path);
+    o->last_flush = now();
+    *out = o;
+    return BF_OK;
+}
+
+const char *bf_out_path(const bf_out *out) { return out->path; }
+
+static void series_free(bf_series *s)
+{
+    if (!s)
+        return;
+    if (s->dset >= 0)
+        H5Dclose(s->dset);
+    free(s->buf);
+    free(s->path);
+    free(s);
+}
+
+bf_status bf_out_close(bf_out *out, bf_err *err)
+{
+    if (!out)
+        return BF_OK;
+    bf_status st = bf_out_flush(out, err);
+    for (size_t k = 0; k < out->nseries; k++)
+        series_free(out->series[k]);
+    free(out->series);
+    if (H5Fclose(out->file) < 0 && st == BF_OK)
+        st = bf_fail(err, BF_EIO, "%s: closing the HDF5 file failed", out->path);
+    free(out->path);
+    free(out);
+    return st;
+}
+
+static bf_status set_str_attr(hid_t obj, const char *name, const char *value)
+{
+    hid_t t = H5Tcopy(H5T_C_S1);
+    H5Tset_size(t, H5T_VARIABLE);
+    H5Tset_cset(t, H5T_CSET_UTF8);
+    hid_t sp = H5Screate(H5S_SCALAR);
+    if (H5Aexists(obj, name) > 0)
+        H5Adelete(obj, name);
+    hid_t a = H5Acreate2(obj, name, t, sp, H5P_DEFAULT, H5P_DEFAULT);
+    herr_t rc = -1;
+    if (a >= 0) {
+        const char *v = value ? value : "";
+        rc = H5Awrite(a, t, &v);
+        H5Aclose(a);
+    }
+    H5Sclose(sp);
+    H5Tclose(t);
+    return rc < 0 ? BF_EIO : BF_OK;
+}
+
+bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
+                         int is_int, const char *unit, const char *doc,
+                         bf_err *err)
+{
+    bf_series *s = calloc(1, sizeof *s);
+    if (!s) {
+        bf_fail(err, BF_EINTERNAL, "out of memory");
+        return NULL;
+    }
+    s->dset = -1;
+    s->ncols = ncols;
+    s->width = ncols ? ncols : 1;
+    s->is_int = is_int;
+    s->path = strdup(path);
+    int rank = ncols ? 2 : 1;
+    hsize_t dims[2] = {0, ncols}, maxdims[2] = {H5S_UNLIMITED, ncols};
+    /* about 64 KiB per chunk */
+    size_t rows = 65536 / (8 * s->width);
+    if (rows < 1)
+        rows = 1;
+    if (rows > 8192)
+        rows = 8192;
+    hsize_t chunk[2] = {rows, ncols};
+    hid_t sp = H5Screate_simple(rank, dims, maxdims);
+    hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(dcpl, rank, chunk);
+    hid_t lcpl = lcpl_intermediate();
+    s->dset = H5Dcreate2(out->file, path,
+                         is_int ? H5T_STD_I64LE : H5T_IEEE_F64LE, sp, lcpl, dcpl,
+                         H5P_DEFAULT);
+    H5Pclose(lcpl);
+    H5Pclose(dcpl);
+    H5Sclose(sp);
+    if (s->dset < 0) {
+        bf_fail(err, BF_EIO, "%s: cannot create dataset %s", out->path, path);
+        series_free(s);
+        return NULL;
+    }
+    if (set_str_attr(s->dset, "unit", unit ? unit : "") ||
+        set_str_attr(s->dset, "description", doc ? doc : "")) {
+        bf_fail(err, BF_EIO, "%s: cannot write attributes of %s", out->path,
+                path);
+        series_free(s);
+        return NULL;
+    }
+    if (out->nseries == out->capseries) {
+        out->capseries = out->capseries ? 2 * out->capseries : 16;
+        bf_series **ns = realloc(out->series, out->capseries * sizeof *ns);
+        if (!ns) {
+            bf_fail(err, BF_EINTERNAL, "out of memory");
+            series_free(s);
+            return NULL;
+        }
+        out->series = ns;
+    }
+    out->series[out->nseries++] = s;
+    (void)out->buffered_bytes;
+    return s;
+}
+
+static bf_status append_raw(bf_series *s, const void *row)
+{
+    size_t rowbytes = 8 * s->width;
+    if (s->nbuf == s->capbuf) {
+        size_t cap = s->capbuf ? 2 * s->capbuf : 64;
+        unsigned char *nb = realloc(s->buf, cap * rowbytes);
+        if (!nb)
+            return BF_EINTERNAL;
+        s->buf = nb;
+        s->capbuf = cap;
+    }
+    memcpy(s->buf + s->nbuf * rowbytes, row, rowbytes);
+    s->nbuf++;
+    return BF_OK;
+}
+
+bf_status bf_series_append(bf_series *s, const double *row)
+{
+    return append_raw(s, row);
+}
+
+bf_status bf_series_append_i64(bf_series *s, const int64_t *row)
+{
+    return append_raw(s, row);
+}
+
+size_t bf_series_rows(const bf_series *s) { return s->written + s->nbuf; }
+
+static bf_status series_flush(bf_out *out, bf_series *s, bf_err *err)
+{
+    if (!s->nbuf)
+        return BF_OK;
+    int rank = s->ncols ? 2 : 1;
+    hsize_t newdims[2] = {s->written + s->nbuf, s->ncols};
+    if (H5Dset_extent(s->dset, newdims) < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot extend %s (disk full?)",
+                       out->path, s->path);
+    hid_t fsp = H5Dget_space(s->dset);
+    hsize_t start[2] = {s->written, 0}, count[2] = {s->nbuf, s->ncols};
+    H5Sselect_hyperslab(fsp, H5S_SELECT_SET, start, NULL, count, NULL);
+    hid_t msp = H5Screate_simple(rank, count, NULL);
+    herr_t rc = H5Dwrite(s->dset, s->is_int ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE,
+                         msp, fsp, H5P_DEFAULT, s->buf);
+    H5Sclose(msp);
+    H5Sclose(fsp);
+    if (rc < 0)
+        return bf_fail(err, BF_EIO, "%s: writing %s failed (disk full?)",
+                       out->path, s->path);
+    s->written += s->nbuf;
+    s->nbuf = 0;
+    return BF_OK;
+}
+
+bf_status bf_out_flush(bf_out *out, bf_err *err)
+{
+    for (size_t k = 0; k < out->nseries; k++) {
+        bf_status st = series_flush(out, out->series[k], err);
+        if (st)
+            return st;
+    }
+    if (H5Fflush(out->file, H5F_SCOPE_GLOBAL) < 0)
+        return bf_fail(err, BF_EIO, "%s: flushing the HDF5 file failed (disk "
+                       "full?)", out->path);
+    out->last_flush = now();
+    return BF_OK;
+}
+
+bf_status bf_out_maybe_flush(bf_out *out, double seconds, bf_err *err)
+{
+    size_t bytes = 0;
+    for (size_t k = 0; k < out->nseries; k++)
+        bytes += out->series[k]->nbuf * 8 * out->series[k]->width;
+    if (bytes > FLUSH_BYTES || now() - out->last_flush > seconds)
+        return bf_out_flush(out, err);
+    return BF_OK;
+}
+
+static bf_status write_array(bf_out *out, const char *path, const void *data,
+                             size_t n0, size_t n1, int is_int, const char *unit,
+                             const char *doc, bf_err *err)
+{
+    int rank = n1 ? 2 : 1;
+    hsize_t dims[2] = {n0, n1};
+    hid_t sp = H5Screate_simple(rank, dims, NULL);
+    hid_t lcpl = lcpl_intermediate();
+    hid_t d = H5Dcreate2(out->file, path, is_int ? H5T_STD_I64LE : H5T_IEEE_F64LE,
+                         sp, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+    H5Pclose(lcpl);
+    herr_t rc = -1;
+    if (d >= 0) {
+        rc = (n0 && (n1 || rank == 1))
+                 ? H5Dwrite(d, is_int ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE,
+                            H5S_ALL, H5S_ALL, H5P_DEFAULT, data)
+                 : 0;
+        if (rc >= 0 && (set_str_attr(d, "unit", unit ? unit : "") ||
+                        set_str_attr(d, "description", doc ? doc : "")))
+            rc = -1;
+        H5Dclose(d);
+    }
+    H5Sclose(sp);
+    if (rc < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot write dataset %s", out->path,
+                       path);
+    return BF_OK;
+}
+
+bf_status bf_out_array(bf_out *out, const char *path, const double *data,
+                       size_t n0, size_t n1, const char *unit, const char *doc,
+                       bf_err *err)
+{
+    return write_array(out, path, data, n0, n1, 0, unit, doc, err);
+}
+
+bf_status bf_out_array_i64(bf_out *out, const char *path, const int64_t *data,
+                           size_t n0, size_t n1, const char *unit,
+                           const char *doc, bf_err *err)
+{
+    return write_array(out, path, data, n0, n1, 1, unit, doc, err);
+}
+
+/* Open an object for attributes, creating groups as needed. */
+static hid_t open_obj(bf_out *out, const char *obj)
+{
+    if (!strcmp(obj, "/"))
+        return H5Oopen(out->file, "/", H5P_DEFAULT);
+    if (H5Lexists(out->file, obj, H5P_DEFAULT) > 0)
+        return H5Oopen(out->file, obj, H5P_DEFAULT);
+    hid_t lcpl = lcpl_intermediate();
+    hid_t g = H5Gcreate2(out->file, obj, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+    H5Pclose(lcpl);
+    return g;
+}
+
+bf_status bf_out_attr_str(bf_out *out, const char *obj, const char *name,
+                          const char *value, bf_err *err)
+{
+    hid_t o = open_obj(out, obj);
+    if (o < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot open %s", out->path, obj);
+    bf_status st = set_str_attr(o, name, value);
+    H5Oclose(o);
+    if (st)
+        return bf_fail(err, BF_EIO, "%s: cannot write attribute %s of %s",
+                       out->path, name, obj);
+    return BF_OK;
+}
+
+static bf_status num_attr(bf_out *out, const char *obj, const char *name,
+                          hid_t ftype, hid_t mtype, const void *v, bf_err *err)
+{
+    hid_t o = open_obj(out, obj);
+    if (o < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot open %s", out->path, obj);
+    if (H5Aexists(o, name) > 0)
+        H5Adelete(o, name);
+    hid_t sp = H5Screate(H5S_SCALAR);
+    hid_t a = H5Acreate2(o, name, ftype, sp, H5P_DEFAULT, H5P_DEFAULT);
+    herr_t rc = a >= 0 ? H5Awrite(a, mtype, v) : -1;
+    if (a >= 0)
+        H5Aclose(a);
+    H5Sclose(sp);
+    H5Oclose(o);
+    if (rc < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot write attribute %s of %s",
+                       out->path, name, obj);
+    return BF_OK;
+}
+
+bf_status bf_out_attr_real(bf_out *out, const char *obj, const char *name,
+                           double value, bf_err *err)
+{
+    return num_attr(out, obj, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value,
+                    err);
+}
+
+bf_status bf_out_attr_int(bf_out *out, const char *obj, const char *name,
+                          int64_t value, bf_err *err)
+{
+    return num_attr(out, obj, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value,
+                    err);
+}
+
+/* --------------------------------------------------------------- reading */
+
+bf_status bf_h5_read(const char *file, const char *path, double **data,
+                     size_t *n0, size_t *n1, bf_err *err)
+{
+    quiet_hdf5();
+    *data = NULL;
+    hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", file);
+    hid_t d = H5Dopen2(f, path, H5P_DEFAULT);
+    if (d < 0) {
+        H5Fclose(f);
+        return bf_fail(err, BF_EIO, "%s: no dataset %s", file, path);
+    }
+    hid_t sp = H5Dget_space(d);
+    int rank = H5Sget_simple_extent_ndims(sp);
+    hsize_t dims[2] = {0, 0};
+    bf_status st = BF_OK;
+    if (rank < 1 || rank > 2) {
+        st = bf_fail(err, BF_EIO, "%s: %s has rank %d (want 1 or 2)", file, path,
+                     rank);
+    } else {
+        H5Sget_simple_extent_dims(sp, dims, NULL);
+        size_t total = (size_t)dims[0] * (rank == 2 ? (size_t)dims[1] : 1);
+        double *buf = malloc((total ? total : 1) * sizeof *buf);
+        if (!buf)
+            st = bf_fail(err, BF_EINTERNAL, "out of memory");
+        else if (total && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL,
+                                  H5P_DEFAULT, buf) < 0) {
+            free(buf);
+            st = bf_fail(err, BF_EIO, "%s: cannot read %s", file, path);
+        } else {
+            *data = buf;
+            *n0 = (size_t)dims[0];
+            *n1 = rank == 2 ? (size_t)dims[1] : 0;
+        }
+    }
+    H5Sclose(sp);
+    H5Dclose(d);
+    H5Fclose(f);
+    return st;
+}
+
+bf_status bf_h5_read_attr_str(const char *file, const char *obj,
+                              const char *name, char **value, bf_err *err)
+{
+    quiet_hdf5();
+    *value = NULL;
+    hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", file);
+    bf_status st = BF_OK;
+    hid_t a = H5Aopen_by_name(f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+    if (a < 0) {
+        st = bf_fail(err, BF_EIO, "%s: no attribute %s on %s", file, name, obj);
+    } else {
+        hid_t t = H5Tcopy(H5T_C_S1);
+        H5Tset_size(t, H5T_VARIABLE);
+        H5Tset_cset(t, H5T_CSET_UTF8);
+        char *v = NULL;
+        if (H5Aread(a, t, &v) < 0 || !v) {
+            st = bf_fail(err, BF_EIO, "%s: cannot read attribute %s", file, name);
+        } else {
+            *value = strdup(v);
+            H5free_memory(v);
+        }
+        H5Tclose(t);
+        H5Aclose(a);
+    }
+    H5Fclose(f);
+    return st;
+}

@@ -1,0 +1,111 @@
+/* balls.c: the "balls" model: balls on a vertical line in space (Yasuda
+ * sec. 2), or any set of balls under the ball effects.
+ *
+ * Output: /balls/position and /balls/velocity [rows x balls] at every output
+ * row, /balls/mass and /balls/radius once.
+ */
+#include <stdlib.h>
+
+#include "ballfilm/ballsys.h"
+#include "ballfilm/model.h"
+
+typedef struct balls_model {
+    bf_ballsys *sys;
+    bf_series *pos, *vel;
+} balls_model;
+
+bf_ballsys *bf_balls_model_system(void *self)
+{
+    return ((balls_model *)self)->sys;
+}
+
+static bf_status balls_create(void **self, const bf_scene *sc, bf_err *err)
+{
+    balls_model *m = calloc(1, sizeof *m);
+    if (!m)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    bf_effect_env env = {0};
+    bf_status st = bf_ballsys_create(&m->sys, sc, &env, err);
+    if (st) {
+        free(m);
+        return st;
+    }
+    *self = m;
+    return BF_OK;
+}
+
+static void balls_destroy(void *self)
+{
+    balls_model *m = self;
+    if (!m)
+        return;
+    bf_ballsys_free(m->sys);
+    free(m);
+}
+
+static bf_status balls_step(void *self, long n, double t, double dt, bf_err *err)
+{
+    (void)n;
+    balls_model *m = self;
+    return bf_ballsys_step(m->sys, t, dt, err);
+}
+
+static void balls_energy(const void *self, double t, double *kin, double *pot)
+{
+    const balls_model *m = self;
+    bf_ballsys_energy(m->sys, t, kin, pot);
+}
+
+static bf_status balls_output_open(void *self, bf_out *out, bf_err *err)
+{
+    balls_model *m = self;
+    const bf_balls *b = &m->sys->b;
+    m->pos = bf_out_series(out, "/balls/position", b->n, 0, "cm",
+                           "ball centre positions, one column per ball", err);
+    if (!m->pos)
+        return err->status;
+    m->vel = bf_out_series(out, "/balls/velocity", b->n, 0, "cm/s",
+                           "ball velocities, one column per ball", err);
+    if (!m->vel)
+        return err->status;
+    bf_status st = bf_out_array(out, "/balls/mass", b->m, b->n, 0, "g",
+                                "ball masses", err);
+    if (!st)
+        st = bf_out_array(out, "/balls/radius", b->R, b->n, 0, "cm",
+                          "ball radii", err);
+    return st;
+}
+
+static bf_status balls_output_row(void *self, long n, double t, bf_err *err)
+{
+    (void)n;
+    (void)t;
+    balls_model *m = self;
+    if (bf_series_append(m->pos, m->sys->b.x) ||
+        bf_series_append(m->vel, m->sys->b.v))
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    return BF_OK;
+}
+
+static void balls_counters(const void *self, bf_counters *c)
+{
+    const balls_model *m = self;
+    *c = m->sys->it->count;
+}
+
+static const bf_section_spec *const balls_specs[] = {&bf_ballsys_ball_spec,
+                                                     NULL};
+
+const bf_model_type bf_model_balls = {
+    .name = "balls",
+    .doc = "balls on a line under the listed effects (Yasuda sec. 2)",
+    .flags = BF_MODEL_INTEGRATOR | BF_MODEL_EFFECTS,
+    .specs = balls_specs,
+    .create = balls_create,
+    .destroy = balls_destroy,
+    .step = balls_step,
+    .energy = balls_energy,
+    .output_open = balls_output_open,
+    .output_row = balls_output_row,
+    .counters = balls_counters,
+};

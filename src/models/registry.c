@@ -1,0 +1,24 @@
+/* registry.c: the list of models.  One line per model. */
+#include <string.h>
+
+#include "ballfilm/model.h"
+
+extern const bf_model_type bf_model_balls;
+
+static const bf_model_type *const all[] = {
+    &bf_model_balls,
+};
+
+const bf_model_type *const *bf_model_types(size_t *n)
+{
+    *n = sizeof all / sizeof all[0];
+    return all;
+}
+
+const bf_model_type *bf_model_find(const char *name)
+{
+    for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
+        if (!strcmp(all[k]->name, name))
+            return all[k];
+    return NULL;
+}

@@ -1,0 +1,159 @@
+/* test_h5out.c: what is written reads back exactly, and a run killed with
+ * SIGKILL leaves a file that opens and holds every flushed row. */
+#include <math.h>
+#include <signal.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "ballfilm/h5out.h"
+#include "testutil.h"
+
+START_TEST(roundtrip_exact)
+{
+    const char *path = tu_tmp("rt.h5");
+    bf_out *o;
+    bf_err err = {0};
+    ck_assert(bf_out_create(&o, path, &err) == BF_OK);
+    bf_series *s1 = bf_out_series(o, "/a/one", 0, 0, "s", "1-D", &err);
+    bf_series *s3 = bf_out_series(o, "/b/three", 3, 0, "cm", "2-D", &err);
+    ck_assert(s1 && s3);
+    /* awkward values: subnormal, negative zero, huge, pi */
+    const double special[] = {4.9e-324, -0.0, 1.7976931348623157e308, 3.141592653589793};
+    const size_t nrows = 10000; /* several chunks and several flushes */
+    for (size_t k = 0; k < nrows; k++) {
+        double v = special[k % 4] * (k % 7 == 0 ? 1 : 1.0 / (double)(k + 1));
+        double row[3] = {v, (double)k, -v};
+        ck_assert(bf_series_append(s1, &v) == BF_OK);
+        ck_assert(bf_series_append(s3, row) == BF_OK);
+        if (k % 3333 == 0)
+            ck_assert(bf_out_flush(o, &err) == BF_OK);
+    }
+    double arr[6] = {1, 2, 3, 4, 5, 6};
+    ck_assert(bf_out_array(o, "/fixed", arr, 2, 3, "g", "fixed", &err) == BF_OK);
+    ck_assert(bf_out_attr_str(o, "/", "note", "héllo", &err) == BF_OK);
+    ck_assert(bf_out_close(o, &err) == BF_OK);
+
+    double *d;
+    size_t n0, n1;
+    ck_assert(bf_h5_read(path, "/a/one", &d, &n0, &n1, &err) == BF_OK);
+    ck_assert(n0 == nrows && n1 == 0);
+    for (size_t k = 0; k < nrows; k++) {
+        double v = special[k % 4] * (k % 7 == 0 ? 1 : 1.0 / (double)(k + 1));
+        ck_assert(memcmp(&d[k], &v, sizeof v) == 0); /* bit for bit */
+    }
+    free(d);
+    ck_assert(bf_h5_read(path, "/b/three", &d, &n0, &n1, &err) == BF_OK);
+    ck_assert(n0 == nrows && n1 == 3);
+    for (size_t k = 0; k < nrows; k++)
+        ck_assert(d[3 * k + 1] == (double)k);
+    free(d);
+    ck_assert(bf_h5_read(path, "/fixed", &d, &n0, &n1, &err) == BF_OK);
+    ck_assert(n0 == 2 && n1 == 3 && d[5] == 6);
+    free(d);
+    char *s;
+    ck_assert(bf_h5_read_attr_str(path, "/", "note", &s, &err) == BF_OK);
+    ck_assert_str_eq(s, "héllo");
+    free(s);
+    ck_assert(bf_h5_read_attr_str(path, "/a/one", "unit", &s, &err) == BF_OK);
+    ck_assert_str_eq(s, "s");
+    free(s);
+}
+END_TEST
+
+/* The program's file: provenance attributes and datasets. */
+START_TEST(run_file_layout)
+{
+    const char *out = tu_tmp("hb.h5");
+    int rc = tu_run(NULL, NULL, "run", tu_repo("runs/harmonic.ini"), "-o", out,
+                    "-q", NULL);
+    ck_assert_int_eq(rc, 0);
+    bf_err err = {0};
+    char *s;
+    ck_assert(bf_h5_read_attr_str(out, "/", "scene_text", &s, &err) == BF_OK);
+    ck_assert(strstr(s, "[spring]") != NULL);
+    free(s);
+    ck_assert(bf_h5_read_attr_str(out, "/", "scene.dt.unit", &s, &err) == BF_OK);
+    ck_assert_str_eq(s, "s");
+    free(s);
+    ck_assert(bf_h5_read_attr_str(out, "/", "version", &s, &err) == BF_OK);
+    ck_assert(strstr(s, "ballfilm") != NULL);
+    free(s);
+    ck_assert(bf_h5_read_attr_str(out, "/", "status", &s, &err) == BF_OK);
+    ck_assert_str_eq(s, "ok");
+    free(s);
+    double *t, *x, *e;
+    size_t n, n1, nx, nx1, ne, ne1;
+    ck_assert(bf_h5_read(out, "/time", &t, &n, &n1, &err) == BF_OK);
+    ck_assert(bf_h5_read(out, "/balls/position", &x, &nx, &nx1, &err) == BF_OK);
+    ck_assert(bf_h5_read(out, "/energy/total", &e, &ne, &ne1, &err) == BF_OK);
+    /* 1000 steps, output every 10 steps: rows 0, 10, ..., 1000 */
+    ck_assert_uint_eq(n, 101);
+    ck_assert(nx == 101 && nx1 == 1 && ne == 101);
+    for (size_t k = 0; k < n; k++) {
+        ck_assert(t[k] == (double)(10 * k) * 0.01);
+        /* x = cos t to MV2M accuracy at dt = 0.01 */
+        ck_assert_msg(fabs(x[k] - cos(t[k])) < 1e-5, "x(%g) = %.9f", t[k], x[k]);
+    }
+    free(t);
+    free(x);
+    free(e);
+}
+END_TEST
+
+START_TEST(sigkill_leaves_readable_file)
+{
+    const char *out = tu_tmp("killed.h5");
+    const char *bin = getenv("BALLFILM_BIN");
+    pid_t pid = fork();
+    ck_assert(pid >= 0);
+    if (pid == 0) {
+        freopen("/dev/null", "w", stdout);
+        freopen("/dev/null", "w", stderr);
+        execl(bin ? bin : "bin/ballfilm", "ballfilm", "run",
+              tu_repo("runs/two_balls_B.ini"), "-o", out, "-q", "--set",
+              "scene.t_end=1e5", "--set", "scene.output_every=10", "--set",
+              "scene.flush_seconds=0.02", (char *)NULL);
+        _exit(127);
+    }
+    struct timespec ts = {0, 700000000};
+    nanosleep(&ts, NULL);
+    kill(pid, SIGKILL);
+    int status;
+    waitpid(pid, &status, 0);
+    ck_assert(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+    bf_err err = {0};
+    double *t, *step, *x;
+    size_t n, n1, ns, ns1, nx, nx1;
+    ck_assert_msg(bf_h5_read(out, "/time", &t, &n, &n1, &err) == BF_OK, "%s",
+                  err.msg);
+    ck_assert_msg(bf_h5_read(out, "/step", &step, &ns, &ns1, &err) == BF_OK,
+                  "%s", err.msg);
+    ck_assert(bf_h5_read(out, "/balls/position", &x, &nx, &nx1, &err) == BF_OK);
+    /* rows were flushed, all datasets agree, and every row is a real row */
+    ck_assert_msg(n > 100, "only %zu rows survived", n);
+    ck_assert(ns == n && nx == n && nx1 == 2);
+    for (size_t k = 0; k < n; k++) {
+        ck_assert(step[k] == 10.0 * (double)k);
+        ck_assert(t[k] == step[k] * 1e-4);
+        ck_assert(isfinite(x[2 * k]) && x[2 * k] > 0 && x[2 * k + 1] > x[2 * k]);
+    }
+    free(t);
+    free(step);
+    free(x);
+}
+END_TEST
+
+Suite *suite_h5out(void)
+{
+    Suite *s = suite_create("h5out");
+    TCase *tc = tu_tcase("io");
+    tcase_add_test(tc, roundtrip_exact);
+    tcase_add_test(tc, run_file_layout);
+    tcase_add_test(tc, sigkill_leaves_readable_file);
+    suite_add_tcase(s, tc);
+    return s;
+}

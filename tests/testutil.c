@@ -1,0 +1,246 @@
+/* testutil.c: see testutil.h. */
+#include "testutil.h"
+
+#include <fcntl.h>
+#include <math.h>
+#include <poll.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "ballfilm/registry.h"
+
+static char tmpdir[256];
+
+static void rm_tmpdir(void)
+{
+    if (tmpdir[0]) {
+        char cmd[300];
+        snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
+        if (system(cmd)) {
+        }
+    }
+}
+
+const char *tu_tmpdir(void)
+{
+    if (!tmpdir[0]) {
+        snprintf(tmpdir, sizeof tmpdir, "/tmp/ballfilm-test-XXXXXX");
+        if (!mkdtemp(tmpdir))
+            ck_abort_msg("mkdtemp failed");
+        atexit(rm_tmpdir);
+    }
+    return tmpdir;
+}
+
+const char *tu_tmp(const char *name)
+{
+    static char buf[8][512];
+    static int k;
+    char *b = buf[k++ % 8];
+    snprintf(b, 512, "%s/%s", tu_tmpdir(), name);
+    return b;
+}
+
+const char *tu_write(const char *name, const char *text)
+{
+    const char *p = tu_tmp(name);
+    FILE *f = fopen(p, "w");
+    ck_assert_msg(f != NULL, "cannot write %s", p);
+    fputs(text, f);
+    fclose(f);
+    return p;
+}
+
+const char *tu_repo(const char *rel)
+{
+    static char buf[8][512];
+    static int k;
+    char *b = buf[k++ % 8];
+    const char *root = getenv("BALLFILM_ROOT");
+    snprintf(b, 512, "%s/%s", root ? root : ".", rel);
+    return b;
+}
+
+static char *slurp_fd(int fd)
+{
+    size_t cap = 4096, n = 0;
+    char *s = malloc(cap);
+    ssize_t r;
+    while ((r = read(fd, s + n, cap - n - 1)) > 0) {
+        n += (size_t)r;
+        if (n + 1 == cap) {
+            cap *= 2;
+            s = realloc(s, cap);
+        }
+    }
+    s[n] = '\0';
+    return s;
+}
+
+int tu_runv(char **out, char **errout, const char *const *argv)
+{
+    const char *bin = getenv("BALLFILM_BIN");
+    if (!bin)
+        bin = "bin/ballfilm";
+    char ofile[600], efile[600];
+    static int seq;
+    snprintf(ofile, sizeof ofile, "%s/run%d.out", tu_tmpdir(), seq);
+    snprintf(efile, sizeof efile, "%s/run%d.err", tu_tmpdir(), seq++);
+    pid_t pid = fork();
+    ck_assert_msg(pid >= 0, "fork failed");
+    if (pid == 0) {
+        int fo = open(ofile, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        int fe = open(efile, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        dup2(fo, 1);
+        dup2(fe, 2);
+        size_t n = 0;
+        while (argv[n])
+            n++;
+        char **a = calloc(n + 2, sizeof *a);
+        a[0] = (char *)bin;
+        for (size_t k = 0; k < n; k++)
+            a[k + 1] = (char *)argv[k];
+        execv(bin, a);
+        _exit(127);
+    }
+    int status;
+    waitpid(pid, &status, 0);
+    int fo = open(ofile, O_RDONLY), fe = open(efile, O_RDONLY);
+    char *o = slurp_fd(fo), *e = slurp_fd(fe);
+    close(fo);
+    close(fe);
+    if (out)
+        *out = o;
+    else
+        free(o);
+    if (errout)
+        *errout = e;
+    else
+        free(e);
+    if (WIFEXITED(status))
+        return WEXITSTATUS(status);
+    return -WTERMSIG(status);
+}
+
+int tu_run(char **out, char **errout, const char *arg0, ...)
+{
+    const char *argv[64];
+    size_t n = 0;
+    va_list ap;
+    va_start(ap, arg0);
+    for (const char *a = arg0; a && n < 63; a = va_arg(ap, const char *))
+        argv[n++] = a;
+    va_end(ap);
+    argv[n] = NULL;
+    return tu_runv(out, errout, argv);
+}
+
+bf_scene *tu_scene(const char *text)
+{
+    bf_scene *sc;
+    bf_err err = {0};
+    bf_status st = bf_scene_load_string(&sc, "test.ini", text, &err);
+    ck_assert_msg(st == BF_OK, "scene: %s", err.msg);
+    st = bf_registry_resolve(sc, &err);
+    ck_assert_msg(st == BF_OK, "scene: %s", err.msg);
+    return sc;
+}
+
+bf_status tu_scene_error(const char *text, char *msg, size_t cap)
+{
+    bf_scene *sc;
+    bf_err err = {0};
+    bf_status st = bf_scene_load_string(&sc, "test.ini", text, &err);
+    if (!st) {
+        st = bf_registry_resolve(sc, &err);
+        if (!st) {
+            bf_sim *sim;
+            st = bf_sim_create(&sim, sc, NULL, &err);
+            if (!st)
+                bf_sim_free(sim);
+        }
+        bf_scene_free(sc);
+    }
+    snprintf(msg, cap, "%s", st ? err.msg : "");
+    return st;
+}
+
+/* The sim keeps a pointer to its scene; keep scenes alive with the sims. */
+typedef struct keep {
+    bf_sim *sim;
+    bf_scene *sc;
+    struct keep *next;
+} keep;
+static keep *kept;
+
+static void free_kept(void)
+{
+    while (kept) {
+        keep *k = kept;
+        kept = k->next;
+        bf_sim_free(k->sim);
+        bf_scene_free(k->sc);
+        free(k);
+    }
+}
+
+bf_sim *tu_run_scene(const char *text, ...)
+{
+    bf_scene *sc;
+    bf_err err = {0};
+    bf_status st = bf_scene_load_string(&sc, "test.ini", text, &err);
+    ck_assert_msg(st == BF_OK, "scene: %s", err.msg);
+    va_list ap;
+    va_start(ap, text);
+    for (const char *a = va_arg(ap, const char *); a;
+         a = va_arg(ap, const char *)) {
+        st = bf_scene_set(sc, a, "--set", &err);
+        ck_assert_msg(st == BF_OK, "%s", err.msg);
+    }
+    va_end(ap);
+    st = bf_registry_resolve(sc, &err);
+    ck_assert_msg(st == BF_OK, "scene: %s", err.msg);
+    bf_sim *sim;
+    st = bf_sim_create(&sim, sc, NULL, &err);
+    ck_assert_msg(st == BF_OK, "create: %s", err.msg);
+    st = bf_sim_run(sim, &err);
+    ck_assert_msg(st == BF_OK, "run: %s", err.msg);
+    keep *k = malloc(sizeof *k);
+    k->sim = NULL; /* the caller frees the sim; we keep the scene */
+    k->sc = sc;
+    k->next = kept;
+    if (!kept)
+        atexit(free_kept);
+    kept = k;
+    return sim;
+}
+
+double tu_max(const double *v, size_t n)
+{
+    double m = -INFINITY;
+    for (size_t k = 0; k < n; k++)
+        if (v[k] > m)
+            m = v[k];
+    return m;
+}
+
+double tu_absmax(const double *v, size_t n)
+{
+    double m = 0;
+    for (size_t k = 0; k < n; k++)
+        if (fabs(v[k]) > m)
+            m = fabs(v[k]);
+    return m;
+}
+
+TCase *tu_tcase(const char *name)
+{
+    TCase *tc = tcase_create(name);
+    tcase_set_timeout(tc, 600);
+    return tc;
+}

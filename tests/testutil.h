@@ -1,0 +1,47 @@
+/* testutil.h: helpers shared by the test files (Check framework).
+ *
+ * Each tests/test_NAME.c defines `Suite *suite_NAME(void)`; runner.c runs
+ * them all and Check prints the summary line.  Tests that run the program
+ * find it through $BALLFILM_BIN and the repository through $BALLFILM_ROOT
+ * (set by the Makefile). */
+#ifndef BALLFILM_TESTUTIL_H
+#define BALLFILM_TESTUTIL_H
+
+#include <check.h>
+#include <stddef.h>
+
+#include "ballfilm/scene.h"
+#include "ballfilm/sim.h"
+
+/* A fresh temporary directory (removed at exit of the test process). */
+const char *tu_tmpdir(void);
+/* Path inside the temporary directory (static buffer rotation of 8). */
+const char *tu_tmp(const char *name);
+/* Write text to a file; returns its path. */
+const char *tu_write(const char *name, const char *text);
+/* Path of a repository file ("runs/harmonic.ini"). */
+const char *tu_repo(const char *rel);
+
+/* Run bin/ballfilm with arguments (NULL-terminated); stdout and stderr are
+ * captured into *out and *errout (malloc'd, may be NULL).  Returns the exit
+ * status, or -signal if killed. */
+int tu_run(char **out, char **errout, const char *arg0, ...);
+/* The same with an argv array. */
+int tu_runv(char **out, char **errout, const char *const *argv);
+
+/* Build and resolve a scene from text; fails the test on error. */
+bf_scene *tu_scene(const char *text);
+/* Resolve a scene from text and return the error status and message. */
+bf_status tu_scene_error(const char *text, char *msg, size_t cap);
+
+/* Run a scene (text plus optional "section.key=value" overrides, NULL-
+ * terminated) to the end without output.  Returns the sim (free it). */
+bf_sim *tu_run_scene(const char *text, ...);
+
+double tu_max(const double *v, size_t n);
+double tu_absmax(const double *v, size_t n);
+
+/* Standard test case with a generous timeout. */
+TCase *tu_tcase(const char *name);
+
+#endif
