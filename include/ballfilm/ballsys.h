@@ -33,6 +33,13 @@ void bf_ballsys_free(bf_ballsys *s);
  * the failed step; the caller stops). */
 bf_status bf_ballsys_step(bf_ballsys *s, double t, double dt, bf_err *err);
 
+/* Checkpoint: positions, velocities and integrator state under names
+ * starting with `prefix`. */
+bf_status bf_ballsys_save(const bf_ballsys *s, bf_ckpt *ck, const char *prefix,
+                          bf_err *err);
+bf_status bf_ballsys_load(bf_ballsys *s, const bf_ckpt *ck, const char *prefix,
+                          bf_err *err);
+
 /* Kinetic and potential energy (erg). */
 void bf_ballsys_energy(const bf_ballsys *s, double t, double *kin,
                        double *pot);

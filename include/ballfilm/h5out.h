@@ -24,6 +24,10 @@ typedef struct bf_series bf_series;
 /* Create (truncate) the file.  Parent groups of every path are created on
  * demand. */
 bf_status bf_out_create(bf_out **out, const char *path, bf_err *err);
+/* Open an existing file to continue a run (restart): bf_out_series then
+ * reopens existing datasets (keeping their rows) and bf_out_array replaces
+ * existing fixed datasets. */
+bf_status bf_out_open_append(bf_out **out, const char *path, bf_err *err);
 /* Flush and close; *out is freed even on error. */
 bf_status bf_out_close(bf_out *out, bf_err *err);
 const char *bf_out_path(const bf_out *out);
@@ -37,6 +41,12 @@ bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
 bf_status bf_series_append(bf_series *s, const double *row);
 bf_status bf_series_append_i64(bf_series *s, const int64_t *row);
 size_t bf_series_rows(const bf_series *s); /* written + buffered */
+const char *bf_series_path(const bf_series *s);
+/* Drop rows beyond `rows` (restart: rows written after the checkpoint). */
+bf_status bf_series_truncate(bf_series *s, size_t rows, bf_err *err);
+/* All series of a file, in creation order. */
+size_t bf_out_nseries(const bf_out *out);
+bf_series *bf_out_series_at(bf_out *out, size_t k);
 
 /* A fixed dataset written at once: dims n0 (n1 == 0) or n0 x n1. */
 bf_status bf_out_array(bf_out *out, const char *path, const double *data,

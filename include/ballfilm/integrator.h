@@ -16,6 +16,7 @@
 
 #include <stddef.h>
 
+#include "ballfilm/checkpoint.h"
 #include "ballfilm/error.h"
 #include "ballfilm/scene.h"
 
@@ -63,6 +64,12 @@ typedef struct bf_integrator_type {
     bf_status (*step)(bf_integrator *it, const bf_ode *ode, double t, double dt,
                       double *x, double *v, bf_err *err);
     void (*free)(bf_integrator *it);
+    /* Private state needed to continue bit for bit (step-size history,
+     * solver memory); optional.  Names must start with `prefix`. */
+    bf_status (*save)(const bf_integrator *it, bf_ckpt *ck, const char *prefix,
+                      bf_err *err);
+    bf_status (*load)(bf_integrator *it, const bf_ckpt *ck, const char *prefix,
+                      bf_err *err);
 } bf_integrator_type;
 
 struct bf_integrator {
@@ -86,6 +93,12 @@ bf_status bf_integrator_create(bf_integrator **it, const char *name, size_t n,
 void bf_integrator_free(bf_integrator *it);
 /* Forget cached forces (after the caller changed x or the force field). */
 void bf_integrator_reset(bf_integrator *it);
+/* Checkpoint: counters, the force cache and the type's private state, under
+ * names starting with `prefix`. */
+bf_status bf_integrator_save(const bf_integrator *it, bf_ckpt *ck,
+                             const char *prefix, bf_err *err);
+bf_status bf_integrator_load(bf_integrator *it, const bf_ckpt *ck,
+                             const char *prefix, bf_err *err);
 
 static inline bf_status bf_integrator_step(bf_integrator *it, const bf_ode *ode,
                                            double t, double dt, double *x,

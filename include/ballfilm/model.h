@@ -12,6 +12,7 @@
 
 #include <stdio.h>
 
+#include "ballfilm/checkpoint.h"
 #include "ballfilm/error.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/integrator.h"
@@ -52,6 +53,13 @@ typedef struct bf_model_type {
     void (*counters)(const void *self, bf_counters *c);
     /* Extra lines for the end-of-run summary (optional). */
     void (*report)(const void *self, FILE *f);
+    /* Save everything needed to continue bit for bit after `load` into a
+     * model freshly created from the same scene: state, integrator
+     * counters and history, RNG state, events collected for output_close.
+     * Both are required for `ballfilm run --restart`; a model without them
+     * refuses checkpoint_every and restarts with a clear message. */
+    bf_status (*checkpoint_save)(const void *self, bf_ckpt *ck, bf_err *err);
+    bf_status (*checkpoint_load)(void *self, const bf_ckpt *ck, bf_err *err);
 } bf_model_type;
 
 const bf_model_type *bf_model_find(const char *name);

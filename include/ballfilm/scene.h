@@ -87,6 +87,9 @@ bf_scene *bf_scene_clone(const bf_scene *sc);
 bf_status bf_scene_set(bf_scene *sc, const char *assignment, const char *origin,
                        bf_err *err);
 
+/* The overrides applied so far, in order (for checkpoints). */
+size_t bf_scene_overrides(const bf_scene *sc, const char *const **list);
+
 /* Which sections a scene may contain is decided in two stages: the root
  * section ([scene]) is resolved first; then `select` looks at it (model,
  * effects, integrator) and lists the further sections that are allowed.

@@ -24,6 +24,9 @@ typedef struct bf_sim_opts {
     int progress; /* 1: print an updating progress line on stderr */
     /* Set asynchronously (signal handler) to stop after the current step. */
     const volatile sig_atomic_t *stop_flag;
+    /* Stop as if interrupted after this many steps of this invocation
+     * (0: never); used to run in chunks and by the restart tests. */
+    long stop_after;
 } bf_sim_opts;
 
 /* The [scene] section every scene has (model, integrator, effects, dt,
@@ -50,6 +53,22 @@ bf_status bf_sim_close_output(bf_sim *sim, bf_status run_status,
                               const bf_err *run_err, bf_err *err);
 
 void bf_sim_summary(const bf_sim *sim, FILE *f);
+
+/* ---- checkpoints and restart ----
+ * With an output file OUT, checkpoints go to OUT.ckpt (atomically), every
+ * [scene] checkpoint_every and when a run is interrupted (BF_INTERRUPTED).
+ * A restarted run produces bit for bit the datasets of an uninterrupted
+ * one. */
+int bf_sim_can_checkpoint(const bf_sim *sim);
+const char *bf_sim_checkpoint_path(const bf_sim *sim); /* NULL: none */
+bf_status bf_sim_checkpoint_write(bf_sim *sim, const char *path, bf_err *err);
+/* Rebuild a run from the checkpoint of OUT (OUT.ckpt): its stored scene
+ * plus extra overrides `sets` (for example a later t_end), the model state,
+ * and OUT reopened with the rows written after the checkpoint dropped.
+ * *scene receives the scene (free it after the sim). */
+bf_status bf_sim_restart(bf_sim **sim, bf_scene **scene, const char *out_path,
+                         const char *const *sets, size_t nsets,
+                         const bf_sim_opts *opts, bf_err *err);
 
 /* Read-only views for drivers and tests. */
 void *bf_sim_model(bf_sim *sim);

@@ -32,8 +32,16 @@ static void run_usage(FILE *f)
     fprintf(f,
             "usage: ballfilm run SCENE.ini [-o OUT.h5] [--set section.key=value]"
             "... [-q]\n"
+            "       ballfilm run --restart OUT.h5 [--set section.key=value]... "
+            "[-q]\n"
             "\n"
             "  -o OUT.h5        output file (default: out/<scene name>.h5)\n"
+            "  --restart OUT.h5 continue the run of OUT.h5 from its checkpoint "
+            "OUT.h5.ckpt\n"
+            "                   (written every [scene] checkpoint_every and on "
+            "SIGINT/SIGTERM)\n"
+            "  --stop-after N   stop after N steps as if interrupted "
+            "(checkpoint written)\n"
             "  --set s.k=v      override key k of section [s] (repeatable);\n"
             "                   e.g. --set scene.integrator=verlet --set "
             "ball.2.mass=0.8\n"
@@ -64,8 +72,9 @@ static char *default_output(const char *scene)
 
 int bf_cmd_run(int argc, char **argv)
 {
-    const char *scene_path = NULL, *out_path = NULL;
+    const char *scene_path = NULL, *out_path = NULL, *restart = NULL;
     int quiet = 0, force_progress = 0;
+    long stop_after = 0;
     int nset = 0;
     const char **sets = calloc((size_t)argc, sizeof *sets);
     if (!sets)
@@ -84,6 +93,21 @@ int bf_cmd_run(int argc, char **argv)
                 return BF_EINPUT;
             }
             out_path = argv[k];
+        } else if (!strcmp(a, "--restart")) {
+            if (++k >= argc) {
+                fprintf(stderr, "ballfilm: error: --restart needs OUT.h5\n");
+                free(sets);
+                return BF_EINPUT;
+            }
+            restart = argv[k];
+        } else if (!strcmp(a, "--stop-after")) {
+            if (++k >= argc || !bf_parse_long(argv[k], &stop_after) ||
+                stop_after < 1) {
+                fprintf(stderr, "ballfilm: error: --stop-after needs a number "
+                                "of steps >= 1\n");
+                free(sets);
+                return BF_EINPUT;
+            }
         } else if (!strcmp(a, "--set")) {
             if (++k >= argc) {
                 fprintf(stderr, "ballfilm: error: --set needs section.key=value\n");
@@ -111,7 +135,13 @@ int bf_cmd_run(int argc, char **argv)
             return BF_EINPUT;
         }
     }
-    if (!scene_path) {
+    if (!scene_path == !restart || (restart && out_path)) {
+        if (scene_path && restart)
+            fprintf(stderr, "ballfilm: error: give a scene or --restart, not "
+                            "both\n");
+        if (restart && out_path)
+            fprintf(stderr, "ballfilm: error: --restart continues OUT.h5 in "
+                            "place; -o is not used with it\n");
         run_usage(stderr);
         free(sets);
         return BF_EINPUT;
@@ -121,15 +151,26 @@ int bf_cmd_run(int argc, char **argv)
     bf_scene *sc = NULL;
     bf_sim *sim = NULL;
     char *defout = NULL;
-    bf_status st = bf_scene_load(&sc, scene_path, &err);
+    bf_sim_opts opts = {
+        .progress = !quiet && (force_progress || isatty(STDERR_FILENO)),
+        .stop_flag = &stop_requested,
+        .stop_after = stop_after,
+    };
+    bf_status st;
+    if (restart) {
+        st = bf_sim_restart(&sim, &sc, restart, sets, (size_t)nset, &opts, &err);
+        if (st) {
+            fprintf(stderr, "ballfilm: error: %s\n", err.msg);
+            goto done;
+        }
+        out_path = restart;
+        goto run;
+    }
+    st = bf_scene_load(&sc, scene_path, &err);
     for (int k = 0; !st && k < nset; k++)
         st = bf_scene_set(sc, sets[k], "--set", &err);
     if (!st)
         st = bf_registry_resolve(sc, &err);
-    bf_sim_opts opts = {
-        .progress = !quiet && (force_progress || isatty(STDERR_FILENO)),
-        .stop_flag = &stop_requested,
-    };
     if (!st)
         st = bf_sim_create(&sim, sc, &opts, &err);
     if (st) {
@@ -149,6 +190,7 @@ int bf_cmd_run(int argc, char **argv)
         fprintf(stderr, "ballfilm: error: %s\n", err.msg);
         goto done;
     }
+run:;
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
@@ -160,7 +202,10 @@ int bf_cmd_run(int argc, char **argv)
     bf_err cerr = {0};
     bf_status close_st = bf_sim_close_output(sim, run_st, &err, &cerr);
     bf_sim_summary(sim, stdout);
-    if (run_st) {
+    if (run_st == BF_INTERRUPTED) {
+        fprintf(stderr, "ballfilm: %s\n", err.msg);
+        st = run_st;
+    } else if (run_st) {
         fprintf(stderr, "ballfilm: %s: %s\n", bf_status_name(run_st), err.msg);
         fprintf(stderr, "ballfilm: output up to the last good output row is in "
                         "%s\n", out_path);

@@ -11,6 +11,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "ballfilm/registry.h"
 #include "ballfilm/version.h"
 
 static const bf_param scene_params[] = {
@@ -40,6 +41,10 @@ static const bf_param scene_params[] = {
     {"flush_seconds", BF_REAL, "s (wall)", "5",
      "wall-clock interval between HDF5 flushes (what a killed run keeps)",
      BF_POS, 0, 0, NULL},
+    {"checkpoint_every", BF_INTERVAL, "steps | s", "0",
+     "write a checkpoint (OUT.ckpt) every 'N' steps or 'T s' (0: only when "
+     "interrupted); continue with ballfilm run --restart OUT",
+     0, 0, 0, NULL},
     {0},
 };
 
@@ -54,7 +59,9 @@ struct bf_sim {
     bf_sim_opts opts;
     double dt, t_end;
     long nsteps, n;
-    long out_every, energy_every;
+    long out_every, energy_every, ckpt_every;
+    long steps_this_run;
+    char *ckpt_path;
     double energy_bound, flush_seconds;
     bf_out *out;
     bf_series *s_time, *s_step, *s_ek, *s_ep, *s_et;
@@ -70,6 +77,15 @@ static double wall_now(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* An interval in whole steps (times rounded to the nearest step). */
+static long interval_steps(bf_interval iv, double dt)
+{
+    if (!iv.in_time)
+        return iv.steps;
+    double k = floor(iv.time / dt + 0.5);
+    return iv.time > 0 && k < 1 ? 1 : (long)k;
 }
 
 bf_status bf_sim_create(bf_sim **out, const bf_scene *sc,
@@ -91,13 +107,13 @@ bf_status bf_sim_create(bf_sim **out, const bf_scene *sc,
                              "t_end/dt = %g steps is too many", steps);
     }
     s->nsteps = (long)steps;
-    bf_interval iv = bf_scene_interval(sc, "scene", "output_every");
-    if (iv.in_time) {
-        double k = floor(iv.time / s->dt + 0.5);
-        s->out_every = k < 1 ? 1 : (long)k;
-    } else {
-        s->out_every = iv.steps < 1 ? 1 : iv.steps;
-    }
+    s->out_every = interval_steps(bf_scene_interval(sc, "scene", "output_every"),
+                                  s->dt);
+    if (s->out_every < 1)
+        s->out_every = 1;
+    s->ckpt_every = interval_steps(bf_scene_interval(sc, "scene",
+                                                     "checkpoint_every"),
+                                   s->dt);
     s->energy_every = bf_scene_int(sc, "scene", "energy_every");
     s->energy_bound = bf_scene_real(sc, "scene", "max_energy_error");
     s->flush_seconds = bf_scene_real(sc, "scene", "flush_seconds");
@@ -110,6 +126,13 @@ bf_status bf_sim_create(bf_sim **out, const bf_scene *sc,
     if (st) {
         free(s);
         return st;
+    }
+    if (s->ckpt_every && !bf_sim_can_checkpoint(s)) {
+        s->mt->destroy(s->model);
+        free(s);
+        return bf_scene_fail(sc, err, "scene", "checkpoint_every",
+                             "model '%s' cannot write checkpoints yet",
+                             bf_scene_str(sc, "scene", "model"));
     }
     s->last_row = -1;
     s->has_energy = s->mt->energy != NULL;
@@ -131,6 +154,7 @@ void bf_sim_free(bf_sim *s)
         bf_out_close(s->out, NULL);
     if (s->mt && s->mt->destroy)
         s->mt->destroy(s->model);
+    free(s->ckpt_path);
     free(s);
 }
 
@@ -166,20 +190,21 @@ static int write_param(void *ctx, const char *name, const char *value,
     return 0;
 }
 
-bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)
+static bf_status set_ckpt_path(bf_sim *s, const char *path, bf_err *err)
 {
-    bf_status st = bf_out_create(&s->out, path, err);
-    if (st)
-        return st;
+    size_t len = strlen(path) + 6;
+    free(s->ckpt_path);
+    s->ckpt_path = malloc(len);
+    if (!s->ckpt_path)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    snprintf(s->ckpt_path, len, "%s.ckpt", path);
+    return BF_OK;
+}
+
+/* Datasets of the loop itself (created, or reopened on restart). */
+static bf_status open_series(bf_sim *s, bf_err *err)
+{
     bf_out *o = s->out;
-    if ((st = bf_out_attr_str(o, "/", "version", bf_version_string(), err)) ||
-        (st = bf_out_attr_str(o, "/", "scene_file", bf_scene_path(s->sc), err)) ||
-        (st = bf_out_attr_str(o, "/", "scene_text", bf_scene_text(s->sc), err)) ||
-        (st = bf_out_attr_str(o, "/", "status", "running", err)))
-        return st;
-    visit_ctx v = {o, err};
-    if (bf_scene_visit(s->sc, write_param, &v))
-        return err->status ? err->status : BF_EIO;
     s->s_time = bf_out_series(o, "/time", 0, 0, "s", "simulated time of each "
                               "output row (t = step dt)", err);
     if (!s->s_time)
@@ -201,7 +226,29 @@ bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)
         if (!s->s_et)
             return err->status;
     }
-    if (s->mt->output_open && (st = s->mt->output_open(s->model, o, err)))
+    if (s->mt->output_open)
+        return s->mt->output_open(s->model, o, err);
+    return BF_OK;
+}
+
+bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)
+{
+    bf_status st = set_ckpt_path(s, path, err);
+    if (st)
+        return st;
+    st = bf_out_create(&s->out, path, err);
+    if (st)
+        return st;
+    bf_out *o = s->out;
+    if ((st = bf_out_attr_str(o, "/", "version", bf_version_string(), err)) ||
+        (st = bf_out_attr_str(o, "/", "scene_file", bf_scene_path(s->sc), err)) ||
+        (st = bf_out_attr_str(o, "/", "scene_text", bf_scene_text(s->sc), err)) ||
+        (st = bf_out_attr_str(o, "/", "status", "running", err)))
+        return st;
+    visit_ctx v = {o, err};
+    if (bf_scene_visit(s->sc, write_param, &v))
+        return err->status ? err->status : BF_EIO;
+    if ((st = open_series(s, err)))
         return st;
     return bf_out_flush(o, err);
 }
@@ -264,6 +311,26 @@ static void progress(bf_sim *s, double t0, int final)
     fflush(stderr);
 }
 
+/* Stop cleanly: flush, write a checkpoint when possible, and say how to
+ * continue. */
+static bf_status interrupt(bf_sim *s, bf_err *err)
+{
+    double t = (double)s->n * s->dt;
+    if (s->out && bf_sim_can_checkpoint(s)) {
+        bf_status st = bf_sim_checkpoint_write(s, s->ckpt_path, err);
+        if (st)
+            return st;
+        return bf_fail(err, BF_INTERRUPTED,
+                       "interrupted at step %ld (t = %.9g s); checkpoint "
+                       "written; continue with: ballfilm run --restart %s",
+                       s->n, t, bf_out_path(s->out));
+    }
+    return bf_fail(err, BF_INTERRUPTED,
+                   "interrupted at step %ld (t = %.9g s); this %s cannot be "
+                   "continued (no checkpoint)",
+                   s->n, t, s->out ? "model" : "run without output");
+}
+
 bf_status bf_sim_run(bf_sim *s, bf_err *err)
 {
     bf_status st = BF_OK;
@@ -272,11 +339,11 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
     if (s->n == 0 && (st = write_row(s, err)))
         return st;
     const long every = s->out_every, eevery = s->energy_every;
+    s->steps_this_run = 0;
     while (s->n < s->nsteps) {
-        if (s->opts.stop_flag && *s->opts.stop_flag) {
-            st = bf_fail(err, BF_INTERRUPTED,
-                         "interrupted at step %ld (t = %.9g s)", s->n,
-                         (double)s->n * s->dt);
+        if ((s->opts.stop_flag && *s->opts.stop_flag) ||
+            (s->opts.stop_after && s->steps_this_run >= s->opts.stop_after)) {
+            st = interrupt(s, err);
             break;
         }
         double t = (double)s->n * s->dt;
@@ -287,6 +354,7 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
             break;
         }
         s->n++;
+        s->steps_this_run++;
         if (s->has_energy && eevery && s->n % eevery == 0) {
             double rel = check_energy(s);
             if (s->energy_bound > 0 && !(rel <= s->energy_bound)) {
@@ -304,6 +372,10 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
             if ((st = write_row(s, err)))
                 break;
         }
+        if (s->ckpt_every && s->out && s->n % s->ckpt_every == 0 &&
+            s->n < s->nsteps &&
+            (st = bf_sim_checkpoint_write(s, s->ckpt_path, err)))
+            break;
         if (s->opts.progress && (s->n & 1023) == 0)
             progress(s, t0, 0);
     }
@@ -388,4 +460,189 @@ void bf_sim_counters(const bf_sim *s, bf_counters *c)
     memset(c, 0, sizeof *c);
     if (s->mt->counters)
         s->mt->counters(s->model, c);
+}
+
+/* ------------------------------------------------------------ checkpoints */
+
+int bf_sim_can_checkpoint(const bf_sim *s)
+{
+    return s->mt->checkpoint_save && s->mt->checkpoint_load;
+}
+
+const char *bf_sim_checkpoint_path(const bf_sim *s) { return s->ckpt_path; }
+
+/* The overrides joined by newlines (a newline cannot occur in one). */
+static char *join_sets(const bf_scene *sc)
+{
+    const char *const *list;
+    size_t n = bf_scene_overrides(sc, &list), len = 1;
+    for (size_t k = 0; k < n; k++)
+        len += strlen(list[k]) + 1;
+    char *j = malloc(len);
+    if (!j)
+        return NULL;
+    j[0] = '\0';
+    for (size_t k = 0; k < n; k++) {
+        strcat(j, list[k]);
+        strcat(j, "\n");
+    }
+    return j;
+}
+
+bf_status bf_sim_checkpoint_write(bf_sim *s, const char *path, bf_err *err)
+{
+    if (!bf_sim_can_checkpoint(s))
+        return bf_fail(err, BF_EINPUT, "model '%s' cannot write checkpoints",
+                       s->mt->name);
+    bf_status st = BF_OK;
+    /* rows on disk must cover what the checkpoint claims */
+    if (s->out && (st = bf_out_flush(s->out, err)))
+        return st;
+    bf_ckpt *ck = bf_ckpt_new();
+    char *sets = join_sets(s->sc);
+    if (!ck || !sets) {
+        bf_ckpt_free(ck);
+        free(sets);
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    if (!st) st = bf_ckpt_put_str(ck, "version", bf_version_string(), err);
+    if (!st) st = bf_ckpt_put_str(ck, "scene.path", bf_scene_path(s->sc), err);
+    if (!st) st = bf_ckpt_put_str(ck, "scene.text", bf_scene_text(s->sc), err);
+    if (!st) st = bf_ckpt_put_str(ck, "scene.sets", sets, err);
+    if (!st) st = bf_ckpt_put_int(ck, "sim.n", s->n, err);
+    if (!st) st = bf_ckpt_put_int(ck, "sim.last_row", s->last_row, err);
+    if (!st) st = bf_ckpt_put_real(ck, "sim.e0", s->e0, err);
+    if (!st) st = bf_ckpt_put_real(ck, "sim.max_rel", s->max_rel, err);
+    if (!st) st = bf_ckpt_put_real(ck, "sim.wall", s->wall, err);
+    if (!st && s->out) {
+        size_t ns = bf_out_nseries(s->out), plen = 1;
+        int64_t *rows = malloc((ns ? ns : 1) * sizeof *rows);
+        for (size_t k = 0; k < ns; k++)
+            plen += strlen(bf_series_path(bf_out_series_at(s->out, k))) + 1;
+        char *paths = malloc(plen);
+        if (!rows || !paths)
+            st = bf_fail(err, BF_EINTERNAL, "out of memory");
+        else {
+            paths[0] = '\0';
+            for (size_t k = 0; k < ns; k++) {
+                bf_series *se = bf_out_series_at(s->out, k);
+                rows[k] = (int64_t)bf_series_rows(se);
+                strcat(paths, bf_series_path(se));
+                strcat(paths, "\n");
+            }
+            st = bf_ckpt_put_i64(ck, "out.rows", rows, ns, err);
+            if (!st)
+                st = bf_ckpt_put_str(ck, "out.paths", paths, err);
+        }
+        free(rows);
+        free(paths);
+    }
+    if (!st)
+        st = s->mt->checkpoint_save(s->model, ck, err);
+    if (!st)
+        st = bf_ckpt_write(ck, path, err);
+    bf_ckpt_free(ck);
+    free(sets);
+    return st;
+}
+
+bf_status bf_sim_restart(bf_sim **out, bf_scene **scene, const char *out_path,
+                         const char *const *sets, size_t nsets,
+                         const bf_sim_opts *opts, bf_err *err)
+{
+    *out = NULL;
+    *scene = NULL;
+    size_t len = strlen(out_path) + 6;
+    char *cpath = malloc(len);
+    if (!cpath)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    snprintf(cpath, len, "%s.ckpt", out_path);
+    bf_ckpt *ck = NULL;
+    bf_scene *sc = NULL;
+    bf_sim *s = NULL;
+    bf_status st = bf_ckpt_read(&ck, cpath, err);
+    if (st) {
+        bf_err_prefix(err, "cannot restart %s", out_path);
+        free(cpath);
+        return st;
+    }
+    const char *spath = bf_ckpt_str(ck, "scene.path");
+    const char *stext = bf_ckpt_str(ck, "scene.text");
+    const char *ssets = bf_ckpt_str(ck, "scene.sets");
+    if (!spath || !stext || !ssets) {
+        st = bf_fail(err, BF_EINPUT, "%s: checkpoint lacks the scene", cpath);
+        goto fail;
+    }
+    if ((st = bf_scene_load_string(&sc, spath, stext, err)))
+        goto fail;
+    /* the stored overrides, then the new ones */
+    for (const char *p = ssets; *p;) {
+        const char *nl = strchr(p, '\n');
+        size_t l = nl ? (size_t)(nl - p) : strlen(p);
+        char buf[1024];
+        if (l >= sizeof buf) {
+            st = bf_fail(err, BF_EINPUT, "%s: override too long", cpath);
+            goto fail;
+        }
+        memcpy(buf, p, l);
+        buf[l] = '\0';
+        if (l && (st = bf_scene_set(sc, buf, "--set (stored)", err)))
+            goto fail;
+        p += l + (nl ? 1 : 0);
+    }
+    for (size_t k = 0; k < nsets; k++)
+        if ((st = bf_scene_set(sc, sets[k], "--set", err)))
+            goto fail;
+    if ((st = bf_registry_resolve(sc, err)) ||
+        (st = bf_sim_create(&s, sc, opts, err)))
+        goto fail;
+    if (!bf_sim_can_checkpoint(s)) {
+        st = bf_fail(err, BF_EINPUT, "model '%s' cannot restart", s->mt->name);
+        goto fail;
+    }
+    int64_t n, last_row;
+    if ((st = bf_ckpt_get_int(ck, "sim.n", &n, err)) ||
+        (st = bf_ckpt_get_int(ck, "sim.last_row", &last_row, err)) ||
+        (st = bf_ckpt_get_real(ck, "sim.e0", &s->e0, err)) ||
+        (st = bf_ckpt_get_real(ck, "sim.max_rel", &s->max_rel, err)) ||
+        (st = bf_ckpt_get_real(ck, "sim.wall", &s->wall, err)) ||
+        (st = s->mt->checkpoint_load(s->model, ck, err)))
+        goto fail;
+    s->n = (long)n;
+    s->last_row = (long)last_row;
+    if (s->n > s->nsteps) {
+        st = bf_fail(err, BF_EINPUT, "%s: the checkpoint is at step %ld, "
+                     "beyond t_end (%ld steps)", cpath, s->n, s->nsteps);
+        goto fail;
+    }
+    /* reopen the output and drop rows written after the checkpoint */
+    if ((st = set_ckpt_path(s, out_path, err)) ||
+        (st = bf_out_open_append(&s->out, out_path, err)) ||
+        (st = open_series(s, err)))
+        goto fail;
+    size_t nrows;
+    const int64_t *rows = bf_ckpt_data_i64(ck, "out.rows", &nrows);
+    if (!rows || nrows != bf_out_nseries(s->out)) {
+        st = bf_fail(err, BF_EINPUT, "%s: the checkpoint does not match the "
+                     "datasets of %s", cpath, out_path);
+        goto fail;
+    }
+    for (size_t k = 0; k < nrows; k++)
+        if ((st = bf_series_truncate(bf_out_series_at(s->out, k),
+                                     (size_t)rows[k], err)))
+            goto fail;
+    if ((st = bf_out_attr_str(s->out, "/", "status", "running", err)) ||
+        (st = bf_out_flush(s->out, err)))
+        goto fail;
+    bf_ckpt_free(ck);
+    free(cpath);
+    *out = s;
+    *scene = sc;
+    return BF_OK;
+fail:
+    bf_sim_free(s);
+    bf_scene_free(sc);
+    bf_ckpt_free(ck);
+    free(cpath);
+    return st;
 }

@@ -3,6 +3,8 @@
 #include "ballfilm/integrator.h"
 
 #include <math.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -84,4 +86,56 @@ void bf_integrator_cache_store(bf_integrator *it, const bf_ode *ode,
     memcpy(it->cache_a, acc, ode->n * sizeof *acc);
     it->cache_epoch = ode->epoch;
     it->cache_valid = 1;
+}
+
+bf_status bf_integrator_save(const bf_integrator *it, bf_ckpt *ck,
+                             const char *prefix, bf_err *err)
+{
+    char name[256];
+    int64_t meta[7] = {(int64_t)it->count.steps, (int64_t)it->count.evals,
+                       (int64_t)it->count.rejected,
+                       (int64_t)it->count.iterations, it->cache_valid,
+                       (int64_t)it->cache_epoch, (int64_t)it->n};
+    bf_status st;
+    snprintf(name, sizeof name, "%s.meta", prefix);
+    if ((st = bf_ckpt_put_i64(ck, name, meta, 7, err)))
+        return st;
+    snprintf(name, sizeof name, "%s.cache_x", prefix);
+    if ((st = bf_ckpt_put(ck, name, it->cache_x, it->n, err)))
+        return st;
+    snprintf(name, sizeof name, "%s.cache_a", prefix);
+    if ((st = bf_ckpt_put(ck, name, it->cache_a, it->n, err)))
+        return st;
+    if (it->type->save)
+        return it->type->save(it, ck, prefix, err);
+    return BF_OK;
+}
+
+bf_status bf_integrator_load(bf_integrator *it, const bf_ckpt *ck,
+                             const char *prefix, bf_err *err)
+{
+    char name[256];
+    int64_t meta[7];
+    bf_status st;
+    snprintf(name, sizeof name, "%s.meta", prefix);
+    if ((st = bf_ckpt_get_i64(ck, name, meta, 7, err)))
+        return st;
+    if (meta[6] != (int64_t)it->n)
+        return bf_fail(err, BF_EINPUT, "checkpoint integrator has %lld "
+                       "unknowns, the scene %zu", (long long)meta[6], it->n);
+    it->count.steps = (unsigned long long)meta[0];
+    it->count.evals = (unsigned long long)meta[1];
+    it->count.rejected = (unsigned long long)meta[2];
+    it->count.iterations = (unsigned long long)meta[3];
+    it->cache_valid = (int)meta[4];
+    it->cache_epoch = (unsigned long)meta[5];
+    snprintf(name, sizeof name, "%s.cache_x", prefix);
+    if ((st = bf_ckpt_get(ck, name, it->cache_x, it->n, err)))
+        return st;
+    snprintf(name, sizeof name, "%s.cache_a", prefix);
+    if ((st = bf_ckpt_get(ck, name, it->cache_a, it->n, err)))
+        return st;
+    if (it->type->load)
+        return it->type->load(it, ck, prefix, err);
+    return BF_OK;
 }

@@ -21,6 +21,7 @@ struct bf_series {
 
 struct bf_out {
     hid_t file;
+    int append; /* opened to continue a run */
     char *path;
     bf_series **series;
     size_t nseries, capseries;
@@ -62,6 +63,27 @@ bf_status bf_out_create(bf_out **out, const char *path, bf_err *err)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
     o->file = f;
+    o->path = strdup(path);
+    o->last_flush = now();
+    *out = o;
+    return BF_OK;
+}
+
+bf_status bf_out_open_append(bf_out **out, const char *path, bf_err *err)
+{
+    quiet_hdf5();
+    *out = NULL;
+    hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+    if (f < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot open the run's HDF5 file to "
+                       "continue it", path);
+    bf_out *o = calloc(1, sizeof *o);
+    if (!o) {
+        H5Fclose(f);
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    o->file = f;
+    o->append = 1;
     o->path = strdup(path);
     o->last_flush = now();
     *out = o;
@@ -139,6 +161,25 @@ bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
     if (rows > 8192)
         rows = 8192;
     hsize_t chunk[2] = {rows, ncols};
+    if (out->append && H5Lexists(out->file, path, H5P_DEFAULT) > 0) {
+        s->dset = H5Dopen2(out->file, path, H5P_DEFAULT);
+        hid_t fsp = s->dset >= 0 ? H5Dget_space(s->dset) : -1;
+        hsize_t have[2] = {0, 0};
+        int hrank = fsp >= 0 ? H5Sget_simple_extent_ndims(fsp) : -1;
+        if (fsp >= 0) {
+            H5Sget_simple_extent_dims(fsp, have, NULL);
+            H5Sclose(fsp);
+        }
+        if (hrank != rank || (rank == 2 && have[1] != ncols)) {
+            bf_fail(err, BF_EIO, "%s: dataset %s does not match the run "
+                    "(rank %d, columns %llu)", out->path, path, hrank,
+                    (unsigned long long)have[1]);
+            series_free(s);
+            return NULL;
+        }
+        s->written = (size_t)have[0];
+        goto registered;
+    }
     hid_t sp = H5Screate_simple(rank, dims, maxdims);
     hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
     H5Pset_chunk(dcpl, rank, chunk);
@@ -161,6 +202,7 @@ bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
         series_free(s);
         return NULL;
     }
+registered:
     if (out->nseries == out->capseries) {
         out->capseries = out->capseries ? 2 * out->capseries : 16;
         bf_series **ns = realloc(out->series, out->capseries * sizeof *ns);
@@ -203,6 +245,33 @@ bf_status bf_series_append_i64(bf_series *s, const int64_t *row)
 }
 
 size_t bf_series_rows(const bf_series *s) { return s->written + s->nbuf; }
+
+const char *bf_series_path(const bf_series *s) { return s->path; }
+
+size_t bf_out_nseries(const bf_out *out) { return out->nseries; }
+
+bf_series *bf_out_series_at(bf_out *out, size_t k)
+{
+    return k < out->nseries ? out->series[k] : NULL;
+}
+
+bf_status bf_series_truncate(bf_series *s, size_t rows, bf_err *err)
+{
+    if (rows > s->written + s->nbuf)
+        return bf_fail(err, BF_EIO, "%s has %zu rows, fewer than the %zu the "
+                       "checkpoint expects", s->path, s->written + s->nbuf,
+                       rows);
+    if (rows >= s->written) {
+        s->nbuf = rows - s->written;
+        return BF_OK;
+    }
+    s->nbuf = 0;
+    hsize_t dims[2] = {rows, s->ncols};
+    if (H5Dset_extent(s->dset, dims) < 0)
+        return bf_fail(err, BF_EIO, "cannot truncate %s", s->path);
+    s->written = rows;
+    return BF_OK;
+}
 
 static bf_status series_flush(bf_out *out, bf_series *s, bf_err *err)
 {
@@ -259,6 +328,8 @@ static bf_status write_array(bf_out *out, const char *path, const void *data,
 {
     int rank = n1 ? 2 : 1;
     hsize_t dims[2] = {n0, n1};
+    if (out->append && H5Lexists(out->file, path, H5P_DEFAULT) > 0)
+        H5Ldelete(out->file, path, H5P_DEFAULT);
     hid_t sp = H5Screate_simple(rank, dims, NULL);
     hid_t lcpl = lcpl_intermediate();
     hid_t d = H5Dcreate2(out->file, path, is_int ? H5T_STD_I64LE : H5T_IEEE_F64LE,

@@ -53,6 +53,8 @@ struct bf_scene {
     int resolved;      /* 0 none, 1 root only, 2 complete */
     const bf_section_spec *active[MAX_SPECS];
     size_t nactive;
+    char **sets; /* overrides as given */
+    size_t nsets;
 };
 
 /* ---------------------------------------------------------------- helpers */
@@ -359,9 +361,18 @@ void bf_scene_free(bf_scene *sc)
     for (size_t k = 0; k < sc->nsects; k++)
         free(sc->sects[k].name);
     free(sc->sects);
+    for (size_t k = 0; k < sc->nsets; k++)
+        free(sc->sets[k]);
+    free(sc->sets);
     free(sc->path);
     free(sc->text);
     free(sc);
+}
+
+size_t bf_scene_overrides(const bf_scene *sc, const char *const **list)
+{
+    *list = (const char *const *)sc->sets;
+    return sc->nsets;
 }
 
 bf_scene *bf_scene_clone(const bf_scene *sc)
@@ -382,6 +393,10 @@ bf_scene *bf_scene_clone(const bf_scene *sc)
     }
     for (size_t k = 0; k < sc->nsects; k++)
         add_sect(c, sc->sects[k].name, sc->sects[k].line);
+    for (size_t k = 0; k < sc->nsets; k++) {
+        c->sets = xrealloc(c->sets, (c->nsets + 1) * sizeof *c->sets);
+        c->sets[c->nsets++] = xstrdup(sc->sets[k]);
+    }
     return c;
 }
 
@@ -448,6 +463,8 @@ bf_status bf_scene_set(bf_scene *sc, const char *assignment, const char *origin,
     e->line = 0;
     e->given = 1;
     add_sect(sc, section, 0);
+    sc->sets = xrealloc(sc->sets, (sc->nsets + 1) * sizeof *sc->sets);
+    sc->sets[sc->nsets++] = xstrdup(assignment);
     free_resolved(sc);
     return BF_OK;
 }

@@ -93,6 +93,16 @@ static void balls_counters(const void *self, bf_counters *c)
     *c = m->sys->it->count;
 }
 
+static bf_status balls_save(const void *self, bf_ckpt *ck, bf_err *err)
+{
+    return bf_ballsys_save(((const balls_model *)self)->sys, ck, "balls", err);
+}
+
+static bf_status balls_load(void *self, const bf_ckpt *ck, bf_err *err)
+{
+    return bf_ballsys_load(((balls_model *)self)->sys, ck, "balls", err);
+}
+
 static const bf_section_spec *const balls_specs[] = {&bf_ballsys_ball_spec,
                                                      NULL};
 
@@ -108,4 +118,6 @@ const bf_model_type bf_model_balls = {
     .output_open = balls_output_open,
     .output_row = balls_output_row,
     .counters = balls_counters,
+    .checkpoint_save = balls_save,
+    .checkpoint_load = balls_load,
 };

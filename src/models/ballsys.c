@@ -164,3 +164,33 @@ void bf_ballsys_energy(const bf_ballsys *s, double t, double *kin, double *pot)
     *kin = k;
     *pot = bf_effects_potential(s->eff, s->neff, &s->b, t, s->b.x);
 }
+
+bf_status bf_ballsys_save(const bf_ballsys *s, bf_ckpt *ck, const char *prefix,
+                          bf_err *err)
+{
+    char name[256];
+    bf_status st;
+    snprintf(name, sizeof name, "%s.x", prefix);
+    if ((st = bf_ckpt_put(ck, name, s->b.x, s->b.n, err)))
+        return st;
+    snprintf(name, sizeof name, "%s.v", prefix);
+    if ((st = bf_ckpt_put(ck, name, s->b.v, s->b.n, err)))
+        return st;
+    snprintf(name, sizeof name, "%s.integrator", prefix);
+    return bf_integrator_save(s->it, ck, name, err);
+}
+
+bf_status bf_ballsys_load(bf_ballsys *s, const bf_ckpt *ck, const char *prefix,
+                          bf_err *err)
+{
+    char name[256];
+    bf_status st;
+    snprintf(name, sizeof name, "%s.x", prefix);
+    if ((st = bf_ckpt_get(ck, name, s->b.x, s->b.n, err)))
+        return st;
+    snprintf(name, sizeof name, "%s.v", prefix);
+    if ((st = bf_ckpt_get(ck, name, s->b.v, s->b.n, err)))
+        return st;
+    snprintf(name, sizeof name, "%s.integrator", prefix);
+    return bf_integrator_load(s->it, ck, name, err);
+}

@@ -1,0 +1,354 @@
+/* checkpoint.c: in-memory store of named arrays and its atomic HDF5 file
+ * (see checkpoint.h).  File layout: one 1-D dataset per entry at the root,
+ * float64, int64 or uint8, with an attribute "kind" ("real", "int",
+ * "bytes", "str"). */
+#include "ballfilm/checkpoint.h"
+
+#include <fcntl.h>
+#include <hdf5.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+typedef enum { K_REAL, K_INT, K_BYTES, K_STR } kind;
+static const char *kind_name[] = {"real", "int", "bytes", "str"};
+
+typedef struct item {
+    char *name;
+    kind k;
+    size_t n;    /* elements */
+    void *data;  /* n * elsize bytes (+1 NUL for strings) */
+} item;
+
+struct bf_ckpt {
+    item *items;
+    size_t n, cap;
+};
+
+static size_t elsize(kind k) { return k == K_REAL || k == K_INT ? 8 : 1; }
+
+bf_ckpt *bf_ckpt_new(void) { return calloc(1, sizeof(bf_ckpt)); }
+
+void bf_ckpt_free(bf_ckpt *ck)
+{
+    if (!ck)
+        return;
+    for (size_t k = 0; k < ck->n; k++) {
+        free(ck->items[k].name);
+        free(ck->items[k].data);
+    }
+    free(ck->items);
+    free(ck);
+}
+
+static const item *find(const bf_ckpt *ck, const char *name)
+{
+    for (size_t k = 0; k < ck->n; k++)
+        if (!strcmp(ck->items[k].name, name))
+            return &ck->items[k];
+    return NULL;
+}
+
+static bf_status put(bf_ckpt *ck, const char *name, kind k, const void *p,
+                     size_t n, bf_err *err)
+{
+    if (!*name || strchr(name, '/'))
+        return bf_fail(err, BF_EINTERNAL, "checkpoint entry name '%s' is "
+                       "invalid", name);
+    if (find(ck, name))
+        return bf_fail(err, BF_EINTERNAL, "checkpoint entry '%s' stored twice",
+                       name);
+    if (ck->n == ck->cap) {
+        size_t cap = ck->cap ? 2 * ck->cap : 32;
+        item *ni = realloc(ck->items, cap * sizeof *ni);
+        if (!ni)
+            return bf_fail(err, BF_EINTERNAL, "out of memory");
+        ck->items = ni;
+        ck->cap = cap;
+    }
+    item *it = &ck->items[ck->n];
+    it->name = strdup(name);
+    it->k = k;
+    it->n = n;
+    it->data = malloc(n * elsize(k) + 1);
+    if (!it->name || !it->data) {
+        free(it->name);
+        free(it->data);
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    if (n)
+        memcpy(it->data, p, n * elsize(k));
+    ((char *)it->data)[n * elsize(k)] = '\0';
+    ck->n++;
+    return BF_OK;
+}
+
+bf_status bf_ckpt_put(bf_ckpt *ck, const char *name, const double *v, size_t n,
+                      bf_err *err)
+{
+    return put(ck, name, K_REAL, v, n, err);
+}
+
+bf_status bf_ckpt_put_i64(bf_ckpt *ck, const char *name, const int64_t *v,
+                          size_t n, bf_err *err)
+{
+    return put(ck, name, K_INT, v, n, err);
+}
+
+bf_status bf_ckpt_put_bytes(bf_ckpt *ck, const char *name, const void *p,
+                            size_t n, bf_err *err)
+{
+    return put(ck, name, K_BYTES, p, n, err);
+}
+
+bf_status bf_ckpt_put_real(bf_ckpt *ck, const char *name, double v,
+                           bf_err *err)
+{
+    return put(ck, name, K_REAL, &v, 1, err);
+}
+
+bf_status bf_ckpt_put_int(bf_ckpt *ck, const char *name, int64_t v, bf_err *err)
+{
+    return put(ck, name, K_INT, &v, 1, err);
+}
+
+bf_status bf_ckpt_put_str(bf_ckpt *ck, const char *name, const char *s,
+                          bf_err *err)
+{
+    return put(ck, name, K_STR, s, strlen(s), err);
+}
+
+static bf_status get(const bf_ckpt *ck, const char *name, kind k, void *p,
+                     size_t n, bf_err *err)
+{
+    const item *it = find(ck, name);
+    if (!it)
+        return bf_fail(err, BF_EINPUT, "checkpoint has no entry '%s' (written "
+                       "by another version or another scene?)", name);
+    if (it->k != k || it->n != n)
+        return bf_fail(err, BF_EINPUT, "checkpoint entry '%s' holds %zu %s "
+                       "values, expected %zu %s (the scene changed?)",
+                       name, it->n, kind_name[it->k], n, kind_name[k]);
+    if (n)
+        memcpy(p, it->data, n * elsize(k));
+    return BF_OK;
+}
+
+bf_status bf_ckpt_get(const bf_ckpt *ck, const char *name, double *v, size_t n,
+                      bf_err *err)
+{
+    return get(ck, name, K_REAL, v, n, err);
+}
+
+bf_status bf_ckpt_get_i64(const bf_ckpt *ck, const char *name, int64_t *v,
+                          size_t n, bf_err *err)
+{
+    return get(ck, name, K_INT, v, n, err);
+}
+
+bf_status bf_ckpt_get_bytes(const bf_ckpt *ck, const char *name, void *p,
+                            size_t n, bf_err *err)
+{
+    return get(ck, name, K_BYTES, p, n, err);
+}
+
+bf_status bf_ckpt_get_real(const bf_ckpt *ck, const char *name, double *v,
+                           bf_err *err)
+{
+    return get(ck, name, K_REAL, v, 1, err);
+}
+
+bf_status bf_ckpt_get_int(const bf_ckpt *ck, const char *name, int64_t *v,
+                          bf_err *err)
+{
+    return get(ck, name, K_INT, v, 1, err);
+}
+
+const double *bf_ckpt_data(const bf_ckpt *ck, const char *name, size_t *n)
+{
+    const item *it = find(ck, name);
+    if (!it || it->k != K_REAL)
+        return NULL;
+    *n = it->n;
+    return it->data;
+}
+
+const int64_t *bf_ckpt_data_i64(const bf_ckpt *ck, const char *name, size_t *n)
+{
+    const item *it = find(ck, name);
+    if (!it || it->k != K_INT)
+        return NULL;
+    *n = it->n;
+    return it->data;
+}
+
+const char *bf_ckpt_str(const bf_ckpt *ck, const char *name)
+{
+    const item *it = find(ck, name);
+    return it && it->k == K_STR ? it->data : NULL;
+}
+
+int bf_ckpt_has(const bf_ckpt *ck, const char *name)
+{
+    return find(ck, name) != NULL;
+}
+
+/* ------------------------------------------------------------------ file */
+
+static hid_t h5type(kind k)
+{
+    return k == K_REAL ? H5T_IEEE_F64LE : k == K_INT ? H5T_STD_I64LE
+                                                     : H5T_STD_U8LE;
+}
+
+static hid_t memtype(kind k)
+{
+    return k == K_REAL ? H5T_NATIVE_DOUBLE : k == K_INT ? H5T_NATIVE_INT64
+                                                        : H5T_NATIVE_UCHAR;
+}
+
+static int write_kind_attr(hid_t d, kind k)
+{
+    hid_t t = H5Tcopy(H5T_C_S1);
+    H5Tset_size(t, strlen(kind_name[k]) + 1);
+    hid_t sp = H5Screate(H5S_SCALAR);
+    hid_t a = H5Acreate2(d, "kind", t, sp, H5P_DEFAULT, H5P_DEFAULT);
+    int rc = a < 0 || H5Awrite(a, t, kind_name[k]) < 0;
+    if (a >= 0)
+        H5Aclose(a);
+    H5Sclose(sp);
+    H5Tclose(t);
+    return rc;
+}
+
+bf_status bf_ckpt_write(const bf_ckpt *ck, const char *path, bf_err *err)
+{
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    size_t len = strlen(path);
+    char *tmp = malloc(len + 5);
+    if (!tmp)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    snprintf(tmp, len + 5, "%s.tmp", path);
+    hid_t f = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    if (f < 0) {
+        bf_status st = bf_fail(err, BF_EIO, "%s: cannot create checkpoint", tmp);
+        free(tmp);
+        return st;
+    }
+    int bad = 0;
+    for (size_t k = 0; k < ck->n && !bad; k++) {
+        const item *it = &ck->items[k];
+        hsize_t dims[1] = {it->n};
+        hid_t sp = H5Screate_simple(1, dims, NULL);
+        hid_t d = H5Dcreate2(f, it->name, h5type(it->k), sp, H5P_DEFAULT,
+                             H5P_DEFAULT, H5P_DEFAULT);
+        if (d < 0)
+            bad = 1;
+        else {
+            if (it->n &&
+                H5Dwrite(d, memtype(it->k), H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                         it->data) < 0)
+                bad = 1;
+            if (write_kind_attr(d, it->k))
+                bad = 1;
+            H5Dclose(d);
+        }
+        H5Sclose(sp);
+    }
+    if (H5Fclose(f) < 0)
+        bad = 1;
+    if (!bad) {
+        /* make the data durable before the rename makes it visible */
+        int fd = open(tmp, O_RDONLY);
+        if (fd < 0 || fsync(fd))
+            bad = 1;
+        if (fd >= 0)
+            close(fd);
+    }
+    if (bad || rename(tmp, path)) {
+        unlink(tmp);
+        bf_status st = bf_fail(err, BF_EIO, "%s: writing the checkpoint failed "
+                               "(disk full?); the previous checkpoint is kept",
+                               path);
+        free(tmp);
+        return st;
+    }
+    free(tmp);
+    return BF_OK;
+}
+
+typedef struct read_ctx {
+    bf_ckpt *ck;
+    bf_err *err;
+    int bad;
+} read_ctx;
+
+static herr_t read_one(hid_t g, const char *name, const H5L_info_t *info,
+                       void *op)
+{
+    (void)info;
+    read_ctx *rc = op;
+    hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
+    if (d < 0) {
+        rc->bad = 1;
+        return -1;
+    }
+    char kname[16] = "";
+    hid_t a = H5Aopen(d, "kind", H5P_DEFAULT);
+    if (a >= 0) {
+        hid_t t = H5Aget_type(a);
+        if (H5Tget_size(t) < sizeof kname)
+            H5Aread(a, t, kname);
+        H5Tclose(t);
+        H5Aclose(a);
+    }
+    kind k = K_REAL;
+    int found = 0;
+    for (int q = 0; q < 4; q++)
+        if (!strcmp(kname, kind_name[q])) {
+            k = (kind)q;
+            found = 1;
+        }
+    hid_t sp = H5Dget_space(d);
+    hsize_t n = 0;
+    if (found && H5Sget_simple_extent_ndims(sp) == 1)
+        H5Sget_simple_extent_dims(sp, &n, NULL);
+    else
+        found = 0;
+    H5Sclose(sp);
+    void *buf = found ? malloc((size_t)n * elsize(k) + 1) : NULL;
+    if (!buf || (n && H5Dread(d, memtype(k), H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                              buf) < 0) ||
+        put(rc->ck, name, k, buf, (size_t)n, rc->err)) {
+        rc->bad = 1;
+        free(buf);
+        H5Dclose(d);
+        return -1;
+    }
+    free(buf);
+    H5Dclose(d);
+    return 0;
+}
+
+bf_status bf_ckpt_read(bf_ckpt **out, const char *path, bf_err *err)
+{
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    *out = NULL;
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f < 0)
+        return bf_fail(err, BF_EINPUT, "%s: cannot open checkpoint file", path);
+    bf_ckpt *ck = bf_ckpt_new();
+    read_ctx rc = {ck, err, 0};
+    if (!ck ||
+        H5Literate(f, H5_INDEX_NAME, H5_ITER_INC, NULL, read_one, &rc) < 0 ||
+        rc.bad) {
+        H5Fclose(f);
+        bf_ckpt_free(ck);
+        return bf_fail(err, BF_EINPUT, "%s: not a readable ballfilm checkpoint",
+                       path);
+    }
+    H5Fclose(f);
+    *out = ck;
+    return BF_OK;
+}
