@@ -151,9 +151,13 @@ figures:
 # ---------------------------------------------------------------- tests
 build-tests: $(PROG) $(RUNNER)
 
+# Tests get the program, the repository and the compiler flags (the
+# fp-contract test compiles a probe with them).
+TEST_ENV = BALLFILM_ROOT=$(CURDIR) BALLFILM_CC="$(CC)" \
+           BALLFILM_CFLAGS="$(CSTD) $(SANITIZE)"
+
 test-run: build-tests
-	BALLFILM_BIN=$(abspath $(PROG)) BALLFILM_ROOT=$(CURDIR) \
-	  CK_DEFAULT_TIMEOUT=600 $(RUNNER)
+	$(TEST_ENV) BALLFILM_BIN=$(abspath $(PROG)) CK_DEFAULT_TIMEOUT=600 $(RUNNER)
 
 test:
 	@$(MAKE) --no-print-directory deps
@@ -166,7 +170,7 @@ check:
 	  build-tests
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	BALLFILM_BIN=$(CURDIR)/build/asan/bin/ballfilm BALLFILM_ROOT=$(CURDIR) \
+	$(TEST_ENV) BALLFILM_BIN=$(CURDIR)/build/asan/bin/ballfilm \
 	BALLFILM_SANITIZED=1 CK_DEFAULT_TIMEOUT=3000 build/asan/tests/runner
 
 # ---------------------------------------------------------------- bench

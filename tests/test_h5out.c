@@ -5,6 +5,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -147,6 +148,48 @@ START_TEST(sigkill_leaves_readable_file)
 }
 END_TEST
 
+/* A full disk (simulated with RLIMIT_FSIZE: writes beyond 2 MiB fail with
+ * EFBIG) ends the run with status 5 and a message, not a crash or a silent
+ * truncated file; an unwritable path is refused at the start. */
+START_TEST(full_disk_and_bad_path)
+{
+    const char *out = tu_tmp("full.h5");
+    const char *bin = getenv("BALLFILM_BIN");
+    const char *errf = tu_tmp("full.err");
+    pid_t pid = fork();
+    ck_assert(pid >= 0);
+    if (pid == 0) {
+        signal(SIGXFSZ, SIG_IGN);
+        struct rlimit rl = {2u << 20, 2u << 20};
+        setrlimit(RLIMIT_FSIZE, &rl);
+        if (!freopen("/dev/null", "w", stdout) || !freopen(errf, "w", stderr))
+            _exit(126);
+        execl(bin ? bin : "bin/ballfilm", "ballfilm", "run",
+              tu_repo("runs/two_balls_B.ini"), "-o", out, "-q", "--set",
+              "scene.output_every=1", "--set", "scene.flush_seconds=0.05",
+              (char *)NULL);
+        _exit(127);
+    }
+    int status;
+    waitpid(pid, &status, 0);
+    ck_assert_msg(WIFEXITED(status) && WEXITSTATUS(status) == 5,
+                  "status %d (expected exit 5)", status);
+    FILE *f = fopen(errf, "r");
+    char line[1024] = "";
+    ck_assert(f && fgets(line, sizeof line, f));
+    fclose(f);
+    ck_assert_msg(strstr(line, "I/O error") && strstr(line, "step") &&
+                      strstr(line, "disk full"),
+                  "%s", line);
+    char *err = NULL;
+    int rc = tu_run(NULL, &err, "run", tu_repo("runs/harmonic.ini"), "-o",
+                    "/nonexistent-dir/x.h5", NULL);
+    ck_assert_int_eq(rc, 5);
+    ck_assert_msg(strstr(err, "/nonexistent-dir/x.h5"), "%s", err);
+    free(err);
+}
+END_TEST
+
 Suite *suite_h5out(void)
 {
     Suite *s = suite_create("h5out");
@@ -154,6 +197,7 @@ Suite *suite_h5out(void)
     tcase_add_test(tc, roundtrip_exact);
     tcase_add_test(tc, run_file_layout);
     tcase_add_test(tc, sigkill_leaves_readable_file);
+    tcase_add_test(tc, full_disk_and_bad_path);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -12,6 +12,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <hdf5.h>
+
+#include "ballfilm/h5out.h"
 #include "ballfilm/registry.h"
 
 static char tmpdir[256];
@@ -243,4 +246,79 @@ TCase *tu_tcase(const char *name)
     TCase *tc = tcase_create(name);
     tcase_set_timeout(tc, 600);
     return tc;
+}
+
+typedef struct dlist {
+    char **v;
+    size_t n, cap;
+} dlist;
+
+static herr_t visit_ds(hid_t obj, const char *name, const H5O_info_t *info,
+                       void *op)
+{
+    (void)obj;
+    dlist *l = op;
+    if (info->type != H5O_TYPE_DATASET)
+        return 0;
+    if (l->n + 2 > l->cap) {
+        l->cap = l->cap ? 2 * l->cap : 16;
+        l->v = realloc(l->v, l->cap * sizeof *l->v);
+    }
+    size_t len = strlen(name) + 2;
+    l->v[l->n] = malloc(len);
+    snprintf(l->v[l->n], len, "/%s", name);
+    l->n++;
+    l->v[l->n] = NULL;
+    return 0;
+}
+
+char **tu_h5_datasets(const char *file)
+{
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+    ck_assert_msg(f >= 0, "cannot open %s", file);
+    dlist l = {0};
+    l.cap = 16;
+    l.v = calloc(l.cap, sizeof *l.v);
+    H5Ovisit(f, H5_INDEX_NAME, H5_ITER_INC, visit_ds, &l);
+    H5Fclose(f);
+    return l.v;
+}
+
+void tu_free_list(char **list)
+{
+    for (char **p = list; p && *p; p++)
+        free(*p);
+    free(list);
+}
+
+void tu_same_datasets(const char *a, const char *b)
+{
+    char **la = tu_h5_datasets(a), **lb = tu_h5_datasets(b);
+    size_t na = 0, nb = 0;
+    while (la[na])
+        na++;
+    while (lb[nb])
+        nb++;
+    ck_assert_msg(na == nb && na > 0, "%s has %zu datasets, %s has %zu", a, na,
+                  b, nb);
+    bf_err err = {0};
+    for (size_t k = 0; k < na; k++) {
+        ck_assert_str_eq(la[k], lb[k]);
+        double *da, *db;
+        size_t a0, a1, b0, b1;
+        ck_assert_msg(bf_h5_read(a, la[k], &da, &a0, &a1, &err) == BF_OK, "%s",
+                      err.msg);
+        ck_assert_msg(bf_h5_read(b, lb[k], &db, &b0, &b1, &err) == BF_OK, "%s",
+                      err.msg);
+        ck_assert_msg(a0 == b0 && a1 == b1, "%s: shape %zux%zu vs %zux%zu",
+                      la[k], a0, a1, b0, b1);
+        size_t n = a0 * (a1 ? a1 : 1);
+        ck_assert_msg(!memcmp(da, db, n * sizeof *da), "%s differs: %s vs %s",
+                      la[k], a, b);
+        free(da);
+        free(db);
+    }
+    tu_free_list(la);
+    tu_free_list(lb);
 }

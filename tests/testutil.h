@@ -38,6 +38,13 @@ bf_status tu_scene_error(const char *text, char *msg, size_t cap);
  * terminated) to the end without output.  Returns the sim (free it). */
 bf_sim *tu_run_scene(const char *text, ...);
 
+/* Names of every dataset in an HDF5 file (NULL-terminated, malloc'd; free
+ * with tu_free_list). */
+char **tu_h5_datasets(const char *file);
+void tu_free_list(char **list);
+/* Assert that two files hold the same datasets with the same bits. */
+void tu_same_datasets(const char *a, const char *b);
+
 double tu_max(const double *v, size_t n);
 double tu_absmax(const double *v, size_t n);
 

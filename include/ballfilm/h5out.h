@@ -42,6 +42,7 @@ bf_status bf_series_append(bf_series *s, const double *row);
 bf_status bf_series_append_i64(bf_series *s, const int64_t *row);
 size_t bf_series_rows(const bf_series *s); /* written + buffered */
 const char *bf_series_path(const bf_series *s);
+size_t bf_series_width(const bf_series *s); /* values per row */
 /* Drop rows beyond `rows` (restart: rows written after the checkpoint). */
 bf_status bf_series_truncate(bf_series *s, size_t rows, bf_err *err);
 /* All series of a file, in creation order. */

@@ -54,6 +54,11 @@ bf_status bf_sim_close_output(bf_sim *sim, bf_status run_status,
 
 void bf_sim_summary(const bf_sim *sim, FILE *f);
 
+/* Rough size of the output the rest of the run will write, in bytes (every
+ * series at the main output interval), so that the front end can warn
+ * before a long run fills the disk. */
+double bf_sim_output_estimate(const bf_sim *sim);
+
 /* ---- checkpoints and restart ----
  * With an output file OUT, checkpoints go to OUT.ckpt (atomically), every
  * [scene] checkpoint_every and when a run is interrupted (BF_INTERRUPTED).

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include "ballfilm/registry.h"
@@ -68,6 +69,29 @@ static char *default_output(const char *scene)
         return NULL;
     }
     return p;
+}
+
+/* Detect at the start what can be detected: an output that will not fit
+ * on its file system. */
+static void warn_disk_space(const bf_sim *sim, const char *out_path)
+{
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s", out_path);
+    char *slash = strrchr(dir, '/');
+    if (slash)
+        *(slash == dir ? slash + 1 : slash) = '\0';
+    else
+        snprintf(dir, sizeof dir, ".");
+    struct statvfs vfs;
+    if (statvfs(dir, &vfs))
+        return;
+    double avail = (double)vfs.f_bavail * (double)vfs.f_frsize;
+    double need = bf_sim_output_estimate(sim);
+    if (need > avail)
+        fprintf(stderr,
+                "ballfilm: warning: the output may need about %.0f MiB but only "
+                "%.0f MiB are free for %s; thin it with [scene] output_every\n",
+                need / 1048576.0, avail / 1048576.0, out_path);
 }
 
 int bf_cmd_run(int argc, char **argv)
@@ -191,6 +215,7 @@ int bf_cmd_run(int argc, char **argv)
         goto done;
     }
 run:;
+    warn_disk_space(sim, out_path);
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
@@ -205,6 +230,11 @@ run:;
     if (run_st == BF_INTERRUPTED) {
         fprintf(stderr, "ballfilm: %s\n", err.msg);
         st = run_st;
+    } else if (run_st == BF_EIO) {
+        fprintf(stderr, "ballfilm: I/O error: %s\n", err.msg);
+        fprintf(stderr, "ballfilm: %s may be incomplete; free space (or thin "
+                        "the output) and run again\n", out_path);
+        st = run_st;
     } else if (run_st) {
         fprintf(stderr, "ballfilm: %s: %s\n", bf_status_name(run_st), err.msg);
         fprintf(stderr, "ballfilm: output up to the last good output row is in "
@@ -213,7 +243,7 @@ run:;
     } else {
         st = close_st;
     }
-    if (close_st)
+    if (close_st && run_st != BF_EIO)
         fprintf(stderr, "ballfilm: error: %s\n", cerr.msg);
     else if (!run_st)
         printf("wrote %s\n", out_path);

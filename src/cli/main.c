@@ -3,6 +3,7 @@
  * 3 unstable, 4 no convergence, 5 I/O error, 6 interrupted. */
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "ballfilm/version.h"
 #include "cli.h"
@@ -31,8 +32,19 @@ int main(int argc, char **argv)
         return 2;
     }
     const char *cmd = argv[1];
-    if (!strcmp(cmd, "run"))
-        return bf_cmd_run(argc - 1, argv + 1);
+    if (!strcmp(cmd, "run")) {
+        int rc = bf_cmd_run(argc - 1, argv + 1);
+        if (rc == 5) {
+            /* After a failed write (disk full) HDF5 keeps the file open
+             * internally and its exit handler crashes closing it again
+             * (HDF5 1.10.8); our message is out and the file is as good as
+             * it will get, so leave without running exit handlers. */
+            fflush(stdout);
+            fflush(stderr);
+            _exit(rc);
+        }
+        return rc;
+    }
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
         usage(stdout);
         printf("\n");

@@ -369,8 +369,11 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
         if (s->n % every == 0 || s->n == s->nsteps) {
             if (s->has_energy && !eevery)
                 check_energy(s);
-            if ((st = write_row(s, err)))
+            if ((st = write_row(s, err))) {
+                bf_err_prefix(err, "step %ld (t = %.9g s)", s->n,
+                              (double)s->n * s->dt);
                 break;
+            }
         }
         if (s->ckpt_every && s->out && s->n % s->ckpt_every == 0 &&
             s->n < s->nsteps &&
@@ -441,6 +444,17 @@ void bf_sim_summary(const bf_sim *s, FILE *f)
                 s->max_rel, s->energy_every ? s->energy_every : s->out_every);
     if (s->mt->report)
         s->mt->report(s->model, f);
+}
+
+double bf_sim_output_estimate(const bf_sim *s)
+{
+    if (!s->out)
+        return 0.0;
+    double row = 0.0;
+    for (size_t k = 0; k < bf_out_nseries(s->out); k++)
+        row += 8.0 * (double)bf_series_width(bf_out_series_at(s->out, k));
+    double rows = (double)(s->nsteps - s->n) / (double)s->out_every + 1.0;
+    return row * rows;
 }
 
 void *bf_sim_model(bf_sim *s) { return s->model; }

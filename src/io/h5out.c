@@ -248,6 +248,8 @@ size_t bf_series_rows(const bf_series *s) { return s->written + s->nbuf; }
 
 const char *bf_series_path(const bf_series *s) { return s->path; }
 
+size_t bf_series_width(const bf_series *s) { return s->width; }
+
 size_t bf_out_nseries(const bf_out *out) { return out->nseries; }
 
 bf_series *bf_out_series_at(bf_out *out, size_t k)
