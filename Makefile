@@ -53,7 +53,7 @@ PROG      := $(BINDIR)/ballfilm
 RUNNER    := $(BUILD)/tests/runner
 
 .PHONY: all run test check figures bench clean deps deps-plot test-run \
-        build-tests fig1
+        build-tests fig1 fuzz valgrind
 
 all: $(PROG)
 
@@ -172,6 +172,42 @@ check:
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	$(TEST_ENV) BALLFILM_BIN=$(CURDIR)/build/asan/bin/ballfilm \
 	BALLFILM_SANITIZED=1 CK_DEFAULT_TIMEOUT=3000 build/asan/tests/runner
+
+# ---------------------------------------------------------------- valgrind
+# Every scene of runs/ for a few steps under valgrind: no invalid access,
+# no definite leak (memcheck), exit status 1 otherwise.
+valgrind: $(PROG)
+	@command -v valgrind >/dev/null || { echo "make valgrind needs: apt-get install -y valgrind"; exit 1; }
+	@mkdir -p build/valgrind
+	@set -e; for s in runs/*.ini; do \
+	  n=$$(basename $$s .ini); echo "== $$n"; \
+	  valgrind -q --error-exitcode=1 --leak-check=full \
+	    --errors-for-leak-kinds=definite --show-leak-kinds=definite \
+	    $(PROG) run $$s -q -o build/valgrind/$$n.h5 --stop-after 20 \
+	    > build/valgrind/$$n.log 2>&1 || { rc=$$?; \
+	    if [ $$rc -ne 6 ] && [ $$rc -ne 0 ]; then cat build/valgrind/$$n.log; exit 1; fi; }; \
+	done; echo "valgrind: all scenes clean"
+
+# ---------------------------------------------------------------- fuzz
+# libFuzzer on the scene parser and validation (tests/fuzz_one.c), seeded
+# with the scenes of runs/; findings go to build/fuzz/crashes.  Copy every
+# crash input into tests/fuzz/regress/ (the test suite replays them).
+FUZZ_SECONDS ?= 600
+FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=undefined -g
+fuzz:
+	@$(MAKE) --no-print-directory deps
+	@command -v clang >/dev/null || { echo "make fuzz needs clang: apt-get install -y clang libclang-rt-14-dev"; exit 1; }
+	@$(MAKE) --no-print-directory CC=clang BUILD=build/fuzz BINDIR=build/fuzz/bin \
+	  SANITIZE="$(FUZZ_SAN) -fsanitize=fuzzer-no-link" build/fuzz/libballfilm.a
+	clang $(CPPFLAGS) -Itests $(CSTD) $(FUZZ_SAN) -fsanitize=fuzzer \
+	  tests/fuzz/fuzz_scene.c tests/fuzz_one.c build/fuzz/libballfilm.a \
+	  $(LDLIBS) -o build/fuzz/fuzz_scene
+	@mkdir -p build/fuzz/corpus build/fuzz/crashes
+	cp -n runs/*.ini tests/fuzz/corpus/ 2>/dev/null || true
+	build/fuzz/fuzz_scene build/fuzz/corpus tests/fuzz/corpus \
+	  -dict=tests/fuzz/scene.dict -max_total_time=$(FUZZ_SECONDS) \
+	  -rss_limit_mb=4096 -timeout=10 -max_len=4096 \
+	  -artifact_prefix=build/fuzz/crashes/ -print_final_stats=1
 
 # ---------------------------------------------------------------- bench
 bench:
