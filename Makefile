@@ -15,7 +15,7 @@ SHELL := /bin/bash
 .DEFAULT_GOAL := all
 
 BUILD_PKGS := gcc make pkg-config libsundials-dev libgsl-dev libhdf5-dev \
-              hdf5-tools libinih-dev check
+              hdf5-tools libinih-dev check openmpi-bin libopenmpi-dev
 PLOT_PKGS  := python3-numpy python3-matplotlib python3-h5py
 PY         := /usr/bin/python3
 
@@ -53,7 +53,7 @@ PROG      := $(BINDIR)/ballfilm
 RUNNER    := $(BUILD)/tests/runner
 
 .PHONY: all run test check figures bench clean deps deps-plot test-run \
-        build-tests fig1 fuzz valgrind
+        build-tests fig1 fuzz valgrind mpi
 
 all: $(PROG)
 
@@ -73,6 +73,18 @@ $(LIB): $(LIB_OBJ)
 $(PROG): $(CLI_OBJ) $(LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(LDFLAGS) -o $@ $(CLI_OBJ) $(LIB) $(LDLIBS)
+
+# The MPI front end: the same CLI compiled with mpicc and -DBF_MPI (only the
+# sweep command uses MPI), linked with the same library.
+MPI_PROG := $(BINDIR)/ballfilm-mpi
+MPI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/mpi/%.o)
+mpi: $(MPI_PROG)
+$(BUILD)/mpi/%.o: %.c
+	@mkdir -p $(dir $@)
+	mpicc $(CPPFLAGS) -DBF_MPI $(CFLAGS) -c $< -o $@
+$(MPI_PROG): $(MPI_OBJ) $(LIB)
+	@mkdir -p $(dir $@)
+	mpicc $(LDFLAGS) -pthread -o $@ $(MPI_OBJ) $(LIB) $(LDLIBS)
 
 # Every tests/test_NAME.c defines `Suite *suite_NAME(void)`; the runner
 # collects them from this generated list, so adding a test file needs no
@@ -149,7 +161,7 @@ figures:
 	@echo "figures are in out/"
 
 # ---------------------------------------------------------------- tests
-build-tests: $(PROG) $(RUNNER)
+build-tests: $(PROG) $(RUNNER) $(MPI_PROG)
 
 # Tests get the program, the repository and the compiler flags (the
 # fp-contract test compiles a probe with them).
@@ -157,7 +169,8 @@ TEST_ENV = BALLFILM_ROOT=$(CURDIR) BALLFILM_CC="$(CC)" \
            BALLFILM_CFLAGS="$(CSTD) $(SANITIZE)"
 
 test-run: build-tests
-	$(TEST_ENV) BALLFILM_BIN=$(abspath $(PROG)) CK_DEFAULT_TIMEOUT=600 $(RUNNER)
+	$(TEST_ENV) BALLFILM_BIN=$(abspath $(PROG)) \
+	  BALLFILM_MPI_BIN=$(abspath $(MPI_PROG)) CK_DEFAULT_TIMEOUT=600 $(RUNNER)
 
 test:
 	@$(MAKE) --no-print-directory deps
@@ -171,6 +184,7 @@ check:
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	$(TEST_ENV) BALLFILM_BIN=$(CURDIR)/build/asan/bin/ballfilm \
+	BALLFILM_MPI_BIN=$(CURDIR)/build/asan/bin/ballfilm-mpi \
 	BALLFILM_SANITIZED=1 CK_DEFAULT_TIMEOUT=3000 build/asan/tests/runner
 
 # ---------------------------------------------------------------- valgrind

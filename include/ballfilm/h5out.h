@@ -76,6 +76,9 @@ bf_status bf_out_maybe_flush(bf_out *out, double seconds, bf_err *err);
  * 1-D). */
 bf_status bf_h5_read(const char *file, const char *path, double **data,
                      size_t *n0, size_t *n1, bf_err *err);
+/* A numeric attribute (any integer or float type) as a double. */
+bf_status bf_h5_read_attr_real(const char *file, const char *obj,
+                               const char *name, double *value, bf_err *err);
 bf_status bf_h5_read_attr_str(const char *file, const char *obj,
                               const char *name, char **value, bf_err *err);
 

@@ -131,6 +131,8 @@ bf_interval bf_scene_interval(const bf_scene *sc, const char *section,
  * was given explicitly rather than defaulted. */
 int bf_scene_has_section(const bf_scene *sc, const char *section);
 int bf_scene_given(const bf_scene *sc, const char *section, const char *key);
+/* Whether a resolved scene has this key (declared for an active section). */
+int bf_scene_has_key(const bf_scene *sc, const char *section, const char *key);
 /* Number of consecutive indexed sections NAME.1 .. NAME.n ("ball" -> n). */
 int bf_scene_count(const bf_scene *sc, const char *base);
 

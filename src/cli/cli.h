@@ -5,6 +5,9 @@
 #include <stdio.h>
 
 int bf_cmd_run(int argc, char **argv);
+int bf_cmd_sweep(int argc, char **argv);
+/* Create ./out if missing; 0 on success (else prints why). */
+int mkdir_out(void);
 void bf_cli_print_keys(FILE *f);
 
 #endif

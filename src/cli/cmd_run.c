@@ -52,6 +52,16 @@ static void run_usage(FILE *f)
             "\n");
 }
 
+int mkdir_out(void)
+{
+    if (mkdir("out", 0777) && errno != EEXIST) {
+        fprintf(stderr, "ballfilm: error: cannot create directory 'out': %s\n",
+                strerror(errno));
+        return 1;
+    }
+    return 0;
+}
+
 /* out/<basename of scene without .ini>.h5 */
 static char *default_output(const char *scene)
 {

@@ -17,6 +17,10 @@ static void usage(FILE *f)
             "  run SCENE.ini [-o OUT.h5] [--set section.key=value]... [-q]\n"
             "                     run a scene, write HDF5 (see 'ballfilm run "
             "--help')\n"
+            "  sweep SCENE.ini --vary section.key=START:STOP:COUNT... [-o DIR] "
+            "[--jobs N]\n"
+            "                     run a parameter sweep (see 'ballfilm sweep "
+            "--help')\n"
             "  help               this text and every scene key\n"
             "  version            print the version\n"
             "\n"
@@ -45,6 +49,8 @@ int main(int argc, char **argv)
         }
         return rc;
     }
+    if (!strcmp(cmd, "sweep"))
+        return bf_cmd_sweep(argc - 1, argv + 1);
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
         usage(stdout);
         printf("\n");

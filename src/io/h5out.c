@@ -475,6 +475,24 @@ bf_status bf_h5_read(const char *file, const char *path, double **data,
     return st;
 }
 
+bf_status bf_h5_read_attr_real(const char *file, const char *obj,
+                               const char *name, double *value, bf_err *err)
+{
+    quiet_hdf5();
+    hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", file);
+    bf_status st = BF_OK;
+    hid_t a = H5Aopen_by_name(f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+    if (a < 0 || H5Aread(a, H5T_NATIVE_DOUBLE, value) < 0)
+        st = bf_fail(err, BF_EIO, "%s: no numeric attribute %s on %s", file,
+                     name, obj);
+    if (a >= 0)
+        H5Aclose(a);
+    H5Fclose(f);
+    return st;
+}
+
 bf_status bf_h5_read_attr_str(const char *file, const char *obj,
                               const char *name, char **value, bf_err *err)
 {

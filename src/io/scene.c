@@ -1019,6 +1019,14 @@ int bf_scene_given(const bf_scene *sc, const char *section, const char *key)
     return find_raw(sc, section, key) != NULL;
 }
 
+int bf_scene_has_key(const bf_scene *sc, const char *section, const char *key)
+{
+    for (size_t k = 0; k < sc->nres; k++)
+        if (!strcmp(sc->res[k].section, section) && !strcmp(sc->res[k].key, key))
+            return 1;
+    return 0;
+}
+
 int bf_scene_count(const bf_scene *sc, const char *base)
 {
     int n = 0;

@@ -1,0 +1,444 @@
+/* cmd_sweep.c: `ballfilm sweep SCENE.ini --vary s.k=A:B:N ... [-o DIR]`.
+ *
+ * Who runs which case:
+ *  - plain build: one case after another, or a pool of --jobs N processes
+ *    (fork) that take case numbers from a pipe, so a slow case does not hold
+ *    up the others (dynamic load balancing);
+ *  - MPI build (bin/ballfilm-mpi, `make mpi`): rank 0 hands out case numbers
+ *    on request (dynamic load balancing, cases differ in cost) and runs cases
+ *    itself in a second thread, so that every rank computes; each reply to a
+ *    request carries the previous case's summary row, which rank 0 gathers
+ *    into one table.  Only rank 0's main thread calls MPI.
+ * In every mode a case is computed by the same library call
+ * (bf_sweep_run_case), so per-case results are bit-identical.
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#ifdef BF_MPI
+#include <mpi.h>
+#include <pthread.h>
+#endif
+
+#include "ballfilm/sweep.h"
+#include "cli.h"
+
+static void sweep_usage(FILE *f)
+{
+    fprintf(f,
+            "usage: ballfilm sweep SCENE.ini --vary section.key=START:STOP:COUNT"
+            " [--vary ...]\n"
+            "                      [-o DIR] [--set section.key=value]... "
+            "[--jobs N] [-q]\n"
+            "\n"
+            "Runs SCENE for every combination of the varied keys (COUNT values "
+            "from START to\n"
+            "STOP inclusive, or a list: section.key=v1,v2,...).  Each case "
+            "writes DIR/case_NNNNN.h5;\n"
+            "DIR/summary.h5 and DIR/summary.csv gather parameters, status, wall "
+            "time, Lyapunov\n"
+            "exponent, return-map points and energy error.  Rerunning the same "
+            "sweep skips\n"
+            "finished cases.  --jobs N runs N cases at a time (processes); with "
+            "MPI use\n"
+            "  mpirun -n N bin/ballfilm-mpi sweep ...\n"
+            "Default DIR: out/<scene name>_sweep.\n");
+}
+
+typedef struct sweep_args {
+    const char *scene, *dir;
+    const char *sets[256], *vary[BF_SWEEP_MAX_VARY + 1];
+    size_t nsets, nvary;
+    long jobs;
+    int quiet;
+    char defdir[1100];
+} sweep_args;
+
+static int parse_args(int argc, char **argv, sweep_args *a)
+{
+    memset(a, 0, sizeof *a);
+    a->jobs = 1;
+    for (int k = 1; k < argc; k++) {
+        const char *s = argv[k];
+        if (!strcmp(s, "-h") || !strcmp(s, "--help")) {
+            sweep_usage(stdout);
+            return -1;
+        }
+        if ((!strcmp(s, "--vary") || !strcmp(s, "--set") || !strcmp(s, "-o") ||
+             !strcmp(s, "--jobs")) &&
+            k + 1 >= argc) {
+            fprintf(stderr, "ballfilm: error: %s needs a value\n", s);
+            return 2;
+        }
+        if (!strcmp(s, "--vary")) {
+            if (a->nvary == BF_SWEEP_MAX_VARY) {
+                fprintf(stderr, "ballfilm: error: at most %d --vary\n",
+                        BF_SWEEP_MAX_VARY);
+                return 2;
+            }
+            a->vary[a->nvary++] = argv[++k];
+        } else if (!strcmp(s, "--set")) {
+            if (a->nsets == 256)
+                return 2;
+            a->sets[a->nsets++] = argv[++k];
+        } else if (!strcmp(s, "-o")) {
+            a->dir = argv[++k];
+        } else if (!strcmp(s, "--jobs")) {
+            char *end;
+            a->jobs = strtol(argv[++k], &end, 10);
+            if (*end || a->jobs < 1 || a->jobs > 1024) {
+                fprintf(stderr, "ballfilm: error: --jobs needs 1..1024\n");
+                return 2;
+            }
+        } else if (!strcmp(s, "-q") || !strcmp(s, "--quiet")) {
+            a->quiet = 1;
+        } else if (s[0] == '-') {
+            fprintf(stderr, "ballfilm: error: unknown option '%s'\n", s);
+            sweep_usage(stderr);
+            return 2;
+        } else if (!a->scene) {
+            a->scene = s;
+        } else {
+            fprintf(stderr, "ballfilm: error: more than one scene\n");
+            return 2;
+        }
+    }
+    if (!a->scene || !a->nvary) {
+        sweep_usage(stderr);
+        return 2;
+    }
+    if (!a->dir) {
+        const char *base = strrchr(a->scene, '/');
+        base = base ? base + 1 : a->scene;
+        size_t len = strlen(base);
+        if (len > 4 && !strcmp(base + len - 4, ".ini"))
+            len -= 4;
+        snprintf(a->defdir, sizeof a->defdir, "out/%.*s_sweep", (int)len, base);
+        a->dir = a->defdir;
+        if (mkdir_out())
+            return 5;
+    }
+    return 0;
+}
+
+/* Report one finished case on stderr (a line per case; cheap and useful
+ * on long sweeps). */
+static void report_case(const bf_sweep *sw, const bf_sweep_row *r, int quiet,
+                        int rank)
+{
+    if (quiet)
+        return;
+    fprintf(stderr, "case %5ld", r->index);
+    for (size_t a = 0; a < sw->naxis; a++)
+        fprintf(stderr, "  %s=%.6g", sw->axis[a].key, r->values[a]);
+    fprintf(stderr, "  status %d  %.2f s", r->status, r->wall);
+    if (!isnan(r->lyapunov))
+        fprintf(stderr, "  lyapunov %.4g/s", r->lyapunov);
+    if (rank >= 0)
+        fprintf(stderr, "  (rank %d)", rank);
+    fprintf(stderr, "\n");
+}
+
+/* Summary rows for every case: read from the .done files; a case without
+ * one (a worker died) is recorded as such. */
+static int gather_and_write(const bf_sweep *sw, bf_sweep_row *rows)
+{
+    size_t ok = 0, failed = 0, missing = 0;
+    for (size_t k = 0; k < sw->ncases; k++) {
+        if (rows[k].index == (long)k && rows[k].message[0] != '\x01')
+            ; /* filled by the caller */
+        else if (!bf_sweep_case_done(sw, (long)k, &rows[k])) {
+            memset(&rows[k], 0, sizeof rows[k]);
+            rows[k].index = (long)k;
+            bf_sweep_case_values(sw, (long)k, rows[k].values);
+            rows[k].status = 1;
+            rows[k].lyapunov = rows[k].map_points = rows[k].energy_error = NAN;
+            snprintf(rows[k].message, sizeof rows[k].message,
+                     "case did not finish (its worker died); rerun the sweep");
+            missing++;
+            continue;
+        }
+        if (rows[k].status == 0)
+            ok++;
+        else
+            failed++;
+    }
+    bf_err err = {0};
+    if (bf_sweep_write_summary(sw, rows, &err)) {
+        fprintf(stderr, "ballfilm: error: %s\n", err.msg);
+        return 5;
+    }
+    printf("%zu cases: %zu ok, %zu failed, %zu missing; summary in %s/summary.h5 "
+           "and %s/summary.csv\n",
+           sw->ncases, ok, failed, missing, sw->dir, sw->dir);
+    return missing ? 1 : 0;
+}
+
+static void mark_unfilled(bf_sweep_row *rows, size_t n)
+{
+    for (size_t k = 0; k < n; k++) {
+        rows[k].index = -1;
+        rows[k].message[0] = '\x01';
+    }
+}
+
+#ifndef BF_MPI
+
+int bf_cmd_sweep(int argc, char **argv)
+{
+    sweep_args a;
+    int rc = parse_args(argc, argv, &a);
+    if (rc)
+        return rc < 0 ? 0 : rc;
+    bf_sweep sw;
+    bf_err err = {0};
+    if (bf_sweep_init(&sw, a.scene, a.sets, a.nsets, a.vary, a.nvary, a.dir,
+                      &err)) {
+        fprintf(stderr, "%s%s\n", strstr(err.msg, "error:") ? "" :
+                "ballfilm: error: ", err.msg);
+        return err.status;
+    }
+    bf_sweep_row *rows = calloc(sw.ncases, sizeof *rows);
+    long *todo = malloc(sw.ncases * sizeof *todo);
+    if (!rows || !todo) {
+        free(rows);
+        free(todo);
+        bf_sweep_free(&sw);
+        return 1;
+    }
+    mark_unfilled(rows, sw.ncases);
+    size_t ntodo = 0;
+    bf_sweep_row tmp;
+    for (size_t k = 0; k < sw.ncases; k++)
+        if (!bf_sweep_case_done(&sw, (long)k, &tmp))
+            todo[ntodo++] = (long)k;
+    if (!a.quiet)
+        fprintf(stderr, "sweep: %zu cases, %zu already done, %zu to run on %ld "
+                        "process%s\n",
+                sw.ncases, sw.ncases - ntodo, ntodo, a.jobs,
+                a.jobs > 1 ? "es" : "");
+    int status = 0;
+    if (a.jobs == 1 || ntodo <= 1) {
+        for (size_t q = 0; q < ntodo; q++) {
+            bf_sweep_row r;
+            if (bf_sweep_run_case(&sw, todo[q], &r, &err)) {
+                fprintf(stderr, "ballfilm: error: %s\n", err.msg);
+                status = err.status;
+                break;
+            }
+            report_case(&sw, &r, a.quiet, -1);
+        }
+    } else {
+        int fd[2];
+        if (pipe(fd)) {
+            fprintf(stderr, "ballfilm: error: pipe: %s\n", strerror(errno));
+            status = 1;
+        } else {
+            long nproc = a.jobs < (long)ntodo ? a.jobs : (long)ntodo;
+            fflush(NULL);
+            for (long w = 0; w < nproc; w++) {
+                pid_t pid = fork();
+                if (pid == 0) {
+                    close(fd[1]);
+                    int32_t k;
+                    /* reads of 4 bytes from a pipe are atomic: every case
+                     * number goes to exactly one worker */
+                    while (read(fd[0], &k, sizeof k) == (ssize_t)sizeof k) {
+                        bf_sweep_row r;
+                        bf_err e = {0};
+                        if (bf_sweep_run_case(&sw, k, &r, &e))
+                            fprintf(stderr, "ballfilm: error: %s\n", e.msg);
+                        else
+                            report_case(&sw, &r, a.quiet, -1);
+                    }
+                    fflush(NULL);
+                    _exit(0);
+                }
+                if (pid < 0) {
+                    fprintf(stderr, "ballfilm: error: fork: %s\n",
+                            strerror(errno));
+                    status = 1;
+                    break;
+                }
+            }
+            close(fd[0]);
+            for (size_t q = 0; q < ntodo && !status; q++) {
+                int32_t k = (int32_t)todo[q];
+                if (write(fd[1], &k, sizeof k) != (ssize_t)sizeof k) {
+                    status = 1;
+                    break;
+                }
+            }
+            close(fd[1]);
+            while (wait(NULL) > 0)
+                ;
+        }
+    }
+    if (!status)
+        status = gather_and_write(&sw, rows);
+    free(rows);
+    free(todo);
+    bf_sweep_free(&sw);
+    return status;
+}
+
+#else /* BF_MPI */
+
+enum { TAG_REQ = 1, TAG_WORK = 2 };
+#define ROWLEN 4096
+
+typedef struct shared {
+    const bf_sweep *sw;
+    long *todo;
+    size_t ntodo, next;
+    bf_sweep_row *rows;
+    int quiet, failed;
+    pthread_mutex_t lock;
+} shared;
+
+static long take(shared *s)
+{
+    pthread_mutex_lock(&s->lock);
+    long k = s->next < s->ntodo ? s->todo[s->next++] : -1;
+    pthread_mutex_unlock(&s->lock);
+    return k;
+}
+
+/* rank 0's own worker thread: never calls MPI */
+static void *local_worker(void *arg)
+{
+    shared *s = arg;
+    for (long k; (k = take(s)) >= 0;) {
+        bf_sweep_row r;
+        bf_err e = {0};
+        if (bf_sweep_run_case(s->sw, k, &r, &e)) {
+            fprintf(stderr, "ballfilm: error: %s\n", e.msg);
+            s->failed = 1;
+            continue;
+        }
+        report_case(s->sw, &r, s->quiet, 0);
+        pthread_mutex_lock(&s->lock);
+        s->rows[k] = r;
+        pthread_mutex_unlock(&s->lock);
+    }
+    return NULL;
+}
+
+int bf_cmd_sweep(int argc, char **argv)
+{
+    int provided, rank, size;
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    sweep_args a;
+    int rc = parse_args(argc, argv, &a);
+    if (rc) {
+        MPI_Finalize();
+        return rc < 0 ? 0 : rc;
+    }
+    bf_sweep sw;
+    bf_err err = {0};
+    int ok = 1;
+    /* rank 0 creates the directory and manifest first */
+    if (rank == 0)
+        ok = bf_sweep_init(&sw, a.scene, a.sets, a.nsets, a.vary, a.nvary,
+                           a.dir, &err) == BF_OK;
+    MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (ok && rank != 0)
+        ok = bf_sweep_init(&sw, a.scene, a.sets, a.nsets, a.vary, a.nvary,
+                           a.dir, &err) == BF_OK;
+    int all_ok;
+    MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    if (!all_ok) {
+        if (!ok)
+            fprintf(stderr, "ballfilm: error (rank %d): %s\n", rank, err.msg);
+        if (ok)
+            bf_sweep_free(&sw);
+        MPI_Finalize();
+        return 2;
+    }
+    char buf[ROWLEN];
+    int status = 0;
+    if (rank == 0) {
+        shared s = {.sw = &sw, .quiet = a.quiet};
+        s.rows = calloc(sw.ncases, sizeof *s.rows);
+        s.todo = malloc(sw.ncases * sizeof *s.todo);
+        pthread_mutex_init(&s.lock, NULL);
+        mark_unfilled(s.rows, sw.ncases);
+        bf_sweep_row tmp;
+        for (size_t k = 0; k < sw.ncases; k++)
+            if (!bf_sweep_case_done(&sw, (long)k, &tmp))
+                s.todo[s.ntodo++] = (long)k;
+        if (!a.quiet)
+            fprintf(stderr, "sweep: %zu cases, %zu already done, %zu to run on "
+                            "%d rank%s\n",
+                    sw.ncases, sw.ncases - s.ntodo, s.ntodo, size,
+                    size > 1 ? "s" : "");
+        pthread_t th;
+        pthread_create(&th, NULL, local_worker, &s);
+        int active = size - 1;
+        while (active > 0) {
+            int flag;
+            MPI_Status mst;
+            MPI_Iprobe(MPI_ANY_SOURCE, TAG_REQ, MPI_COMM_WORLD, &flag, &mst);
+            if (!flag) {
+                /* poll gently: the local worker needs the core */
+                struct timespec ts = {0, 1000000};
+                nanosleep(&ts, NULL);
+                continue;
+            }
+            MPI_Recv(buf, ROWLEN, MPI_CHAR, mst.MPI_SOURCE, TAG_REQ,
+                     MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+            bf_sweep_row r;
+            if (buf[0] && bf_sweep_row_parse(&sw, buf, &r) && r.index >= 0 &&
+                (size_t)r.index < sw.ncases) {
+                report_case(&sw, &r, a.quiet, mst.MPI_SOURCE);
+                pthread_mutex_lock(&s.lock);
+                s.rows[r.index] = r;
+                pthread_mutex_unlock(&s.lock);
+            }
+            long k = take(&s);
+            MPI_Send(&k, 1, MPI_LONG, mst.MPI_SOURCE, TAG_WORK, MPI_COMM_WORLD);
+            if (k < 0)
+                active--;
+        }
+        pthread_join(th, NULL);
+        status = gather_and_write(&sw, s.rows);
+        if (s.failed && !status)
+            status = 5;
+        pthread_mutex_destroy(&s.lock);
+        free(s.rows);
+        free(s.todo);
+    } else {
+        buf[0] = '\0';
+        for (;;) {
+            long k;
+            MPI_Send(buf, (int)strlen(buf) + 1, MPI_CHAR, 0, TAG_REQ,
+                     MPI_COMM_WORLD);
+            MPI_Recv(&k, 1, MPI_LONG, 0, TAG_WORK, MPI_COMM_WORLD,
+                     MPI_STATUS_IGNORE);
+            if (k < 0)
+                break;
+            bf_sweep_row r;
+            if (bf_sweep_run_case(&sw, k, &r, &err)) {
+                fprintf(stderr, "ballfilm: error (rank %d): %s\n", rank, err.msg);
+                buf[0] = '\0';
+                status = 5;
+                continue;
+            }
+            bf_sweep_row_format(&sw, &r, buf, sizeof buf);
+        }
+    }
+    bf_sweep_free(&sw);
+    MPI_Finalize();
+    return status;
+}
+
+#endif
