@@ -226,8 +226,9 @@ fuzz:
 # ---------------------------------------------------------------- bench
 bench:
 	@$(MAKE) --no-print-directory deps
-	@$(MAKE) --no-print-directory all $(BENCH_BIN)
+	@$(MAKE) --no-print-directory all mpi $(BENCH_BIN)
 	@for b in $(BENCH_BIN); do echo "== $$b"; $$b || exit 1; done
+	@for b in bench/*.sh; do echo "== $$b"; $$b || exit 1; done
 
 clean:
 	rm -rf build bin
