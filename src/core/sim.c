@@ -67,7 +67,7 @@ struct bf_sim {
     bf_series *s_time, *s_step, *s_ek, *s_ep, *s_et;
     long last_row; /* step of the last output row, -1 if none */
     int has_energy;
-    double e0, max_rel;
+    double e0, max_rel, last_rel;
     double wall;
     double prog_last;
 };
@@ -288,6 +288,7 @@ static double check_energy(bf_sim *s)
     double rel = s->e0 != 0.0 ? fabs(e - s->e0) / fabs(s->e0) : fabs(e - s->e0);
     if (!(rel <= s->max_rel)) /* also catches NaN */
         s->max_rel = isnan(rel) ? INFINITY : rel;
+    s->last_rel = rel;
     return rel;
 }
 
@@ -304,7 +305,7 @@ static void progress(bf_sim *s, double t0, int final)
     fprintf(stderr, "\r  t = %-12.6g s  %5.1f%%  %9.3g steps/s  ETA %7.1f s",
             (double)s->n * s->dt, 100.0 * frac, rate, eta);
     if (s->has_energy)
-        fprintf(stderr, "  max dE/E %.2e", s->max_rel);
+        fprintf(stderr, "  dE/E %.2e (max %.2e)", s->last_rel, s->max_rel);
     fprintf(stderr, "   ");
     if (final)
         fprintf(stderr, "\n");
