@@ -3,13 +3,13 @@
  * Time is t = n dt with n the step counter, never a running sum, so the
  * time of step 10^7 carries no accumulated round-off.
  */
+#include "ballfilm/clock.h"
 #include "ballfilm/sim.h"
 
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "ballfilm/registry.h"
 #include "ballfilm/version.h"
@@ -71,13 +71,6 @@ struct bf_sim {
     double wall;
     double prog_last;
 };
-
-static double wall_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* An interval in whole steps (times rounded to the nearest step). */
 static long interval_steps(bf_interval iv, double dt)
@@ -294,7 +287,7 @@ static double check_energy(bf_sim *s)
 
 static void progress(bf_sim *s, double t0, int final)
 {
-    double now = wall_now();
+    double now = bf_wall_time();
     if (!final && now - s->prog_last < 0.25)
         return;
     s->prog_last = now;
@@ -335,7 +328,7 @@ static bf_status interrupt(bf_sim *s, bf_err *err)
 bf_status bf_sim_run(bf_sim *s, bf_err *err)
 {
     bf_status st = BF_OK;
-    double t0 = wall_now();
+    double t0 = bf_wall_time();
     s->prog_last = t0;
     if (s->n == 0 && (st = write_row(s, err)))
         return st;
@@ -385,7 +378,7 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
     }
     if (s->opts.progress)
         progress(s, t0, 1);
-    s->wall += wall_now() - t0;
+    s->wall += bf_wall_time() - t0;
     return st;
 }
 

@@ -1,10 +1,10 @@
 /* h5out.c: buffered, extendible HDF5 series (see h5out.h for the design). */
+#include "ballfilm/clock.h"
 #include "ballfilm/h5out.h"
 
 #include <hdf5.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #define FLUSH_BYTES (8u << 20) /* flush when this much is buffered */
 
@@ -28,13 +28,6 @@ struct bf_out {
     size_t buffered_bytes;
     double last_flush;
 };
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static void quiet_hdf5(void)
 {
@@ -64,7 +57,7 @@ bf_status bf_out_create(bf_out **out, const char *path, bf_err *err)
     }
     o->file = f;
     o->path = strdup(path);
-    o->last_flush = now();
+    o->last_flush = bf_wall_time();
     *out = o;
     return BF_OK;
 }
@@ -85,7 +78,7 @@ bf_status bf_out_open_append(bf_out **out, const char *path, bf_err *err)
     o->file = f;
     o->append = 1;
     o->path = strdup(path);
-    o->last_flush = now();
+    o->last_flush = bf_wall_time();
     *out = o;
     return BF_OK;
 }
@@ -310,7 +303,7 @@ bf_status bf_out_flush(bf_out *out, bf_err *err)
     if (H5Fflush(out->file, H5F_SCOPE_GLOBAL) < 0)
         return bf_fail(err, BF_EIO, "%s: flushing the HDF5 file failed (disk "
                        "full?)", out->path);
-    out->last_flush = now();
+    out->last_flush = bf_wall_time();
     return BF_OK;
 }
 
@@ -319,7 +312,7 @@ bf_status bf_out_maybe_flush(bf_out *out, double seconds, bf_err *err)
     size_t bytes = 0;
     for (size_t k = 0; k < out->nseries; k++)
         bytes += out->series[k]->nbuf * 8 * out->series[k]->width;
-    if (bytes > FLUSH_BYTES || now() - out->last_flush > seconds)
+    if (bytes > FLUSH_BYTES || bf_wall_time() - out->last_flush > seconds)
         return bf_out_flush(out, err);
     return BF_OK;
 }

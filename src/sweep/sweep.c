@@ -1,6 +1,7 @@
 /* sweep.c: cases, their runs and the summary of a parameter sweep (see
  * sweep.h).  Nothing here knows about processes or MPI: the front end
  * decides who runs which case. */
+#include "ballfilm/clock.h"
 #include "ballfilm/sweep.h"
 
 #include <errno.h>
@@ -11,19 +12,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "ballfilm/h5out.h"
 #include "ballfilm/registry.h"
 #include "ballfilm/sim.h"
-
-static double wall_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 bf_status bf_sweep_parse_axis(bf_sweep_axis *ax, const char *spec, bf_err *err)
 {
@@ -340,7 +333,7 @@ bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
     row->index = k;
     row->lyapunov = row->map_points = row->energy_error = NAN;
     bf_sweep_case_values(sw, k, row->values);
-    double t0 = wall_now();
+    double t0 = bf_wall_time();
     char out[1200];
     case_path(sw, k, "h5", out, sizeof out);
     bf_err cerr = {0};
@@ -382,7 +375,7 @@ bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
     if (snprintf(row->message, sizeof row->message, "%s",
                  run_st ? cerr.msg : "") < 0)
         row->message[0] = '\0';
-    row->wall = wall_now() - t0;
+    row->wall = bf_wall_time() - t0;
     bf_sim_free(sim);
     bf_scene_free(sc);
     return write_done(sw, row, err);
