@@ -31,8 +31,9 @@ dmax = dens[live].max()
 times = [tt for tt in a.times if tt <= t[-1] + 1e-9]
 ncol = 3
 nrow = (len(times) + ncol - 1) // ncol
-fig = plt.figure(figsize=(4.2 * ncol, 4.0 * nrow + 3.2))
-gs = fig.add_gridspec(nrow + 1, ncol, height_ratios=[4.0] * nrow + [3.0])
+fig = plt.figure(figsize=(4.2 * ncol + 0.6, 4.0 * nrow + 3.6))
+gs = fig.add_gridspec(nrow + 1, ncol + 1, height_ratios=[4.0] * nrow + [3.0],
+                      width_ratios=[1.0] * ncol + [0.06])
 sc = None
 for k, tt in enumerate(times):
     row = int(np.argmin(np.abs(t - tt)))
@@ -56,7 +57,7 @@ for k, tt in enumerate(times):
     ax.set_title("t = %.3f" % t[row])
     ax.set_xlabel("x [L]")
     ax.set_ylabel("y [L]")
-cb = fig.colorbar(sc, ax=fig.axes, shrink=0.6, pad=0.02)
+cb = fig.colorbar(sc, cax=fig.add_subplot(gs[0:nrow, ncol]))
 cb.set_label("particle density [R]")
 
 axc = fig.add_subplot(gs[nrow, 0:2])
@@ -70,7 +71,7 @@ axc.set_xlabel("t [L/W]")
 axc.set_ylabel("particles")
 axc.legend(fontsize=8)
 axc.set_title("particle counts (cumulative)")
-axm = fig.add_subplot(gs[nrow, 2])
+axm = fig.add_subplot(gs[nrow, 2:])
 axm.plot(t, mass[:, 0], "C0-", label="mass in")
 axm.plot(t, mass[:, 1], "C3-", label="mass out (sink)")
 axm.plot(t, mass[:, 2] - mass[0, 2], "C1--", label="fluid mass - initial")
@@ -80,9 +81,9 @@ axm.set_xlabel("t [L/W]")
 axm.set_ylabel("mass [R L^2]")
 axm.legend(fontsize=8)
 axm.set_title("mass balance of the markers")
-fig.suptitle("Stratified reservoir with a point sink (thesis Fig. 5): "
+fig.suptitle("Stratified reservoir with a point sink (thesis Fig. 5)\n"
              "%dx%d cells, dt = %g, update = %s, solver = %s, OUT cells "
-             "from I = %d"
+             "from I = %d (16x16 numbering)"
              % (ni, nj, attrs["scene.dt"], attr_str(attrs, "mac.update"),
                 attr_str(attrs, "mac.pressure_solver"),
                 int(attrs["mac.out_first"])))

@@ -107,6 +107,8 @@ typedef struct bf_mac_params {
     int inflow_prescribed; /* reservoir: u_in = u0 instead of the copy rule */
     double u0;             /* uniform problem: stream speed */
     int void_fix;          /* empty cells enclosed by fluid become FULL */
+    int wall_remove;       /* 1: markers crossing a wall are removed (the
+                              listing); 0: held on the wall */
     long slots;            /* particle slots; 0: 800 refine^2 */
     double max_cfl;        /* stop when |u| dt/dx exceeds this */
 } bf_mac_params;
@@ -122,6 +124,8 @@ typedef struct bf_mac_counts {
     int64_t backflow;    /* fluid particles that went back into the IN column */
     int64_t lost;        /* fluid particles that crossed a wall or the top */
     int64_t in_clamped;  /* IN particles held at the ring's outer edge */
+    int64_t held;        /* fluid particle moves stopped at a wall */
+    int64_t voids;       /* cells filled by void_fix (final passes) */
     int64_t oscillations; /* steps whose corrector loop hit max_passes */
     int64_t passes;      /* corrector passes (pressure solves) */
     int64_t sweeps;      /* Gauss-Seidel sweeps */

@@ -364,33 +364,44 @@ static void predict_density(bf_mac *m)
                     m->r[IX(i, j)] = m->rn[IX(i, j)];
 }
 
-/* Every face velocity finite and within the CFL limit: a marker must not
- * jump over a cell (the listing has no such check). */
-static bf_status check_velocities(const bf_mac *m, int pass, bf_err *err)
+/* Every face velocity finite, and within the CFL limit on the faces of
+ * interior cells: a marker must not jump over a cell (the listing has no
+ * such check).  The message names the face and says whether empty cells
+ * are enclosed by the fluid (the usual cause). */
+static bf_status check_velocities(bf_mac *m, int pass, bf_err *err)
 {
     double worst = 0;
     int wi = 0, wj = 0, wv = 0;
     for (int i = 1; i <= m->ni + 1; i++)
         for (int j = 1; j <= m->nj + 1; j++) {
-            double cu = j <= m->nj ? fabs(m->u[IX(i, j)]) * m->dt / m->dx : 0;
-            double cv = i <= m->ni ? fabs(m->v[IX(i, j)]) * m->dt / m->dy : 0;
-            if (!isfinite(cu) || !isfinite(cv))
+            double u = j <= m->nj ? m->u[IX(i, j)] : 0;
+            double v = i <= m->ni ? m->v[IX(i, j)] : 0;
+            if (!isfinite(u) || !isfinite(v))
                 return bf_fail(err, BF_EUNSTABLE, "non-finite velocity on "
                                "the %s face of cell (%d,%d) in corrector "
-                               "pass %d", isfinite(cu) ? "bottom (v)" :
+                               "pass %d", isfinite(u) ? "bottom (v)" :
                                "left (u)", i, j, pass);
-            if (cu > worst)
+            double cu = fabs(u) * m->dt / m->dx, cv = fabs(v) * m->dt / m->dy;
+            if (i >= 2 && i <= m->ni && j >= 2 && j <= m->nj - 1 && cu > worst)
                 worst = cu, wi = i, wj = j, wv = 0;
-            if (cv > worst)
+            if (i >= 2 && i <= m->ni - 1 && j >= 2 && j <= m->nj && cv > worst)
                 worst = cv, wi = i, wj = j, wv = 1;
         }
-    if (worst > m->prm.max_cfl)
+    if (worst > m->prm.max_cfl) {
+        char hint[256] = "";
+        int vi = 0, vj = 0, nv = mac_find_void(m, &vi, &vj);
+        if (nv)
+            snprintf(hint, sizeof hint, "; %d empty cell%s enclosed by the "
+                     "fluid (first: cell (%d,%d), flagged SUR with a frozen "
+                     "pressure); [mac] void_fix = true fills them",
+                     nv, nv > 1 ? "s are" : " is", vi, vj);
         return bf_fail(err, BF_EUNSTABLE, "CFL number %.3g on the %s face of "
                        "cell (%d,%d) (%s = %.4g) exceeds [mac] max_cfl = %g in "
-                       "corrector pass %d; reduce dt",
+                       "corrector pass %d%s",
                        worst, wv ? "bottom" : "left", wi, wj, wv ? "v" : "u",
                        wv ? m->v[IX(wi, wj)] : m->u[IX(wi, wj)], m->prm.max_cfl,
-                       pass);
+                       pass, nv ? hint : "; reduce dt");
+    }
     return BF_OK;
 }
 
@@ -446,6 +457,7 @@ bf_status bf_mac_step(bf_mac *m, double dt, bf_err *err)
     long sweeps = 0;
     for (;;) {
         passes++;
+        m->voids_filled = 0;
         mac_mirror_density(m);
         mac_pressure_coefficients(m);
         mac_surface_pressure(m);
@@ -474,12 +486,15 @@ bf_status bf_mac_step(bf_mac *m, double dt, bf_err *err)
         mac_velocities(m);
         if ((st = check_velocities(m, passes, err)))
             return st;
-        mac_move_markers(m);
+        long held = mac_move_markers(m);
         if ((st = mac_markers_finite(m, err)))
             return st;
         int changed = mac_correct_density(m);
-        if (fine)
+        if (fine) {
+            m->cnt.held += held;
+            m->cnt.voids += m->voids_filled;
             break;
+        }
         itnum++;
         if (!changed) {
             fine = 1; /* "NO DENSITY CHANGE" */
@@ -601,14 +616,14 @@ static bf_status get_field(const bf_ckpt *ck, const char *prefix,
 }
 
 /* Counters as two arrays (int64 and real), in the order of the struct. */
-#define MAC_NI64 10
+#define MAC_NI64 12
 #define MAC_NREAL 6
 static void counts_pack(const bf_mac_counts *c, int64_t *iv, double *rv)
 {
     const int64_t in[MAC_NI64] = {c->entered, c->left_out, c->freed,
                                   c->backflow, c->lost, c->in_clamped,
                                   c->oscillations, c->passes, c->sweeps,
-                                  c->max_sweeps_step};
+                                  c->max_sweeps_step, c->held, c->voids};
     const double re[MAC_NREAL] = {c->mass_in,   c->mass_out,  c->mass_back,
                                   c->mass_lost, c->max_gs_dp, c->max_gs_du};
     memcpy(iv, in, sizeof in);
@@ -620,7 +635,7 @@ static void counts_unpack(bf_mac_counts *c, const int64_t *iv, const double *rv)
     int64_t *in[MAC_NI64] = {&c->entered, &c->left_out, &c->freed,
                              &c->backflow, &c->lost, &c->in_clamped,
                              &c->oscillations, &c->passes, &c->sweeps,
-                             &c->max_sweeps_step};
+                             &c->max_sweeps_step, &c->held, &c->voids};
     double *re[MAC_NREAL] = {&c->mass_in,   &c->mass_out,  &c->mass_back,
                              &c->mass_lost, &c->max_gs_dp, &c->max_gs_du};
     for (int k = 0; k < MAC_NI64; k++)

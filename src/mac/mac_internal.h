@@ -44,6 +44,7 @@ struct bf_mac {
     double *dens, *xn, *yn;
 
     bf_mac_counts cnt;
+    long voids_filled; /* cells filled by void_fix in the current step */
     int last_passes;
     long last_sweeps;
 };
@@ -100,9 +101,12 @@ bf_status mac_relax(bf_mac *m, int fine, long *sweeps, bf_err *err);
 bf_status mac_direct(bf_mac *m, double *pout, bf_err *err);
 
 /* mac_markers.c */
-void mac_move_markers(bf_mac *m);
+long mac_move_markers(bf_mac *m); /* returns the moves held at a wall */
 int mac_correct_density(bf_mac *m);
 bf_status mac_reflag_markers(bf_mac *m, bf_err *err);
 bf_status mac_markers_finite(const bf_mac *m, bf_err *err);
+int mac_fill_voids(bf_mac *m);
+/* Number of empty cells enclosed by fluid, and the first of them. */
+int mac_find_void(bf_mac *m, int *vi, int *vj);
 
 #endif

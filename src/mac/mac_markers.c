@@ -9,6 +9,8 @@
  * x_new = x + u_k dt, y_new = y + v_k dt (results in XN, YN; X = XN only
  * after the final pass).  IN particles move horizontally only; OUT
  * particles move along the outward normal with the OUT face velocity.
+ * Fluid markers whose move would cross a wall stop on it (wall_markers =
+ * hold); the listing instead deletes them after the final pass.
  *
  * Density correction (step 5, label 426): rho_ij = sum_k rho_k / N_ij over
  * the particles in the cell.  A cell is FULL if it holds particles, SUR if
@@ -60,10 +62,53 @@ static double interp_v(const bf_mac *m, double x, double y)
            (1 - bx) * by * V[IX(i, j + 1)] + bx * by * V[IX(i + 1, j + 1)];
 }
 
-void mac_move_markers(bf_mac *m)
+static int is_wall(int flag)
+{
+    return flag == BF_MAC_NOSLIP || flag == BF_MAC_FREESLIP;
+}
+
+/* The largest coordinate below the wall at w that still lies in cell
+ * `cell`. */
+static double inside_of(double w, double h, int cell)
+{
+    double x = w;
+    while (cell_of(x, h) > cell)
+        x = nextafter(x, -INFINITY);
+    return x;
+}
+
+/* wall_markers = hold [not in the listing]: a fluid marker whose move ends
+ * beyond a wall (interpolation mixes the wall's zero normal velocity with
+ * the sink's next to it) stops on the wall instead of being deleted.
+ * Returns 1 if the move was cut. */
+static int hold_on_walls(const bf_mac *m, double *xn, double *yn)
+{
+    int held = 0;
+    int i = cell_of(*xn, m->dx), j = cell_of(*yn, m->dy);
+    int jj = clampi(j, 2, m->nj - 1);
+    if (i < 2 && is_wall(m->ic[IX(1, jj)])) {
+        *xn = 0.0;
+        held = 1;
+    } else if (i > m->ni - 1 && is_wall(m->ic[IX(m->ni, jj)])) {
+        *xn = inside_of((double)(m->ni - 2) * m->dx, m->dx, m->ni - 1);
+        held = 1;
+    }
+    int ii = clampi(cell_of(*xn, m->dx), 2, m->ni - 1);
+    if (j < 2 && is_wall(m->ic[IX(ii, 1)])) {
+        *yn = 0.0;
+        held = 1;
+    } else if (j > m->nj - 1 && is_wall(m->ic[IX(ii, m->nj)])) {
+        *yn = inside_of((double)(m->nj - 2) * m->dy, m->dy, m->nj - 1);
+        held = 1;
+    }
+    return held;
+}
+
+long mac_move_markers(bf_mac *m)
 {
     bf_particles *pt = &m->part;
     const double dt = m->dt;
+    long held = 0;
     for (size_t k = 0; k < pt->n; k++) {
         int f = pt->tag[k];
         double x = pt->x[k], y = pt->y[k];
@@ -86,7 +131,10 @@ void mac_move_markers(bf_mac *m)
         pt->vy[k] = vy;
         m->xn[k] = x + vx * dt;
         m->yn[k] = y + vy * dt;
+        if (f == BF_MAC_REG && !m->prm.wall_remove)
+            held += hold_on_walls(m, &m->xn[k], &m->yn[k]);
     }
+    return held;
 }
 
 bf_status mac_markers_finite(const bf_mac *m, bf_err *err)
@@ -99,35 +147,95 @@ bf_status mac_markers_finite(const bf_mac *m, bf_err *err)
     return BF_OK;
 }
 
-/* void_fix [not in the thesis]: an empty interior cell whose four
- * neighbours are FULL or ring cells is a hole in the fluid; make it FULL
- * with the mean density of the neighbours holding particles. */
-static void fill_voids(bf_mac *m)
+/* void_fix [not in the thesis]: empty cells that no chain of empty cells
+ * connects to an EMP cell are a hole inside the fluid (the listing makes
+ * them SUR cells that keep an old pressure, a Dirichlet value inside the
+ * fluid).  Fill them: FULL, with the mean density of the neighbours that
+ * hold particles (or, deeper inside a large hole, of filled neighbours).
+ * Returns the number of cells filled. */
+static void flood_from_empty(bf_mac *m)
 {
-    const int *N = m->ncnt;
+    const int nyu = m->nj - 2;
+    int head = 0, tail = 0;
+    for (int k = 0; k < m->nunk; k++)
+        m->mark[k] = 0;
+    /* flood from the EMP cells through the non-FULL interior cells */
     for (int i = 2; i <= m->ni - 1; i++)
-        for (int j = 2; j <= m->nj - 1; j++) {
-            size_t c = IX(i, j);
-            if (N[c] || m->ic[c] == BF_MAC_FULL)
-                continue;
-            size_t nb[4] = {IX(i + 1, j), IX(i - 1, j), IX(i, j + 1), IX(i, j - 1)};
-            int ok = 1;
-            double s = 0;
-            int cnt = 0;
-            for (int d = 0; d < 4; d++) {
-                int f = m->ic[nb[d]];
-                if (f == BF_MAC_SUR || f == BF_MAC_EMP)
-                    ok = 0;
-                if (N[nb[d]]) {
-                    s += m->s[nb[d]] / N[nb[d]];
-                    cnt++;
-                }
+        for (int j = 2; j <= m->nj - 1; j++)
+            if (m->ic[IX(i, j)] == BF_MAC_EMP) {
+                int k = (i - 2) * nyu + (j - 2);
+                m->mark[k] = 1;
+                m->queue[tail++] = k;
             }
-            if (ok && cnt) {
-                m->ic[c] = BF_MAC_FULL;
-                m->r[c] = s / cnt;
+    while (head < tail) {
+        int k = m->queue[head++];
+        int i = k / nyu + 2, j = k % nyu + 2;
+        const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+        for (int d = 0; d < 4; d++) {
+            int a = i + di[d], b = j + dj[d];
+            if (!mac_interior(m, a, b) || m->ic[IX(a, b)] == BF_MAC_FULL)
+                continue;
+            int kk = (a - 2) * nyu + (b - 2);
+            if (!m->mark[kk]) {
+                m->mark[kk] = 1;
+                m->queue[tail++] = kk;
             }
         }
+    }
+}
+
+int mac_find_void(bf_mac *m, int *vi, int *vj)
+{
+    const int nyu = m->nj - 2;
+    int n = 0;
+    flood_from_empty(m);
+    for (int i = 2; i <= m->ni - 1; i++)
+        for (int j = 2; j <= m->nj - 1; j++)
+            if (m->ic[IX(i, j)] != BF_MAC_FULL &&
+                !m->mark[(i - 2) * nyu + (j - 2)] && !n++) {
+                *vi = i;
+                *vj = j;
+            }
+    return n;
+}
+
+int mac_fill_voids(bf_mac *m)
+{
+    const int nyu = m->nj - 2;
+    int filled = 0;
+    flood_from_empty(m);
+    /* fill the unreached ones, repeating while a hole's inside has no
+     * filled neighbour yet */
+    for (int again = 1; again;) {
+        again = 0;
+        for (int i = 2; i <= m->ni - 1; i++)
+            for (int j = 2; j <= m->nj - 1; j++) {
+                size_t c = IX(i, j);
+                if (m->ic[c] == BF_MAC_FULL || m->mark[(i - 2) * nyu + (j - 2)])
+                    continue;
+                size_t nb[4] = {IX(i, j - 1), IX(i + 1, j), IX(i - 1, j),
+                                IX(i, j + 1)};
+                double s = 0;
+                int cnt = 0;
+                for (int d = 0; d < 4; d++) {
+                    if (m->ncnt[nb[d]]) {
+                        s += m->s[nb[d]] / m->ncnt[nb[d]];
+                        cnt++;
+                    } else if (m->ic[nb[d]] == BF_MAC_FULL && m->r[nb[d]] > 0) {
+                        s += m->r[nb[d]];
+                        cnt++;
+                    }
+                }
+                if (!cnt) {
+                    again = 1;
+                    continue;
+                }
+                m->ic[c] = BF_MAC_FULL;
+                m->r[c] = s / cnt;
+                filled++;
+            }
+    }
+    return filled;
 }
 
 int mac_correct_density(bf_mac *m)
@@ -174,7 +282,7 @@ int mac_correct_density(bf_mac *m)
             }
         }
     if (m->prm.void_fix)
-        fill_voids(m);
+        m->voids_filled += mac_fill_voids(m);
     for (int i = 2; i <= m->ni - 1; i++)
         for (int j = 2; j <= m->nj - 1; j++) {
             size_t c = IX(i, j);

@@ -108,9 +108,14 @@ static const bf_param mac_params[] = {
      "stream speed of the uniform problem (and of a prescribed inflow)", 0, 0,
      0, NULL},
     {"void_fix", BF_BOOL, "", "false",
-     "make an empty cell enclosed by fluid FULL with its neighbours' density "
-     "(not in the listing)",
+     "fill empty cells enclosed by the fluid (no chain of empty cells to an "
+     "EMP cell): FULL with the neighbours' density (not in the listing, "
+     "which makes them SUR cells with a frozen pressure)",
      0, 0, 0, NULL},
+    {"wall_markers", BF_ENUM, "", "hold",
+     "a fluid marker whose move would cross a wall: hold it on the wall, or "
+     "remove it and count it lost (the listing)",
+     0, 0, 0, "hold|remove"},
     {"slots", BF_INT, "1", "0",
      "particle slots (listing NK = 800); 0: 800 refine^2", BF_NONNEG, 0, 0,
      NULL},
@@ -163,6 +168,7 @@ static bf_status read_params(const bf_scene *sc, bf_mac_params *p, bf_err *err)
     p->inflow_prescribed = bf_scene_enum(sc, "mac", "inflow") == 1;
     p->u0 = bf_scene_real(sc, "mac", "u0");
     p->void_fix = bf_scene_bool(sc, "mac", "void_fix");
+    p->wall_remove = bf_scene_enum(sc, "mac", "wall_markers") == 1;
     p->slots = bf_scene_int(sc, "mac", "slots");
     p->max_cfl = bf_scene_real(sc, "mac", "max_cfl");
 
@@ -387,6 +393,8 @@ static bf_status mac_model_output_close(void *self, bf_out *out, bf_err *err)
         (st = bf_out_attr_int(out, "/mac/counts", "in_clamped", c->in_clamped,
                               err)) ||
         (st = bf_out_attr_int(out, "/mac/counts", "freed", c->freed, err)) ||
+        (st = bf_out_attr_int(out, "/mac/counts", "held_at_walls", c->held,
+                              err)) ||
         (st = bf_out_attr_int(out, "/mac/diag", "max_sweeps_per_solve",
                               c->max_sweeps_step, err)) ||
         (st = bf_out_attr_real(out, "/mac/diag", "max_gs_minus_exact_dp",
@@ -427,6 +435,10 @@ static void mac_model_report(const void *self, FILE *f)
             (long long)c->entered, c->mass_in, (long long)c->left_out,
             c->mass_out, (long long)c->backflow, (long long)c->lost,
             bf_mac_fluid_mass(mac));
+    fprintf(f, "mac: marker moves held at a wall %lld, IN markers held at "
+               "the ring's edge %lld, void cells filled %lld\n",
+            (long long)c->held, (long long)c->in_clamped,
+            (long long)c->voids);
     fprintf(f, "mac: max |u| %.3e, max |v| %.3e, max |div w| %.3e (cell "
                "%d,%d); forced fine passes (oscillating particle) %lld\n",
             um, vm, dm, ic, jc, (long long)c->oscillations);
