@@ -39,7 +39,8 @@ for k, tt in enumerate(times):
     row = int(np.argmin(np.abs(t - tt)))
     ax = fig.add_subplot(gs[k // ncol, k % ncol])
     sel = flag[row] > 1
-    sc = ax.scatter(x[row][sel], y[row][sel], c=dens[row][sel], s=7,
+    sc = ax.scatter(x[row][sel], y[row][sel], c=dens[row][sel],
+                    s=7.0 * (0.1 / dx) ** -2,
                     cmap="viridis_r", vmin=dmin, vmax=dmax)
     # walls, inflow and the sink, from the cell flags of this row
     f = flags[row].reshape(ni, nj)
@@ -81,10 +82,13 @@ axm.set_xlabel("t [L/W]")
 axm.set_ylabel("mass [R L^2]")
 axm.legend(fontsize=8)
 axm.set_title("mass balance of the markers")
+extra = ""
+if attr_str(attrs, "mac.void_fix").lower() in ("true", "yes", "on", "1"):
+    extra = ", void_fix"
 fig.suptitle("Stratified reservoir with a point sink (thesis Fig. 5)\n"
              "%dx%d cells, dt = %g, update = %s, solver = %s, OUT cells "
-             "from I = %d (16x16 numbering)"
+             "from I = %d (16x16 numbering)%s"
              % (ni, nj, attrs["scene.dt"], attr_str(attrs, "mac.update"),
                 attr_str(attrs, "mac.pressure_solver"),
-                int(attrs["mac.out_first"])))
+                int(attrs["mac.out_first"]), extra))
 save(fig, a.output)
