@@ -53,7 +53,7 @@ PROG      := $(BINDIR)/ballfilm
 RUNNER    := $(BUILD)/tests/runner
 
 .PHONY: all run test check figures bench clean deps deps-plot test-run \
-        build-tests fig1 stratres mac-checks
+        build-tests fig1
 
 all: $(PROG)
 
@@ -141,6 +141,8 @@ fig1: $(PROG)
 	    --set scene.integrator=mv2m
 	$(PY) plots/fig1_phase.py out/bouncing_ball_verlet.h5 \
 	    out/bouncing_ball_mv2m.h5 -o out/fig1_phase.png
+
+.PHONY: stratres mac-checks
 
 # Thesis (MAC) Fig. 5: the stratified reservoir with a point sink to t = 10,
 # and the same at 2x and 4x the grid (4x traps empty cells inside the fluid;

@@ -24,7 +24,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/h5out.h"
 #include "ballfilm/mac.h"
 #include "testutil.h"
 
@@ -594,24 +593,6 @@ START_TEST(bad_scenes_are_refused)
 }
 END_TEST
 
-static void same(const char *a, const char *b, const char *const *names)
-{
-    bf_err err = {0};
-    for (const char *const *nm = names; *nm; nm++) {
-        double *da, *db;
-        size_t a0, a1, b0, b1;
-        ck_assert_msg(bf_h5_read(a, *nm, &da, &a0, &a1, &err) == BF_OK, "%s",
-                      err.msg);
-        ck_assert_msg(bf_h5_read(b, *nm, &db, &b0, &b1, &err) == BF_OK, "%s",
-                      err.msg);
-        ck_assert_msg(a0 == b0 && a1 == b1, "%s: shapes differ", *nm);
-        ck_assert_msg(memcmp(da, db, a0 * (a1 ? a1 : 1) * sizeof *da) == 0,
-                      "%s differs after restart", *nm);
-        free(da);
-        free(db);
-    }
-}
-
 START_TEST(restart_is_bit_identical)
 {
     static const char *const sets[] = {
@@ -636,7 +617,7 @@ START_TEST(restart_is_bit_identical)
     rc = tu_run(NULL, &err, "run", "--restart", part, "-q", NULL);
     ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
     free(err);
-    same(full, part, sets);
+    tu_same_named(full, part, sets);
 }
 END_TEST
 

@@ -8,29 +8,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "ballfilm/h5out.h"
 #include "testutil.h"
-
-/* Every dataset named must be identical (same shape, same bits). */
-static void same_datasets(const char *a, const char *b, const char *const *names)
-{
-    bf_err err = {0};
-    for (const char *const *nm = names; *nm; nm++) {
-        double *da, *db;
-        size_t a0, a1, b0, b1;
-        ck_assert_msg(bf_h5_read(a, *nm, &da, &a0, &a1, &err) == BF_OK, "%s",
-                      err.msg);
-        ck_assert_msg(bf_h5_read(b, *nm, &db, &b0, &b1, &err) == BF_OK, "%s",
-                      err.msg);
-        ck_assert_msg(a0 == b0 && a1 == b1, "%s: shapes %zux%zu vs %zux%zu", *nm,
-                      a0, a1, b0, b1);
-        size_t n = a0 * (a1 ? a1 : 1);
-        ck_assert_msg(memcmp(da, db, n * sizeof *da) == 0,
-                      "%s differs between the runs", *nm);
-        free(da);
-        free(db);
-    }
-}
 
 static const char *const ball_sets[] = {"/time", "/step", "/balls/position",
                                         "/balls/velocity", "/energy/total",
@@ -62,7 +40,7 @@ START_TEST(stop_and_restart_bit_identical)
     rc = tu_run(NULL, &err, "run", "--restart", part, "-q", NULL);
     ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
     free(err);
-    same_datasets(full, part, ball_sets);
+    tu_same_named(full, part, ball_sets);
 }
 END_TEST
 
@@ -98,7 +76,7 @@ START_TEST(sigint_checkpoints_and_restart_identical)
     ck_assert_msg(strstr(line, "ballfilm run --restart"), "%s", line);
     ck_assert_int_eq(tu_run(NULL, NULL, "run", "--restart", part, "-q", NULL), 0);
     ck_assert_int_eq(tu_run(NULL, NULL, "run", scene, "-o", full, "-q", NULL), 0);
-    same_datasets(full, part, ball_sets);
+    tu_same_named(full, part, ball_sets);
 }
 END_TEST
 

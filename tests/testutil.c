@@ -220,6 +220,26 @@ bf_sim *tu_run_scene(const char *text, ...)
     return sim;
 }
 
+void tu_same_named(const char *a, const char *b, const char *const *names)
+{
+    bf_err err = {0};
+    for (const char *const *nm = names; *nm; nm++) {
+        double *da, *db;
+        size_t a0, a1, b0, b1;
+        ck_assert_msg(bf_h5_read(a, *nm, &da, &a0, &a1, &err) == BF_OK, "%s",
+                      err.msg);
+        ck_assert_msg(bf_h5_read(b, *nm, &db, &b0, &b1, &err) == BF_OK, "%s",
+                      err.msg);
+        ck_assert_msg(a0 == b0 && a1 == b1, "%s: shapes %zux%zu vs %zux%zu", *nm,
+                      a0, a1, b0, b1);
+        size_t n = a0 * (a1 ? a1 : 1);
+        ck_assert_msg(memcmp(da, db, n * sizeof *da) == 0,
+                      "%s differs between the runs", *nm);
+        free(da);
+        free(db);
+    }
+}
+
 double tu_max(const double *v, size_t n)
 {
     double m = -INFINITY;

@@ -41,6 +41,10 @@ bf_sim *tu_run_scene(const char *text, ...);
 double tu_max(const double *v, size_t n);
 double tu_absmax(const double *v, size_t n);
 
+/* Assert that the datasets named (NULL-terminated) have the same shape and
+ * the same bits in files a and b. */
+void tu_same_named(const char *a, const char *b, const char *const *names);
+
 /* Standard test case with a generous timeout. */
 TCase *tu_tcase(const char *name);
 

@@ -518,6 +518,26 @@ bf_status bf_mac_step(bf_mac *m, double dt, bf_err *err)
     return BF_OK;
 }
 
+void mac_flood(bf_mac *m, int n, int (*pass)(int flag))
+{
+    const int nyu = m->nj - 2;
+    const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+    for (int head = 0; head < n;) {
+        int k = m->queue[head++];
+        int i = k / nyu + 2, j = k % nyu + 2;
+        for (int d = 0; d < 4; d++) {
+            int a = i + di[d], b = j + dj[d];
+            if (!mac_interior(m, a, b) || !pass(m->ic[IX(a, b)]))
+                continue;
+            int kk = mac_unk(m, a, b);
+            if (!m->mark[kk]) {
+                m->mark[kk] = 1;
+                m->queue[n++] = kk;
+            }
+        }
+    }
+}
+
 /* ------------------------------------------------------------ views */
 
 void bf_mac_dims(const bf_mac *m, int *ni, int *nj, double *dx, double *dy)

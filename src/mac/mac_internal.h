@@ -69,6 +69,16 @@ static inline int mac_fluidish(int flag)
     return flag == BF_MAC_FULL || flag == BF_MAC_SUR;
 }
 
+/* mac.c: breadth-first flood over interior cells.  The caller has marked
+ * the seeds (m->mark, index (I-2)(nj-2) + J-2) and queued the first `n` of
+ * them in m->queue; every interior cell reachable through cells whose flag
+ * satisfies `pass` gets marked. */
+void mac_flood(bf_mac *m, int n, int (*pass)(int flag));
+static inline int mac_unk(const bf_mac *m, int i, int j)
+{
+    return (i - 2) * (m->nj - 2) + (j - 2);
+}
+
 /* mac_bc.c */
 void mac_mirror_density(bf_mac *m);
 void mac_surface_pressure(bf_mac *m);

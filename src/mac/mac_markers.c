@@ -153,46 +153,30 @@ bf_status mac_markers_finite(const bf_mac *m, bf_err *err)
  * fluid).  Fill them: FULL, with the mean density of the neighbours that
  * hold particles (or, deeper inside a large hole, of filled neighbours).
  * Returns the number of cells filled. */
+static int not_full(int flag) { return flag != BF_MAC_FULL; }
+
 static void flood_from_empty(bf_mac *m)
 {
-    const int nyu = m->nj - 2;
-    int head = 0, tail = 0;
+    int n = 0;
     for (int k = 0; k < m->nunk; k++)
         m->mark[k] = 0;
-    /* flood from the EMP cells through the non-FULL interior cells */
     for (int i = 2; i <= m->ni - 1; i++)
         for (int j = 2; j <= m->nj - 1; j++)
             if (m->ic[IX(i, j)] == BF_MAC_EMP) {
-                int k = (i - 2) * nyu + (j - 2);
-                m->mark[k] = 1;
-                m->queue[tail++] = k;
+                m->mark[mac_unk(m, i, j)] = 1;
+                m->queue[n++] = mac_unk(m, i, j);
             }
-    while (head < tail) {
-        int k = m->queue[head++];
-        int i = k / nyu + 2, j = k % nyu + 2;
-        const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
-        for (int d = 0; d < 4; d++) {
-            int a = i + di[d], b = j + dj[d];
-            if (!mac_interior(m, a, b) || m->ic[IX(a, b)] == BF_MAC_FULL)
-                continue;
-            int kk = (a - 2) * nyu + (b - 2);
-            if (!m->mark[kk]) {
-                m->mark[kk] = 1;
-                m->queue[tail++] = kk;
-            }
-        }
-    }
+    mac_flood(m, n, not_full);
 }
 
 int mac_find_void(bf_mac *m, int *vi, int *vj)
 {
-    const int nyu = m->nj - 2;
     int n = 0;
     flood_from_empty(m);
     for (int i = 2; i <= m->ni - 1; i++)
         for (int j = 2; j <= m->nj - 1; j++)
-            if (m->ic[IX(i, j)] != BF_MAC_FULL &&
-                !m->mark[(i - 2) * nyu + (j - 2)] && !n++) {
+            if (m->ic[IX(i, j)] != BF_MAC_FULL && !m->mark[mac_unk(m, i, j)] &&
+                !n++) {
                 *vi = i;
                 *vj = j;
             }
@@ -201,7 +185,6 @@ int mac_find_void(bf_mac *m, int *vi, int *vj)
 
 int mac_fill_voids(bf_mac *m)
 {
-    const int nyu = m->nj - 2;
     int filled = 0;
     flood_from_empty(m);
     /* fill the unreached ones, repeating while a hole's inside has no
@@ -211,7 +194,7 @@ int mac_fill_voids(bf_mac *m)
         for (int i = 2; i <= m->ni - 1; i++)
             for (int j = 2; j <= m->nj - 1; j++) {
                 size_t c = IX(i, j);
-                if (m->ic[c] == BF_MAC_FULL || m->mark[(i - 2) * nyu + (j - 2)])
+                if (m->ic[c] == BF_MAC_FULL || m->mark[mac_unk(m, i, j)])
                     continue;
                 size_t nb[4] = {IX(i, j - 1), IX(i + 1, j), IX(i - 1, j),
                                 IX(i, j + 1)};

@@ -125,10 +125,9 @@ bf_status mac_relax(bf_mac *m, int fine, long *sweeps, bf_err *err)
 
 /* ------------------------------------------------------ direct solve */
 
-static int unk(const bf_mac *m, int i, int j)
-{
-    return (i - 2) * (m->nj - 2) + (j - 2);
-}
+#define unk mac_unk
+
+static int is_full(int flag) { return flag == BF_MAC_FULL; }
 
 /* Every FULL region must reach a Dirichlet pressure (a SUR cell, an empty
  * cell, or the inflow's hydrostatic P0); otherwise its pressure is
@@ -136,8 +135,7 @@ static int unk(const bf_mac *m, int i, int j)
  * unreached region in *bi, *bj. */
 static int check_regions(bf_mac *m, int *bi, int *bj)
 {
-    const int nyu = m->nj - 2;
-    int head = 0, tail = 0;
+    int n = 0;
     for (int k = 0; k < m->nunk; k++)
         m->mark[k] = 0;
     for (int i = 2; i <= m->ni - 1; i++)
@@ -158,24 +156,10 @@ static int check_regions(bf_mac *m, int *bi, int *bj)
             }
             if (seed) {
                 m->mark[unk(m, i, j)] = 1;
-                m->queue[tail++] = unk(m, i, j);
+                m->queue[n++] = unk(m, i, j);
             }
         }
-    while (head < tail) {
-        int k = m->queue[head++];
-        int i = k / nyu + 2, j = k % nyu + 2;
-        const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
-        for (int d = 0; d < 4; d++) {
-            int a = i + di[d], b = j + dj[d];
-            if (!mac_interior(m, a, b) || m->ic[IX(a, b)] != BF_MAC_FULL)
-                continue;
-            int kk = unk(m, a, b);
-            if (!m->mark[kk]) {
-                m->mark[kk] = 1;
-                m->queue[tail++] = kk;
-            }
-        }
-    }
+    mac_flood(m, n, is_full);
     for (int i = 2; i <= m->ni - 1; i++)
         for (int j = 2; j <= m->nj - 1; j++)
             if (m->ic[IX(i, j)] == BF_MAC_FULL && !m->mark[unk(m, i, j)]) {
