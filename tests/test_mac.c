@@ -564,6 +564,13 @@ START_TEST(nonconvergence_stops_with_enoconv)
                       strstr(err, "step "),
                   "%s", err);
     free(err);
+    /* 700 slots leave 4 free: the inflow soon has nowhere to put a new IN
+     * marker (listing: "OUT OF PARTICLES", STOP) */
+    rc = tu_run(NULL, &err, "run", scene, "-q", "-o", tu_tmp("slots.h5"),
+                "--set", "scene.t_end=10", "--set", "mac.slots=700", NULL);
+    ck_assert_msg(rc == 3 && strstr(err, "out of particles"), "exit %d: %s",
+                  rc, err);
+    free(err);
 }
 END_TEST
 

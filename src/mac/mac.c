@@ -75,8 +75,10 @@ void bf_mac_free(bf_mac *m)
 
 static bf_status check_params(const bf_mac_params *p, double dt, bf_err *err)
 {
-    if (p->refine < 1 || p->refine > 64)
-        return bf_fail(err, BF_EINPUT, "refine = %d: must be 1..64", p->refine);
+    if (p->refine < 1 || p->refine > 8)
+        return bf_fail(err, BF_EINPUT, "refine = %d: must be 1..8", p->refine);
+    if (p->slots < 0 || p->slots > 10000000)
+        return bf_fail(err, BF_EINPUT, "slots = %ld: must be 0..1e7", p->slots);
     if (p->out_first < 2 || p->out_first > 14)
         return bf_fail(err, BF_EINPUT, "out_first = %d: the two OUT cells "
                        "must lie under the fluid (2..14)", p->out_first);
@@ -109,7 +111,9 @@ static bf_status alloc_all(bf_mac *m, size_t nslots, bf_err *err)
     m->ro = calloc((size_t)m->nro + 1, sizeof(double));
     m->nunk = (m->ni - 2) * (m->nj - 2);
     m->bw = m->nj - 2;
-    size_t nb = (size_t)m->nunk * (size_t)(m->bw + 1);
+    /* the band matrix only when an exact solve is asked for */
+    int exact = m->prm.solver == BF_MAC_DIRECT || m->prm.compare;
+    size_t nb = exact ? (size_t)m->nunk * (size_t)(m->bw + 1) : 1;
     m->band = calloc(nb, sizeof(double));
     m->band0 = calloc(nb, sizeof(double));
     m->rhs = calloc((size_t)m->nunk, sizeof(double));

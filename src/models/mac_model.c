@@ -34,7 +34,7 @@ static const bf_param mac_params[] = {
     {"refine", BF_INT, "1", "1",
      "grid refinement r: (14 r + 2)^2 cells, dx = dy = 0.1/r, same physical "
      "set-up (scale [scene] dt by 1/r too)",
-     BF_MIN | BF_MAX, 1, 16, NULL},
+     BF_MIN | BF_MAX, 1, 8, NULL},
     {"update", BF_ENUM, "", "printed",
      "printed: (3.11)/(3.12) with (3.10) as printed (thesis, listing); "
      "consistent: (3.11)/(3.12) with the pressure equation derived from them; "
@@ -117,8 +117,8 @@ static const bf_param mac_params[] = {
      "remove it and count it lost (the listing)",
      0, 0, 0, "hold|remove"},
     {"slots", BF_INT, "1", "0",
-     "particle slots (listing NK = 800); 0: 800 refine^2", BF_NONNEG, 0, 0,
-     NULL},
+     "particle slots (listing NK = 800); 0: 800 refine^2",
+     BF_NONNEG | BF_MAX, 0, 1e7, NULL},
     {"max_cfl", BF_REAL, "1", "1",
      "stop (exit 3) when |u| dt/dx or |v| dt/dy exceeds this", BF_POS, 0, 0,
      NULL},
@@ -205,9 +205,10 @@ static bf_status read_params(const bf_scene *sc, bf_mac_params *p, bf_err *err)
         return bf_scene_fail(sc, err, "mac", "problem",
                              "inflow, out_first and out_gravity apply to the "
                              "reservoir problem only");
-    if (p->problem == BF_MAC_UNIFORM && p->u0 <= 0)
+    if ((p->problem == BF_MAC_UNIFORM || p->inflow_prescribed) && p->u0 <= 0)
         return bf_scene_fail(sc, err, "mac", "u0",
-                             "the uniform stream needs u0 > 0 (IN on the left)");
+                             "a prescribed inflow needs u0 > 0 (IN on the "
+                             "left)");
     if (p->compare && p->solver != BF_MAC_RELAX)
         return bf_scene_fail(sc, err, "mac", "compare",
                              "compare needs pressure_solver = relax");
