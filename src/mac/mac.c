@@ -393,7 +393,7 @@ static bf_status check_velocities(bf_mac *m, int pass, bf_err *err)
         }
     if (worst > m->prm.max_cfl) {
         char hint[256] = "";
-        int vi = 0, vj = 0, nv = mac_find_void(m, &vi, &vj);
+        int vi = 0, vj = 0, nv = bf_mac_find_void(m, &vi, &vj);
         if (nv)
             snprintf(hint, sizeof hint, "; %d empty cell%s enclosed by the "
                      "fluid (first: cell (%d,%d), flagged SUR with a frozen "
@@ -454,7 +454,7 @@ bf_status bf_mac_step(bf_mac *m, double dt, bf_err *err)
 {
     bf_status st;
     m->dt = dt;
-    mac_mirror_density(m);
+    bf_mac_mirror_density(m);
     momentum(m);
     predict_density(m);
     int fine = 0, itnum = 0, passes = 0;
@@ -462,12 +462,12 @@ bf_status bf_mac_step(bf_mac *m, double dt, bf_err *err)
     for (;;) {
         passes++;
         m->voids_filled = 0;
-        mac_mirror_density(m);
-        mac_pressure_coefficients(m);
-        mac_surface_pressure(m);
+        bf_mac_mirror_density(m);
+        bf_mac_pressure_coefficients(m);
+        bf_mac_surface_pressure(m);
         if (m->prm.solver == BF_MAC_RELAX) {
             long sw = 0;
-            st = mac_relax(m, fine, &sw, err);
+            st = bf_mac_relax(m, fine, &sw, err);
             sweeps += sw;
             if (sw > m->cnt.max_sweeps_step)
                 m->cnt.max_sweeps_step = sw;
@@ -476,24 +476,24 @@ bf_status bf_mac_step(bf_mac *m, double dt, bf_err *err)
                 return st;
             }
             if (fine && m->prm.compare) {
-                if ((st = mac_direct(m, m->pex, err))) {
+                if ((st = bf_mac_direct(m, m->pex, err))) {
                     bf_err_prefix(err, "comparison solve");
                     return st;
                 }
                 compare_solutions(m);
             }
-        } else if ((st = mac_direct(m, m->p, err))) {
+        } else if ((st = bf_mac_direct(m, m->p, err))) {
             bf_err_prefix(err, "corrector pass %d", passes);
             return st;
         }
-        mac_ghost_pressure(m, m->p);
-        mac_velocities(m);
+        bf_mac_ghost_pressure(m, m->p);
+        bf_mac_velocities(m);
         if ((st = check_velocities(m, passes, err)))
             return st;
-        long held = mac_move_markers(m);
-        if ((st = mac_markers_finite(m, err)))
+        long held = bf_mac_move_markers(m);
+        if ((st = bf_mac_markers_finite(m, err)))
             return st;
-        int changed = mac_correct_density(m);
+        int changed = bf_mac_correct_density(m);
         if (fine) {
             m->cnt.held += held;
             m->cnt.voids += m->voids_filled;
@@ -512,9 +512,9 @@ bf_status bf_mac_step(bf_mac *m, double dt, bf_err *err)
             fine = 1;
         }
     }
-    if ((st = mac_reflag_markers(m, err)))
+    if ((st = bf_mac_reflag_markers(m, err)))
         return st;
-    mac_temperature(m);
+    bf_mac_temperature(m);
     m->cnt.passes += passes;
     m->cnt.sweeps += sweeps;
     m->last_passes = passes;
@@ -522,7 +522,7 @@ bf_status bf_mac_step(bf_mac *m, double dt, bf_err *err)
     return BF_OK;
 }
 
-void mac_flood(bf_mac *m, int n, int (*pass)(int flag))
+void bf_mac_flood(bf_mac *m, int n, int (*pass)(int flag))
 {
     const int nyu = m->nj - 2;
     const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};

@@ -34,7 +34,7 @@ static int ktype(const bf_mac *m) { return m->prm.update == BF_MAC_CONSISTENT; }
 
 /* Ring densities mirror the fluid (labels 106-109; the top row added so
  * that a fluid touching the lid also has a face density). */
-void mac_mirror_density(bf_mac *m)
+void bf_mac_mirror_density(bf_mac *m)
 {
     double *R = m->r;
     for (int i = 2; i <= m->ni - 1; i++) {
@@ -47,7 +47,7 @@ void mac_mirror_density(bf_mac *m)
     }
 }
 
-void mac_face_of(const bf_mac *m, int i, int j, int d, mac_face *f)
+void bf_mac_face_of(const bf_mac *m, int i, int j, int d, mac_face *f)
 {
     const double *R = m->r;
     switch (d) {
@@ -108,7 +108,7 @@ static double out_offset(const bf_mac *m, int ig, int jg, int ic, int jc)
     return 0.0; /* no problem puts OUT cells on the left or top */
 }
 
-int mac_boundary_face(const bf_mac *m, int ig, int jg, int ic, int jc,
+int bf_mac_boundary_face(const bf_mac *m, int ig, int jg, int ic, int jc,
                       double *val)
 {
     int flag = m->ic[IX(ig, jg)];
@@ -122,7 +122,7 @@ int mac_boundary_face(const bf_mac *m, int ig, int jg, int ic, int jc,
     }
     if (flag == BF_MAC_OUT) {
         mac_face f;
-        mac_face_of(m, ic, jc, side_of(m, ig, jg), &f);
+        bf_mac_face_of(m, ic, jc, side_of(m, ig, jg), &f);
         double off = out_offset(m, ig, jg, ic, jc);
         *val = f.psi / f.rhof - f.s * m->dt / f.delta * off / m->r[IX(ic, jc)];
         return MAC_FLUX;
@@ -136,7 +136,7 @@ static void ghost_one(bf_mac *m, double *p, int ig, int jg, int ic, int jc)
 {
     size_t g = IX(ig, jg), c = IX(ic, jc);
     double val;
-    int kind = mac_boundary_face(m, ig, jg, ic, jc, &val);
+    int kind = bf_mac_boundary_face(m, ig, jg, ic, jc, &val);
     if (kind == MAC_DIRICHLET) {
         p[g] = val;
         return;
@@ -146,7 +146,7 @@ static void ghost_one(bf_mac *m, double *p, int ig, int jg, int ic, int jc)
         return;
     }
     mac_face f;
-    mac_face_of(m, ic, jc, side_of(m, ig, jg), &f);
+    bf_mac_face_of(m, ic, jc, side_of(m, ig, jg), &f);
     const int K = ktype(m);
     double k = K ? 1.0 : 1.0 / f.rhof;
     double xc = K ? p[c] / m->r[c] : p[c];
@@ -154,7 +154,7 @@ static void ghost_one(bf_mac *m, double *p, int ig, int jg, int ic, int jc)
     p[g] = K ? m->r[g] * xg : xg;
 }
 
-void mac_ghost_pressure(bf_mac *m, double *p)
+void bf_mac_ghost_pressure(bf_mac *m, double *p)
 {
     for (int j = 2; j <= m->nj - 1; j++) {
         ghost_one(m, p, 1, j, 2, j);
@@ -170,7 +170,7 @@ void mac_ghost_pressure(bf_mac *m, double *p)
  * normal points to the empty neighbours, tested above, right, left, below;
  * diagonal normals use 1/sqrt(2) (the listing's SQR/SOR).  A SUR cell with
  * no empty neighbour (a void inside the fluid) keeps its pressure. */
-void mac_surface_pressure(bf_mac *m)
+void bf_mac_surface_pressure(bf_mac *m)
 {
     const double sor = 1.0 / sqrt(2.0);
     const double *U = m->u, *V = m->v;
@@ -309,7 +309,7 @@ static void surface_velocities_empty(bf_mac *m)
         }
 }
 
-void mac_velocities(bf_mac *m)
+void bf_mac_velocities(bf_mac *m)
 {
     const int ni = m->ni, nj = m->nj;
     double *U = m->u, *V = m->v;
@@ -412,7 +412,7 @@ void mac_velocities(bf_mac *m)
  * above, right, left, below; the last one found wins).  The update of FULL
  * cells is conservative with centred face values and forward Euler; the
  * conduction coefficient is alpha/rho (thesis) or ALPHA*MU/R (listing). */
-void mac_temperature(bf_mac *m)
+void bf_mac_temperature(bf_mac *m)
 {
     double *T = m->t;
     const int *F = m->ic;

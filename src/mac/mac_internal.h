@@ -73,18 +73,18 @@ static inline int mac_fluidish(int flag)
  * the seeds (m->mark, index (I-2)(nj-2) + J-2) and queued the first `n` of
  * them in m->queue; every interior cell reachable through cells whose flag
  * satisfies `pass` gets marked. */
-void mac_flood(bf_mac *m, int n, int (*pass)(int flag));
+void bf_mac_flood(bf_mac *m, int n, int (*pass)(int flag));
 static inline int mac_unk(const bf_mac *m, int i, int j)
 {
     return (i - 2) * (m->nj - 2) + (j - 2);
 }
 
 /* mac_bc.c */
-void mac_mirror_density(bf_mac *m);
-void mac_surface_pressure(bf_mac *m);
-void mac_ghost_pressure(bf_mac *m, double *p);
-void mac_velocities(bf_mac *m);
-void mac_temperature(bf_mac *m);
+void bf_mac_mirror_density(bf_mac *m);
+void bf_mac_surface_pressure(bf_mac *m);
+void bf_mac_ghost_pressure(bf_mac *m, double *p);
+void bf_mac_velocities(bf_mac *m);
+void bf_mac_temperature(bf_mac *m);
 /* One face of cell (i,j) towards direction d (MAC_E, MAC_W, MAC_N,
  * MAC_S): the neighbour, the spacing normal to the face, psi or zeta on
  * it, the face density (mean of the two cells) and the sign s of the
@@ -94,7 +94,7 @@ typedef struct mac_face {
     int i, j;
     double delta, psi, rhof, s;
 } mac_face;
-void mac_face_of(const bf_mac *m, int i, int j, int d, mac_face *f);
+void bf_mac_face_of(const bf_mac *m, int i, int j, int d, mac_face *f);
 
 /* The condition on the face between interior cell (ic,jc) and its ring
  * neighbour g = (ig,jg): MAC_DIRICHLET with *val = the ghost pressure (the
@@ -102,21 +102,21 @@ void mac_face_of(const bf_mac *m, int i, int j, int d, mac_face *f);
  * velocity it imposes (0 on walls, u0 at a prescribed inflow, the
  * momentum update with Welch's ghost pressure at an OUT boundary). */
 enum { MAC_DIRICHLET = 0, MAC_FLUX = 1 };
-int mac_boundary_face(const bf_mac *m, int ig, int jg, int ic, int jc,
+int bf_mac_boundary_face(const bf_mac *m, int ig, int jg, int ic, int jc,
                       double *val);
 
 /* mac_pressure.c */
-void mac_pressure_coefficients(bf_mac *m);
-bf_status mac_relax(bf_mac *m, int fine, long *sweeps, bf_err *err);
-bf_status mac_direct(bf_mac *m, double *pout, bf_err *err);
+void bf_mac_pressure_coefficients(bf_mac *m);
+bf_status bf_mac_relax(bf_mac *m, int fine, long *sweeps, bf_err *err);
+bf_status bf_mac_direct(bf_mac *m, double *pout, bf_err *err);
 
 /* mac_markers.c */
-long mac_move_markers(bf_mac *m); /* returns the moves held at a wall */
-int mac_correct_density(bf_mac *m);
-bf_status mac_reflag_markers(bf_mac *m, bf_err *err);
-bf_status mac_markers_finite(const bf_mac *m, bf_err *err);
-int mac_fill_voids(bf_mac *m);
+long bf_mac_move_markers(bf_mac *m); /* returns the moves held at a wall */
+int bf_mac_correct_density(bf_mac *m);
+bf_status bf_mac_reflag_markers(bf_mac *m, bf_err *err);
+bf_status bf_mac_markers_finite(const bf_mac *m, bf_err *err);
+int bf_mac_fill_voids(bf_mac *m);
 /* Number of empty cells enclosed by fluid, and the first of them. */
-int mac_find_void(bf_mac *m, int *vi, int *vj);
+int bf_mac_find_void(bf_mac *m, int *vi, int *vj);
 
 #endif

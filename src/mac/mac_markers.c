@@ -104,7 +104,7 @@ static int hold_on_walls(const bf_mac *m, double *xn, double *yn)
     return held;
 }
 
-long mac_move_markers(bf_mac *m)
+long bf_mac_move_markers(bf_mac *m)
 {
     bf_particles *pt = &m->part;
     const double dt = m->dt;
@@ -137,7 +137,7 @@ long mac_move_markers(bf_mac *m)
     return held;
 }
 
-bf_status mac_markers_finite(const bf_mac *m, bf_err *err)
+bf_status bf_mac_markers_finite(const bf_mac *m, bf_err *err)
 {
     for (size_t k = 0; k < m->part.n; k++)
         if (m->part.tag[k] != BF_MAC_AVAIL &&
@@ -166,10 +166,10 @@ static void flood_from_empty(bf_mac *m)
                 m->mark[mac_unk(m, i, j)] = 1;
                 m->queue[n++] = mac_unk(m, i, j);
             }
-    mac_flood(m, n, not_full);
+    bf_mac_flood(m, n, not_full);
 }
 
-int mac_find_void(bf_mac *m, int *vi, int *vj)
+int bf_mac_find_void(bf_mac *m, int *vi, int *vj)
 {
     int n = 0;
     flood_from_empty(m);
@@ -183,7 +183,7 @@ int mac_find_void(bf_mac *m, int *vi, int *vj)
     return n;
 }
 
-int mac_fill_voids(bf_mac *m)
+int bf_mac_fill_voids(bf_mac *m)
 {
     int filled = 0;
     flood_from_empty(m);
@@ -221,7 +221,7 @@ int mac_fill_voids(bf_mac *m)
     return filled;
 }
 
-int mac_correct_density(bf_mac *m)
+int bf_mac_correct_density(bf_mac *m)
 {
     const bf_particles *pt = &m->part;
     int *N = m->ncnt;
@@ -265,7 +265,7 @@ int mac_correct_density(bf_mac *m)
             }
         }
     if (m->prm.void_fix)
-        m->voids_filled += mac_fill_voids(m);
+        m->voids_filled += bf_mac_fill_voids(m);
     for (int i = 2; i <= m->ni - 1; i++)
         for (int j = 2; j <= m->nj - 1; j++) {
             size_t c = IX(i, j);
@@ -288,7 +288,7 @@ int mac_correct_density(bf_mac *m)
     return changed;
 }
 
-bf_status mac_reflag_markers(bf_mac *m, bf_err *err)
+bf_status bf_mac_reflag_markers(bf_mac *m, bf_err *err)
 {
     bf_particles *pt = &m->part;
     const double a = m->part_area;

@@ -39,7 +39,7 @@
 
 static int ktype(const bf_mac *m) { return m->prm.update == BF_MAC_CONSISTENT; }
 
-void mac_pressure_coefficients(bf_mac *m)
+void bf_mac_pressure_coefficients(bf_mac *m)
 {
     const double dx = m->dx, dy = m->dy, dt = m->dt;
     const double *R = m->r, *XI = m->xi, *ZE = m->zeta;
@@ -74,7 +74,7 @@ void mac_pressure_coefficients(bf_mac *m)
         }
 }
 
-bf_status mac_relax(bf_mac *m, int fine, long *sweeps, bf_err *err)
+bf_status bf_mac_relax(bf_mac *m, int fine, long *sweeps, bf_err *err)
 {
     const double tol = fine ? m->prm.fine_tol : m->prm.crude_tol;
     const double om = m->prm.omega;
@@ -84,7 +84,7 @@ bf_status mac_relax(bf_mac *m, int fine, long *sweeps, bf_err *err)
     double worst = 0;
     int wi = 0, wj = 0;
     for (long l = 1;; l++) {
-        mac_ghost_pressure(m, P);
+        bf_mac_ghost_pressure(m, P);
         memcpy(PN, P, m->ncell * sizeof *PN);
         for (int i = 2; i <= m->ni - 1; i++)
             for (int j = 2; j <= m->nj - 1; j++) {
@@ -145,12 +145,12 @@ static int check_regions(bf_mac *m, int *bi, int *bj)
             int seed = 0;
             for (int d = 0; d < 4 && !seed; d++) {
                 mac_face f;
-                mac_face_of(m, i, j, d, &f);
+                bf_mac_face_of(m, i, j, d, &f);
                 if (mac_interior(m, f.i, f.j)) {
                     seed = m->ic[IX(f.i, f.j)] != BF_MAC_FULL;
                 } else {
                     double v;
-                    seed = mac_boundary_face(m, f.i, f.j, i, j, &v) ==
+                    seed = bf_mac_boundary_face(m, f.i, f.j, i, j, &v) ==
                            MAC_DIRICHLET;
                 }
             }
@@ -159,7 +159,7 @@ static int check_regions(bf_mac *m, int *bi, int *bj)
                 m->queue[n++] = unk(m, i, j);
             }
         }
-    mac_flood(m, n, is_full);
+    bf_mac_flood(m, n, is_full);
     for (int i = 2; i <= m->ni - 1; i++)
         for (int j = 2; j <= m->nj - 1; j++)
             if (m->ic[IX(i, j)] == BF_MAC_FULL && !m->mark[unk(m, i, j)]) {
@@ -194,13 +194,13 @@ static void assemble(bf_mac *m)
             double diag = 0, b = 0;
             for (int d = 0; d < 4; d++) {
                 mac_face f;
-                mac_face_of(m, i, j, d, &f);
+                bf_mac_face_of(m, i, j, d, &f);
                 double w = dt * (K ? 1.0 : 1.0 / f.rhof) / (f.delta * f.delta);
                 size_t n = IX(f.i, f.j);
                 double val = 0;
                 int kind = mac_interior(m, f.i, f.j)
                                ? -1
-                               : mac_boundary_face(m, f.i, f.j, i, j, &val);
+                               : bf_mac_boundary_face(m, f.i, f.j, i, j, &val);
                 if (kind == MAC_FLUX) {
                     b -= f.s * val / f.delta;
                     continue;
@@ -294,7 +294,7 @@ static double residual(bf_mac *m, const double *x, double *r, int *worst)
     return rel;
 }
 
-bf_status mac_direct(bf_mac *m, double *pout, bf_err *err)
+bf_status bf_mac_direct(bf_mac *m, double *pout, bf_err *err)
 {
     int bi, bj;
     const int nyu = m->nj - 2;
