@@ -48,6 +48,7 @@ void tu_same_datasets(const char *a, const char *b);
 double tu_max(const double *v, size_t n);
 double tu_absmax(const double *v, size_t n);
 
+
 /* Standard test case with a generous timeout. */
 TCase *tu_tcase(const char *name);
 

@@ -1,0 +1,180 @@
+/* mac.h: the thesis's predictor-corrector MAC solver for a stratified,
+ * viscous, incompressible fluid with marker particles ("A predictor-
+ * corrector method for the transient motion of a nonhomogeneous
+ * incompressible, viscous fluid", seed 004; PROGRAM STRATRES).
+ *
+ * Velocity (u, v), pressure P and temperature T live on a staggered MAC
+ * grid; the density is carried by marker particles and recomputed per cell
+ * from them.  One time step is the thesis's eight-step algorithm (ch. III):
+ *   1. predicted density (3.13),
+ *   2. pressure by relaxation of (3.10), crude test,
+ *   3. provisional velocities (3.11)/(3.12),
+ *   4. particles moved with area-weighted (bilinear) velocities (Fig. 2),
+ *   5. density corrected from the particles in each cell,
+ *   6. back to 2 while the density changes,
+ *   7. pressure with the fine test, final velocities, particles moved,
+ *   8. temperature (3.14).
+ *
+ * Indexing follows the listing (1-based): cells I = 1..ni, J = 1..nj, where
+ * the cells I = 1, ni and J = 1, nj form the ring of fictitious boundary
+ * cells; cell (I,J) covers x in [(I-2)dx, (I-1)dx), y in [(J-2)dy,
+ * (J-1)dy).  U(I,J) is the left face of cell (I,J) (I = 1..ni+1), V(I,J)
+ * its bottom face (J = 1..nj+1).
+ *
+ * Units are the thesis's scaled units (eqs 2.11-2.14): lengths in L, times
+ * in L/W, velocities in W, densities in R, pressures in R W^2; mu and alpha
+ * are the scaled mu' = mu/(R L W) and alpha' = k/(R L W C_v).
+ *
+ * The solver is re-entrant: all state lives in one bf_mac object.
+ */
+#ifndef BALLFILM_MAC_H
+#define BALLFILM_MAC_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "ballfilm/checkpoint.h"
+#include "ballfilm/error.h"
+#include "ballfilm/particles.h"
+
+/* Cell flags IC of the listing (line 2339, corrected: the code sets the
+ * left wall to 2 and the outflow cells to 3).  FREESLIP is not in the
+ * listing: a slip wall for the uniform-flow check. */
+enum {
+    BF_MAC_NOSLIP = 1,
+    BF_MAC_IN = 2,
+    BF_MAC_OUT = 3,
+    BF_MAC_FREESLIP = 4,
+    BF_MAC_FULL = 10,
+    BF_MAC_SUR = 11,
+    BF_MAC_EMP = 12
+};
+
+/* Particle flags F of the listing (line 2418). */
+enum {
+    BF_MAC_AVAIL = 1, /* free slot */
+    BF_MAC_PIN = 2,   /* in the IN column, waiting to enter */
+    BF_MAC_POUT = 3,  /* in an OUT cell, leaving */
+    BF_MAC_REG = 4    /* in the fluid */
+};
+
+typedef enum bf_mac_problem {
+    BF_MAC_RESERVOIR = 0, /* PROGRAM STRATRES: IN left, sink in the bottom */
+    BF_MAC_REST = 1,      /* the same fluid in a closed tank: nothing moves */
+    BF_MAC_UNIFORM = 2    /* uniform horizontal stream, IN left, OUT right */
+} bf_mac_problem;
+
+/* Velocity update and the pressure equation solved with it. */
+typedef enum bf_mac_update {
+    /* (3.11)/(3.12) "modified" update with (3.10) as printed (face
+     * densities): the thesis and the listing.  The pressure equation is
+     * derived from (3.6)-(3.9), not from the update applied. */
+    BF_MAC_PRINTED = 0,
+    /* (3.11)/(3.12) with the pressure equation derived from them: the
+     * coefficients use cell densities, C = (2dt/dx^2 + 2dt/dy^2)/rho_ij,
+     * B1 = dt/(dx^2 rho_{i+1,j} C), ... */
+    BF_MAC_CONSISTENT = 1,
+    /* (3.6)-(3.9) with (3.10): the unmodified, self-consistent pair. */
+    BF_MAC_ORIGINAL = 2
+} bf_mac_update;
+
+typedef enum bf_mac_solver {
+    BF_MAC_RELAX = 0, /* Gauss-Seidel with the listing's crude/fine tests */
+    BF_MAC_DIRECT = 1 /* band Cholesky, checked to a residual tolerance */
+} bf_mac_solver;
+
+typedef struct bf_mac_params {
+    bf_mac_problem problem;
+    int refine;            /* (14 refine + 2)^2 cells, dx = dy = 0.1/refine */
+    bf_mac_update update;
+    bf_mac_solver solver;
+    int compare;           /* with RELAX: also solve exactly, record diff */
+    double crude_tol;      /* listing .0003 */
+    double fine_tol;       /* listing .0002 */
+    long max_sweeps;       /* listing 500 */
+    double omega;          /* over-relaxation; listing 1 */
+    double direct_tol;     /* relative residual of the direct solve */
+    int max_passes;        /* corrector passes before the fine pass; 10 */
+    int stop_on_oscillation; /* 1: BF_ENOCONV instead of the listing's
+                                "OSCILLATING PARTICLE" + forced fine pass */
+    int predict;           /* put the prediction (3.13) into R (thesis) */
+    double mu, alpha, g;   /* listing .000114, .0000141, -.98 */
+    double rho_mean, rho_amp; /* .9985, .0015 (tanh profile) */
+    double t_mean, t_amp;  /* 15, 10 */
+    int kappa_listing;     /* 1: ALPHA*MU/R (listing) instead of alpha/rho */
+    int out_first;         /* first OUT cell of the 16x16 listing grid: 13 */
+    int out_gravity;       /* add rho |g| dy to the OUT ghost pressure */
+    int inflow_prescribed; /* reservoir: u_in = u0 instead of the copy rule */
+    double u0;             /* uniform problem: stream speed */
+    int void_fix;          /* empty cells enclosed by fluid become FULL */
+    int wall_remove;       /* 1: markers crossing a wall are removed (the
+                              listing); 0: held on the wall */
+    long slots;            /* particle slots; 0: 800 refine^2 */
+    double max_cfl;        /* stop when |u| dt/dx exceeds this */
+} bf_mac_params;
+
+void bf_mac_params_default(bf_mac_params *p);
+
+/* Counters, cumulative since t = 0 (masses: particle density times its
+ * share dx dy / 4 of a cell). */
+typedef struct bf_mac_counts {
+    int64_t entered;     /* IN particles that crossed into the fluid */
+    int64_t left_out;    /* fluid particles that entered an OUT cell */
+    int64_t freed;       /* OUT particles that left the grid (slot freed) */
+    int64_t backflow;    /* fluid particles that went back into the IN column */
+    int64_t lost;        /* fluid particles that crossed a wall or the top */
+    int64_t in_clamped;  /* IN particles held at the ring's outer edge */
+    int64_t held;        /* fluid particle moves stopped at a wall */
+    int64_t voids;       /* cells filled by void_fix (final passes) */
+    int64_t oscillations; /* steps whose corrector loop hit max_passes */
+    int64_t passes;      /* corrector passes (pressure solves) */
+    int64_t sweeps;      /* Gauss-Seidel sweeps */
+    int64_t max_sweeps_step; /* largest sweeps in one pressure solve */
+    double mass_in, mass_out, mass_back, mass_lost;
+    double max_gs_dp;    /* compare: max |P_gs - P_exact| / |rho g DEPTH| */
+    double max_gs_du;    /* compare: max face-velocity difference */
+} bf_mac_counts;
+
+typedef struct bf_mac bf_mac;
+
+/* Build the problem's initial state (listing lines 2262-2440).  dt is the
+ * time step the caller will use (checked against the explicit limits). */
+bf_status bf_mac_create(bf_mac **m, const bf_mac_params *p, double dt,
+                        bf_err *err);
+void bf_mac_free(bf_mac *m);
+
+/* One time step (the eight steps).  Errors: BF_ENOCONV (relaxation or
+ * corrector loop), BF_EUNSTABLE (CFL, non-finite values, particle slots);
+ * the message names the cell or particle. */
+bf_status bf_mac_step(bf_mac *m, double dt, bf_err *err);
+
+/* Read-only views.  Arrays are (ni+2) x (nj+2), index I*(nj+2)+J with the
+ * listing's 1-based I, J (row 0 and the last row are padding). */
+void bf_mac_dims(const bf_mac *m, int *ni, int *nj, double *dx, double *dy);
+size_t bf_mac_index(const bf_mac *m, int i, int j);
+const double *bf_mac_u(const bf_mac *m);
+const double *bf_mac_v(const bf_mac *m);
+const double *bf_mac_p(const bf_mac *m);
+const double *bf_mac_rho(const bf_mac *m);
+const double *bf_mac_temp(const bf_mac *m);
+const int *bf_mac_flags(const bf_mac *m);
+const bf_particles *bf_mac_particles(const bf_mac *m); /* tag = flag */
+const double *bf_mac_particle_density(const bf_mac *m);
+const bf_mac_counts *bf_mac_get_counts(const bf_mac *m);
+/* Largest |u| and |v| on faces of FULL or SUR cells, and the largest
+ * |div w| over FULL cells (its largest is reported at *ic, *jc). */
+void bf_mac_extremes(const bf_mac *m, double *umax, double *vmax,
+                     double *divmax, int *ic, int *jc);
+/* Particle counts by flag (index = flag 1..4; [0] unused). */
+void bf_mac_flag_counts(const bf_mac *m, int64_t count[5]);
+/* Sum of density x particle area over the fluid (REG) particles. */
+double bf_mac_fluid_mass(const bf_mac *m);
+/* Passes and sweeps of the last step. */
+void bf_mac_last_step(const bf_mac *m, int *passes, long *sweeps);
+
+bf_status bf_mac_save(const bf_mac *m, bf_ckpt *ck, const char *prefix,
+                      bf_err *err);
+bf_status bf_mac_load(bf_mac *m, const bf_ckpt *ck, const char *prefix,
+                      bf_err *err);
+
+#endif

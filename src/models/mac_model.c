@@ -1,0 +1,480 @@
+/* mac_model.c: the "mac" model: the thesis's predictor-corrector MAC
+ * solver (include/ballfilm/mac.h) driven by a scene.
+ *
+ * [mac] selects the problem (the stratified reservoir with a point sink of
+ * PROGRAM STRATRES, the tank at rest, the uniform stream), the velocity
+ * update and pressure solver, and every uncertain reading of the listing
+ * (defaults: the listing's most likely reading; see README).
+ *
+ * Output (one row per output time):
+ *   /mac/u [(ni+1) nj], /mac/v [ni (nj+1)], /mac/p, /mac/rho, /mac/T,
+ *   /mac/flags [ni nj]: fields in the listing's layout, I-major, J fastest;
+ *   /mac/particles/x, y, density, flag [slots]: the markers (flag 1 =
+ *   free slot, 2 = IN, 3 = OUT, 4 = fluid);
+ *   /mac/counts [8]: IN, fluid, OUT particles, free slots, and cumulative
+ *   entered, left through the sink, back into the IN column, lost;
+ *   /mac/mass [4]: cumulative mass entered, left through the sink, and the
+ *   fluid mass now; mass lost;
+ *   /mac/diag [6]: max |u|, max |v| on fluid faces, max |div w| in FULL
+ *   cells, corrector passes and sweeps of the last step, oscillations.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "ballfilm/mac.h"
+#include "ballfilm/model.h"
+
+static const bf_param mac_params[] = {
+    {"problem", BF_ENUM, "", "reservoir",
+     "reservoir: PROGRAM STRATRES (IN left, point sink in the bottom); rest: "
+     "the same fluid in a closed tank; uniform: a uniform stream (IN left, "
+     "OUT right, slip bottom)",
+     0, 0, 0, "reservoir|rest|uniform"},
+    {"refine", BF_INT, "1", "1",
+     "grid refinement r: (14 r + 2)^2 cells, dx = dy = 0.1/r, same physical "
+     "set-up (scale [scene] dt by 1/r too)",
+     BF_MIN | BF_MAX, 1, 8, NULL},
+    {"update", BF_ENUM, "", "printed",
+     "printed: (3.11)/(3.12) with (3.10) as printed (thesis, listing); "
+     "consistent: (3.11)/(3.12) with the pressure equation derived from them; "
+     "original: (3.6)-(3.9) with (3.10)",
+     0, 0, 0, "printed|consistent|original"},
+    {"pressure_solver", BF_ENUM, "", "relax",
+     "relax: the listing's Gauss-Seidel with crude/fine tests; direct: band "
+     "Cholesky checked to direct_tol",
+     0, 0, 0, "relax|direct"},
+    {"compare", BF_BOOL, "", "false",
+     "with relax: also solve the final pass exactly and record the largest "
+     "pressure and velocity differences",
+     0, 0, 0, NULL},
+    {"crude_tol", BF_REAL, "1", "3e-4",
+     "crude test: |dP| per sweep / |rho g DEPTH| (listing .0003)", BF_POS, 0,
+     0, NULL},
+    {"fine_tol", BF_REAL, "1", "2e-4",
+     "fine test of the last pass (listing .0002)", BF_POS, 0, 0, NULL},
+    {"max_sweeps", BF_INT, "1", "500",
+     "sweeps per relaxation before 'too many iterations' (listing 500)",
+     BF_MIN, 1, 0, NULL},
+    {"omega", BF_REAL, "1", "1",
+     "over-relaxation factor (the listing has none: 1)", BF_POS | BF_MAX, 0,
+     1.99, NULL},
+    {"direct_tol", BF_REAL, "1", "1e-10",
+     "largest relative residual accepted from the direct solve", BF_POS, 0, 0,
+     NULL},
+    {"max_passes", BF_INT, "1", "10",
+     "corrector passes before the fine pass is forced (listing ITNUM 10)",
+     BF_MIN, 1, 0, NULL},
+    {"oscillation", BF_ENUM, "", "continue",
+     "when the density still changes after max_passes: continue with the "
+     "fine pass (listing, counted in /mac/diag) or stop (exit 4)",
+     0, 0, 0, "continue|stop"},
+    {"predict", BF_BOOL, "", "true",
+     "use the predicted density (3.13) in the first pass (thesis); false: "
+     "the OCR'd listing, which never copies RN into R",
+     0, 0, 0, NULL},
+    {"mu", BF_REAL, "1 (scaled)", "1.14e-4", "viscosity mu' (listing MU)",
+     BF_NONNEG, 0, 0, NULL},
+    {"alpha", BF_REAL, "1 (scaled)", "1.41e-5",
+     "conductivity alpha' = k/(R L W C_v) (listing ALPHA)", BF_NONNEG, 0, 0,
+     NULL},
+    {"g", BF_REAL, "W^2/L", "-0.98", "body force per unit mass, y component "
+     "(listing G)", 0, 0, 0, NULL},
+    {"rho_mean", BF_REAL, "R", "0.9985",
+     "density profile rho = rho_mean - rho_amp tanh(y - D/2)/tanh(D/2)",
+     BF_POS, 0, 0, NULL},
+    {"rho_amp", BF_REAL, "R", "0.0015",
+     "density amplitude (0: homogeneous fluid)", BF_NONNEG, 0, 0, NULL},
+    {"t_mean", BF_REAL, "dT", "15", "temperature T = t_mean + t_amp tanh(...)",
+     0, 0, 0, NULL},
+    {"t_amp", BF_REAL, "dT", "10", "temperature amplitude", 0, 0, 0, NULL},
+    {"conduction", BF_ENUM, "", "thesis",
+     "heat conduction coefficient in (3.14): alpha/rho (thesis) or "
+     "ALPHA*MU/R (listing line 3304)",
+     0, 0, 0, "thesis|listing"},
+    {"out_first", BF_INT, "1", "13",
+     "I of the first of the two OUT cells on the 16 x 16 grid: 13 (IC flags, "
+     "velocity and pressure blocks) or 14 (the particle test NI-1, NI-2)",
+     BF_MIN | BF_MAX, 2, 14, NULL},
+    {"out_gravity", BF_BOOL, "", "false",
+     "add the hydrostatic rho |g| dy to the OUT ghost pressure (not in the "
+     "listing; the sink then barely draws)",
+     0, 0, 0, NULL},
+    {"inflow", BF_ENUM, "", "copy",
+     "reservoir IN boundary: copy U(2,J) = U(3,J) with P = P0 (thesis) or "
+     "prescribed u0 with P from momentum",
+     0, 0, 0, "copy|prescribed"},
+    {"u0", BF_REAL, "W", "0.1",
+     "stream speed of the uniform problem (and of a prescribed inflow)", 0, 0,
+     0, NULL},
+    {"void_fix", BF_BOOL, "", "false",
+     "fill empty cells enclosed by the fluid (no chain of empty cells to an "
+     "EMP cell): FULL with the neighbours' density (not in the listing, "
+     "which makes them SUR cells with a frozen pressure)",
+     0, 0, 0, NULL},
+    {"wall_markers", BF_ENUM, "", "hold",
+     "a fluid marker whose move would cross a wall: hold it on the wall, or "
+     "remove it and count it lost (the listing)",
+     0, 0, 0, "hold|remove"},
+    {"slots", BF_INT, "1", "0",
+     "particle slots (listing NK = 800); 0: 800 refine^2",
+     BF_NONNEG | BF_MAX, 0, 1e7, NULL},
+    {"max_cfl", BF_REAL, "1", "1",
+     "stop (exit 3) when |u| dt/dx or |v| dt/dy exceeds this", BF_POS, 0, 0,
+     NULL},
+    {0},
+};
+
+static const bf_section_spec mac_spec = {
+    "mac", "the thesis's predictor-corrector MAC solver (seed 004)",
+    mac_params};
+
+typedef struct mac_model {
+    bf_mac *mac;
+    int ni, nj;
+    size_t slots;
+    bf_series *u, *v, *p, *rho, *temp, *flags;
+    bf_series *px, *py, *pd, *pf, *counts, *mass, *diag;
+    double *buf;   /* one row of the widest series */
+    int64_t *ibuf; /* the same for the integer series */
+} mac_model;
+
+static bf_status read_params(const bf_scene *sc, bf_mac_params *p, bf_err *err)
+{
+    bf_mac_params_default(p);
+    p->problem = (bf_mac_problem)bf_scene_enum(sc, "mac", "problem");
+    p->refine = (int)bf_scene_int(sc, "mac", "refine");
+    p->update = (bf_mac_update)bf_scene_enum(sc, "mac", "update");
+    p->solver = (bf_mac_solver)bf_scene_enum(sc, "mac", "pressure_solver");
+    p->compare = bf_scene_bool(sc, "mac", "compare");
+    p->crude_tol = bf_scene_real(sc, "mac", "crude_tol");
+    p->fine_tol = bf_scene_real(sc, "mac", "fine_tol");
+    p->max_sweeps = bf_scene_int(sc, "mac", "max_sweeps");
+    p->omega = bf_scene_real(sc, "mac", "omega");
+    p->direct_tol = bf_scene_real(sc, "mac", "direct_tol");
+    p->max_passes = (int)bf_scene_int(sc, "mac", "max_passes");
+    p->stop_on_oscillation = bf_scene_enum(sc, "mac", "oscillation") == 1;
+    p->predict = bf_scene_bool(sc, "mac", "predict");
+    p->mu = bf_scene_real(sc, "mac", "mu");
+    p->alpha = bf_scene_real(sc, "mac", "alpha");
+    p->g = bf_scene_real(sc, "mac", "g");
+    p->rho_mean = bf_scene_real(sc, "mac", "rho_mean");
+    p->rho_amp = bf_scene_real(sc, "mac", "rho_amp");
+    p->t_mean = bf_scene_real(sc, "mac", "t_mean");
+    p->t_amp = bf_scene_real(sc, "mac", "t_amp");
+    p->kappa_listing = bf_scene_enum(sc, "mac", "conduction") == 1;
+    p->out_first = (int)bf_scene_int(sc, "mac", "out_first");
+    p->out_gravity = bf_scene_bool(sc, "mac", "out_gravity");
+    p->inflow_prescribed = bf_scene_enum(sc, "mac", "inflow") == 1;
+    p->u0 = bf_scene_real(sc, "mac", "u0");
+    p->void_fix = bf_scene_bool(sc, "mac", "void_fix");
+    p->wall_remove = bf_scene_enum(sc, "mac", "wall_markers") == 1;
+    p->slots = bf_scene_int(sc, "mac", "slots");
+    p->max_cfl = bf_scene_real(sc, "mac", "max_cfl");
+
+    /* physics that cannot work, refused before anything is written */
+    double dt = bf_scene_real(sc, "scene", "dt");
+    double h = 0.1 / p->refine;
+    if (p->rho_amp >= p->rho_mean)
+        return bf_scene_fail(sc, err, "mac", "rho_amp",
+                             "rho_amp = %g must be below rho_mean = %g (the "
+                             "density must stay positive)",
+                             p->rho_amp, p->rho_mean);
+    double rmin = p->rho_mean - p->rho_amp;
+    /* explicit viscous and conduction terms: 4 nu dt / h^2 <= 1 */
+    if (4.0 * p->mu * dt / (rmin * h * h) > 1.0)
+        return bf_scene_fail(sc, err, "scene", "dt",
+                             "dt = %g exceeds the explicit viscous limit "
+                             "h^2 rho/(4 mu) = %g for dx = %g",
+                             dt, rmin * h * h / (4.0 * p->mu), h);
+    double kap = p->kappa_listing ? p->alpha * p->mu : p->alpha;
+    if (4.0 * kap * dt / (rmin * h * h) > 1.0)
+        return bf_scene_fail(sc, err, "scene", "dt",
+                             "dt = %g exceeds the explicit conduction limit "
+                             "h^2 rho/(4 alpha) = %g",
+                             dt, rmin * h * h / (4.0 * kap));
+    if ((p->problem == BF_MAC_UNIFORM || p->inflow_prescribed) &&
+        fabs(p->u0) * dt / h > p->max_cfl)
+        return bf_scene_fail(sc, err, "mac", "u0",
+                             "u0 dt/dx = %g exceeds max_cfl = %g",
+                             fabs(p->u0) * dt / h, p->max_cfl);
+    if (p->problem != BF_MAC_RESERVOIR &&
+        (bf_scene_given(sc, "mac", "inflow") ||
+         bf_scene_given(sc, "mac", "out_first") ||
+         bf_scene_given(sc, "mac", "out_gravity")))
+        return bf_scene_fail(sc, err, "mac", "problem",
+                             "inflow, out_first and out_gravity apply to the "
+                             "reservoir problem only");
+    if ((p->problem == BF_MAC_UNIFORM || p->inflow_prescribed) && p->u0 <= 0)
+        return bf_scene_fail(sc, err, "mac", "u0",
+                             "a prescribed inflow needs u0 > 0 (IN on the "
+                             "left)");
+    if (p->compare && p->solver != BF_MAC_RELAX)
+        return bf_scene_fail(sc, err, "mac", "compare",
+                             "compare needs pressure_solver = relax");
+    return BF_OK;
+}
+
+static void mac_model_destroy(void *self)
+{
+    mac_model *mm = self;
+    if (!mm)
+        return;
+    bf_mac_free(mm->mac);
+    free(mm->buf);
+    free(mm->ibuf);
+    free(mm);
+}
+
+static bf_status mac_model_create(void **self, const bf_scene *sc, bf_err *err)
+{
+    bf_mac_params p;
+    bf_status st = read_params(sc, &p, err);
+    if (st)
+        return st;
+    mac_model *mm = calloc(1, sizeof *mm);
+    if (!mm)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    st = bf_mac_create(&mm->mac, &p, bf_scene_real(sc, "scene", "dt"), err);
+    if (st) {
+        free(mm);
+        if (st == BF_EINPUT) {
+            char msg[BF_ERR_MSG];
+            snprintf(msg, sizeof msg, "%s", err->msg);
+            return bf_scene_fail(sc, err, "mac", NULL, "%s", msg);
+        }
+        return st;
+    }
+    bf_mac_dims(mm->mac, &mm->ni, &mm->nj, NULL, NULL);
+    mm->slots = bf_mac_particles(mm->mac)->n;
+    size_t w = (size_t)(mm->ni + 1) * (size_t)(mm->nj + 1);
+    if (mm->slots > w)
+        w = mm->slots;
+    mm->buf = calloc(w, sizeof *mm->buf);
+    mm->ibuf = calloc(w, sizeof *mm->ibuf);
+    if (!mm->buf || !mm->ibuf) {
+        mac_model_destroy(mm);
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    *self = mm;
+    return BF_OK;
+}
+
+static bf_status mac_model_step(void *self, long n, double t, double dt,
+                                bf_err *err)
+{
+    (void)n;
+    (void)t;
+    return bf_mac_step(((mac_model *)self)->mac, dt, err);
+}
+
+#define SERIES(field, path, cols, isint, unit, doc)                            \
+    do {                                                                       \
+        if (!(mm->field = bf_out_series(out, path, cols, isint, unit, doc,     \
+                                        err)))                                 \
+            return err->status;                                                \
+    } while (0)
+
+static bf_status mac_model_output_open(void *self, bf_out *out, bf_err *err)
+{
+    mac_model *mm = self;
+    const size_t ni = (size_t)mm->ni, nj = (size_t)mm->nj;
+    SERIES(u, "/mac/u", (ni + 1) * nj, 0, "W",
+           "horizontal velocity U(I,J), I = 1..ni+1 (left faces), J = 1..nj; "
+           "row-major, J fastest");
+    SERIES(v, "/mac/v", ni * (nj + 1), 0, "W",
+           "vertical velocity V(I,J), I = 1..ni, J = 1..nj+1 (bottom faces)");
+    SERIES(p, "/mac/p", ni * nj, 0, "R W^2", "pressure P(I,J), cell centres");
+    SERIES(rho, "/mac/rho", ni * nj, 0, "R",
+           "cell density R(I,J) (mean of the markers in the cell)");
+    SERIES(temp, "/mac/T", ni * nj, 0, "dT", "temperature T(I,J)");
+    SERIES(flags, "/mac/flags", ni * nj, 1, "1",
+           "cell flags: 1 NOSLIP, 2 IN, 3 OUT, 4 FREESLIP, 10 FULL, 11 SUR, "
+           "12 EMP");
+    SERIES(px, "/mac/particles/x", mm->slots, 0, "L",
+           "marker x (0 for free slots); the fluid is 0 <= x < 1.4");
+    SERIES(py, "/mac/particles/y", mm->slots, 0, "L", "marker y");
+    SERIES(pd, "/mac/particles/density", mm->slots, 0, "R", "marker density");
+    SERIES(pf, "/mac/particles/flag", mm->slots, 1, "1",
+           "marker flag: 1 free slot, 2 IN, 3 OUT, 4 fluid");
+    SERIES(counts, "/mac/counts", 8, 1, "particles",
+           "IN, fluid (REG), OUT particles, free slots; cumulative: entered "
+           "the fluid, entered the sink (OUT cells), went back into the IN "
+           "column, lost through a wall or the top");
+    SERIES(mass, "/mac/mass", 4, 0, "R L^2",
+           "cumulative mass entered, cumulative mass into the sink, fluid "
+           "mass now (markers x dx dy/4), cumulative mass lost");
+    SERIES(diag, "/mac/diag", 6, 0, "mixed",
+           "max |u| and max |v| on fluid faces (W), max |div w| in FULL cells "
+           "(W/L), corrector passes and Gauss-Seidel sweeps of the last step, "
+           "cumulative forced fine passes (oscillating particle)");
+    double dx, dy;
+    bf_mac_dims(mm->mac, NULL, NULL, &dx, &dy);
+    double grid[4] = {(double)mm->ni, (double)mm->nj, dx, dy};
+    return bf_out_array(out, "/mac/grid", grid, 4, 0, "1, 1, L, L",
+                        "ni, nj (cells incl. the ring), dx, dy; cell (I,J) "
+                        "covers x in [(I-2)dx, (I-1)dx), y in [(J-2)dy, "
+                        "(J-1)dy)",
+                        err);
+}
+
+/* Copy field f (defined for I = 1..ni1, J = 1..nj1) into the row buffer. */
+static void pack(mac_model *mm, const double *f, int ni1, int nj1)
+{
+    size_t k = 0;
+    for (int i = 1; i <= ni1; i++)
+        for (int j = 1; j <= nj1; j++)
+            mm->buf[k++] = f[bf_mac_index(mm->mac, i, j)];
+}
+
+static bf_status mac_model_output_row(void *self, long n, double t, bf_err *err)
+{
+    (void)n;
+    (void)t;
+    mac_model *mm = self;
+    const bf_mac *mac = mm->mac;
+    const int ni = mm->ni, nj = mm->nj;
+    int bad = 0;
+    pack(mm, bf_mac_u(mac), ni + 1, nj);
+    bad |= bf_series_append(mm->u, mm->buf);
+    pack(mm, bf_mac_v(mac), ni, nj + 1);
+    bad |= bf_series_append(mm->v, mm->buf);
+    pack(mm, bf_mac_p(mac), ni, nj);
+    bad |= bf_series_append(mm->p, mm->buf);
+    pack(mm, bf_mac_rho(mac), ni, nj);
+    bad |= bf_series_append(mm->rho, mm->buf);
+    pack(mm, bf_mac_temp(mac), ni, nj);
+    bad |= bf_series_append(mm->temp, mm->buf);
+    {
+        int64_t *ib = mm->ibuf;
+        size_t k = 0;
+        for (int i = 1; i <= ni; i++)
+            for (int j = 1; j <= nj; j++)
+                ib[k++] = bf_mac_flags(mac)[bf_mac_index(mac, i, j)];
+        bad |= bf_series_append_i64(mm->flags, ib);
+    }
+    const bf_particles *pt = bf_mac_particles(mac);
+    bad |= bf_series_append(mm->px, pt->x);
+    bad |= bf_series_append(mm->py, pt->y);
+    bad |= bf_series_append(mm->pd, bf_mac_particle_density(mac));
+    {
+        int64_t *ib = mm->ibuf;
+        for (size_t k = 0; k < pt->n; k++)
+            ib[k] = pt->tag[k];
+        bad |= bf_series_append_i64(mm->pf, ib);
+    }
+    const bf_mac_counts *c = bf_mac_get_counts(mac);
+    int64_t fc[5];
+    bf_mac_flag_counts(mac, fc);
+    int64_t crow[8] = {fc[BF_MAC_PIN], fc[BF_MAC_REG], fc[BF_MAC_POUT],
+                       fc[BF_MAC_AVAIL], c->entered, c->left_out, c->backflow,
+                       c->lost};
+    bad |= bf_series_append_i64(mm->counts, crow);
+    double mrow[4] = {c->mass_in, c->mass_out, bf_mac_fluid_mass(mac),
+                      c->mass_lost};
+    bad |= bf_series_append(mm->mass, mrow);
+    double um, vm, dm;
+    int passes;
+    long sweeps;
+    bf_mac_extremes(mac, &um, &vm, &dm, NULL, NULL);
+    bf_mac_last_step(mac, &passes, &sweeps);
+    double drow[6] = {um, vm, dm, passes, (double)sweeps,
+                      (double)c->oscillations};
+    bad |= bf_series_append(mm->diag, drow);
+    return bad ? bf_fail(err, BF_EINTERNAL, "out of memory") : BF_OK;
+}
+
+static bf_status mac_model_output_close(void *self, bf_out *out, bf_err *err)
+{
+    const mac_model *mm = self;
+    const bf_mac_counts *c = bf_mac_get_counts(mm->mac);
+    bf_status st;
+    if ((st = bf_out_attr_int(out, "/mac/counts", "oscillations",
+                              c->oscillations, err)) ||
+        (st = bf_out_attr_int(out, "/mac/counts", "in_clamped", c->in_clamped,
+                              err)) ||
+        (st = bf_out_attr_int(out, "/mac/counts", "freed", c->freed, err)) ||
+        (st = bf_out_attr_int(out, "/mac/counts", "held_at_walls", c->held,
+                              err)) ||
+        (st = bf_out_attr_int(out, "/mac/diag", "max_sweeps_per_solve",
+                              c->max_sweeps_step, err)) ||
+        (st = bf_out_attr_real(out, "/mac/diag", "max_gs_minus_exact_dp",
+                               c->max_gs_dp, err)))
+        return st;
+    return bf_out_attr_real(out, "/mac/diag", "max_gs_minus_exact_du",
+                            c->max_gs_du, err);
+}
+
+static void mac_model_counters(const void *self, bf_counters *c)
+{
+    const bf_mac_counts *k = bf_mac_get_counts(((const mac_model *)self)->mac);
+    c->evals = (unsigned long long)k->passes;
+    c->iterations = (unsigned long long)k->sweeps;
+}
+
+static void mac_model_report(const void *self, FILE *f)
+{
+    const mac_model *mm = self;
+    const bf_mac *mac = mm->mac;
+    const bf_mac_counts *c = bf_mac_get_counts(mac);
+    int64_t fc[5];
+    bf_mac_flag_counts(mac, fc);
+    double um, vm, dm;
+    int ic, jc;
+    bf_mac_extremes(mac, &um, &vm, &dm, &ic, &jc);
+    fprintf(f, "mac: corrector passes (pressure solves) %lld, Gauss-Seidel "
+               "sweeps %lld (at most %lld in one solve)\n",
+            (long long)c->passes, (long long)c->sweeps,
+            (long long)c->max_sweeps_step);
+    fprintf(f, "mac: particles now: %lld fluid, %lld IN, %lld OUT, %lld free "
+               "slots\n",
+            (long long)fc[BF_MAC_REG], (long long)fc[BF_MAC_PIN],
+            (long long)fc[BF_MAC_POUT], (long long)fc[BF_MAC_AVAIL]);
+    fprintf(f, "mac: entered %lld (mass %.6g), into the sink %lld (mass "
+               "%.6g), back into the IN column %lld, lost %lld; fluid mass "
+               "%.6g\n",
+            (long long)c->entered, c->mass_in, (long long)c->left_out,
+            c->mass_out, (long long)c->backflow, (long long)c->lost,
+            bf_mac_fluid_mass(mac));
+    fprintf(f, "mac: marker moves held at a wall %lld, IN markers held at "
+               "the ring's edge %lld, void cells filled %lld\n",
+            (long long)c->held, (long long)c->in_clamped,
+            (long long)c->voids);
+    fprintf(f, "mac: max |u| %.3e, max |v| %.3e, max |div w| %.3e (cell "
+               "%d,%d); forced fine passes (oscillating particle) %lld\n",
+            um, vm, dm, ic, jc, (long long)c->oscillations);
+    if (c->max_gs_dp > 0 || c->max_gs_du > 0)
+        fprintf(f, "mac: relaxation vs exact solve: max |dP|/|rho g DEPTH| "
+                   "%.3e, max |du| %.3e\n",
+                c->max_gs_dp, c->max_gs_du);
+}
+
+static bf_status mac_model_save(const void *self, bf_ckpt *ck, bf_err *err)
+{
+    return bf_mac_save(((const mac_model *)self)->mac, ck, "mac", err);
+}
+
+static bf_status mac_model_load(void *self, const bf_ckpt *ck, bf_err *err)
+{
+    return bf_mac_load(((mac_model *)self)->mac, ck, "mac", err);
+}
+
+static const bf_section_spec *const mac_specs[] = {&mac_spec, NULL};
+
+const bf_model_type bf_model_mac = {
+    .name = "mac",
+    .doc = "stratified viscous fluid, predictor-corrector MAC with markers "
+           "(thesis, PROGRAM STRATRES)",
+    .flags = 0,
+    .specs = mac_specs,
+    .create = mac_model_create,
+    .destroy = mac_model_destroy,
+    .step = mac_model_step,
+    .output_open = mac_model_output_open,
+    .output_row = mac_model_output_row,
+    .output_close = mac_model_output_close,
+    .counters = mac_model_counters,
+    .report = mac_model_report,
+    .checkpoint_save = mac_model_save,
+    .checkpoint_load = mac_model_load,
+};
