@@ -52,6 +52,12 @@ typedef struct bf_events {
     void *ctx;
 } bf_events;
 
+/* Step monitor (optional, see bf_integrator_set_monitor): adaptive
+ * integrators call it with the state after each accepted internal step, so
+ * that a driver can watch, e.g., the energy inside one long call. */
+typedef void (*bf_monitor_fn)(void *ctx, double t, const double *x,
+                              const double *v);
+
 typedef struct bf_counters {
     unsigned long long steps;      /* accepted steps */
     unsigned long long evals;      /* force (acceleration) evaluations */
@@ -110,6 +116,8 @@ struct bf_integrator {
     int cache_valid;
     unsigned long cache_epoch;
     const bf_events *events; /* NULL: none (bf_integrator_set_events) */
+    bf_monitor_fn monitor;   /* NULL: none (bf_integrator_set_monitor) */
+    void *monitor_ctx;
 };
 
 const bf_integrator_type *bf_integrator_find(const char *name);
@@ -126,6 +134,9 @@ void bf_integrator_describe(const bf_integrator *it, char *buf, size_t cap);
 /* Register events (kept by pointer; NULL removes them).  Only integrators
  * with BF_INT_ROOTS use them. */
 void bf_integrator_set_events(bf_integrator *it, const bf_events *ev);
+/* Watch the internal steps of adaptive integrators (NULL removes it).
+ * Fixed-step integrators do not call it: each of their steps is a call. */
+void bf_integrator_set_monitor(bf_integrator *it, bf_monitor_fn fn, void *ctx);
 /* Forget cached forces (after the caller changed x or the force field). */
 void bf_integrator_reset(bf_integrator *it);
 /* Checkpoint: counters, the force cache and the type's private state, under

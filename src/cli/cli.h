@@ -5,6 +5,9 @@
 #include <stdio.h>
 
 int bf_cmd_run(int argc, char **argv);
+int bf_cmd_converge(int argc, char **argv);
+/* mkdir out (exists is fine); 0 on success */
+int bf_cli_mkdir_out(void);
 void bf_cli_print_keys(FILE *f);
 
 #endif

@@ -51,6 +51,11 @@ static void run_usage(FILE *f)
             "\n");
 }
 
+int bf_cli_mkdir_out(void)
+{
+    return mkdir("out", 0777) && errno != EEXIST;
+}
+
 /* out/<basename of scene without .ini>.h5 */
 static char *default_output(const char *scene)
 {
@@ -63,7 +68,7 @@ static char *default_output(const char *scene)
     if (!p)
         return NULL;
     snprintf(p, len + 16, "out/%.*s.h5", (int)len, base);
-    if (mkdir("out", 0777) && errno != EEXIST) {
+    if (bf_cli_mkdir_out()) {
         free(p);
         return NULL;
     }

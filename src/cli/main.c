@@ -16,6 +16,11 @@ static void usage(FILE *f)
             "  run SCENE.ini [-o OUT.h5] [--set section.key=value]... [-q]\n"
             "                     run a scene, write HDF5 (see 'ballfilm run "
             "--help')\n"
+            "  converge SCENE.ini --methods M1,M2,... [--dt ...] [--tol ...] "
+            "[--t-end T]\n"
+            "                     convergence / work-precision study against "
+            "an ARKODE\n"
+            "                     reference (see 'ballfilm converge --help')\n"
             "  help               this text and every scene key\n"
             "  version            print the version\n"
             "\n"
@@ -33,6 +38,8 @@ int main(int argc, char **argv)
     const char *cmd = argv[1];
     if (!strcmp(cmd, "run"))
         return bf_cmd_run(argc - 1, argv + 1);
+    if (!strcmp(cmd, "converge"))
+        return bf_cmd_converge(argc - 1, argv + 1);
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
         usage(stdout);
         printf("\n");

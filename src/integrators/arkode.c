@@ -81,7 +81,7 @@ typedef struct ark {
     int padded;    /* the issue-311 work-around was applied */
     int order;     /* q of the table */
     int stages;    /* stages actually evaluated per step */
-    double rtol, atol;
+    double rtol, atol, max_step;
     long max_steps;
     double h_next; /* initial internal step of the next call (adaptive) */
     long substeps; /* fixed: internal steps per call */
@@ -90,6 +90,7 @@ typedef struct ark {
     N_Vector y;
     int *rootsfound;
     const bf_events *roots_registered;
+    int monitor_on; /* the post-processing hook is registered */
     /* valid during a call of step() */
     bf_integrator *it;
     const bf_ode *ode;
@@ -117,6 +118,14 @@ static int ark_g(realtype t, N_Vector y, realtype *g, void *ud)
     const double *yy = N_VGetArrayPointer(y);
     const bf_events *ev = p->it->events;
     return ev->g(ev->ctx, t, yy, yy + p->it->n, g) ? -1 : 0;
+}
+
+static int ark_post(realtype t, N_Vector y, void *ud)
+{
+    ark *p = ud;
+    const double *yy = N_VGetArrayPointer(y);
+    p->it->monitor(p->it->monitor_ctx, t, yy, yy + p->it->n);
+    return 0;
 }
 
 static void ark_errh(int code, const char *module, const char *function,
@@ -201,6 +210,11 @@ static const bf_param adaptive_params[] = {
     {"max_steps", BF_INT, "1", "1000000",
      "internal steps allowed per [scene] dt before the run fails", BF_MIN, 1,
      0, NULL},
+    {"max_step", BF_REAL, "s", "0",
+     "largest internal step (0: no limit besides [scene] dt); free flight "
+     "under gravity has a zero error estimate, so without a limit steps grow "
+     "until they jump deep into a contact",
+     BF_NONNEG, 0, 0, NULL},
     {"work_around_311", BF_BOOL, "", "yes",
      "pad tables hit by ARKODE issue 311 (tests only)", BF_HIDDEN, 0, 0, NULL},
     {0},
@@ -267,6 +281,7 @@ static bf_status ark_init_common(bf_integrator *it, int fixed,
         p->atol = sc ? bf_scene_real(sc, "integrator", "atol") : 1e-11;
         p->max_steps = sc ? bf_scene_int(sc, "integrator", "max_steps")
                           : 1000000;
+        p->max_step = sc ? bf_scene_real(sc, "integrator", "max_step") : 0.0;
     } else {
         p->substeps = sc ? bf_scene_int(sc, "integrator", "substeps") : 1;
         p->max_steps = p->substeps + 10;
@@ -320,6 +335,8 @@ static bf_status ark_init_common(bf_integrator *it, int fixed,
         flag = ERKStepSetMaxNumSteps(p->mem, p->max_steps);
     if (flag >= 0 && !fixed)
         flag = ERKStepSStolerances(p->mem, p->rtol, p->atol);
+    if (flag >= 0 && !fixed && p->max_step > 0)
+        flag = ERKStepSetMaxStep(p->mem, p->max_step);
     return ark_check(p, flag, "setup", err);
 }
 
@@ -376,6 +393,15 @@ static bf_status ark_step(bf_integrator *it, const bf_ode *ode, double t,
     const bf_events *ev = it->events;
     if (ev != p->roots_registered && (st = ark_register_roots(p, ev, err)))
         return st;
+    if ((it->monitor != NULL) != p->monitor_on) {
+        /* (a post-processing hook makes ERKStep re-evaluate the first stage
+         * of FSAL tables: one more evaluation per step, same solution) */
+        int f = ERKStepSetPostprocessStepFn(p->mem, it->monitor ? ark_post
+                                                                : NULL);
+        if ((st = ark_check(p, f, "monitor setup", err)))
+            return st;
+        p->monitor_on = it->monitor != NULL;
+    }
     memcpy(yy, x, n * sizeof *yy);
     memcpy(yy + n, v, n * sizeof *yy);
     const double tend = t + dt;
@@ -467,6 +493,9 @@ static void ark_describe(const bf_integrator *it, char *buf, size_t cap)
     else
         snprintf(buf, cap, "%s %s%s rtol=%g atol=%g", it->type->name, name,
                  p->padded ? " (padded)" : "", p->rtol, p->atol);
+    if (!p->fixed && p->max_step > 0)
+        snprintf(buf + strlen(buf), cap - strlen(buf), " hmax=%g",
+                 p->max_step);
 }
 
 const bf_integrator_type bf_integrator_arkode = {

@@ -54,6 +54,12 @@ void bf_integrator_set_events(bf_integrator *it, const bf_events *ev)
     it->events = ev;
 }
 
+void bf_integrator_set_monitor(bf_integrator *it, bf_monitor_fn fn, void *ctx)
+{
+    it->monitor = fn;
+    it->monitor_ctx = ctx;
+}
+
 int bf_integrator_order(const bf_integrator *it)
 {
     return it->type->order_of ? it->type->order_of(it) : it->type->order;
