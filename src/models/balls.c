@@ -4,13 +4,16 @@
  * Output: /balls/position and /balls/velocity [rows x balls] at every output
  * row, /balls/mass and /balls/radius once.  Optional analyses, each off
  * unless its section enables it: the first-return map ([return_map],
- * returnmap.h) and the largest Lyapunov exponent ([lyapunov], lyapunov.h).
+ * returnmap.h), the largest Lyapunov exponent ([lyapunov], lyapunov.h) and
+ * the one-step comparison of two integrators at output rows ([compare],
+ * compare.h).
  * With both off a step is exactly bf_ballsys_step.
  */
 #include <math.h>
 #include <stdlib.h>
 
 #include "ballfilm/balls.h"
+#include "ballfilm/compare.h"
 #include "ballfilm/lyapunov.h"
 #include "ballfilm/model.h"
 
@@ -18,6 +21,8 @@ typedef struct balls_model {
     bf_ballsys *sys;
     bf_retmap *rm;
     bf_lyap *ly;
+    bf_compare *cmp;
+    double dt;
     bf_series *pos, *vel;
 } balls_model;
 
@@ -58,6 +63,7 @@ static void balls_destroy(void *self)
     balls_model *m = self;
     if (!m)
         return;
+    bf_compare_free(m->cmp);
     bf_lyap_free(m->ly);
     bf_retmap_free(m->rm);
     bf_ballsys_free(m->sys);
@@ -75,6 +81,9 @@ static bf_status balls_create(void **self, const bf_scene *sc, bf_err *err)
         st = bf_retmap_create(&m->rm, sc, m->sys, err);
     if (!st)
         st = bf_lyap_create(&m->ly, sc, m->sys, err);
+    if (!st)
+        st = bf_compare_create(&m->cmp, sc, m->sys, err);
+    m->dt = bf_scene_real(sc, "scene", "dt");
     if (st) {
         balls_destroy(m);
         return st;
@@ -125,17 +134,20 @@ static bf_status balls_output_open(void *self, bf_out *out, bf_err *err)
         st = bf_retmap_output_open(m->rm, out, err);
     if (!st && m->ly)
         st = bf_lyap_output_open(m->ly, out, err);
+    if (!st && m->cmp)
+        st = bf_compare_output_open(m->cmp, out, err);
     return st;
 }
 
 static bf_status balls_output_row(void *self, long n, double t, bf_err *err)
 {
     (void)n;
-    (void)t;
     balls_model *m = self;
     if (bf_series_append(m->pos, m->sys->b.x) ||
         bf_series_append(m->vel, m->sys->b.v))
         return bf_fail(err, BF_EINTERNAL, "out of memory");
+    if (m->cmp)
+        return bf_compare_output_row(m->cmp, m->sys, t, m->dt, err);
     return BF_OK;
 }
 
@@ -196,7 +208,8 @@ static bf_status balls_load(void *self, const bf_ckpt *ck, bf_err *err)
 }
 
 static const bf_section_spec *const balls_specs[] = {
-    &bf_ballsys_ball_spec, &bf_retmap_spec, &bf_lyap_spec, NULL};
+    &bf_ballsys_ball_spec, &bf_retmap_spec, &bf_lyap_spec, &bf_compare_spec,
+    NULL};
 
 const bf_model_type bf_model_balls = {
     .name = "balls",
