@@ -165,17 +165,7 @@ START_TEST(issue_311_without_work_around)
 }
 END_TEST
 
-static int osc(void *ctx, double t, const double *x, const double *v,
-               double *a)
-{
-    (void)ctx;
-    (void)t;
-    (void)v;
-    a[0] = -x[0];
-    return 0;
-}
-
-static const bf_ode harm = {.n = 1, .accel = osc};
+static const bf_ode harm = {.n = 1, .accel = tu_accel_harmonic};
 
 /* Error of the adaptive integrator on x'' = -x at T = 10 (synchronised
  * every 0.5 s): it follows the tolerance. */

@@ -24,17 +24,7 @@
 #include "ballfilm/integrator.h"
 #include "testutil.h"
 
-static int harmonic(void *ctx, double t, const double *x, const double *v,
-                    double *a)
-{
-    (void)ctx;
-    (void)t;
-    (void)v;
-    a[0] = -x[0];
-    return 0;
-}
-
-static const bf_ode osc = {.n = 1, .accel = harmonic};
+static const bf_ode osc = {.n = 1, .accel = tu_accel_harmonic};
 
 static int cubic(void *ctx, double t, const double *x, const double *v,
                  double *a)

@@ -167,16 +167,6 @@ static int inverted(void *ctx, double t, const double *x, const double *v,
     return 0;
 }
 
-static int harmonic(void *ctx, double t, const double *x, const double *v,
-                    double *a)
-{
-    (void)ctx;
-    (void)t;
-    (void)v;
-    a[0] = -x[0];
-    return 0;
-}
-
 static double lyapunov_of(bf_accel_fn f, double T)
 {
     /* started away from the equilibrium x = 0, so that the run moves */
@@ -219,7 +209,7 @@ START_TEST(lyapunov_of_linear_systems)
     ck_assert_msg(fabs(l1 - 1) < 1e-3, "x'' = x: %g", l1);
     /* x'' = -x with tau = 1/omega: the distance is conserved (Verlet
      * conserves a quadratic form within O(dt^2)) */
-    double l0 = lyapunov_of(harmonic, 100);
+    double l0 = lyapunov_of(tu_accel_harmonic, 100);
     ck_assert_msg(fabs(l0) < 1e-3, "x'' = -x: %g", l0);
 }
 END_TEST

@@ -244,3 +244,13 @@ TCase *tu_tcase(const char *name)
     tcase_set_timeout(tc, 600);
     return tc;
 }
+
+int tu_accel_harmonic(void *ctx, double t, const double *x, const double *v,
+                      double *a)
+{
+    (void)ctx;
+    (void)t;
+    (void)v;
+    a[0] = -x[0];
+    return 0;
+}

@@ -41,6 +41,10 @@ bf_sim *tu_run_scene(const char *text, ...);
 double tu_max(const double *v, size_t n);
 double tu_absmax(const double *v, size_t n);
 
+/* x'' = -x for one unknown (a bf_accel_fn; ctx, t and v unused). */
+int tu_accel_harmonic(void *ctx, double t, const double *x, const double *v,
+                      double *a);
+
 /* Standard test case with a generous timeout. */
 TCase *tu_tcase(const char *name);
 
