@@ -14,6 +14,9 @@
  * between successive runs of a method is log(e1/e2)/log(h1/h2), with h the
  * step (fixed) or the mean internal step T/steps (adaptive).
  *
+ * A measured run whose relative energy error exceeds the scene's
+ * [scene] max_energy_error (when set) stops and is reported as unstable.
+ *
  * The reference is ARKODE's adaptive ERK at rtol = ref_rtol (<= 1e-12)
  * with a Butcher table that none of the compared methods uses (default
  * VERNER_8_5_6 with the issue-311 padding, else DORMAND_PRINCE_7_4_5, else

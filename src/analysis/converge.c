@@ -111,6 +111,9 @@ static bf_status run_once(const bf_scene *sc, long nsteps, double h,
     double k, p;
     bf_ballsys_energy(sys, 0.0, &k, &p);
     energy_watch w = {sys, k + p, 0.0};
+    /* the scene's energy bound stops a run beyond the method's stable
+     * step, as in `ballfilm run`, instead of reporting garbage */
+    const double bound = bf_scene_real(sc, "scene", "max_energy_error");
     if (measure)
         bf_integrator_set_monitor(sys->it, monitor_energy, &w);
     bf_err rerr = {0};
@@ -126,6 +129,13 @@ static bf_status run_once(const bf_scene *sc, long nsteps, double h,
         if (measure) {
             bf_ballsys_energy(sys, (double)(s + 1) * h, &k, &p);
             watch_energy(&w, k, p);
+            if (bound > 0 && !(w.emax <= bound)) {
+                rst = bf_fail(&rerr, BF_EUNSTABLE,
+                              "relative energy error %.3g exceeds [scene] "
+                              "max_energy_error = %g by t = %.9g s",
+                              w.emax, bound, (double)(s + 1) * h);
+                break;
+            }
         }
     }
     o->wall = wall_now() - t0;
