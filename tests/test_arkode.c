@@ -45,25 +45,6 @@ static const bf_ode kep = {.n = 2, .accel = kepler};
 static const double ECC = 0.5;
 static const double PI = 3.14159265358979323846;
 
-static bf_integrator *make(const char *name, const char *keys, size_t n)
-{
-    char text[1024];
-    snprintf(text, sizeof text,
-             "[scene]\nintegrator = %s\ndt = 1\nt_end = 1\n[integrator]\n%s\n"
-             "[ball.1]\nposition = 1\n",
-             name, keys);
-    for (char *p = text; *p; p++)
-        if (*p == ';')
-            *p = '\n';
-    bf_scene *sc = tu_scene(text);
-    bf_integrator *it;
-    bf_err err = {0};
-    ck_assert_msg(bf_integrator_create(&it, name, n, sc, &err) == BF_OK, "%s",
-                  err.msg);
-    bf_scene_free(sc);
-    return it;
-}
-
 /* max-norm error after one period with N fixed steps of table `name`,
  * all inside one call (substeps = N), so that ERKStep steps continuously
  * as it does inside an adaptive call (where issue 311 bites). */
@@ -72,7 +53,7 @@ static double kepler_error(const char *table, int workaround, int N)
     char keys[256];
     snprintf(keys, sizeof keys, "table = %s;work_around_311 = %s;substeps = %d",
              table, workaround ? "yes" : "no", N);
-    bf_integrator *it = make("arkode-fixed", keys, 2);
+    bf_integrator *it = tu_integrator("arkode-fixed", keys, 2);
     bf_err err = {0};
     double x[2] = {1 - ECC, 0}, v[2] = {0, sqrt((1 + ECC) / (1 - ECC))};
     const double T = 2 * PI;
@@ -176,7 +157,7 @@ START_TEST(adaptive_error_follows_tolerance)
         double rtol = pow(10.0, -6 - 2 * k);
         char keys[128];
         snprintf(keys, sizeof keys, "rtol = %g;atol = %g", rtol, rtol);
-        bf_integrator *it = make("arkode", keys, 1);
+        bf_integrator *it = tu_integrator("arkode", keys, 1);
         bf_err err = {0};
         double x = 1, v = 0;
         for (int s = 0; s < 20; s++)
@@ -235,7 +216,7 @@ START_TEST(rootfinding_locates_events)
                           "table = ARKODE_DORMAND_PRINCE_7_4_5"};
     const double dts[] = {1.0, 0.01};
     for (int m = 0; m < 2; m++) {
-        bf_integrator *it = make(names[m], keys[m], 1);
+        bf_integrator *it = tu_integrator(names[m], keys[m], 1);
         hits h = {0};
         const int dir = 1;
         bf_events ev = {1, g_vel, &dir, on_hit, &h};
@@ -267,7 +248,7 @@ START_TEST(adaptive_restart_bit_identical)
     bf_err err = {0};
     double xa[2] = {1 - ECC, 0}, va[2] = {0, sqrt((1 + ECC) / (1 - ECC))};
     double xb[2], vb[2];
-    bf_integrator *a = make("arkode", keys, 2);
+    bf_integrator *a = tu_integrator("arkode", keys, 2);
     bf_ckpt *ck = bf_ckpt_new();
     for (int s = 0; s < 40; s++) {
         if (s == 20) {
@@ -277,7 +258,7 @@ START_TEST(adaptive_restart_bit_identical)
         }
         ck_assert(bf_integrator_step(a, &kep, s * 0.3, 0.3, xa, va, &err) == 0);
     }
-    bf_integrator *b = make("arkode", keys, 2);
+    bf_integrator *b = tu_integrator("arkode", keys, 2);
     ck_assert_msg(bf_integrator_load(b, ck, "it", &err) == 0, "%s", err.msg);
     for (int s = 20; s < 40; s++)
         ck_assert(bf_integrator_step(b, &kep, s * 0.3, 0.3, xb, vb, &err) == 0);

@@ -38,34 +38,10 @@ static int cubic(void *ctx, double t, const double *x, const double *v,
 
 static const bf_ode nonlin = {.n = 1, .accel = cubic};
 
-/* An integrator with [integrator] keys given as "key=value;key=value"
- * (NULL: defaults). */
-static bf_integrator *make_with(const char *name, const char *keys, size_t n)
+static bf_integrator *make(const char *name)
 {
-    char text[1024];
-    int len = snprintf(text, sizeof text,
-                       "[scene]\nintegrator = %s\ndt = 1\nt_end = 1\n", name);
-    if (keys) {
-        len += snprintf(text + len, sizeof text - (size_t)len, "[integrator]\n");
-        for (const char *p = keys; *p;) {
-            const char *e = strchr(p, ';');
-            size_t l = e ? (size_t)(e - p) : strlen(p);
-            len += snprintf(text + len, sizeof text - (size_t)len, "%.*s\n",
-                            (int)l, p);
-            p += l + (e ? 1 : 0);
-        }
-    }
-    snprintf(text + len, sizeof text - (size_t)len, "[ball.1]\nposition = 1\n");
-    bf_scene *sc = tu_scene(text);
-    bf_integrator *it;
-    bf_err err = {0};
-    ck_assert_msg(bf_integrator_create(&it, name, n, sc, &err) == BF_OK, "%s",
-                  err.msg);
-    bf_scene_free(sc);
-    return it;
+    return tu_integrator(name, NULL, 1);
 }
-
-static bf_integrator *make(const char *name) { return make_with(name, NULL, 1); }
 
 START_TEST(mv2m_step_is_matrix_2_25)
 {
@@ -122,7 +98,7 @@ END_TEST
 static double final_error(const char *name, const char *keys, int nonlinear,
                           double dt)
 {
-    bf_integrator *it = make_with(name, keys, 1);
+    bf_integrator *it = tu_integrator(name, keys, 1);
     bf_err err = {0};
     const double T = nonlinear ? 1.0 : 10.0;
     long n = lround(T / dt);
@@ -205,7 +181,7 @@ START_TEST(alpha_family_determinant)
             char keys[128];
             snprintf(keys, sizeof keys, "alpha=%g;position=%s", alphas[k],
                      pos ? "trapezoid" : "verlet");
-            bf_integrator *it = make_with("alpha", keys, 1);
+            bf_integrator *it = tu_integrator("alpha", keys, 1);
             bf_err err = {0};
             double x1 = 1, v1 = 0, x2 = 0, v2 = 1;
             ck_assert(bf_integrator_step(it, &osc, 0, dt, &x1, &v1, &err) == 0);
@@ -260,7 +236,7 @@ static int stiff(void *ctx, double t, const double *x, const double *v,
 START_TEST(impmid_no_convergence_fails)
 {
     const bf_ode o = {.n = 1, .accel = stiff};
-    bf_integrator *it = make_with("impmid", "max_iter=20", 1);
+    bf_integrator *it = tu_integrator("impmid", "max_iter=20", 1);
     bf_err err = {0};
     double x = 1, v = 0;
     bf_status st = bf_integrator_step(it, &o, 0, 0.1, &x, &v, &err);
