@@ -26,8 +26,9 @@
  * reference, and the difference of the two is reported as its estimated
  * error (an over-estimate when the error scales with the tolerance).
  *
- * Adaptive methods and the reference get a largest internal step
- * (default 10 x [scene] dt): in free flight under gravity the motion is
+ * On scenes with Hertz contacts (floor, contact effects) adaptive methods
+ * and the reference get a largest internal step (default 10 x [scene]
+ * dt): in free flight under gravity the motion is
  * quadratic, every embedded error estimate is zero and ARKODE grows the
  * step by its maximum factor until one step jumps deep into the floor;
  * without the limit the reference on runs/bouncing_ball.ini took 28 steps
@@ -58,7 +59,8 @@ typedef struct bf_converge_opts {
     double ref_rtol;       /* 0: 1e-12 */
     const char *ref_table; /* NULL: automatic */
     double max_step;       /* largest internal step of adaptive methods and
-                              the reference, s (0: 10 x [scene] dt; < 0:
+                              the reference, s (0: 10 x [scene] dt when the
+                              scene has Hertz contacts, else none; < 0:
                               no limit) */
     FILE *progress;        /* one line per finished run, or NULL */
 } bf_converge_opts;

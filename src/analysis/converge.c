@@ -297,8 +297,12 @@ bf_status bf_converge_run(const bf_scene *base_in, const bf_converge_opts *opts,
                        "([scene] model = balls)");
     }
     const double dt0 = bf_scene_real(base, "scene", "dt");
-    const double hmax = o.max_step == 0 ? 10 * dt0
-                                        : o.max_step < 0 ? 0 : o.max_step;
+    const int hertz = bf_scene_has_name(base, "scene", "effects", "floor") ||
+                      bf_scene_has_name(base, "scene", "effects", "contact");
+    const double hmax = o.max_step < 0 ? 0
+                        : o.max_step > 0 ? o.max_step
+                        : hertz         ? 10 * dt0
+                                        : 0;
     const double T = o.t_end > 0 ? o.t_end : bf_scene_real(base, "scene",
                                                            "t_end");
     double def_dts[4] = {4 * dt0, 2 * dt0, dt0, dt0 / 2};
@@ -320,8 +324,7 @@ bf_status bf_converge_run(const bf_scene *base_in, const bf_converge_opts *opts,
     r->max_step = hmax;
     r->t_end = T;
     r->n = (size_t)bf_scene_count(base, "ball");
-    r->hertz = bf_scene_has_name(base, "scene", "effects", "floor") ||
-               bf_scene_has_name(base, "scene", "effects", "contact");
+    r->hertz = hertz;
     r->x_ref = calloc(2 * r->n, sizeof *r->x_ref);
     r->methods = calloc(o.nmethods, sizeof *r->methods);
     double *x = calloc(4 * r->n, sizeof *x);
