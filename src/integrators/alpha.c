@@ -31,6 +31,7 @@
  * a = a(x).
  */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "ballfilm/integrator.h"
@@ -105,6 +106,13 @@ static bf_status alpha_step(bf_integrator *it, const bf_ode *ode, double t,
     return BF_OK;
 }
 
+static void alpha_describe(const bf_integrator *it, char *buf, size_t cap)
+{
+    const alpha_priv *p = it->priv;
+    snprintf(buf, cap, "alpha %g %s", p->alpha,
+             p->position == POS_VERLET ? "verlet" : "trapezoid");
+}
+
 const bf_integrator_type bf_integrator_alpha = {
     .name = "alpha",
     .doc = "alpha-family of Yasuda eqs 2.16-2.17 ([integrator] alpha: 0 "
@@ -117,4 +125,5 @@ const bf_integrator_type bf_integrator_alpha = {
     .init = alpha_init,
     .step = alpha_step,
     .free = alpha_free,
+    .describe = alpha_describe,
 };

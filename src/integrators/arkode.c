@@ -22,8 +22,9 @@
  * step whenever the last node c_s = 1, even when the last row of A differs
  * from b (the method is not "first same as last").  The next step then
  * starts from a wrong stage and several tables lose order (measured on a
- * Kepler orbit: ARK324L2SA 3 -> 2, ARK436L2SA and SAYFY_ABURUB 4 -> 2,
- * ARK548L2SA 5 -> 3, VERNER_8_5_6 6 -> 3, FEHLBERG_13_7_8 8 -> 6).
+ * Kepler orbit: ARK324L2SA 3 -> 1.9, ARK436L2SA 4 -> 2.6-2.9,
+ * SAYFY_ABURUB 4 -> 2.2-2.4, ARK548L2SA 5 -> 3.0-3.3, VERNER_8_5_6
+ * 6 -> 3.2-4.0, FEHLBERG_13_7_8 8 -> 5.9-7.0).
  * Work-around used here: every table with c_s = 1 that is not FSAL gets an
  * extra, unused stage with c = 0 (zero row of A, zero weights), so its last
  * node is no longer 1; this costs one force evaluation per step.
