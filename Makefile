@@ -53,7 +53,8 @@ PROG      := $(BINDIR)/ballfilm
 RUNNER    := $(BUILD)/tests/runner
 
 .PHONY: all run test check figures bench clean deps deps-plot test-run \
-        build-tests fig1 fuzz valgrind mpi stratres mac-checks
+        build-tests fig1 fuzz valgrind mpi stratres mac-checks \
+        fig2 fig3 fig4 converge-figures
 
 all: $(PROG)
 
@@ -190,10 +191,85 @@ mac-checks: $(PROG)
 	    --uniform $(foreach u,$(MAC_VARIANTS),$(foreach s,direct relax,"$(u), $(s), u0 0.094=out/mac_uniform_$(u)_$(s).h5")) \
 	    "consistent, direct, u0 0.1=out/mac_uniform_u01.h5"
 
+# Yasuda Fig. 2: first-return maps, lower ball 1.2 g (A) and 0.8 g (B),
+# MV2M for 1000 s with the Lyapunov estimate; first at the paper's
+# dt = 1e-4 s, then at 1e-5 s (see README for why both).  About 1 min.
+FIG2_SET := --set lyapunov.enabled=yes
+fig2: $(PROG)
+	@mkdir -p out
+	$(PROG) run runs/two_balls_A.ini -q -o out/fig2_A.h5 $(FIG2_SET)
+	$(PROG) run runs/two_balls_B.ini -q -o out/fig2_B.h5 $(FIG2_SET)
+	$(PROG) run runs/two_balls_A.ini -q -o out/fig2_A_dt1e-5.h5 $(FIG2_SET) \
+	    --set scene.dt=1e-5 --set scene.output_every=1000
+	$(PROG) run runs/two_balls_B.ini -q -o out/fig2_B_dt1e-5.h5 $(FIG2_SET) \
+	    --set scene.dt=1e-5 --set scene.output_every=1000
+	$(PY) plots/fig2_return_map.py out/fig2_A.h5 out/fig2_B.h5 \
+	    out/fig2_A_dt1e-5.h5 out/fig2_B_dt1e-5.h5 -o out/fig2_return_map.png
+
+# Yasuda Fig. 3: lower ball 0.8 g with (A) Verlet 1e-4 s, (B) Verlet 1e-5 s,
+# (C) RK4, (D) RK3, (E) implicit mid-point at 1e-4 s, 1000 s each.  RK3
+# loses about 40% of the energy over the run; its energy bound is lifted
+# so that the figure shows all of it.  About 1 min.
+fig3: $(PROG)
+	@mkdir -p out
+	$(PROG) run runs/two_balls_B.ini -q -o out/fig3_A.h5 $(FIG2_SET) \
+	    --set scene.integrator=verlet
+	$(PROG) run runs/two_balls_B.ini -q -o out/fig3_B.h5 $(FIG2_SET) \
+	    --set scene.integrator=verlet --set scene.dt=1e-5 \
+	    --set scene.output_every=1000
+	$(PROG) run runs/two_balls_B.ini -q -o out/fig3_C.h5 $(FIG2_SET) \
+	    --set scene.integrator=rk4
+	$(PROG) run runs/two_balls_B.ini -q -o out/fig3_D.h5 $(FIG2_SET) \
+	    --set scene.integrator=rk3 --set scene.max_energy_error=0
+	$(PROG) run runs/two_balls_B.ini -q -o out/fig3_E.h5 $(FIG2_SET) \
+	    --set scene.integrator=impmid
+	$(PY) plots/fig3_return_map.py out/fig3_A.h5 out/fig3_B.h5 out/fig3_C.h5 \
+	    out/fig3_D.h5 out/fig3_E.h5 -o out/fig3_return_map.png
+
+# Yasuda Fig. 4: over 500-501 s, every step.  Each run stops at t = 500 s
+# (--stop-after writes a checkpoint, exit 6) and continues with a row per
+# step ([scene] output_every = 1) to 501 s.  The MV2M run also records the
+# one-step difference Verlet - second-order mid-point ([compare]).
+FIG4_SET := --set scene.t_end=501 --set compare.a=verlet
+fig4: $(PROG)
+	@mkdir -p out
+	$(PROG) run runs/two_balls_B.ini -q -o out/fig4_mv2m.h5 $(FIG4_SET) \
+	    --stop-after 5000000 || test $$? -eq 6
+	$(PROG) run --restart out/fig4_mv2m.h5 -q --set scene.output_every=1
+	$(PROG) run runs/two_balls_B.ini -q -o out/fig4_verlet.h5 $(FIG4_SET) \
+	    --set scene.integrator=verlet --stop-after 5000000 || test $$? -eq 6
+	$(PROG) run --restart out/fig4_verlet.h5 -q --set scene.output_every=1
+	$(PY) plots/fig4_velocity_difference.py out/fig4_mv2m.h5 \
+	    out/fig4_verlet.h5 -o out/fig4_velocity_difference.png
+
+# Work-precision diagrams of `ballfilm converge` (acceptance runs of the
+# integrator issue): the harmonic oscillator and the bouncing ball.
+converge-figures: $(PROG)
+	@mkdir -p out
+	$(PROG) converge runs/harmonic.ini --methods verlet,mv2m,rk3,rk4,arkode \
+	    -q -o out/converge_harmonic.h5
+	$(PY) plots/work_precision.py out/converge_harmonic.h5 \
+	    -o out/work_precision_harmonic.png
+	$(PROG) converge runs/bouncing_ball.ini \
+	    --methods verlet,mv2m,rk3,rk4,impmid,arkode -q \
+	    -o out/converge_bouncing_ball.h5
+	$(PY) plots/work_precision.py out/converge_bouncing_ball.h5 \
+	    -o out/work_precision_bouncing_ball.png
+	$(PROG) converge runs/bouncing_ball.ini \
+	    --methods verlet,mv2m,rk3,rk4,impmid,arkode -q --t-end 1 \
+	    --dt 1e-4,5e-5,2.5e-5,1.25e-5,6.25e-6 --tol 1e-6,1e-8,1e-10,1e-12 \
+	    -o out/converge_bouncing_ball_1s.h5
+	$(PY) plots/work_precision.py out/converge_bouncing_ball_1s.h5 \
+	    -o out/work_precision_bouncing_ball_1s.png
+
 figures:
 	@$(MAKE) --no-print-directory deps deps-plot
 	@$(MAKE) --no-print-directory all
 	@$(MAKE) --no-print-directory fig1
+	@$(MAKE) --no-print-directory fig2
+	@$(MAKE) --no-print-directory fig3
+	@$(MAKE) --no-print-directory fig4
+	@$(MAKE) --no-print-directory converge-figures
 	@$(MAKE) --no-print-directory stratres
 	@$(MAKE) --no-print-directory mac-checks
 	@echo "figures are in out/"

@@ -1,12 +1,15 @@
 /* test_restart.c: runs survive interruption.  A run stopped midway (by
  * --stop-after, or by SIGINT at an arbitrary step) and continued with
  * --restart produces bit for bit the datasets of an uninterrupted run. */
+#include <math.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
+
+#include <hdf5.h>
 
 #include "ballfilm/h5out.h"
 #include "testutil.h"
@@ -77,6 +80,89 @@ START_TEST(sigint_checkpoints_and_restart_identical)
 }
 END_TEST
 
+static double root_attr(const char *file, const char *name)
+{
+    hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+    ck_assert(f >= 0);
+    double v = NAN;
+    hid_t a = H5Aopen(f, name, H5P_DEFAULT);
+    ck_assert_msg(a >= 0, "%s: no attribute %s", file, name);
+    H5Aread(a, H5T_NATIVE_DOUBLE, &v);
+    H5Aclose(a);
+    H5Fclose(f);
+    return v;
+}
+
+/* The analyses of the balls model (return map with its pending contact,
+ * Lyapunov shadow trajectory and sums) continue bit for bit too.  The
+ * lower-heavier scene has contacts with several minima, so a stop can fall
+ * inside a contact with a candidate pending. */
+START_TEST(return_map_and_lyapunov_restart_identical)
+{
+    const char *scene = tu_repo("runs/two_balls_A.ini");
+    char full[512], part[512];
+    snprintf(full, sizeof full, "%s", tu_tmp("rm_full.h5"));
+    snprintf(part, sizeof part, "%s", tu_tmp("rm_part.h5"));
+    const char *common[] = {"--set", "scene.t_end=20", "--set",
+                            "scene.output_every=53", "--set",
+                            "return_map.enabled=yes", "--set",
+                            "lyapunov.enabled=yes", "-q"};
+    const char *argv[32];
+    size_t n = 0;
+    argv[n++] = "run";
+    argv[n++] = scene;
+    argv[n++] = "-o";
+    argv[n++] = full;
+    for (size_t k = 0; k < sizeof common / sizeof common[0]; k++)
+        argv[n++] = common[k];
+    argv[n] = NULL;
+    ck_assert_int_eq(tu_runv(NULL, NULL, argv), 0);
+    /* first stop two steps after the 100th lowest point, i.e. inside that
+     * floor contact with its candidate pending (checked in the checkpoint),
+     * then at odd steps */
+    bf_err herr = {0};
+    double *tm;
+    size_t nt, nt1;
+    ck_assert(bf_h5_read(full, "/return_map/time", &tm, &nt, &nt1, &herr) == 0);
+    ck_assert(nt > 100);
+    char stop[32];
+    snprintf(stop, sizeof stop, "%ld", (long)ceil(tm[100] / 1e-4) + 2);
+    free(tm);
+    argv[3] = part;
+    argv[n++] = "--stop-after";
+    argv[n++] = stop;
+    argv[n] = NULL;
+    ck_assert_int_eq(tu_runv(NULL, NULL, argv), 6);
+    char ckpt[600];
+    snprintf(ckpt, sizeof ckpt, "%s.ckpt", part);
+    double *meta;
+    size_t nm, nm1;
+    ck_assert(bf_h5_read(ckpt, "/return_map.meta", &meta, &nm, &nm1, &herr) ==
+              0);
+    ck_assert_msg(nm == 3 && meta[0] == 100 && meta[2] == 1,
+                  "checkpoint: %g points, pending %g", meta[0], meta[2]);
+    free(meta);
+    const char *const again[] = {"run", "--restart", part, "-q",
+                                 "--stop-after", "50021", NULL};
+    for (int k = 0; k < 3; k++)
+        ck_assert_int_eq(tu_runv(NULL, NULL, again), 6);
+    char *err = NULL;
+    int rc = tu_run(NULL, &err, "run", "--restart", part, "-q", NULL);
+    ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
+    free(err);
+    tu_same_datasets(full, part);
+    const char *attrs[] = {"lyapunov_exponent", "return_map_points",
+                           "return_map_multi_minima"};
+    for (int k = 0; k < 3; k++) {
+        double a = root_attr(full, attrs[k]), b = root_attr(part, attrs[k]);
+        ck_assert_msg(memcmp(&a, &b, sizeof a) == 0, "%s: %.17g vs %.17g",
+                      attrs[k], a, b);
+    }
+    ck_assert(root_attr(full, "return_map_points") > 500);
+    ck_assert(root_attr(full, "lyapunov_exponent") > 1);
+}
+END_TEST
+
 START_TEST(restart_errors_are_clear)
 {
     char *err = NULL;
@@ -98,6 +184,7 @@ Suite *suite_restart(void)
     tcase_add_test(tc, stop_and_restart_bit_identical);
     tcase_add_test(tc, sigint_checkpoints_and_restart_identical);
     tcase_add_test(tc, restart_errors_are_clear);
+    tcase_add_test(tc, return_map_and_lyapunov_restart_identical);
     suite_add_tcase(s, tc);
     return s;
 }

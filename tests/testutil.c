@@ -322,3 +322,38 @@ void tu_same_datasets(const char *a, const char *b)
     tu_free_list(la);
     tu_free_list(lb);
 }
+
+int tu_accel_harmonic(void *ctx, double t, const double *x, const double *v,
+                      double *a)
+{
+    (void)ctx;
+    (void)t;
+    (void)v;
+    a[0] = -x[0];
+    return 0;
+}
+
+bf_integrator *tu_integrator(const char *name, const char *keys, size_t n)
+{
+    char text[1024];
+    int len = snprintf(text, sizeof text,
+                       "[scene]\nintegrator = %s\ndt = 1\nt_end = 1\n", name);
+    if (keys) {
+        len += snprintf(text + len, sizeof text - (size_t)len, "[integrator]\n");
+        for (const char *p = keys; *p;) {
+            const char *e = strchr(p, ';');
+            size_t l = e ? (size_t)(e - p) : strlen(p);
+            len += snprintf(text + len, sizeof text - (size_t)len, "%.*s\n",
+                            (int)l, p);
+            p += l + (e ? 1 : 0);
+        }
+    }
+    snprintf(text + len, sizeof text - (size_t)len, "[ball.1]\nposition = 1\n");
+    bf_scene *sc = tu_scene(text);
+    bf_integrator *it;
+    bf_err err = {0};
+    ck_assert_msg(bf_integrator_create(&it, name, n, sc, &err) == BF_OK, "%s",
+                  err.msg);
+    bf_scene_free(sc);
+    return it;
+}

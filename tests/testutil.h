@@ -10,6 +10,7 @@
 #include <check.h>
 #include <stddef.h>
 
+#include "ballfilm/integrator.h"
 #include "ballfilm/scene.h"
 #include "ballfilm/sim.h"
 
@@ -48,6 +49,13 @@ void tu_same_datasets(const char *a, const char *b);
 double tu_max(const double *v, size_t n);
 double tu_absmax(const double *v, size_t n);
 
+/* An integrator of n unknowns with [integrator] keys given as
+ * "key=value;key=value" (NULL: defaults); fails the test on error. */
+bf_integrator *tu_integrator(const char *name, const char *keys, size_t n);
+
+/* x'' = -x for one unknown (a bf_accel_fn; ctx, t and v unused). */
+int tu_accel_harmonic(void *ctx, double t, const double *x, const double *v,
+                      double *a);
 
 /* Standard test case with a generous timeout. */
 TCase *tu_tcase(const char *name);

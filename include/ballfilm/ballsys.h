@@ -18,6 +18,9 @@ typedef struct bf_ballsys {
     size_t neff;
     bf_integrator *it;
     bf_ode ode;
+    /* one step: the integrator's generic step, or for Verlet and MV2M the
+     * bit-identical specialised one (ballsys.c) */
+    bf_status (*step)(struct bf_ballsys *s, double t, double dt, bf_err *err);
 } bf_ballsys;
 
 extern const bf_section_spec bf_ballsys_ball_spec; /* [ball.N] */
@@ -30,8 +33,13 @@ void bf_ballsys_free(bf_ballsys *s);
 
 /* One integrator step; fails with BF_EUNSTABLE, naming the ball, if a
  * position or velocity is not finite afterwards (the state is then that of
- * the failed step; the caller stops). */
-bf_status bf_ballsys_step(bf_ballsys *s, double t, double dt, bf_err *err);
+ * the failed step; the caller stops).  Inline: it is the body of every
+ * long run's loop (s->step is chosen in ballsys.c). */
+static inline bf_status bf_ballsys_step(bf_ballsys *s, double t, double dt,
+                                        bf_err *err)
+{
+    return s->step(s, t, dt, err);
+}
 
 /* Checkpoint: positions, velocities and integrator state under names
  * starting with `prefix`. */

@@ -15,6 +15,23 @@
 #include "ballfilm/contact.h"
 #include "ballfilm/effects.h"
 
+/* Forced inlining: the dispatch point is called three times per MV2M step;
+ * left to itself GCC keeps one out-of-line copy (with a memset call for
+ * the zeroing loop) and the specialised steps of ballsys.c lose most of
+ * their gain. */
+#if defined(__GNUC__)
+#define BF_EFFECT_INLINE static inline __attribute__((always_inline))
+#else
+#define BF_EFFECT_INLINE static inline
+#endif
+/* Loops over the balls: unrolled when n is known at compile time (the
+ * specialised steps of ballsys.c), harmless otherwise. */
+#if defined(__GNUC__) && !defined(__clang__)
+#define BF_UNROLL _Pragma("GCC unroll 4")
+#else
+#define BF_UNROLL
+#endif
+
 typedef struct bf_gravity {
     double g; /* cm/s^2, pulls towards x = -inf */
 } bf_gravity;
@@ -32,25 +49,28 @@ typedef struct bf_spring {
     double rest; /* cm */
 } bf_spring;
 
-static inline void bf_gravity_accel(const bf_gravity *p, const bf_balls *b,
+BF_EFFECT_INLINE void bf_gravity_accel(const bf_gravity *p, const bf_balls *b,
                                     const double *x, double *acc)
 {
     (void)x;
+    BF_UNROLL
     for (size_t i = 0; i < b->n; i++)
         acc[i] -= p->g;
 }
 
-static inline void bf_floor_accel(const bf_floor *p, const bf_balls *b,
+BF_EFFECT_INLINE void bf_floor_accel(const bf_floor *p, const bf_balls *b,
                                   const double *x, double *acc)
 {
+    BF_UNROLL
     for (size_t i = 0; i < b->n; i++)
         if (x[i] < b->R[i])
             acc[i] += bf_hertz_floor_force(p->k, b->R[i], x[i]) * b->inv_m[i];
 }
 
-static inline void bf_contact_accel(const bf_contact *p, const bf_balls *b,
+BF_EFFECT_INLINE void bf_contact_accel(const bf_contact *p, const bf_balls *b,
                                     const double *x, double *acc)
 {
+    BF_UNROLL
     for (size_t i = 0; i + 1 < b->n; i++) {
         double d = x[i + 1] - x[i];
         if (d < b->R[i] + b->R[i + 1]) {
@@ -61,7 +81,7 @@ static inline void bf_contact_accel(const bf_contact *p, const bf_balls *b,
     }
 }
 
-static inline void bf_spring_accel(const bf_spring *p, const bf_balls *b,
+BF_EFFECT_INLINE void bf_spring_accel(const bf_spring *p, const bf_balls *b,
                                    const double *x, double *acc)
 {
     for (size_t i = 0; i < b->n; i++)
@@ -69,10 +89,11 @@ static inline void bf_spring_accel(const bf_spring *p, const bf_balls *b,
 }
 
 /* acc = sum over the effects; returns non-zero if an effect fails. */
-static inline int bf_effects_accel_inline(const bf_effect *e, size_t ne,
+BF_EFFECT_INLINE int bf_effects_accel_inline(const bf_effect *e, size_t ne,
                                           const bf_balls *b, double t,
                                           const double *x, double *acc)
 {
+    BF_UNROLL
     for (size_t i = 0; i < b->n; i++)
         acc[i] = 0.0;
     for (size_t k = 0; k < ne; k++) {

@@ -33,6 +33,31 @@ typedef struct bf_ode {
     unsigned long epoch;    /* bumped when the force field changes */
 } bf_ode;
 
+/* Events (optional, see bf_integrator_set_events).  g(ctx, t, x, v) ->
+ * g[n]; an integrator with BF_INT_ROOTS locates the zeros of g inside its
+ * steps (ARKODE rootfinding) and calls hit(ctx, k, t, x, v) with the state
+ * at each root, in time order, before the step returns.  dir[k] = +1
+ * (only where g increases), -1 (decreases) or 0 (both); dir may be NULL.
+ * Integrators without BF_INT_ROOTS ignore events: the caller then locates
+ * them from the step's end states. */
+typedef int (*bf_root_fn)(void *ctx, double t, const double *x,
+                          const double *v, double *g);
+typedef void (*bf_root_hit_fn)(void *ctx, int k, double t, const double *x,
+                               const double *v);
+typedef struct bf_events {
+    int n;
+    bf_root_fn g;
+    const int *dir;
+    bf_root_hit_fn hit;
+    void *ctx;
+} bf_events;
+
+/* Step monitor (optional, see bf_integrator_set_monitor): adaptive
+ * integrators call it with the state after each accepted internal step, so
+ * that a driver can watch, e.g., the energy inside one long call. */
+typedef void (*bf_monitor_fn)(void *ctx, double t, const double *x,
+                              const double *v);
+
 typedef struct bf_counters {
     unsigned long long steps;      /* accepted steps */
     unsigned long long evals;      /* force (acceleration) evaluations */
@@ -46,7 +71,8 @@ enum {
     BF_INT_SYMMETRIC = 1u << 0,     /* time-symmetric (bounded energy error) */
     BF_INT_POSITION_ONLY = 1u << 1, /* needs a(x) independent of v */
     BF_INT_ADAPTIVE = 1u << 2,      /* takes its own internal steps */
-    BF_INT_IMPLICIT = 1u << 3
+    BF_INT_IMPLICIT = 1u << 3,
+    BF_INT_ROOTS = 1u << 4 /* locates the events of bf_ode inside its steps */
 };
 
 typedef struct bf_integrator_type {
@@ -60,7 +86,9 @@ typedef struct bf_integrator_type {
      * (sc may be NULL: use defaults). */
     bf_status (*init)(bf_integrator *it, const bf_scene *sc, bf_err *err);
     /* Advance (x, v) from t to t + dt in place.  On failure x, v are left
-     * at their values at t. */
+     * at their values at t.  Adaptive integrators (BF_INT_ADAPTIVE) take
+     * their own internal steps inside [t, t + dt] and end exactly at
+     * t + dt. */
     bf_status (*step)(bf_integrator *it, const bf_ode *ode, double t, double dt,
                       double *x, double *v, bf_err *err);
     void (*free)(bf_integrator *it);
@@ -70,6 +98,11 @@ typedef struct bf_integrator_type {
                       bf_err *err);
     bf_status (*load)(bf_integrator *it, const bf_ckpt *ck, const char *prefix,
                       bf_err *err);
+    /* Nominal order when it depends on the parameters (ARKODE tables);
+     * optional, `order` is used otherwise. */
+    int (*order_of)(const bf_integrator *it);
+    /* One-line description with the parameters in use; optional. */
+    void (*describe)(const bf_integrator *it, char *buf, size_t cap);
 } bf_integrator_type;
 
 struct bf_integrator {
@@ -82,6 +115,9 @@ struct bf_integrator {
     double *cache_x, *cache_a;
     int cache_valid;
     unsigned long cache_epoch;
+    const bf_events *events; /* NULL: none (bf_integrator_set_events) */
+    bf_monitor_fn monitor;   /* NULL: none (bf_integrator_set_monitor) */
+    void *monitor_ctx;
 };
 
 const bf_integrator_type *bf_integrator_find(const char *name);
@@ -91,6 +127,16 @@ const bf_integrator_type *const *bf_integrator_types(size_t *n);
 bf_status bf_integrator_create(bf_integrator **it, const char *name, size_t n,
                                const bf_scene *sc, bf_err *err);
 void bf_integrator_free(bf_integrator *it);
+/* Nominal global order of an instance, and a one-line description of it
+ * ("arkode DORMAND_PRINCE_7_4_5 rtol=1e-08 atol=1e-11", or the name). */
+int bf_integrator_order(const bf_integrator *it);
+void bf_integrator_describe(const bf_integrator *it, char *buf, size_t cap);
+/* Register events (kept by pointer; NULL removes them).  Only integrators
+ * with BF_INT_ROOTS use them. */
+void bf_integrator_set_events(bf_integrator *it, const bf_events *ev);
+/* Watch the internal steps of adaptive integrators (NULL removes it).
+ * Fixed-step integrators do not call it: each of their steps is a call. */
+void bf_integrator_set_monitor(bf_integrator *it, bf_monitor_fn fn, void *ctx);
 /* Forget cached forces (after the caller changed x or the force field). */
 void bf_integrator_reset(bf_integrator *it);
 /* Checkpoint: counters, the force cache and the type's private state, under

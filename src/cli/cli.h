@@ -6,8 +6,9 @@
 
 int bf_cmd_run(int argc, char **argv);
 int bf_cmd_sweep(int argc, char **argv);
+int bf_cmd_converge(int argc, char **argv);
 /* Create ./out if missing; 0 on success (else prints why). */
-int mkdir_out(void);
+int bf_cli_mkdir_out(void);
 void bf_cli_print_keys(FILE *f);
 
 #endif

@@ -52,7 +52,7 @@ static void run_usage(FILE *f)
             "\n");
 }
 
-int mkdir_out(void)
+int bf_cli_mkdir_out(void)
 {
     if (mkdir("out", 0777) && errno != EEXIST) {
         fprintf(stderr, "ballfilm: error: cannot create directory 'out': %s\n",
@@ -74,7 +74,7 @@ static char *default_output(const char *scene)
     if (!p)
         return NULL;
     snprintf(p, len + 16, "out/%.*s.h5", (int)len, base);
-    if (mkdir("out", 0777) && errno != EEXIST) {
+    if (bf_cli_mkdir_out()) {
         free(p);
         return NULL;
     }

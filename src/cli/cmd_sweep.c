@@ -122,7 +122,7 @@ static int parse_args(int argc, char **argv, sweep_args *a)
             len -= 4;
         snprintf(a->defdir, sizeof a->defdir, "out/%.*s_sweep", (int)len, base);
         a->dir = a->defdir;
-        if (mkdir_out())
+        if (bf_cli_mkdir_out())
             return 5;
     }
     return 0;

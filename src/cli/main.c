@@ -21,6 +21,11 @@ static void usage(FILE *f)
             "[--jobs N]\n"
             "                     run a parameter sweep (see 'ballfilm sweep "
             "--help')\n"
+            "  converge SCENE.ini --methods M1,M2,... [--dt ...] [--tol ...] "
+            "[--t-end T]\n"
+            "                     convergence / work-precision study against "
+            "an ARKODE\n"
+            "                     reference (see 'ballfilm converge --help')\n"
             "  help               this text and every scene key\n"
             "  version            print the version\n"
             "\n"
@@ -51,6 +56,8 @@ int main(int argc, char **argv)
     }
     if (!strcmp(cmd, "sweep"))
         return bf_cmd_sweep(argc - 1, argv + 1);
+    if (!strcmp(cmd, "converge"))
+        return bf_cmd_converge(argc - 1, argv + 1);
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
         usage(stdout);
         printf("\n");

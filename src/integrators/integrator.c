@@ -49,6 +49,30 @@ void bf_integrator_free(bf_integrator *it)
 
 void bf_integrator_reset(bf_integrator *it) { it->cache_valid = 0; }
 
+void bf_integrator_set_events(bf_integrator *it, const bf_events *ev)
+{
+    it->events = ev;
+}
+
+void bf_integrator_set_monitor(bf_integrator *it, bf_monitor_fn fn, void *ctx)
+{
+    it->monitor = fn;
+    it->monitor_ctx = ctx;
+}
+
+int bf_integrator_order(const bf_integrator *it)
+{
+    return it->type->order_of ? it->type->order_of(it) : it->type->order;
+}
+
+void bf_integrator_describe(const bf_integrator *it, char *buf, size_t cap)
+{
+    if (it->type->describe)
+        it->type->describe(it, buf, cap);
+    else
+        snprintf(buf, cap, "%s", it->type->name);
+}
+
 bf_status bf_integrator_alloc_work(bf_integrator *it, size_t nvec, bf_err *err)
 {
     free(it->work);

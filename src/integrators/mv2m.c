@@ -16,11 +16,12 @@
  *
  * The increments x^{n+1} - x^n and v^{n+1} - v^n are formed first and added
  * once: adding several small terms to a large x one by one would lose more
- * to round-off over 10^7 steps.
+ * to round-off over 10^7 steps.  The formulas live in step_kernels.h, shared
+ * with the ball system's specialised step.
  */
-#include "ballfilm/integrator.h"
+#include "ballfilm/step_kernels.h"
 
-enum { A0, AV, AT, XV, XT, NVEC };
+enum { NVEC = 5 }; /* a0, aV, aT, xV, xT (step_kernels.h) */
 
 static bf_status mv2m_init(bf_integrator *it, const bf_scene *sc, bf_err *err)
 {
@@ -31,34 +32,8 @@ static bf_status mv2m_init(bf_integrator *it, const bf_scene *sc, bf_err *err)
 static bf_status mv2m_step(bf_integrator *it, const bf_ode *ode, double t,
                            double dt, double *x, double *v, bf_err *err)
 {
-    size_t n = ode->n;
-    double *a0 = it->work + A0 * n, *aV = it->work + AV * n,
-           *aT = it->work + AT * n, *xV = it->work + XV * n,
-           *xT = it->work + XT * n;
-    bf_status st = bf_ode_eval(it, ode, t, x, v, a0, err);
-    if (st)
-        return st;
-    const double dt2 = dt * dt, hdt = 0.5 * dt, hdt2 = 0.5 * dt2,
-                 edt2 = 0.125 * dt2, dt6 = dt / 6.0, dt26 = dt2 / 6.0;
-    for (size_t i = 0; i < n; i++) {
-        xV[i] = x[i] + (dt * v[i] + hdt2 * a0[i]);
-        xT[i] = x[i] + (hdt * v[i] + edt2 * a0[i]);
-    }
-    /* Both predictors are evaluated at t + dt and t + dt/2; the velocity
-     * argument is unused (a = a(x)). */
-    if ((st = bf_ode_eval(it, ode, t + dt, xV, v, aV, err)) ||
-        (st = bf_ode_eval(it, ode, t + 0.5 * dt, xT, v, aT, err)))
-        return st;
-    for (size_t i = 0; i < n; i++) {
-        /* (vV + 2 vT)/3 - v^n = dt/6 (a0 + aV + 4 aT)
-         * x^{n+1} - x^n     = dt v^n + dt^2/6 (2 a0 + aV) */
-        double dv = dt6 * (a0[i] + aV[i] + 4.0 * aT[i]);
-        double dx = dt * v[i] + dt26 * (2.0 * a0[i] + aV[i]);
-        x[i] += dx;
-        v[i] += dv;
-    }
-    it->count.steps++;
-    return BF_OK;
+    return bf_mv2m_kernel(it, ode, ode->accel, ode->ctx, ode->n, it->work, t,
+                          dt, x, v, err);
 }
 
 const bf_integrator_type bf_integrator_mv2m = {

@@ -5,11 +5,13 @@
  *   v^{n+1} = v^n + dt (a^{n+1} + a^n)/2                        (2.11)
  *
  * Second order, symplectic and time-symmetric.  a^{n+1} is kept for the next
- * step, so a step costs one force evaluation.  Requires a = a(x).
+ * step, so a step costs one force evaluation.  Requires a = a(x).  The
+ * formulas live in step_kernels.h, shared with the ball system's
+ * specialised step.
  */
-#include "ballfilm/integrator.h"
+#include "ballfilm/step_kernels.h"
 
-enum { A0, A1, XN, NVEC };
+enum { NVEC = 3 }; /* a0, a1, xn (step_kernels.h) */
 
 static bf_status verlet_init(bf_integrator *it, const bf_scene *sc, bf_err *err)
 {
@@ -20,25 +22,8 @@ static bf_status verlet_init(bf_integrator *it, const bf_scene *sc, bf_err *err)
 static bf_status verlet_step(bf_integrator *it, const bf_ode *ode, double t,
                              double dt, double *x, double *v, bf_err *err)
 {
-    size_t n = ode->n;
-    double *a0 = it->work + A0 * n, *a1 = it->work + A1 * n,
-           *xn = it->work + XN * n;
-    bf_status st = bf_ode_eval_cached(it, ode, t, x, v, a0, err);
-    if (st)
-        return st;
-    const double h2 = 0.5 * dt * dt;
-    for (size_t i = 0; i < n; i++)
-        xn[i] = x[i] + (dt * v[i] + h2 * a0[i]);
-    st = bf_ode_eval(it, ode, t + dt, xn, v, a1, err);
-    if (st)
-        return st;
-    for (size_t i = 0; i < n; i++) {
-        x[i] = xn[i];
-        v[i] += 0.5 * dt * (a1[i] + a0[i]);
-    }
-    bf_integrator_cache_store(it, ode, x, a1);
-    it->count.steps++;
-    return BF_OK;
+    return bf_verlet_kernel(it, ode, ode->accel, ode->ctx, ode->n, it->work, t,
+                            dt, x, v, err);
 }
 
 const bf_integrator_type bf_integrator_verlet = {

@@ -1,7 +1,21 @@
-/* ballsys.c: balls + effects + integrator (see ballsys.h). */
+/* ballsys.c: balls + effects + integrator (see ballsys.h).
+ *
+ * Speed: with Verlet or MV2M (the methods of the long runs) a step does not
+ * go through the integrator descriptor and the bf_ode callback but through
+ * a specialised step: the integrator's kernel (step_kernels.h)
+ * instantiated here with the effects' dispatch point inlined
+ * (effect_kernels.h).  Same operations in the same order, so the same bits
+ * as the generic path (bench/bench_balls.c compares them), same counters.
+ * Any other integrator takes the generic path, and so does every step
+ * when a caller has replaced s->ode.accel by its own force function.
+ */
 #include "ballfilm/ballsys.h"
 
+#include <float.h>
+#include <string.h>
+
 #include "ballfilm/effect_kernels.h"
+#include "ballfilm/step_kernels.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -22,16 +36,188 @@ const bf_section_spec bf_ballsys_ball_spec = {
     ball_params};
 
 /* The acceleration callback handed to the integrator: the effects' dispatch
- * point, inlined here (see effect_kernels.h for why). */
+ * point, inlined here (see effect_kernels.h for why).  The attribute keeps
+ * GCC from turning the zeroing loop into a memset call; the specialised
+ * steps below carry it too so that this function inlines into them. */
 #if defined(__GNUC__) && !defined(__clang__)
-__attribute__((optimize("no-tree-loop-distribute-patterns")))
+#define BALLSYS_HOT __attribute__((optimize("no-tree-loop-distribute-patterns")))
+#else
+#define BALLSYS_HOT
 #endif
+BALLSYS_HOT
 static int ballsys_accel(void *ctx, double t, const double *x, const double *v,
                          double *acc)
 {
     (void)v;
     const bf_ballsys *s = ctx;
     return bf_effects_accel_inline(s->eff, s->neff, &s->b, t, x, acc);
+}
+
+/* ---- specialised steps ----
+ * The kernels of step_kernels.h instantiated with the effects' dispatch
+ * inlined.  For the two scenes of the paper's long runs the effect list and
+ * the number of balls are also fixed at compile time (gravity + floor with
+ * one ball, gravity + floor + contact with two): what the forces read is
+ * copied into a local object at the start of the step, so the compiler
+ * knows n, sees that the step's stores cannot change it and keeps it in
+ * registers.  The effect kernels are the same inline functions, called in
+ * the scene's order, so every force is computed exactly as in the generic
+ * dispatch. */
+
+BF_ALWAYS_INLINE int ballsys_accel_inl(void *ctx, double t, const double *x,
+                                       const double *v, double *acc)
+{
+    (void)v;
+    const bf_ballsys *s = ctx;
+    return bf_effects_accel_inline(s->eff, s->neff, &s->b, t, x, acc);
+}
+
+/* What the forces of a fixed effect list read: the balls with n a
+ * compile-time constant (so that the loops unroll) and the effects'
+ * parameters.  Nothing is copied: x, v and the scratch are restrict in the
+ * kernels, so the compiler knows the step's stores leave these alone. */
+typedef struct fixed_forces {
+    bf_balls b;
+    const bf_gravity *gravity;
+    const bf_floor *floor;
+    const bf_contact *contact;
+} fixed_forces;
+
+BF_ALWAYS_INLINE void fixed_setup(fixed_forces *F, const bf_ballsys *s,
+                                  size_t n)
+{
+    F->b = s->b;
+    F->b.n = n;
+    F->gravity = s->eff[0].self;
+    F->floor = s->eff[1].self;
+    F->contact = s->neff > 2 ? s->eff[2].self : NULL;
+}
+
+/* the dispatch point's zeroing, then the listed kernels in order */
+BF_ALWAYS_INLINE int gf_accel(void *ctx, double t, const double *x,
+                              const double *v, double *acc)
+{
+    (void)t;
+    (void)v;
+    const fixed_forces *F = ctx;
+    BF_UNROLL
+    for (size_t i = 0; i < F->b.n; i++)
+        acc[i] = 0.0;
+    bf_gravity_accel(F->gravity, &F->b, x, acc);
+    bf_floor_accel(F->floor, &F->b, x, acc);
+    return 0;
+}
+
+BF_ALWAYS_INLINE int gfc_accel(void *ctx, double t, const double *x,
+                               const double *v, double *acc)
+{
+    gf_accel(ctx, t, x, v, acc);
+    const fixed_forces *F = ctx;
+    bf_contact_accel(F->contact, &F->b, x, acc);
+    return 0;
+}
+
+/* all of x and v finite?  |y| <= DBL_MAX is false for inf and NaN; the
+ * comparisons are independent (no chain of dependent additions), so the
+ * check costs almost nothing next to the step */
+BF_ALWAYS_INLINE int state_finite(const bf_ballsys *s, size_t n)
+{
+    double z = 0.0;
+    BF_UNROLL
+    for (size_t i = 0; i < n; i++)
+        z += s->b.x[i] * 0.0 + s->b.v[i] * 0.0;
+    return z == 0.0;
+}
+
+static bf_status not_finite(const bf_ballsys *s, bf_err *err);
+
+/* any integrator through its descriptor; also used when a caller replaced
+ * ode.accel (tests plug their own force in this way) */
+static bf_status step_generic(bf_ballsys *s, double t, double dt, bf_err *err)
+{
+    bf_status st = bf_integrator_step(s->it, &s->ode, t, dt, s->b.x, s->b.v,
+                                      err);
+    if (st || state_finite(s, s->b.n))
+        return st;
+    return not_finite(s, err);
+}
+
+#define BALLSYS_STEP_FIXED(NAME, KERNEL, NWORK, ACCEL, N)                      \
+    BALLSYS_HOT static bf_status NAME(bf_ballsys *s, double t, double dt,     \
+                                      bf_err *err)                            \
+    {                                                                         \
+        if (s->ode.accel != ballsys_accel)                                    \
+            return step_generic(s, t, dt, err);                               \
+        fixed_forces F;                                                       \
+        double w[NWORK * N];                                                  \
+        fixed_setup(&F, s, N);                                                \
+        bf_status st = KERNEL(s->it, &s->ode, ACCEL, &F, N, w, t, dt, s->b.x, \
+                              s->b.v, err);                                   \
+        if (st || state_finite(s, N))                                         \
+            return st;                                                        \
+        return not_finite(s, err);                                            \
+    }
+
+BALLSYS_STEP_FIXED(step_mv2m_gf1, bf_mv2m_kernel, 5, gf_accel, 1)
+BALLSYS_STEP_FIXED(step_mv2m_gfc2, bf_mv2m_kernel, 5, gfc_accel, 2)
+BALLSYS_STEP_FIXED(step_verlet_gf1, bf_verlet_kernel, 3, gf_accel, 1)
+BALLSYS_STEP_FIXED(step_verlet_gfc2, bf_verlet_kernel, 3, gfc_accel, 2)
+
+/* any effects, any n: only the dispatch is inlined */
+BALLSYS_HOT
+static bf_status step_mv2m_any(bf_ballsys *s, double t, double dt, bf_err *err)
+{
+    if (s->ode.accel != ballsys_accel)
+        return step_generic(s, t, dt, err);
+    bf_status st = bf_mv2m_kernel(s->it, &s->ode, ballsys_accel_inl, s, s->b.n,
+                                  s->it->work, t, dt, s->b.x, s->b.v, err);
+    if (st || state_finite(s, s->b.n))
+        return st;
+    return not_finite(s, err);
+}
+
+BALLSYS_HOT
+static bf_status step_verlet_any(bf_ballsys *s, double t, double dt,
+                                 bf_err *err)
+{
+    if (s->ode.accel != ballsys_accel)
+        return step_generic(s, t, dt, err);
+    bf_status st = bf_verlet_kernel(s->it, &s->ode, ballsys_accel_inl, s,
+                                    s->b.n, s->it->work, t, dt, s->b.x, s->b.v,
+                                    err);
+    if (st || state_finite(s, s->b.n))
+        return st;
+    return not_finite(s, err);
+}
+
+
+/* Is the effect list exactly these kinds, in this order? */
+static int effects_are(const bf_ballsys *s, const bf_effect_kind *k, size_t nk)
+{
+    if (s->neff != nk)
+        return 0;
+    for (size_t j = 0; j < nk; j++)
+        if (s->eff[j].type->kind != k[j])
+            return 0;
+    return 1;
+}
+
+static void choose_step(bf_ballsys *s)
+{
+    static const bf_effect_kind gfc[] = {BF_EFFECT_GRAVITY, BF_EFFECT_FLOOR,
+                                         BF_EFFECT_CONTACT};
+    const char *iname = s->it->type->name;
+    const int mv2m = !strcmp(iname, "mv2m"), verlet = !strcmp(iname, "verlet");
+    const int gf1 = s->b.n == 1 && effects_are(s, gfc, 2);
+    const int gfc2 = s->b.n == 2 && effects_are(s, gfc, 3);
+    if (mv2m)
+        s->step = gf1 ? step_mv2m_gf1 : gfc2 ? step_mv2m_gfc2 : step_mv2m_any;
+    else if (verlet)
+        s->step = gf1    ? step_verlet_gf1
+                  : gfc2 ? step_verlet_gfc2
+                         : step_verlet_any;
+    else
+        s->step = step_generic;
 }
 
 void bf_ballsys_free(bf_ballsys *s)
@@ -137,15 +323,13 @@ bf_status bf_ballsys_create(bf_ballsys **out, const bf_scene *sc,
     s->ode.ctx = s;
     s->ode.velocity_dependent = 0;
     s->ode.epoch = 0;
+    choose_step(s);
     *out = s;
     return BF_OK;
 }
 
-bf_status bf_ballsys_step(bf_ballsys *s, double t, double dt, bf_err *err)
+static bf_status not_finite(const bf_ballsys *s, bf_err *err)
 {
-    bf_status st = bf_integrator_step(s->it, &s->ode, t, dt, s->b.x, s->b.v, err);
-    if (st)
-        return st;
     for (size_t i = 0; i < s->b.n; i++)
         if (!isfinite(s->b.x[i]) || !isfinite(s->b.v[i]))
             return bf_fail(err, BF_EUNSTABLE,
@@ -153,7 +337,7 @@ bf_status bf_ballsys_step(bf_ballsys *s, double t, double dt, bf_err *err)
                            "velocity %g cm/s); the step is too large for "
                            "this integrator",
                            i + 1, s->b.x[i], s->b.v[i]);
-    return BF_OK;
+    return bf_fail(err, BF_EUNSTABLE, "non-finite state");
 }
 
 void bf_ballsys_energy(const bf_ballsys *s, double t, double *kin, double *pot)

@@ -1,0 +1,77 @@
+/* returnmap.h: first-return maps of balls falling on a floor (Yasuda
+ * sec. 2.5, Figs 2-3; Whelan et al.): the state (z, v) of one ball (the
+ * "recorded" ball, default the upper ball 2) each time another ball (the
+ * "trigger", default the lower ball 1) is at its lowest point after
+ * hitting the floor.
+ *
+ * Locating the instant.  The trigger ball's lowest point is where its
+ * velocity changes sign from negative to non-negative (during free flight
+ * gravity and the ball above can only decrease v, so an increase through 0
+ * happens only in floor contact).  For fixed-step integrators the step in
+ * which this happens is found from the end states, and the instant inside
+ * it from the cubic Hermite interpolant of the trigger's position through
+ * (z, v) at both ends: its derivative, a quadratic, changes sign in the
+ * step and its root theta* in [0, 1] is found by bisection to round-off.
+ * The cubic Hermite interpolant is third order (error O(dt^4) in z), so
+ * theta* carries an O(dt^3) error.  The recorded ball's z and v at theta*
+ * come from the cubic Hermite interpolants through (z, v) and through
+ * (v, a) at both ends (a: two force evaluations per event, not counted as
+ * integrator work).  For integrators with rootfinding (ARKODE) the event
+ * g = v_trigger (increasing) is located by ARKODE inside its steps and the
+ * state there is ARKODE's dense output.
+ *
+ * Several minima in one contact.  When the ball above lands on the
+ * trigger ball while it is on the floor, the trigger can go down, up, down
+ * and up again without leaving the floor: two or more minima in one floor
+ * contact.  We record ONE point per floor contact, at its deepest minimum
+ * (the paper's "lowest position after colliding with the floor"); a
+ * contact is over when a step ends with the trigger ball at or above its
+ * radius.  /return_map/minima stores how many minima the contact had, and
+ * the count of contacts with more than one is reported.  A contact still in
+ * progress when the run ends is not recorded.
+ *
+ * Output (when [return_map] enabled = yes): /return_map/time (s),
+ * /return_map/z (cm), /return_map/v (cm/s) of the recorded ball,
+ * /return_map/z_trigger (cm, the trigger's lowest position) and
+ * /return_map/minima; root attributes return_map_points and
+ * return_map_multi_minima.
+ */
+#ifndef BALLFILM_RETURNMAP_H
+#define BALLFILM_RETURNMAP_H
+
+#include <stddef.h>
+
+#include "ballfilm/ballsys.h"
+#include "ballfilm/checkpoint.h"
+#include "ballfilm/h5out.h"
+
+typedef struct bf_retmap bf_retmap;
+
+extern const bf_section_spec bf_retmap_spec; /* [return_map] */
+
+/* Create from [return_map]; *out is NULL when it is not enabled.  Refuses
+ * (naming the key) ball indices out of range and scenes without a floor. */
+bf_status bf_retmap_create(bf_retmap **out, const bf_scene *sc,
+                           bf_ballsys *sys, bf_err *err);
+void bf_retmap_free(bf_retmap *rm);
+
+/* Around every step of the ball system from t to t + dt. */
+void bf_retmap_before_step(bf_retmap *rm, const bf_ballsys *sys);
+bf_status bf_retmap_after_step(bf_retmap *rm, bf_ballsys *sys, double t,
+                               double dt, bf_err *err);
+
+bf_status bf_retmap_output_open(bf_retmap *rm, bf_out *out, bf_err *err);
+bf_status bf_retmap_output_close(const bf_retmap *rm, bf_out *out,
+                                 bf_err *err);
+bf_status bf_retmap_save(const bf_retmap *rm, bf_ckpt *ck, bf_err *err);
+bf_status bf_retmap_load(bf_retmap *rm, const bf_ckpt *ck, bf_err *err);
+
+/* The points recorded so far (arrays of length return value; any pointer
+ * may be NULL). */
+size_t bf_retmap_points(const bf_retmap *rm, const double **t,
+                        const double **z, const double **v,
+                        const double **z_trigger);
+/* Contacts recorded that had more than one minimum. */
+size_t bf_retmap_multi_minima(const bf_retmap *rm);
+
+#endif

@@ -1,0 +1,333 @@
+/* returnmap.c: first-return maps of falling balls (see returnmap.h for the
+ * definition, the interpolation and how several minima in one contact are
+ * counted).
+ *
+ * Cubic Hermite basis on theta in [0, 1] for a step of length dt:
+ *   p(theta) = h00 p0 + h10 dt p0' + h01 p1 + h11 dt p1'
+ *   h00 = 2th^3 - 3th^2 + 1, h10 = th^3 - 2th^2 + th,
+ *   h01 = -2th^3 + 3th^2,    h11 = th^3 - th^2.
+ * Its derivative divided by dt is the quadratic
+ *   q(theta) = 6 th (1 - th) D + (1 - th)(1 - 3th) p0' + th (3th - 2) p1',
+ * D = (p1 - p0)/dt, with q(0) = p0' and q(1) = p1'.
+ */
+#include "ballfilm/returnmap.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const bf_param retmap_params[] = {
+    {"enabled", BF_BOOL, "", "no",
+     "record the first-return map (see README): the recorded ball's (z, v) "
+     "at each lowest point of the trigger ball on the floor",
+     0, 0, 0, NULL},
+    {"trigger", BF_INT, "1", "1",
+     "ball whose lowest points on the floor define the map (1 = lowest)",
+     BF_MIN, 1, 0, NULL},
+    {"record", BF_INT, "1", "2", "ball whose (z, v) is recorded", BF_MIN, 1, 0,
+     NULL},
+    {0},
+};
+
+const bf_section_spec bf_retmap_spec = {
+    "return_map", "first-return map of falling balls (Yasuda Figs 2-3)",
+    retmap_params};
+
+/* columns of a point */
+enum { P_T, P_Z, P_V, P_ZT, P_MIN, NCOL };
+
+struct bf_retmap {
+    size_t trig, rec; /* 0-based */
+    size_t n;         /* balls */
+    double R;         /* trigger radius */
+    double *x0, *v0, *a0, *a1; /* state at the start of the step, forces */
+    /* the deepest minimum of the current contact */
+    int pending;
+    double cand[NCOL];
+    /* recorded points, one array per column */
+    double *col[NCOL];
+    size_t npts, cap;
+    size_t multi;
+    bf_events ev;
+    int dir;
+    bf_ballsys *sys; /* for the root callback */
+    bf_series *s_t, *s_z, *s_v, *s_zt, *s_min;
+};
+
+static void cubic_hermite(double th, double dt, double p0, double d0, double p1,
+                          double d1, double *p)
+{
+    double t2 = th * th, t3 = t2 * th;
+    *p = (2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + th) * dt * d0 +
+         (-2 * t3 + 3 * t2) * p1 + (t3 - t2) * dt * d1;
+}
+
+/* derivative of the interpolant / dt */
+static double hermite_slope(double th, double dt, double p0, double d0,
+                            double p1, double d1)
+{
+    double D = (p1 - p0) / dt;
+    return 6 * th * (1 - th) * D + (1 - th) * (1 - 3 * th) * d0 +
+           th * (3 * th - 2) * d1;
+}
+
+/* A minimum of the trigger ball at time t with the recorded ball at
+ * (z, v): keep it if it is the deepest of this contact. */
+static void candidate(bf_retmap *rm, double t, double zt, double z, double v)
+{
+    double mins = rm->pending ? rm->cand[P_MIN] + 1 : 1;
+    if (!rm->pending || zt < rm->cand[P_ZT]) {
+        rm->cand[P_T] = t;
+        rm->cand[P_Z] = z;
+        rm->cand[P_V] = v;
+        rm->cand[P_ZT] = zt;
+    }
+    rm->cand[P_MIN] = mins;
+    rm->pending = 1;
+}
+
+static bf_status reserve(bf_retmap *rm, size_t need, bf_err *err)
+{
+    if (need <= rm->cap)
+        return BF_OK;
+    size_t cap = rm->cap ? 2 * rm->cap : 256;
+    while (cap < need)
+        cap *= 2;
+    for (int c = 0; c < NCOL; c++) {
+        double *p = realloc(rm->col[c], cap * sizeof *p);
+        if (!p)
+            return bf_fail(err, BF_EINTERNAL, "out of memory");
+        rm->col[c] = p;
+    }
+    rm->cap = cap;
+    return BF_OK;
+}
+
+static bf_status emit(bf_retmap *rm, bf_err *err)
+{
+    bf_status st = reserve(rm, rm->npts + 1, err);
+    if (st)
+        return st;
+    for (int c = 0; c < NCOL; c++)
+        rm->col[c][rm->npts] = rm->cand[c];
+    rm->npts++;
+    if (rm->cand[P_MIN] > 1)
+        rm->multi++;
+    rm->pending = 0;
+    if (rm->s_t) {
+        int64_t m = (int64_t)rm->cand[P_MIN];
+        if (bf_series_append(rm->s_t, &rm->cand[P_T]) ||
+            bf_series_append(rm->s_z, &rm->cand[P_Z]) ||
+            bf_series_append(rm->s_v, &rm->cand[P_V]) ||
+            bf_series_append(rm->s_zt, &rm->cand[P_ZT]) ||
+            bf_series_append_i64(rm->s_min, &m))
+            return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    return BF_OK;
+}
+
+/* rootfinding integrators: g = v_trigger, located by the integrator */
+static int rm_g(void *ctx, double t, const double *x, const double *v,
+                double *g)
+{
+    (void)t;
+    (void)x;
+    g[0] = v[((bf_retmap *)ctx)->trig];
+    return 0;
+}
+
+static void rm_hit(void *ctx, int k, double t, const double *x,
+                   const double *v)
+{
+    (void)k;
+    bf_retmap *rm = ctx;
+    candidate(rm, t, x[rm->trig], x[rm->rec], v[rm->rec]);
+}
+
+bf_status bf_retmap_create(bf_retmap **out, const bf_scene *sc,
+                           bf_ballsys *sys, bf_err *err)
+{
+    *out = NULL;
+    if (!bf_scene_bool(sc, "return_map", "enabled"))
+        return BF_OK;
+    long trig = bf_scene_int(sc, "return_map", "trigger");
+    long rec = bf_scene_int(sc, "return_map", "record");
+    size_t n = sys->b.n;
+    if ((size_t)trig > n)
+        return bf_scene_fail(sc, err, "return_map", "trigger",
+                             "ball %ld does not exist (%zu balls)", trig, n);
+    if ((size_t)rec > n)
+        return bf_scene_fail(sc, err, "return_map", "record",
+                             "ball %ld does not exist (%zu balls)", rec, n);
+    if (!bf_scene_has_name(sc, "scene", "effects", "floor"))
+        return bf_scene_fail(sc, err, "return_map", "enabled",
+                             "the return map is defined by floor contacts, "
+                             "but [scene] effects has no 'floor'");
+    bf_retmap *rm = calloc(1, sizeof *rm);
+    if (!rm)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    rm->trig = (size_t)trig - 1;
+    rm->rec = (size_t)rec - 1;
+    rm->n = n;
+    rm->R = sys->b.R[rm->trig];
+    rm->x0 = calloc(4 * n, sizeof *rm->x0);
+    if (!rm->x0) {
+        free(rm);
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    rm->v0 = rm->x0 + n;
+    rm->a0 = rm->x0 + 2 * n;
+    rm->a1 = rm->x0 + 3 * n;
+    rm->sys = sys;
+    if (sys->it->type->flags & BF_INT_ROOTS) {
+        rm->dir = 1;
+        rm->ev = (bf_events){1, rm_g, &rm->dir, rm_hit, rm};
+        bf_integrator_set_events(sys->it, &rm->ev);
+    }
+    *out = rm;
+    return BF_OK;
+}
+
+void bf_retmap_free(bf_retmap *rm)
+{
+    if (!rm)
+        return;
+    if (rm->sys && rm->sys->it && rm->sys->it->events == &rm->ev)
+        bf_integrator_set_events(rm->sys->it, NULL);
+    free(rm->x0);
+    for (int c = 0; c < NCOL; c++)
+        free(rm->col[c]);
+    free(rm);
+}
+
+void bf_retmap_before_step(bf_retmap *rm, const bf_ballsys *sys)
+{
+    memcpy(rm->x0, sys->b.x, rm->n * sizeof *rm->x0);
+    memcpy(rm->v0, sys->b.v, rm->n * sizeof *rm->v0);
+}
+
+bf_status bf_retmap_after_step(bf_retmap *rm, bf_ballsys *sys, double t,
+                               double dt, bf_err *err)
+{
+    const size_t i = rm->trig, r = rm->rec;
+    const double *x1 = sys->b.x, *v1 = sys->b.v;
+    if (!(sys->it->type->flags & BF_INT_ROOTS) && rm->v0[i] < 0 &&
+        v1[i] >= 0) {
+        const double z0 = rm->x0[i], u0 = rm->v0[i], z1 = x1[i], u1 = v1[i];
+        /* the upward zero of the quadratic slope in [0, 1] */
+        double lo = 0, hi = 1;
+        for (int k = 0; k < 60; k++) {
+            double mid = 0.5 * (lo + hi);
+            if (hermite_slope(mid, dt, z0, u0, z1, u1) < 0)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        const double th = 0.5 * (lo + hi);
+        /* forces at both ends for the velocity interpolant */
+        if (sys->ode.accel(sys->ode.ctx, t, rm->x0, rm->v0, rm->a0) ||
+            sys->ode.accel(sys->ode.ctx, t + dt, x1, v1, rm->a1))
+            return bf_fail(err, BF_EUNSTABLE, "return map: force undefined");
+        double zt, z, v;
+        cubic_hermite(th, dt, z0, u0, z1, u1, &zt);
+        cubic_hermite(th, dt, rm->x0[r], rm->v0[r], x1[r], v1[r], &z);
+        cubic_hermite(th, dt, rm->v0[r], rm->a0[r], v1[r], rm->a1[r], &v);
+        candidate(rm, t + th * dt, zt, z, v);
+    }
+    /* the contact is over once the trigger ball is off the floor */
+    if (rm->pending && x1[i] >= rm->R)
+        return emit(rm, err);
+    return BF_OK;
+}
+
+bf_status bf_retmap_output_open(bf_retmap *rm, bf_out *out, bf_err *err)
+{
+    rm->s_t = bf_out_series(out, "/return_map/time", 0, 0, "s",
+                            "time of each lowest point of the trigger ball on "
+                            "the floor (one per contact, the deepest)",
+                            err);
+    if (!rm->s_t)
+        return err->status;
+    rm->s_z = bf_out_series(out, "/return_map/z", 0, 0, "cm",
+                            "position of the recorded ball at that time", err);
+    if (!rm->s_z)
+        return err->status;
+    rm->s_v = bf_out_series(out, "/return_map/v", 0, 0, "cm/s",
+                            "velocity of the recorded ball at that time", err);
+    if (!rm->s_v)
+        return err->status;
+    rm->s_zt = bf_out_series(out, "/return_map/z_trigger", 0, 0, "cm",
+                             "lowest position of the trigger ball", err);
+    if (!rm->s_zt)
+        return err->status;
+    rm->s_min = bf_out_series(out, "/return_map/minima", 0, 1, "1",
+                              "number of minima of the trigger ball in this "
+                              "floor contact (the deepest is recorded)",
+                              err);
+    return rm->s_min ? BF_OK : err->status;
+}
+
+bf_status bf_retmap_output_close(const bf_retmap *rm, bf_out *out, bf_err *err)
+{
+    bf_status st = bf_out_attr_int(out, "/", "return_map_points",
+                                   (int64_t)rm->npts, err);
+    if (!st)
+        st = bf_out_attr_int(out, "/", "return_map_multi_minima",
+                             (int64_t)rm->multi, err);
+    return st;
+}
+
+bf_status bf_retmap_save(const bf_retmap *rm, bf_ckpt *ck, bf_err *err)
+{
+    int64_t meta[3] = {(int64_t)rm->npts, (int64_t)rm->multi, rm->pending};
+    bf_status st = bf_ckpt_put_i64(ck, "return_map.meta", meta, 3, err);
+    if (!st)
+        st = bf_ckpt_put(ck, "return_map.candidate", rm->cand, NCOL, err);
+    for (int c = 0; c < NCOL && !st; c++) {
+        char name[64];
+        snprintf(name, sizeof name, "return_map.column%d", c);
+        st = bf_ckpt_put(ck, name, rm->col[c], rm->npts, err);
+    }
+    return st;
+}
+
+bf_status bf_retmap_load(bf_retmap *rm, const bf_ckpt *ck, bf_err *err)
+{
+    int64_t meta[3];
+    bf_status st = bf_ckpt_get_i64(ck, "return_map.meta", meta, 3, err);
+    if (!st)
+        st = bf_ckpt_get(ck, "return_map.candidate", rm->cand, NCOL, err);
+    if (st)
+        return st;
+    size_t n = (size_t)meta[0];
+    if ((st = reserve(rm, n, err)))
+        return st;
+    for (int c = 0; c < NCOL; c++) {
+        char name[64];
+        snprintf(name, sizeof name, "return_map.column%d", c);
+        if ((st = bf_ckpt_get(ck, name, rm->col[c], n, err)))
+            return st;
+    }
+    rm->npts = n;
+    rm->multi = (size_t)meta[1];
+    rm->pending = (int)meta[2];
+    return BF_OK;
+}
+
+size_t bf_retmap_points(const bf_retmap *rm, const double **t,
+                        const double **z, const double **v,
+                        const double **z_trigger)
+{
+    if (t)
+        *t = rm->col[P_T];
+    if (z)
+        *z = rm->col[P_Z];
+    if (v)
+        *v = rm->col[P_V];
+    if (z_trigger)
+        *z_trigger = rm->col[P_ZT];
+    return rm->npts;
+}
+
+size_t bf_retmap_multi_minima(const bf_retmap *rm) { return rm->multi; }

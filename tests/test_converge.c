@@ -1,0 +1,122 @@
+/* test_converge.c: the convergence study (converge.h, `ballfilm
+ * converge`).
+ *
+ *  - On the harmonic oscillator the observed orders are the nominal ones
+ *    (Verlet 2, MV2M 3, RK3 3, RK4 4) within 0.1: the acceptance command of
+ *    the integrator issue, run through the program, and its HDF5 table.
+ *  - The reference is independent of the compared methods and its own
+ *    error estimate is far below the errors it judges.
+ *  - Failed runs are reported as failed, not dropped or averaged in.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ballfilm/converge.h"
+#include "ballfilm/h5out.h"
+#include "testutil.h"
+
+START_TEST(harmonic_orders_through_the_program)
+{
+    const char *out = tu_tmp("conv.h5");
+    char *o = NULL, *e = NULL;
+    int rc = tu_run(&o, &e, "converge", tu_repo("runs/harmonic.ini"),
+                    "--methods", "verlet,mv2m,rk3,rk4", "--repeats", "1", "-q",
+                    "-o", out, NULL);
+    ck_assert_msg(rc == 0, "exit %d: %s", rc, e);
+    ck_assert_msg(strstr(o, "VERNER_8_5_6") && strstr(o, "p_x"), "%s", o);
+    free(o);
+    free(e);
+    bf_err err = {0};
+    double *m, *p, *ex, *st;
+    size_t n, n1;
+    ck_assert(bf_h5_read(out, "/converge/method", &m, &n, &n1, &err) == 0);
+    ck_assert(bf_h5_read(out, "/converge/order_x", &p, &n, &n1, &err) == 0);
+    ck_assert(bf_h5_read(out, "/converge/err_x", &ex, &n, &n1, &err) == 0);
+    ck_assert(bf_h5_read(out, "/converge/status", &st, &n, &n1, &err) == 0);
+    ck_assert_uint_eq(n, 16); /* 4 methods x 4 step sizes */
+    const double want[4] = {2, 3, 3, 4};
+    for (size_t k = 0; k < n; k++) {
+        ck_assert(st[k] == 0);
+        if (k % 4 == 0) {
+            ck_assert(isnan(p[k])); /* first of a method: no order */
+            continue;
+        }
+        int mi = (int)m[k];
+        ck_assert_msg(fabs(p[k] - want[mi]) < 0.1,
+                      "row %zu (method %d): observed order %.3f, nominal %g",
+                      k, mi, p[k], want[mi]);
+    }
+    free(m);
+    free(p);
+    free(ex);
+    free(st);
+    double *xr;
+    ck_assert(bf_h5_read(out, "/reference/x", &xr, &n, &n1, &err) == 0);
+    ck_assert(n == 1 && fabs(xr[0] - cos(10.0)) < 1e-12);
+    free(xr);
+}
+END_TEST
+
+/* The reference (not one of the compared tables) is accurate far below
+ * the compared errors; its estimate is honest against the exact cos t. */
+START_TEST(reference_is_independent_and_accurate)
+{
+    bf_scene *sc = tu_scene("[scene]\neffects = spring\ndt = 0.01\n"
+                            "t_end = 10\n[ball.1]\nposition = 1\n");
+    const char *methods[] = {"arkode:table=ARKODE_VERNER_8_5_6", "mv2m"};
+    bf_converge_opts o = {.methods = methods, .nmethods = 2, .repeats = 1};
+    bf_converge_result *r;
+    bf_err err = {0};
+    ck_assert_msg(bf_converge_run(sc, &o, &r, &err) == BF_OK, "%s", err.msg);
+    /* Verner is compared, so the reference takes Dormand-Prince */
+    ck_assert_msg(strstr(r->ref_label, "DORMAND_PRINCE"), "%s", r->ref_label);
+    double exact = fabs(r->x_ref[0] - cos(10.0));
+    ck_assert_msg(exact < 1e-11 && r->ref_err_x < 1e-10,
+                  "reference error %.2e (estimate %.2e)", exact, r->ref_err_x);
+    for (size_t k = 0; k < r->nrows; k++)
+        if (r->rows[k].method == 1) /* mv2m */
+            ck_assert(r->rows[k].err_x > 100 * r->ref_err_x);
+    bf_converge_free(r);
+    /* asking for the compared table as the reference is refused */
+    o.ref_table = "ARKODE_VERNER_8_5_6";
+    ck_assert_int_eq(bf_converge_run(sc, &o, &r, &err), BF_EINPUT);
+    ck_assert_msg(strstr(err.msg, "also compared"), "%s", err.msg);
+    bf_scene_free(sc);
+}
+END_TEST
+
+/* A step too large for the implicit iteration shows up as a failed row
+ * with its message; the other rows are unaffected. */
+START_TEST(failed_runs_are_reported)
+{
+    bf_scene *sc = tu_scene("[scene]\neffects = gravity floor\ndt = 3e-4\n"
+                            "t_end = 0.1\n[ball.1]\nposition = 0.2\n");
+    const char *methods[] = {"impmid"};
+    const double dts[] = {2e-3, 1e-4};
+    bf_converge_opts o = {.methods = methods, .nmethods = 1, .dts = dts,
+                          .ndts = 2, .repeats = 1};
+    bf_converge_result *r;
+    bf_err err = {0};
+    ck_assert_msg(bf_converge_run(sc, &o, &r, &err) == BF_OK, "%s", err.msg);
+    ck_assert_uint_eq(r->nrows, 2);
+    ck_assert_int_eq(r->rows[0].status, BF_ENOCONV);
+    ck_assert(strstr(r->rows[0].msg, "did not converge"));
+    ck_assert(isnan(r->rows[0].err_x));
+    ck_assert_int_eq(r->rows[1].status, BF_OK);
+    ck_assert(r->rows[1].err_x < 1e-3 && isnan(r->rows[1].order_x));
+    bf_converge_free(r);
+    bf_scene_free(sc);
+}
+END_TEST
+
+Suite *suite_converge(void)
+{
+    Suite *s = suite_create("converge");
+    TCase *tc = tu_tcase("converge");
+    tcase_add_test(tc, harmonic_orders_through_the_program);
+    tcase_add_test(tc, reference_is_independent_and_accurate);
+    tcase_add_test(tc, failed_runs_are_reported);
+    suite_add_tcase(s, tc);
+    return s;
+}
