@@ -54,7 +54,7 @@ RUNNER    := $(BUILD)/tests/runner
 
 .PHONY: all run test check figures bench clean deps deps-plot test-run \
         build-tests fig1 fuzz valgrind mpi stratres mac-checks \
-        fig2 fig3 fig4 converge-figures
+        fig2 fig3 fig4 converge-figures survey-mass
 
 all: $(PROG)
 
@@ -270,9 +270,22 @@ figures:
 	@$(MAKE) --no-print-directory fig3
 	@$(MAKE) --no-print-directory fig4
 	@$(MAKE) --no-print-directory converge-figures
+	@$(MAKE) --no-print-directory survey-mass
 	@$(MAKE) --no-print-directory stratres
 	@$(MAKE) --no-print-directory mac-checks
 	@echo "figures are in out/"
+
+# Survey (the paper's "issue for further study"): two falling balls, upper
+# ball 1 g, lower ball 0.5..2 g in 64 steps, MV2M at dt = 1e-4 s over 200 s
+# each, with the Lyapunov exponent and the return map's fill fraction.
+# Runs on both cores (--jobs 2); rerunning skips finished cases.
+survey-mass: $(PROG)
+	@mkdir -p out
+	$(PROG) sweep runs/two_balls_A.ini --vary ball.1.mass=0.5:2.0:64 \
+	    --set scene.t_end=200 --set lyapunov.enabled=yes \
+	    --set scene.output_every=10000 --jobs 2 -q -o out/survey_mass
+	$(PY) plots/survey.py out/survey_mass -o out/survey_mass.png \
+	    --label "lower/upper mass ratio"
 
 # ---------------------------------------------------------------- tests
 build-tests: $(PROG) $(RUNNER) $(MPI_PROG)

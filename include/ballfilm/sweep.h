@@ -19,6 +19,7 @@
 #include "ballfilm/scene.h"
 
 #define BF_SWEEP_MAX_VARY 8
+#define BF_SWEEP_FILL_BINS 50
 
 typedef struct bf_sweep_axis {
     char key[256];  /* "section.key" */
@@ -43,6 +44,8 @@ typedef struct bf_sweep_row {
     double wall;           /* s of wall time for the case */
     double lyapunov;       /* largest Lyapunov exponent (1/s) or NAN */
     double map_points;     /* number of return-map points or NAN */
+    double map_fill;       /* fraction of the map's bounding box visited
+                              (BF_SWEEP_FILL_BINS^2 bins) or NAN */
     double energy_error;   /* max relative energy error or NAN */
     long steps;
     char message[512];
@@ -68,6 +71,12 @@ int bf_sweep_case_done(const bf_sweep *sw, long k, bf_sweep_row *row);
  * an error of the sweep: its status and message go into the row. */
 bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
                             bf_err *err);
+
+/* Fraction of the bounding box of the points (z_k, v_k) that they visit,
+ * counted on a BF_SWEEP_FILL_BINS x BF_SWEEP_FILL_BINS grid: near 1 for a
+ * map that fills a region (chaos), small for closed curves (quasi-periodic
+ * motion).  NAN for fewer than 2 points. */
+double bf_sweep_map_fill(const double *z, const double *v, size_t n);
 
 /* Serialise a row as one CSV line (no newline) and back. */
 void bf_sweep_row_format(const bf_sweep *sw, const bf_sweep_row *row, char *buf,

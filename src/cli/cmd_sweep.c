@@ -141,6 +141,8 @@ static void report_case(const bf_sweep *sw, const bf_sweep_row *r, int quiet,
     fprintf(stderr, "  status %d  %.2f s", r->status, r->wall);
     if (!isnan(r->lyapunov))
         fprintf(stderr, "  lyapunov %.4g/s", r->lyapunov);
+    if (!isnan(r->map_fill))
+        fprintf(stderr, "  map fill %.3f", r->map_fill);
     if (rank >= 0)
         fprintf(stderr, "  (rank %d)", rank);
     fprintf(stderr, "\n");
@@ -159,7 +161,8 @@ static int gather_and_write(const bf_sweep *sw, bf_sweep_row *rows)
             rows[k].index = (long)k;
             bf_sweep_case_values(sw, (long)k, rows[k].values);
             rows[k].status = 1;
-            rows[k].lyapunov = rows[k].map_points = rows[k].energy_error = NAN;
+            rows[k].lyapunov = rows[k].map_points = rows[k].energy_error =
+                rows[k].map_fill = NAN;
             snprintf(rows[k].message, sizeof rows[k].message,
                      "case did not finish (its worker died); rerun the sweep");
             missing++;

@@ -228,6 +228,34 @@ void bf_sweep_case_values(const bf_sweep *sw, long k, double *values)
     }
 }
 
+double bf_sweep_map_fill(const double *z, const double *v, size_t n)
+{
+    if (n < 2)
+        return NAN;
+    double z0 = z[0], z1 = z[0], v0 = v[0], v1 = v[0];
+    for (size_t k = 1; k < n; k++) {
+        z0 = fmin(z0, z[k]);
+        z1 = fmax(z1, z[k]);
+        v0 = fmin(v0, v[k]);
+        v1 = fmax(v1, v[k]);
+    }
+    enum { B = BF_SWEEP_FILL_BINS };
+    unsigned char seen[B * B];
+    memset(seen, 0, sizeof seen);
+    double dz = z1 > z0 ? (z1 - z0) / B : 1.0, dv = v1 > v0 ? (v1 - v0) / B : 1.0;
+    size_t count = 0;
+    for (size_t k = 0; k < n; k++) {
+        long i = (long)((z[k] - z0) / dz), j = (long)((v[k] - v0) / dv);
+        i = i < 0 ? 0 : i >= B ? B - 1 : i;
+        j = j < 0 ? 0 : j >= B ? B - 1 : j;
+        if (!seen[i * B + j]) {
+            seen[i * B + j] = 1;
+            count++;
+        }
+    }
+    return (double)count / (double)(B * B);
+}
+
 /* ------------------------------------------------------------------ rows */
 
 void bf_sweep_row_format(const bf_sweep *sw, const bf_sweep_row *r, char *buf,
@@ -238,9 +266,10 @@ void bf_sweep_row_format(const bf_sweep *sw, const bf_sweep_row *r, char *buf,
         used += (size_t)snprintf(buf + used, cap - used, ",%.17g", r->values[a]);
     if (used < cap)
         used += (size_t)snprintf(buf + used, cap - used,
-                                 ",%d,%.6g,%.17g,%.17g,%.17g,%ld,\"", r->status,
-                                 r->wall, r->lyapunov, r->map_points,
-                                 r->energy_error, r->steps);
+                                 ",%d,%.6g,%.17g,%.17g,%.17g,%.17g,%ld,\"",
+                                 r->status, r->wall, r->lyapunov,
+                                 r->map_points, r->map_fill, r->energy_error,
+                                 r->steps);
     /* the message without quotes or newlines */
     for (const char *p = r->message; *p && used + 2 < cap; p++)
         buf[used++] = (*p == '"' || *p == '\n' || *p == '\r') ? '\'' : *p;
@@ -270,8 +299,9 @@ int bf_sweep_row_parse(const bf_sweep *sw, const char *line, bf_sweep_row *r)
     if (*end != ',')
         return 0;
     p = end + 1;
-    double *d[] = {&r->wall, &r->lyapunov, &r->map_points, &r->energy_error};
-    for (int q = 0; q < 4; q++) {
+    double *d[] = {&r->wall, &r->lyapunov, &r->map_points, &r->map_fill,
+                   &r->energy_error};
+    for (int q = 0; q < 5; q++) {
         *d[q] = strtod(p, &end);
         if (end == p || *end != ',')
             return 0;
@@ -331,7 +361,7 @@ bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
 {
     memset(row, 0, sizeof *row);
     row->index = k;
-    row->lyapunov = row->map_points = row->energy_error = NAN;
+    row->lyapunov = row->map_points = row->energy_error = row->map_fill = NAN;
     bf_sweep_case_values(sw, k, row->values);
     double t0 = bf_wall_time();
     char out[1200];
@@ -369,6 +399,14 @@ bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
             row->lyapunov = v;
         if (!bf_h5_read_attr_real(out, "/", "return_map_points", &v, &ignore))
             row->map_points = v;
+        double *z = NULL, *vz = NULL;
+        size_t nz, nz1, nv, nv1;
+        if (!bf_h5_read(out, "/return_map/z", &z, &nz, &nz1, &ignore) &&
+            !bf_h5_read(out, "/return_map/v", &vz, &nv, &nv1, &ignore) &&
+            nz == nv)
+            row->map_fill = bf_sweep_map_fill(z, vz, nz);
+        free(z);
+        free(vz);
     }
     row->status = (int)run_st;
     /* a long message is cut to the row's size on purpose */
@@ -395,7 +433,7 @@ bf_status bf_sweep_write_summary(const bf_sweep *sw, const bf_sweep_row *rows,
     for (size_t a = 0; a < sw->naxis; a++)
         fprintf(f, ",%s", sw->axis[a].key);
     fprintf(f, ",status,wall_s,lyapunov_per_s,return_map_points,"
-               "max_rel_energy_error,steps,message\n");
+               "return_map_fill,max_rel_energy_error,steps,message\n");
     char line[4096];
     for (size_t k = 0; k < sw->ncases; k++) {
         bf_sweep_row_format(sw, &rows[k], line, sizeof line);
@@ -445,6 +483,8 @@ bf_status bf_sweep_write_summary(const bf_sweep *sw, const bf_sweep_row *rows,
     COLUMN(lyapunov, "/lyapunov", "1/s", "largest Lyapunov exponent (NaN: "
                                          "not measured)")
     COLUMN(map_points, "/return_map_points", "1", "number of return-map points")
+    COLUMN(map_fill, "/return_map_fill", "1",
+           "fraction of the return map's bounding box visited (50 x 50 bins)")
     COLUMN(energy_error, "/energy_error", "1", "max relative energy error")
 #undef COLUMN
     if (!st) {
