@@ -53,7 +53,7 @@ PROG      := $(BINDIR)/ballfilm
 RUNNER    := $(BUILD)/tests/runner
 
 .PHONY: all run test check figures bench clean deps deps-plot test-run \
-        build-tests fig1
+        build-tests fig1 fig5 kink-dx2 film-orders
 
 all: $(PROG)
 
@@ -142,10 +142,32 @@ fig1: $(PROG)
 	$(PY) plots/fig1_phase.py out/bouncing_ball_verlet.h5 \
 	    out/bouncing_ball_mv2m.h5 -o out/fig1_phase.png
 
+# Yasuda Fig. 5: the perturbed kink, 1000 s at dt = 1e-3 s (10^6 steps),
+# and the space-time picture of psi.
+fig5: $(PROG)
+	@mkdir -p out
+	$(PROG) run runs/kink_steady.ini -q -o out/kink_steady.h5
+	$(PY) plots/fig5_kink.py out/kink_steady.h5 -o out/fig5_kink.png
+	$(PY) plots/film_spacetime.py out/kink_steady.h5 -o out/film_spacetime.png
+
+# The kink's steady-state error for dx = 0.1, 0.05, 0.025 (falls as dx^2).
+kink-dx2: $(PROG)
+	@mkdir -p out
+	@for dx in 0.1 0.05 0.025; do \
+	  $(PROG) run runs/kink_converge.ini -q -o out/kink_dx$$dx.h5 \
+	      --set film.dx=$$dx | sed -n "s/^film: kink error/dx = $$dx: kink error/p"; \
+	done
+
+# Observed orders of the film scheme in dx and in dt (README).
+film-orders: $(BUILD)/bench/film_orders
+	$(BUILD)/bench/film_orders
+
 figures:
 	@$(MAKE) --no-print-directory deps deps-plot
 	@$(MAKE) --no-print-directory all
 	@$(MAKE) --no-print-directory fig1
+	@$(MAKE) --no-print-directory fig5
+	@$(MAKE) --no-print-directory kink-dx2
 	@echo "figures are in out/"
 
 # ---------------------------------------------------------------- tests
