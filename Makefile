@@ -53,8 +53,8 @@ PROG      := $(BINDIR)/ballfilm
 RUNNER    := $(BUILD)/tests/runner
 
 .PHONY: all run test check figures bench clean deps deps-plot test-run \
-        build-tests fig1 fuzz valgrind mpi stratres mac-checks \
-        fig2 fig3 fig4 converge-figures survey-mass
+        build-tests fig1 fuzz valgrind mpi stratres mac-checks fig2 fig3 \
+        fig4 converge-figures survey-mass fig5 kink-dx2 film-orders
 
 all: $(PROG)
 
@@ -261,6 +261,23 @@ converge-figures: $(PROG)
 	    -o out/converge_bouncing_ball_1s.h5
 	$(PY) plots/work_precision.py out/converge_bouncing_ball_1s.h5 \
 	    -o out/work_precision_bouncing_ball_1s.png
+# Yasuda Fig. 5: the perturbed kink, 1000 s at dt = 1e-3 s (10^6 steps),
+# and the space-time picture of psi.
+fig5: $(PROG)
+	$(PROG) run runs/kink_steady.ini -q -o out/kink_steady.h5
+	$(PY) plots/fig5_kink.py out/kink_steady.h5 -o out/fig5_kink.png
+	$(PY) plots/film_spacetime.py out/kink_steady.h5 -o out/film_spacetime.png
+
+# The kink's steady-state error for dx = 0.1, 0.05, 0.025 (falls as dx^2).
+kink-dx2: $(PROG)
+	@for dx in 0.1 0.05 0.025; do \
+	  $(PROG) run runs/kink_converge.ini -q -o out/kink_dx$$dx.h5 \
+	      --set film.dx=$$dx | sed -n "s/^film: kink error/dx = $$dx: kink error/p"; \
+	done
+
+# Observed orders of the film scheme in dx and in dt (README).
+film-orders: $(BUILD)/bench/film_orders
+	$(BUILD)/bench/film_orders
 
 figures:
 	@$(MAKE) --no-print-directory deps deps-plot
@@ -273,6 +290,8 @@ figures:
 	@$(MAKE) --no-print-directory survey-mass
 	@$(MAKE) --no-print-directory stratres
 	@$(MAKE) --no-print-directory mac-checks
+	@$(MAKE) --no-print-directory fig5
+	@$(MAKE) --no-print-directory kink-dx2
 	@echo "figures are in out/"
 
 # Survey (the paper's "issue for further study"): two falling balls, upper

@@ -5,9 +5,11 @@
 
 extern const bf_model_type bf_model_balls;
 extern const bf_model_type bf_model_mac;
+extern const bf_model_type bf_model_film;
 
 static const bf_model_type *const all[] = {
     &bf_model_balls,
+    &bf_model_film,
     &bf_model_mac,
 };
 

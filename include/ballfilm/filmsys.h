@@ -1,0 +1,54 @@
+/* filmsys.h: a film built from a scene's [film] section, with its output
+ * and diagnostics.  This is the component shared by the "film" model (the
+ * kink, Yasuda sec. 3.4) and the coupled ball-film model (sec. 3.5), as
+ * ballsys.h is for balls.
+ *
+ * Output (HDF5):
+ *   /film/x [nodes]                         node positions, once
+ *   at every [film] profile_every:
+ *   /film/time [rows]                       s
+ *   /film/h, /film/psi, /film/u_d, /film/u_c [rows x nodes]
+ *   at every [scene] output_every row (aligned with /time):
+ *   /film/mass_d, /film/mass_c              integral alpha_k h dx, cm^2
+ *   /film/max_u                             max |u_k|, cm/s
+ *   /film/min_alpha                         smallest volume fraction
+ *   /film/kink_error                        max |psi - kink| (initial = kink)
+ *   /film/limited_faces                     cumulative limiter count
+ */
+#ifndef BALLFILM_FILMSYS_H
+#define BALLFILM_FILMSYS_H
+
+#include <stdio.h>
+
+#include "ballfilm/checkpoint.h"
+#include "ballfilm/film.h"
+#include "ballfilm/h5out.h"
+#include "ballfilm/scene.h"
+
+typedef struct bf_filmsys bf_filmsys;
+
+extern const bf_section_spec bf_filmsys_spec; /* [film] */
+
+/* Build the film of the scene and its initial state; refuse a dt ([scene]
+ * dt) above the stable limit unless [film] force_dt is set. */
+bf_status bf_filmsys_create(bf_filmsys **out, const bf_scene *sc, bf_err *err);
+void bf_filmsys_free(bf_filmsys *fs);
+
+bf_film *bf_filmsys_film(bf_filmsys *fs);
+/* Whether the scene started from the analytic kink, and its centre (cm). */
+int bf_filmsys_has_kink(const bf_filmsys *fs, double *x0);
+/* L-infinity distance of psi from the analytic kink (NAN without one). */
+double bf_filmsys_kink_error(const bf_filmsys *fs);
+/* Largest relative change of either phase total since t = 0. */
+double bf_filmsys_mass_drift(const bf_filmsys *fs);
+
+bf_status bf_filmsys_step(bf_filmsys *fs, double dt, bf_err *err);
+
+bf_status bf_filmsys_output_open(bf_filmsys *fs, bf_out *out, bf_err *err);
+bf_status bf_filmsys_output_row(bf_filmsys *fs, long n, double t, bf_err *err);
+void bf_filmsys_report(const bf_filmsys *fs, FILE *f);
+
+bf_status bf_filmsys_save(const bf_filmsys *fs, bf_ckpt *ck, bf_err *err);
+bf_status bf_filmsys_load(bf_filmsys *fs, const bf_ckpt *ck, bf_err *err);
+
+#endif

@@ -1,0 +1,802 @@
+/* film.c: the invariant (Lax-Wendroff-type) scheme for the two-phase
+ * shallow-water film, Yasuda 2010 eqs 3.15-3.16 (see film.h for the model
+ * and ../shared/spec/film-scheme.md for the term-by-term reconstruction).
+ *
+ * For each phase k (s_d = +1, s_c = -1), with A = alpha_k h, u = u_k,
+ * Q = P + s_k mu, everything on the right at level n:
+ *
+ * (3.15)  A_i^{n+1} = A_i - (F_{i+1/2} - F_{i-1/2}),
+ *         F_{i+1/2} = dt/(2dx) (A_i u_i + A_{i+1} u_{i+1})
+ *                   - dt^2/(2dx^2) [ ub^2 (A_{i+1} - A_i)
+ *                                    + 2 ub Ab (u_{i+1} - u_i)
+ *                                    + Ab (Q_{i+1} - Q_i) / rho_k ]
+ *         (ub, Ab: arithmetic means of the two nodes).  The flux form is
+ *         algebraically the printed scheme and makes the totals of A_d and
+ *         A_c telescope: they are conserved to round-off (trapezoid
+ *         weights, the wall ghosts make F_{-1/2} = -F_{1/2} exactly).
+ *
+ * (3.16)  u_i^{n+1} = u_i - dt/(2dx) (u_{i+1} + u_{i-1})/2 (u_{i+1} - u_{i-1})
+ *                   - dt/(2 rho_k dx) (Q*_{i+1} - Q*_{i-1})
+ *                   + dt^2/(2dx^2) (G_{i+1/2} - G_{i-1/2}),
+ *         G_{i+1/2} = (ub^2 + 2 nu/dt) (u_{i+1} - u_i)
+ *                   + [ ub (Q_{i+1} - Q_i) + (W_{i+1} - W_i) ] / rho_k
+ *         The 2 nu/dt part is the lateral viscosity nu u_xx of sec. 3.4,
+ *         added once, explicitly.
+ *
+ * The one term the garbled print leaves in doubt is how mu enters the
+ * dt^2/2 part of (3.16) (spec, uncertain point 1).  The exact Taylor term
+ * is -(1/rho_k) d/dx(dQ/dt).  For the hydrostatic part dP/dt = -(P u_m)_x
+ * exactly, so W = P u_m.  For mu the print puts mu into W = (P +- mu) u_m,
+ * but dmu/dt is not -(mu u_m)_x.  Linearised about a uniform mixture
+ * (psi0, beta = 2 alpha_d alpha_c, m = -a + 3b psi0^2 + gamma sigma,
+ * sigma = 4 sin^2(theta/2)/dx^2, S = sin(theta)/dx) the phase-separation
+ * mode (psi, w = u_d - u_c) of the printed reading has the amplification
+ * determinant 1 - a + 2b with a = dt^2 beta sigma m/rho, b = dt^2 beta S^2
+ * m/rho: it exceeds 1 for every theta < pi/2, so the mode grows unless the
+ * viscosity damps it, and the scheme is first order in time there.  We
+ * therefore offer (mu_taylor):
+ *   midpoint (default)  Q* = P +- (mu^n + mu^{n+1})/2 in the gradient
+ *                       term, W = P u_m.  mu^{n+1} comes from the already
+ *                       updated (3.15); this supplies the exact mu_t term
+ *                       (second order), and the determinant becomes
+ *                       1 - (a - b) <= 1: stable for a <= 2, i.e.
+ *                       dt <= dx sqrt(rho / (2 beta m_max)).
+ *   um                  the printed reading, Q* = Q, W = (P +- mu) u_m.
+ *   uk                  Q* = Q, W = (P +- mu) u_k.
+ * In every variant W's P part is g (rho_d A_d u_d + rho_c A_c u_c), i.e.
+ * P u_m without the division.
+ *
+ * h^{n+1} = A_d^{n+1} + A_c^{n+1} and alpha_k = A_k / h (so alpha_d +
+ * alpha_c = 1), psi = (A_d - A_c)/h.  mu uses the 3-point Laplacian.
+ *
+ * Boundaries (sec. 3.4): one ghost node each side, scalars mirrored even
+ * (f_{-1} = f_1), velocities odd (u_{-1} = -u_1, u_0 = 0).  (3.15) holds at
+ * the wall nodes, (3.16) at interior nodes only.
+ *
+ * Negative volume fractions.  In the kink's far field alpha_minor ~ 1e-16;
+ * the model is ill-posed for alpha < 0 (linearised, psi_tt = 4 alpha_d
+ * alpha_c (...)_xx changes type).  With limit_positive, each phase's face
+ * fluxes are limited so that no node loses more of that phase than it
+ * holds: a node whose outgoing fluxes exceed its content scales them by
+ * content/outflow (a positivity limiter in flux form).  It keeps the totals
+ * conserved, changes nothing when no node would go negative (bit for bit),
+ * and is counted (bf_film_limiter_counts) so that a run shows whether it
+ * ever acted.  Without it, the step fails at the first negative fraction.
+ *
+ * Stable step (bf_film_stable_dt): gravity waves, Lax-Wendroff condition
+ * with the viscous term, lambda^2 + 2 nu dt/dx^2 <= 1, lambda = dt (|u| +
+ * sqrt(g h rho_m / rho_min))/dx; and the phase-separation mode above,
+ * dt <= dx sqrt(rho_min / (2 beta m_max)) combined the same way.
+ *
+ * Layout: every node array has one ghost each side (index -1..N+1), face
+ * arrays hold face i+1/2 at index i (-1..N).  One allocation; no
+ * allocation per step; the loops are plain and branch-free so that GCC
+ * vectorises them at -O2.
+ */
+#include "ballfilm/film.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum {
+    /* node arrays */
+    V_X, V_AD, V_AC, V_UD, V_UC, V_H, V_PSI, V_MU, V_P, V_WD, V_WC,
+    V_AD1, V_AC1, V_UD1, V_UC1, V_H1, V_PSI1, V_MU1,
+    /* face arrays */
+    V_FD, V_FC, V_GD, V_GC,
+    V_COUNT
+};
+
+struct bf_film {
+    bf_film_params p;
+    long N;      /* intervals; nodes 0..N */
+    size_t len;  /* allocated length of each array (N + 3) */
+    double *mem;
+    double *v[V_COUNT]; /* each points at index 0 (ghost at -1) */
+    double *mucpl;      /* the coupling's mu (zero without one) */
+    unsigned long long lim_steps, lim_faces;
+};
+
+#define ARR(f, k) ((f)->v[k])
+
+static double *alloc_block(size_t n)
+{
+    /* 64-byte alignment of each array start (the ghost sits before it) */
+    void *p = NULL;
+    if (posix_memalign(&p, 64, n * sizeof(double)))
+        return NULL;
+    memset(p, 0, n * sizeof(double));
+    return p;
+}
+
+bf_status bf_film_create(bf_film **out, const bf_film_params *p, bf_err *err)
+{
+    *out = NULL;
+    double nd = p->length / p->dx;
+    double nr = floor(nd + 0.5);
+    if (!(nr >= 2) || fabs(nd - nr) > 1e-9 * nr)
+        return bf_fail(err, BF_EINPUT,
+                       "film length %g cm is not a whole number (>= 2) of "
+                       "dx = %g cm (L/dx = %.12g)",
+                       p->length, p->dx, nd);
+    if (nr > 1e8)
+        return bf_fail(err, BF_EINPUT, "film of %g nodes is too large", nr);
+    bf_film *f = calloc(1, sizeof *f);
+    if (!f)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    f->p = *p;
+    f->N = (long)nr;
+    /* 8 doubles in front (ghosts at -1, -2; index 0 64-byte aligned), N+1
+     * nodes, ghosts and padding behind */
+    size_t len = ((size_t)f->N + 1 + 8 + 16) & ~(size_t)7;
+    f->len = len;
+    f->mem = alloc_block(len * V_COUNT);
+    f->mucpl = alloc_block(len);
+    if (!f->mem || !f->mucpl) {
+        free(f->mem);
+        free(f->mucpl);
+        free(f);
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    for (int k = 0; k < V_COUNT; k++)
+        f->v[k] = f->mem + (size_t)k * len + 8;
+    const long N = f->N;
+    double *x = ARR(f, V_X);
+    for (long i = -1; i <= N + 1; i++)
+        x[i] = -0.5 * p->length + (double)i * p->dx;
+    double *ad = ARR(f, V_AD), *ac = ARR(f, V_AC), *h = ARR(f, V_H);
+    for (long i = -1; i <= N + 1; i++) {
+        ad[i] = ac[i] = 0.5;
+        h[i] = 1.0;
+    }
+    *out = f;
+    return BF_OK;
+}
+
+void bf_film_free(bf_film *f)
+{
+    if (!f)
+        return;
+    free(f->mem);
+    free(f->mucpl);
+    free(f);
+}
+
+const bf_film_params *bf_film_params_of(const bf_film *f) { return &f->p; }
+size_t bf_film_nodes(const bf_film *f) { return (size_t)f->N + 1; }
+const double *bf_film_x(const bf_film *f) { return ARR(f, V_X); }
+const double *bf_film_h(const bf_film *f) { return ARR(f, V_H); }
+const double *bf_film_psi(const bf_film *f) { return ARR(f, V_PSI); }
+const double *bf_film_u_d(const bf_film *f) { return ARR(f, V_UD); }
+const double *bf_film_u_c(const bf_film *f) { return ARR(f, V_UC); }
+const double *bf_film_ah_d(const bf_film *f) { return ARR(f, V_AD); }
+const double *bf_film_ah_c(const bf_film *f) { return ARR(f, V_AC); }
+
+double *bf_film_mu_cpl(bf_film *f) { return f->mucpl + 8; }
+
+/* h, psi from A_d, A_c on nodes lo..hi (one definition: the step and
+ * set_state/load must produce the same bits). */
+static void derive(long lo, long hi, const double *restrict ad,
+                   const double *restrict ac, double *restrict h,
+                   double *restrict psi)
+{
+    for (long i = lo; i <= hi; i++) {
+        double hh = ad[i] + ac[i];
+        h[i] = hh;
+        psi[i] = (ad[i] - ac[i]) / hh;
+    }
+}
+
+/* mirror ghosts: even for scalars, odd for velocities */
+static inline void ghost_even(double *a, long N)
+{
+    a[-1] = a[1];
+    a[N + 1] = a[N - 1];
+}
+
+static inline void ghost_odd(double *u, long N)
+{
+    u[-1] = -u[1];
+    u[N + 1] = -u[N - 1];
+}
+
+bf_status bf_film_set_state(bf_film *f, const double *h, const double *psi,
+                            const double *u_d, const double *u_c, bf_err *err)
+{
+    const long N = f->N;
+    for (long i = 0; i <= N; i++) {
+        if (!(h[i] > 0) || !isfinite(h[i]))
+            return bf_fail(err, BF_EINPUT, "film node %ld (x = %g cm): h = %g "
+                           "must be positive", i, ARR(f, V_X)[i], h[i]);
+        if (!(psi[i] >= -1 && psi[i] <= 1))
+            return bf_fail(err, BF_EINPUT, "film node %ld (x = %g cm): psi = "
+                           "%g is outside [-1, 1]", i, ARR(f, V_X)[i], psi[i]);
+        if (!isfinite(u_d[i]) || !isfinite(u_c[i]))
+            return bf_fail(err, BF_EINPUT, "film node %ld: velocity not "
+                           "finite", i);
+    }
+    double *ad = ARR(f, V_AD), *ac = ARR(f, V_AC);
+    double *ud = ARR(f, V_UD), *uc = ARR(f, V_UC);
+    for (long i = 0; i <= N; i++) {
+        /* alpha_d = (1 + psi)/2, alpha_c = (1 - psi)/2 */
+        ad[i] = 0.5 * (1.0 + psi[i]) * h[i];
+        ac[i] = 0.5 * (1.0 - psi[i]) * h[i];
+        ud[i] = u_d[i];
+        uc[i] = u_c[i];
+    }
+    ud[0] = uc[0] = ud[N] = uc[N] = 0.0;
+    derive(0, N, ad, ac, ARR(f, V_H), ARR(f, V_PSI));
+    return BF_OK;
+}
+
+double bf_film_kink(const bf_film_params *p, double x0, double x)
+{
+    double psi_e = sqrt(p->a / p->b), xi = sqrt(p->gamma / p->a);
+    return psi_e * tanh((x - x0) / (sqrt(2.0) * xi));
+}
+
+/* ------------------------------------------------------------ stability */
+
+double bf_film_stable_dt(const bf_film *f, char *why, size_t cap)
+{
+    const bf_film_params *p = &f->p;
+    const long N = f->N;
+    const double *ad = ARR(f, V_AD), *ac = ARR(f, V_AC);
+    const double *ud = ARR(f, V_UD), *uc = ARR(f, V_UC);
+    const double rmin = fmin(p->rho_d, p->rho_c);
+    const double lap = 4.0 * p->gamma / (p->dx * p->dx);
+    double rg = 0.0, rs = 0.0; /* 1/dt of gravity waves, of separation */
+    long ig = 0, is = 0;
+    for (long i = 0; i <= N; i++) {
+        double h = ad[i] + ac[i];
+        double c = sqrt(p->g * (p->rho_d * ad[i] + p->rho_c * ac[i]) / rmin);
+        double r = (fmax(fabs(ud[i]), fabs(uc[i])) + c) / p->dx;
+        if (r > rg) {
+            rg = r;
+            ig = i;
+        }
+        double al = ad[i] / h, psi = 2.0 * al - 1.0;
+        double beta = 2.0 * al * (1.0 - al);
+        double m = fmax(-p->a + 3.0 * p->b * psi * psi, 0.0) + lap;
+        double s = sqrt(2.0 * beta * m / rmin) / p->dx;
+        if (s > rs) {
+            rs = s;
+            is = i;
+        }
+    }
+    double R = fmax(rg, rs), B = 2.0 * p->nu / (p->dx * p->dx);
+    /* R^2 dt^2 + B dt <= 1 */
+    double dt = 2.0 / (B + sqrt(B * B + 4.0 * R * R));
+    if (why && cap) {
+        const double *x = ARR(f, V_X);
+        if (rg >= rs)
+            snprintf(why, cap,
+                     "gravity-wave CFL: dt (|u| + sqrt(g h)) / dx <= 1 with "
+                     "the viscous term, at node %ld (x = %g cm): "
+                     "dx/(|u| + c) = %.4g s",
+                     ig, x[ig], 1.0 / rg);
+        else
+            snprintf(why, cap,
+                     "phase-separation mode: dt <= dx sqrt(rho / (2 beta "
+                     "(-a + 3 b psi^2 + 4 gamma/dx^2))) at node %ld (x = %g "
+                     "cm): %.4g s",
+                     is, x[is], 1.0 / rs);
+    }
+    return dt;
+}
+
+/* ------------------------------------------------------------ the step */
+
+/* Speed.  The loops below are written so that GCC vectorises them:
+ * contiguous arrays, restrict pointers, no branches (selects instead), and
+ * the per-step checks as a bitwise OR of the values' bit patterns (sign
+ * bit: a negative value; exponent bits of x*0: a non-finite one), which the
+ * vectoriser accepts where it rejects a comparison reduction.  GCC 12 at
+ * -O2 uses the "very cheap" cost model, which rejects every loop that needs
+ * an epilogue; the "cheap" model is enabled for this file's hot loops, and
+ * bf_film_step_invariant is cloned for AVX2 and AVX-512 (picked at load
+ * time by the CPU; the SSE2 version elsewhere).  Vectorising element-wise
+ * arithmetic changes no bit of the results: no reduction is reordered and
+ * nothing is contracted (-ffp-contract=off), so every clone gives the same
+ * numbers.  The passes are swept over the film in blocks of BLOCK nodes,
+ * each pass lagging the one it depends on, so that a block's data stays in
+ * the L1 cache across the passes (a 500-node film's twenty arrays do not
+ * fit). */
+#pragma GCC push_options
+#pragma GCC optimize("vect-cost-model=cheap")
+
+#define HOT static inline __attribute__((always_inline))
+enum { BLOCK = 128 };
+
+HOT uint64_t bits_of(double x)
+{
+    uint64_t u;
+    memcpy(&u, &x, sizeof u);
+    return u;
+}
+
+/* the OR of bits_of(x) (in s) and bits_of(x*0) (in z) over values is "bad"
+ * if its sign bit is set (some value < 0 or -0) or its exponent is all
+ * ones (some value inf or NaN) */
+static int bits_bad(uint64_t s, uint64_t z)
+{
+    const uint64_t expo = 0x7ff0000000000000ull;
+    return (s >> 63) != 0 || (z & expo) == expo;
+}
+
+/* Positivity limiter for one phase (see the file comment).  F holds the
+ * face fluxes (face i+1/2 at i, i = -1..N, ghost faces mirrored); A the
+ * content at level n; s is scratch.  Returns the number of faces changed.
+ * Rarely called; scalar. */
+static unsigned long long limit_phase(long N, const double *A, double *F,
+                                      double *s)
+{
+    const double keep = 1.0 - 8.0 * DBL_EPSILON;
+    for (long i = 0; i <= N; i++) {
+        double out;
+        if (i == 0)
+            out = 2.0 * fmax(F[0], 0.0);
+        else if (i == N)
+            out = 2.0 * fmax(-F[N - 1], 0.0);
+        else
+            out = fmax(F[i], 0.0) + fmax(-F[i - 1], 0.0);
+        s[i] = out > A[i] ? (A[i] > 0 ? keep * A[i] / out : 0.0) : 1.0;
+    }
+    unsigned long long changed = 0;
+    for (long i = 0; i < N; i++) {
+        double si = F[i] > 0 ? s[i] : s[i + 1];
+        if (si < 1.0) {
+            F[i] *= si;
+            changed++;
+        }
+    }
+    F[-1] = -F[0];
+    F[N] = -F[N - 1];
+    return changed;
+}
+
+static int any_negative(long N, const double *a)
+{
+    for (long i = 0; i <= N; i++)
+        if (a[i] < 0)
+            return 1;
+    return 0;
+}
+
+/* Everything one step reads and writes. */
+typedef struct step_ctx {
+    long N;
+    double c1, c2, ird, irc, visc, g, rd, rc, a, b, gl, va;
+    const double *ad, *ac, *ud, *uc, *psi, *mc;
+    double *mu, *P, *wd, *wc, *Fd, *Fc, *Gd, *Gc;
+    double *ad1, *ac1, *h1, *psi1, *mus, *ud1, *uc1;
+} step_ctx;
+
+/* mu (3.8), P and W on nodes lo..hi (of -1..N+1), for one variant
+ * (inlined with a constant `variant`: one branch-free loop each). */
+HOT void node_loop(int variant, long lo, long hi, double a, double b,
+               double gl, double g, double rd, double rc,
+               const double *restrict ad, const double *restrict ac,
+               const double *restrict ud, const double *restrict uc,
+               const double *restrict psi, const double *restrict mc,
+               double *restrict mu, double *restrict P, double *restrict wd,
+               double *restrict wc)
+{
+    for (long i = lo; i <= hi; i++) {
+        double ps = psi[i];
+        double m = ps * (b * ps * ps - a) -
+                   gl * ((psi[i + 1] - ps) - (ps - psi[i - 1])) + mc[i];
+        double md = rd * ad[i], mcc = rc * ac[i];
+        double pp = g * (md + mcc);
+        mu[i] = m;
+        P[i] = pp;
+        if (variant == BF_FILM_MU_MIDPOINT) {
+            wd[i] = g * (md * ud[i] + mcc * uc[i]);
+        } else if (variant == BF_FILM_MU_UM) {
+            double um = (md * ud[i] + mcc * uc[i]) / (md + mcc);
+            wd[i] = (pp + m) * um;
+            wc[i] = (pp - m) * um;
+        } else {
+            wd[i] = (pp + m) * ud[i];
+            wc[i] = (pp - m) * uc[i];
+        }
+    }
+}
+
+HOT void node_pass(const step_ctx *c, int variant, long lo, long hi)
+{
+    node_loop(variant, lo, hi, c->a, c->b, c->gl, c->g, c->rd, c->rc, c->ad,
+              c->ac, c->ud, c->uc, c->psi, c->mc, c->mu, c->P, c->wd, c->wc);
+}
+
+/* Face fluxes F of (3.15) and G of (3.16) at faces i+1/2, i = lo..hi (of
+ * -1..N).  wcx: W of phase c (that of phase d for the midpoint variant). */
+HOT void face_loop(long lo, long hi, double c1, double c2, double ird,
+               double irc, double visc, const double *restrict P,
+               const double *restrict mu, const double *restrict ad,
+               const double *restrict ac, const double *restrict ud,
+               const double *restrict uc, const double *restrict wd,
+               const double *restrict wcx, double *restrict Fd,
+               double *restrict Fc, double *restrict Gd, double *restrict Gc)
+{
+    for (long i = lo; i <= hi; i++) {
+        double dP = P[i + 1] - P[i], dm = mu[i + 1] - mu[i];
+        /* phase d */
+        double ub = 0.5 * (ud[i] + ud[i + 1]), u2 = ub * ub;
+        double du = ud[i + 1] - ud[i];
+        double ab = 0.5 * (ad[i] + ad[i + 1]), da = ad[i + 1] - ad[i];
+        double dq = dP + dm;
+        Fd[i] = c1 * (ad[i] * ud[i] + ad[i + 1] * ud[i + 1]) -
+                c2 * (u2 * da + 2.0 * ub * ab * du + ab * dq * ird);
+        Gd[i] = (u2 + visc) * du + (ub * dq + (wd[i + 1] - wd[i])) * ird;
+        /* phase c */
+        ub = 0.5 * (uc[i] + uc[i + 1]);
+        u2 = ub * ub;
+        du = uc[i + 1] - uc[i];
+        ab = 0.5 * (ac[i] + ac[i + 1]);
+        da = ac[i + 1] - ac[i];
+        dq = dP - dm;
+        Fc[i] = c1 * (ac[i] * uc[i] + ac[i + 1] * uc[i + 1]) -
+                c2 * (u2 * da + 2.0 * ub * ab * du + ab * dq * irc);
+        Gc[i] = (u2 + visc) * du + (ub * dq + (wcx[i + 1] - wcx[i])) * irc;
+    }
+}
+
+HOT void face_pass(const step_ctx *c, const double *wcx, long lo, long hi)
+{
+    face_loop(lo, hi, c->c1, c->c2, c->ird, c->irc, c->visc, c->P, c->mu,
+              c->ad, c->ac, c->ud, c->uc, c->wd, wcx, c->Fd, c->Fc, c->Gd,
+              c->Gc);
+}
+
+/* (3.15) for both phases on nodes lo..hi (of 0..N), with h and psi of the
+ * new level; returns non-zero if a content may be negative or a value is
+ * not finite (a quick check: -0 also counts). */
+HOT int update_loop(long lo, long hi, const double *restrict ad,
+                const double *restrict ac, const double *restrict Fd,
+                const double *restrict Fc, double *restrict ad1,
+                double *restrict ac1, double *restrict h1,
+                double *restrict psi1)
+{
+    uint64_t s = 0, z = 0;
+    for (long i = lo; i <= hi; i++) {
+        double a = ad[i] - (Fd[i] - Fd[i - 1]);
+        double cc = ac[i] - (Fc[i] - Fc[i - 1]);
+        double h = a + cc;
+        double ps = (a - cc) / h;
+        ad1[i] = a;
+        ac1[i] = cc;
+        h1[i] = h;
+        psi1[i] = ps;
+        s |= bits_of(a) | bits_of(cc);
+        z |= bits_of(ps * 0.0);
+    }
+    return bits_bad(s, z);
+}
+
+HOT int update_pass(const step_ctx *c, long lo, long hi)
+{
+    return update_loop(lo, hi, c->ad, c->ac, c->Fd, c->Fc, c->ad1, c->ac1,
+                       c->h1, c->psi1);
+}
+
+/* Midpoint variant: mu* = (mu^n + mu^{n+1})/2 on nodes lo..hi (of 0..N);
+ * mu^{n+1} from psi^{n+1} (its ghosts set by the caller). */
+HOT void midmu_loop(long lo, long hi, double a, double b, double gl,
+                const double *restrict psi1, const double *restrict mc,
+                const double *restrict mu, double *restrict mus)
+{
+    for (long i = lo; i <= hi; i++) {
+        double ps = psi1[i];
+        double m1 = ps * (b * ps * ps - a) -
+                    gl * ((psi1[i + 1] - ps) - (ps - psi1[i - 1])) + mc[i];
+        mus[i] = 0.5 * (mu[i] + m1);
+    }
+}
+
+HOT void midmu_pass(const step_ctx *c, long lo, long hi)
+{
+    midmu_loop(lo, hi, c->a, c->b, c->gl, c->psi1, c->mc, c->mu, c->mus);
+}
+
+/* (3.16) at nodes lo..hi (of 1..N-1); mus: mu* of the pressure gradient.
+ * A vanishing phase (alpha_k < vanish) takes the other phase's velocity.
+ * Returns non-zero if a velocity is not finite. */
+HOT int velocity_loop(long lo, long hi, double c1, double c2, double ird,
+                  double irc, double va, const double *restrict P,
+                  const double *restrict mus, const double *restrict ud,
+                  const double *restrict uc, const double *restrict Gd,
+                  const double *restrict Gc, const double *restrict ad1,
+                  const double *restrict ac1, const double *restrict h1,
+                  double *restrict ud1, double *restrict uc1)
+{
+    uint64_t z = 0;
+    for (long i = lo; i <= hi; i++) {
+        double dP = P[i + 1] - P[i - 1], dm = mus[i + 1] - mus[i - 1];
+        double v = ud[i], vp = ud[i + 1], vm = ud[i - 1];
+        double nd = v - c1 * (0.5 * (vp + vm)) * (vp - vm) -
+                    c1 * ird * (dP + dm) + c2 * (Gd[i] - Gd[i - 1]);
+        v = uc[i];
+        vp = uc[i + 1];
+        vm = uc[i - 1];
+        double nc = v - c1 * (0.5 * (vp + vm)) * (vp - vm) -
+                    c1 * irc * (dP - dm) + c2 * (Gc[i] - Gc[i - 1]);
+        double vh = va * h1[i];
+        ud1[i] = ad1[i] < vh ? nc : nd;
+        uc1[i] = ac1[i] < vh ? nd : nc;
+        z |= bits_of(nd * 0.0) | bits_of(nc * 0.0);
+    }
+    return bits_bad(0, z);
+}
+
+HOT int velocity_pass(const step_ctx *c, const double *mus, long lo, long hi)
+{
+    return velocity_loop(lo, hi, c->c1, c->c2, c->ird, c->irc, c->va, c->P,
+                         mus, c->ud, c->uc, c->Gd, c->Gc, c->ad1, c->ac1,
+                         c->h1, c->ud1, c->uc1);
+}
+
+/* Locate the first bad value after a step whose quick check failed and
+ * describe it; BF_OK if there is none (the quick check also flags -0). */
+static bf_status report_bad(const bf_film *f, const double *ad1,
+                            const double *ac1, const double *ud1,
+                            const double *uc1, bf_err *err)
+{
+    const long N = f->N;
+    const double *x = ARR(f, V_X);
+    for (long i = 0; i <= N; i++) {
+        double h = ad1[i] + ac1[i];
+        if (!isfinite(ad1[i]) || !isfinite(ac1[i]) || !isfinite(ud1[i]) ||
+            !isfinite(uc1[i]))
+            return bf_fail(err, BF_EUNSTABLE,
+                           "film node %ld (x = %g cm): non-finite value "
+                           "(alpha_d h = %g, alpha_c h = %g, u_d = %g, u_c = "
+                           "%g cm/s)",
+                           i, x[i], ad1[i], ac1[i], ud1[i], uc1[i]);
+        if (!(h > 0))
+            return bf_fail(err, BF_EUNSTABLE,
+                           "film node %ld (x = %g cm): h = %g <= 0", i, x[i],
+                           h);
+        if (ad1[i] < 0 || ac1[i] < 0)
+            return bf_fail(err, BF_EUNSTABLE,
+                           "film node %ld (x = %g cm): volume fraction "
+                           "alpha_%c = %.3g outside [0, 1] (alpha_d h = %g, "
+                           "alpha_c h = %g); the model is ill-posed there "
+                           "(set [film] positivity = limit)",
+                           i, x[i], ad1[i] < 0 ? 'd' : 'c',
+                           (ad1[i] < 0 ? ad1[i] : ac1[i]) / h, ad1[i], ac1[i]);
+    }
+    return BF_OK;
+}
+
+/* The whole step for one variant (inlined with a constant `variant`). */
+HOT int sweep(bf_film *f, step_ctx *c, int variant)
+{
+    const long N = c->N;
+    const int mid = variant == BF_FILM_MU_MIDPOINT;
+    const double *wcx = mid ? c->wd : c->wc;
+    const double *mus = mid ? c->mus : c->mu;
+    int bad = 0, badu = 0;
+    /* done-up-to markers of each pass; pass k lags the one it needs */
+    long dn = -2, df = -2, du = -1, dm = -1, dv = 0;
+    for (long k = -1 + BLOCK; dv < N - 1; k += BLOCK) {
+        long kn = k < N + 1 ? k : N + 1;
+        node_pass(c, variant, dn + 1, kn);
+        dn = kn;
+        long kf = k - 1 < N ? k - 1 : N;
+        face_pass(c, wcx, df + 1, kf);
+        df = kf;
+        bad |= update_pass(c, du + 1, kf);
+        du = kf;
+        long kv;
+        if (mid) {
+            long km = k - 2 < N ? k - 2 : N;
+            if (dm < 0 && km >= 0)
+                c->psi1[-1] = c->psi1[1];
+            if (km == N && du == N)
+                c->psi1[N + 1] = c->psi1[N - 1];
+            midmu_pass(c, dm + 1, km);
+            dm = km;
+            kv = k - 3;
+        } else {
+            kv = k - 2;
+        }
+        if (kv > N - 1)
+            kv = N - 1;
+        badu |= velocity_pass(c, mus, dv + 1, kv);
+        dv = kv;
+    }
+    if (bad && f->p.limit_positive &&
+        (any_negative(N, c->ad1) || any_negative(N, c->ac1))) {
+        /* some content would go negative: limit the fluxes of that phase
+         * and redo what depends on them (scratch: the new mu) */
+        unsigned long long nf = 0;
+        if (any_negative(N, c->ad1))
+            nf += limit_phase(N, c->ad, c->Fd, c->mus);
+        if (any_negative(N, c->ac1))
+            nf += limit_phase(N, c->ac, c->Fc, c->mus);
+        f->lim_steps++;
+        f->lim_faces += nf;
+        bad = update_pass(c, 0, N);
+        if (mid) {
+            ghost_even(c->psi1, N);
+            midmu_pass(c, 0, N);
+        }
+        badu = velocity_pass(c, mus, 1, N - 1);
+    }
+    c->ud1[0] = c->uc1[0] = c->ud1[N] = c->uc1[N] = 0.0;
+    return bad | badu;
+}
+
+__attribute__((target_clones("avx512f", "avx2", "default")))
+bf_status bf_film_step_invariant(bf_film *f, double dt, bf_err *err)
+{
+    const bf_film_params *p = &f->p;
+    const long N = f->N;
+    step_ctx c = {
+        .N = N,
+        .c1 = dt / (2.0 * p->dx),
+        .c2 = dt * dt / (2.0 * p->dx * p->dx),
+        .ird = 1.0 / p->rho_d,
+        .irc = 1.0 / p->rho_c,
+        .visc = 2.0 * p->nu / dt,
+        .g = p->g,
+        .rd = p->rho_d,
+        .rc = p->rho_c,
+        .a = p->a,
+        .b = p->b,
+        .gl = p->gamma / (p->dx * p->dx),
+        .va = p->vanish,
+        .ad = ARR(f, V_AD), .ac = ARR(f, V_AC),
+        .ud = ARR(f, V_UD), .uc = ARR(f, V_UC),
+        .psi = ARR(f, V_PSI), .mc = f->mucpl + 8,
+        .mu = ARR(f, V_MU), .P = ARR(f, V_P),
+        .wd = ARR(f, V_WD), .wc = ARR(f, V_WC),
+        .Fd = ARR(f, V_FD), .Fc = ARR(f, V_FC),
+        .Gd = ARR(f, V_GD), .Gc = ARR(f, V_GC),
+        .ad1 = ARR(f, V_AD1), .ac1 = ARR(f, V_AC1),
+        .h1 = ARR(f, V_H1), .psi1 = ARR(f, V_PSI1),
+        .mus = ARR(f, V_MU1),
+        .ud1 = ARR(f, V_UD1), .uc1 = ARR(f, V_UC1),
+    };
+    /* ghosts of level n: psi and mu_cpl need two (mu on -1..N+1) */
+    ghost_even(ARR(f, V_AD), N);
+    ghost_even(ARR(f, V_AC), N);
+    ghost_odd(ARR(f, V_UD), N);
+    ghost_odd(ARR(f, V_UC), N);
+    double *psi = ARR(f, V_PSI), *mc = f->mucpl + 8;
+    ghost_even(psi, N);
+    psi[-2] = psi[2];
+    psi[N + 2] = psi[N - 2];
+    ghost_even(mc, N);
+
+    int bad;
+    switch (p->mu_taylor) {
+    case BF_FILM_MU_MIDPOINT:
+        bad = sweep(f, &c, BF_FILM_MU_MIDPOINT);
+        break;
+    case BF_FILM_MU_UM:
+        bad = sweep(f, &c, BF_FILM_MU_UM);
+        break;
+    default:
+        bad = sweep(f, &c, BF_FILM_MU_UK);
+        break;
+    }
+
+    /* the new level becomes the current one (also on failure, so that the
+     * caller sees the failed state) */
+    double *t;
+#define SWAP(a, b) (t = f->v[a], f->v[a] = f->v[b], f->v[b] = t)
+    SWAP(V_AD, V_AD1);
+    SWAP(V_AC, V_AC1);
+    SWAP(V_UD, V_UD1);
+    SWAP(V_UC, V_UC1);
+    SWAP(V_H, V_H1);
+    SWAP(V_PSI, V_PSI1);
+#undef SWAP
+    if (bad)
+        return report_bad(f, ARR(f, V_AD), ARR(f, V_AC), ARR(f, V_UD),
+                          ARR(f, V_UC), err);
+    return BF_OK;
+}
+
+#undef HOT
+#pragma GCC pop_options
+
+/* ------------------------------------------------------------ diagnostics */
+
+/* Neumaier-compensated trapezoid sum of a[0..N] times dx, so that the
+ * diagnostic itself does not add round-off to the conservation check. */
+static double trapezoid(const double *a, long N, double dx)
+{
+    double s = 0.0, c = 0.0;
+    for (long i = 0; i <= N; i++) {
+        double v = (i == 0 || i == N) ? 0.5 * a[i] : a[i];
+        double t = s + v;
+        if (fabs(s) >= fabs(v))
+            c += (s - t) + v;
+        else
+            c += (v - t) + s;
+        s = t;
+    }
+    return (s + c) * dx;
+}
+
+void bf_film_totals(const bf_film *f, double *mass_d, double *mass_c)
+{
+    *mass_d = trapezoid(ARR(f, V_AD), f->N, f->p.dx);
+    *mass_c = trapezoid(ARR(f, V_AC), f->N, f->p.dx);
+}
+
+double bf_film_max_speed(const bf_film *f)
+{
+    const double *ud = ARR(f, V_UD), *uc = ARR(f, V_UC);
+    double m = 0.0;
+    for (long i = 0; i <= f->N; i++)
+        m = fmax(m, fmax(fabs(ud[i]), fabs(uc[i])));
+    return m;
+}
+
+double bf_film_min_alpha(const bf_film *f)
+{
+    const double *ad = ARR(f, V_AD), *ac = ARR(f, V_AC);
+    double m = 1.0;
+    for (long i = 0; i <= f->N; i++) {
+        double h = ad[i] + ac[i];
+        m = fmin(m, fmin(ad[i] / h, ac[i] / h));
+    }
+    return m;
+}
+
+void bf_film_limiter_counts(const bf_film *f, unsigned long long *steps,
+                            unsigned long long *faces)
+{
+    *steps = f->lim_steps;
+    *faces = f->lim_faces;
+}
+
+/* ------------------------------------------------------------ checkpoint */
+
+static const int ckpt_vars[] = {V_AD, V_AC, V_UD, V_UC};
+static const char *const ckpt_names[] = {"ah_d", "ah_c", "u_d", "u_c"};
+
+bf_status bf_film_save(const bf_film *f, bf_ckpt *ck, const char *prefix,
+                       bf_err *err)
+{
+    char name[256];
+    bf_status st;
+    for (int k = 0; k < 4; k++) {
+        snprintf(name, sizeof name, "%s.%s", prefix, ckpt_names[k]);
+        if ((st = bf_ckpt_put(ck, name, ARR(f, ckpt_vars[k]),
+                              (size_t)f->N + 1, err)))
+            return st;
+    }
+    int64_t c[2] = {(int64_t)f->lim_steps, (int64_t)f->lim_faces};
+    snprintf(name, sizeof name, "%s.limiter", prefix);
+    return bf_ckpt_put_i64(ck, name, c, 2, err);
+}
+
+bf_status bf_film_load(bf_film *f, const bf_ckpt *ck, const char *prefix,
+                       bf_err *err)
+{
+    char name[256];
+    bf_status st;
+    for (int k = 0; k < 4; k++) {
+        snprintf(name, sizeof name, "%s.%s", prefix, ckpt_names[k]);
+        if ((st = bf_ckpt_get(ck, name, ARR(f, ckpt_vars[k]), (size_t)f->N + 1,
+                              err)))
+            return st;
+    }
+    int64_t c[2];
+    snprintf(name, sizeof name, "%s.limiter", prefix);
+    if ((st = bf_ckpt_get_i64(ck, name, c, 2, err)))
+        return st;
+    f->lim_steps = (unsigned long long)c[0];
+    f->lim_faces = (unsigned long long)c[1];
+    derive(0, f->N, ARR(f, V_AD), ARR(f, V_AC), ARR(f, V_H), ARR(f, V_PSI));
+    return BF_OK;
+}

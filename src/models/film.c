@@ -1,0 +1,82 @@
+/* film.c: the "film" model: the two-phase shallow-water film alone
+ * (Yasuda sec. 3.1-3.4: the kink steady state of Fig. 5).  Everything is in
+ * the film component (filmsys.h); this file connects it to the time loop.
+ */
+#include <stdlib.h>
+
+#include "ballfilm/filmsys.h"
+#include "ballfilm/model.h"
+
+static bf_status film_create(void **self, const bf_scene *sc, bf_err *err)
+{
+    bf_filmsys *fs;
+    bf_status st = bf_filmsys_create(&fs, sc, err);
+    if (!st)
+        *self = fs;
+    return st;
+}
+
+static void film_destroy(void *self) { bf_filmsys_free(self); }
+
+static double film_stable_dt(const void *self)
+{
+    return bf_film_stable_dt(bf_filmsys_film((bf_filmsys *)self), NULL, 0);
+}
+
+static bf_status film_step(void *self, long n, double t, double dt, bf_err *err)
+{
+    (void)n;
+    (void)t;
+    return bf_filmsys_step(self, dt, err);
+}
+
+static bf_status film_output_open(void *self, bf_out *out, bf_err *err)
+{
+    return bf_filmsys_output_open(self, out, err);
+}
+
+static bf_status film_output_row(void *self, long n, double t, bf_err *err)
+{
+    return bf_filmsys_output_row(self, n, t, err);
+}
+
+static void film_counters(const void *self, bf_counters *c)
+{
+    (void)self;
+    (void)c; /* the film takes one step per step and evaluates no forces */
+}
+
+static void film_report(const void *self, FILE *f)
+{
+    bf_filmsys_report(self, f);
+}
+
+static bf_status film_save(const void *self, bf_ckpt *ck, bf_err *err)
+{
+    return bf_filmsys_save(self, ck, err);
+}
+
+static bf_status film_load(void *self, const bf_ckpt *ck, bf_err *err)
+{
+    return bf_filmsys_load(self, ck, err);
+}
+
+static const bf_section_spec *const film_specs[] = {&bf_filmsys_spec, NULL};
+
+const bf_model_type bf_model_film = {
+    .name = "film",
+    .doc = "two-phase shallow-water film with Ginzburg-Landau phase "
+           "separation, invariant scheme (Yasuda sec. 3.1-3.4)",
+    .flags = 0,
+    .specs = film_specs,
+    .create = film_create,
+    .destroy = film_destroy,
+    .stable_dt = film_stable_dt,
+    .step = film_step,
+    .output_open = film_output_open,
+    .output_row = film_output_row,
+    .counters = film_counters,
+    .report = film_report,
+    .checkpoint_save = film_save,
+    .checkpoint_load = film_load,
+};

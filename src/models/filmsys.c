@@ -1,0 +1,437 @@
+/* filmsys.c: a film from a scene's [film] section, its initial state,
+ * output and diagnostics (see filmsys.h).
+ *
+ * Initial state (Yasuda sec. 3.4): h = h0, u = 0, and psi from
+ *   kink     psi = sqrt(a/b) tanh((x - x0)/(sqrt(2) xi)), xi = sqrt(gamma/a)
+ *            (eq. 3.17 with the width corrected: the print's
+ *            tanh(x/sqrt(2 xi)) has mu = 0 only for xi = 1);
+ *   uniform  psi = psi0;
+ *   file     the last profile row (/film/h, /film/psi, /film/u_d, /film/u_c)
+ *            of an earlier run's output.
+ * The paper adds "a perturbation of less than 0.0001 randomly to the
+ * volume fractions" without saying how alpha_d + alpha_c = 1 is kept:
+ *   positive  alpha_k += eps_k, eps_k uniform in [0, amplitude), then both
+ *             divided by their sum: the fractions stay in [0, 1];
+ *   signed    alpha_d += eps, eps uniform in [-amplitude, amplitude),
+ *             alpha_c = 1 - alpha_d, clipped to [0, 1] (without the clip the
+ *             far field of the kink, alpha ~ 1e-16, would start negative,
+ *             where the model is ill-posed).
+ * The random numbers come from GSL's mt19937 seeded with [film] seed, drawn
+ * node by node (eps_d then eps_c): same seed, same bits.
+ */
+#include "ballfilm/filmsys.h"
+
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { INIT_KINK, INIT_UNIFORM, INIT_FILE };
+enum { PERT_POSITIVE, PERT_SIGNED };
+
+static const bf_param film_params[] = {
+    {"length", BF_REAL, "cm", "50", "film length L (walls at -L/2 and L/2)",
+     BF_POS, 0, 0, NULL},
+    {"dx", BF_REAL, "cm", "0.1", "node spacing; L/dx must be a whole number",
+     BF_POS, 0, 0, NULL},
+    {"h0", BF_REAL, "cm", "1", "initial height (kink and uniform)", BF_POS, 0,
+     0, NULL},
+    {"rho_d", BF_REAL, "g/cm^3", "1", "density of the minor phase d", BF_POS,
+     0, 0, NULL},
+    {"rho_c", BF_REAL, "g/cm^3", "1", "density of the major phase c", BF_POS,
+     0, 0, NULL},
+    {"nu", BF_REAL, "cm^2/s", "0.01", "lateral viscosity (sec. 3.4)",
+     BF_NONNEG, 0, 0, NULL},
+    {"g", BF_REAL, "cm/s^2", "980", "gravitational acceleration", BF_NONNEG,
+     0, 0, NULL},
+    {"a", BF_REAL, "g/(cm s^2)", "1", "Ginzburg-Landau constant a", BF_POS, 0,
+     0, NULL},
+    {"b", BF_REAL, "g/(cm s^2)", "1",
+     "Ginzburg-Landau constant b (b >= a keeps |psi_e| <= 1)", BF_POS, 0, 0,
+     NULL},
+    {"gamma", BF_REAL, "g cm/s^2", "1", "Ginzburg-Landau gradient constant",
+     BF_POS, 0, 0, NULL},
+    {"initial", BF_ENUM, "", "kink",
+     "initial psi: kink (eq. 3.17), uniform (psi0), or file (last profile "
+     "of an earlier run's output)",
+     0, 0, 0, "kink|uniform|file"},
+    {"center", BF_REAL, "cm", "0", "kink centre x0", 0, 0, 0, NULL},
+    {"psi0", BF_REAL, "1", "0", "order parameter of the uniform film",
+     BF_MIN | BF_MAX, -1, 1, NULL},
+    {"file", BF_STR, "", "", "HDF5 output of an earlier run (initial = file)",
+     0, 0, 0, NULL},
+    {"perturbation", BF_REAL, "1", "0",
+     "amplitude of the random perturbation of the volume fractions",
+     BF_MIN | BF_MAX, 0, 0.5, NULL},
+    {"perturbation_mode", BF_ENUM, "", "positive",
+     "positive: alpha_k += [0, amp) then renormalised; signed: alpha_d += "
+     "[-amp, amp), clipped to [0, 1]",
+     0, 0, 0, "positive|signed"},
+    {"seed", BF_INT, "", "1", "seed of the GSL mt19937 generator", BF_NONNEG,
+     0, 0, NULL},
+    {"mu_taylor", BF_ENUM, "", "midpoint",
+     "how mu enters the dt^2/2 term of (3.16): midpoint (consistent, "
+     "2nd order), um (as printed: W = (P +- mu) u_m), uk (W = (P +- mu) u_k)",
+     0, 0, 0, "midpoint|um|uk"},
+    {"positivity", BF_ENUM, "", "limit",
+     "negative volume fractions: limit (flux limiter keeps alpha >= 0, "
+     "conservative) or stop (the run stops at the first one)",
+     0, 0, 0, "limit|stop"},
+    {"vanish", BF_REAL, "1", "1e-8",
+     "where a volume fraction is below this, that phase's velocity is set to "
+     "the mixture velocity after each step (0: never)",
+     BF_MIN | BF_MAX, 0, 0.5, NULL},
+    {"force_dt", BF_BOOL, "", "false",
+     "run even if [scene] dt exceeds the stable limit (stops at the first "
+     "bad value)",
+     0, 0, 0, NULL},
+    {"profile_every", BF_INTERVAL, "steps | s", "0",
+     "interval of the profile output /film/h, /film/psi, ... ('N' steps or "
+     "'T s'; 0: at every [scene] output_every row); the first and last "
+     "states are always written",
+     0, 0, 0, NULL},
+    {0},
+};
+
+const bf_section_spec bf_filmsys_spec = {
+    "film",
+    "two-phase shallow-water film with Ginzburg-Landau phase separation "
+    "(Yasuda sec. 3.1-3.4)",
+    film_params};
+
+struct bf_filmsys {
+    bf_film *film;
+    size_t n;
+    double dt;
+    long prof_every, last_step;
+    int kink;
+    double x0;
+    double m0[2];
+    double drift; /* largest relative change of the totals seen */
+    double *tmp;  /* one profile row */
+    bf_series *s_time, *s_h, *s_psi, *s_ud, *s_uc;
+    bf_series *s_md, *s_mc, *s_umax, *s_amin, *s_kerr, *s_lim;
+};
+
+bf_film *bf_filmsys_film(bf_filmsys *fs) { return fs->film; }
+
+int bf_filmsys_has_kink(const bf_filmsys *fs, double *x0)
+{
+    if (x0)
+        *x0 = fs->x0;
+    return fs->kink;
+}
+
+void bf_filmsys_free(bf_filmsys *fs)
+{
+    if (!fs)
+        return;
+    bf_film_free(fs->film);
+    free(fs->tmp);
+    free(fs);
+}
+
+static long interval_steps(bf_interval iv, double dt)
+{
+    if (!iv.in_time)
+        return iv.steps;
+    double k = floor(iv.time / dt + 0.5);
+    return iv.time > 0 && k < 1 ? 1 : (long)k;
+}
+
+/* The last profile row of an earlier run. */
+static bf_status read_file(bf_filmsys *fs, const bf_scene *sc, double *h,
+                           double *psi, double *ud, double *uc, bf_err *err)
+{
+    const char *path = bf_scene_str(sc, "film", "file");
+    if (!*path)
+        return bf_scene_fail(sc, err, "film", "file",
+                             "initial = file needs the HDF5 file of an "
+                             "earlier run");
+    const char *names[4] = {"/film/h", "/film/psi", "/film/u_d", "/film/u_c"};
+    double *dst[4] = {h, psi, ud, uc};
+    for (int k = 0; k < 4; k++) {
+        double *d;
+        size_t n0, n1;
+        bf_err e2 = {0};
+        if (bf_h5_read(path, names[k], &d, &n0, &n1, &e2))
+            return bf_scene_fail(sc, err, "film", "file", "%s", e2.msg);
+        if (n1 != fs->n || n0 < 1) {
+            free(d);
+            return bf_scene_fail(sc, err, "film", "file",
+                                 "%s: %s has %zu x %zu values; this film has "
+                                 "%zu nodes (same length and dx needed)",
+                                 path, names[k], n0, n1, fs->n);
+        }
+        memcpy(dst[k], d + (n0 - 1) * n1, fs->n * sizeof(double));
+        free(d);
+    }
+    return BF_OK;
+}
+
+static bf_status initial_state(bf_filmsys *fs, const bf_scene *sc, bf_err *err)
+{
+    bf_film *f = fs->film;
+    const bf_film_params *p = bf_film_params_of(f);
+    const size_t n = fs->n;
+    const double *x = bf_film_x(f);
+    double *buf = calloc(4 * n, sizeof(double));
+    if (!buf)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    double *h = buf, *psi = buf + n, *ud = buf + 2 * n, *uc = buf + 3 * n;
+    bf_status st = BF_OK;
+    int init = bf_scene_enum(sc, "film", "initial");
+    double h0 = bf_scene_real(sc, "film", "h0");
+    fs->kink = init == INIT_KINK;
+    fs->x0 = bf_scene_real(sc, "film", "center");
+    if (init == INIT_FILE) {
+        st = read_file(fs, sc, h, psi, ud, uc, err);
+    } else {
+        double psi0 = bf_scene_real(sc, "film", "psi0");
+        for (size_t i = 0; i < n; i++) {
+            h[i] = h0;
+            psi[i] = init == INIT_KINK ? bf_film_kink(p, fs->x0, x[i]) : psi0;
+        }
+    }
+    double amp = bf_scene_real(sc, "film", "perturbation");
+    if (!st && amp > 0) {
+        gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+        if (!r) {
+            free(buf);
+            return bf_fail(err, BF_EINTERNAL, "out of memory");
+        }
+        gsl_rng_set(r, (unsigned long)bf_scene_int(sc, "film", "seed"));
+        int mode = bf_scene_enum(sc, "film", "perturbation_mode");
+        for (size_t i = 0; i < n; i++) {
+            double ad = 0.5 * (1.0 + psi[i]), ac = 0.5 * (1.0 - psi[i]);
+            if (mode == PERT_POSITIVE) {
+                ad += amp * gsl_rng_uniform(r);
+                ac += amp * gsl_rng_uniform(r);
+                double s = ad + ac;
+                ad /= s;
+                ac /= s;
+            } else {
+                ad += amp * (2.0 * gsl_rng_uniform(r) - 1.0);
+                ad = fmin(fmax(ad, 0.0), 1.0);
+                ac = 1.0 - ad;
+            }
+            psi[i] = ad - ac;
+        }
+        gsl_rng_free(r);
+    }
+    if (!st) {
+        bf_err e2 = {0};
+        if (bf_film_set_state(f, h, psi, ud, uc, &e2))
+            st = bf_scene_fail(sc, err, "film", "initial", "%s", e2.msg);
+    }
+    free(buf);
+    return st;
+}
+
+bf_status bf_filmsys_create(bf_filmsys **out, const bf_scene *sc, bf_err *err)
+{
+    *out = NULL;
+    bf_film_params p = {
+        .length = bf_scene_real(sc, "film", "length"),
+        .dx = bf_scene_real(sc, "film", "dx"),
+        .rho_d = bf_scene_real(sc, "film", "rho_d"),
+        .rho_c = bf_scene_real(sc, "film", "rho_c"),
+        .nu = bf_scene_real(sc, "film", "nu"),
+        .g = bf_scene_real(sc, "film", "g"),
+        .a = bf_scene_real(sc, "film", "a"),
+        .b = bf_scene_real(sc, "film", "b"),
+        .gamma = bf_scene_real(sc, "film", "gamma"),
+    };
+    static const bf_film_mu_taylor mt[] = {BF_FILM_MU_MIDPOINT, BF_FILM_MU_UM,
+                                           BF_FILM_MU_UK};
+    p.mu_taylor = mt[bf_scene_enum(sc, "film", "mu_taylor")];
+    p.limit_positive = bf_scene_enum(sc, "film", "positivity") == 0;
+    p.vanish = bf_scene_real(sc, "film", "vanish");
+    if (bf_scene_enum(sc, "film", "initial") == INIT_KINK && p.a > p.b)
+        return bf_scene_fail(sc, err, "film", "b",
+                             "the kink's far field psi_e = sqrt(a/b) = %g "
+                             "exceeds 1 (volume fractions outside [0, 1]): "
+                             "use b >= a",
+                             sqrt(p.a / p.b));
+    bf_filmsys *fs = calloc(1, sizeof *fs);
+    if (!fs)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    bf_err e2 = {0};
+    if (bf_film_create(&fs->film, &p, &e2)) {
+        free(fs);
+        return bf_scene_fail(sc, err, "film", "dx", "%s", e2.msg);
+    }
+    fs->n = bf_film_nodes(fs->film);
+    fs->tmp = calloc(fs->n, sizeof(double));
+    bf_status st = fs->tmp ? initial_state(fs, sc, err)
+                           : bf_fail(err, BF_EINTERNAL, "out of memory");
+    if (st) {
+        bf_filmsys_free(fs);
+        return st;
+    }
+    fs->dt = bf_scene_real(sc, "scene", "dt");
+    char why[256];
+    double lim = bf_film_stable_dt(fs->film, why, sizeof why);
+    if (fs->dt > lim && !bf_scene_bool(sc, "film", "force_dt")) {
+        st = bf_scene_fail(sc, err, "scene", "dt",
+                           "dt = %g s exceeds the film's stable limit %.4g s "
+                           "(%s); use a smaller dt, or set [film] force_dt = "
+                           "true to run anyway",
+                           fs->dt, lim, why);
+        bf_filmsys_free(fs);
+        return st;
+    }
+    double t_end = bf_scene_real(sc, "scene", "t_end");
+    fs->last_step = (long)ceil(t_end / fs->dt * (1.0 - 1e-12));
+    fs->prof_every = interval_steps(bf_scene_interval(sc, "film",
+                                                      "profile_every"),
+                                    fs->dt);
+    if (fs->prof_every < 1)
+        fs->prof_every = interval_steps(bf_scene_interval(sc, "scene",
+                                                          "output_every"),
+                                        fs->dt);
+    if (fs->prof_every < 1)
+        fs->prof_every = 1;
+    bf_film_totals(fs->film, &fs->m0[0], &fs->m0[1]);
+    *out = fs;
+    return BF_OK;
+}
+
+bf_status bf_filmsys_step(bf_filmsys *fs, double dt, bf_err *err)
+{
+    return bf_film_step_invariant(fs->film, dt, err);
+}
+
+double bf_filmsys_kink_error(const bf_filmsys *fs)
+{
+    if (!fs->kink)
+        return NAN;
+    const bf_film_params *p = bf_film_params_of(fs->film);
+    const double *x = bf_film_x(fs->film), *psi = bf_film_psi(fs->film);
+    double e = 0.0;
+    for (size_t i = 0; i < fs->n; i++)
+        e = fmax(e, fabs(psi[i] - bf_film_kink(p, fs->x0, x[i])));
+    return e;
+}
+
+static double rel_change(double m, double m0)
+{
+    return m0 != 0.0 ? fabs(m - m0) / fabs(m0) : fabs(m - m0);
+}
+
+double bf_filmsys_mass_drift(const bf_filmsys *fs)
+{
+    double md, mc;
+    bf_film_totals(fs->film, &md, &mc);
+    return fmax(fs->drift,
+                fmax(rel_change(md, fs->m0[0]), rel_change(mc, fs->m0[1])));
+}
+
+bf_status bf_filmsys_output_open(bf_filmsys *fs, bf_out *out, bf_err *err)
+{
+    const size_t n = fs->n;
+    bf_status st = bf_out_array(out, "/film/x", bf_film_x(fs->film), n, 0, "cm",
+                                "node positions x_i = -L/2 + i dx", err);
+    if (st)
+        return st;
+#define SER(var, path, cols, isint, unit, doc)                                 \
+    do {                                                                       \
+        fs->var = bf_out_series(out, path, cols, isint, unit, doc, err);      \
+        if (!fs->var)                                                          \
+            return err->status;                                                \
+    } while (0)
+    SER(s_time, "/film/time", 0, 0, "s", "time of each profile row");
+    SER(s_h, "/film/h", n, 0, "cm", "film height h on the nodes");
+    SER(s_psi, "/film/psi", n, 0, "1", "order parameter alpha_d - alpha_c");
+    SER(s_ud, "/film/u_d", n, 0, "cm/s", "velocity of phase d");
+    SER(s_uc, "/film/u_c", n, 0, "cm/s", "velocity of phase c");
+    SER(s_md, "/film/mass_d", 0, 0, "cm^2",
+        "integral of alpha_d h dx (trapezoid), at every output row");
+    SER(s_mc, "/film/mass_c", 0, 0, "cm^2",
+        "integral of alpha_c h dx (trapezoid), at every output row");
+    SER(s_umax, "/film/max_u", 0, 0, "cm/s", "max |u_d|, |u_c| over nodes");
+    SER(s_amin, "/film/min_alpha", 0, 0, "1",
+        "smallest volume fraction of either phase over the nodes");
+    SER(s_lim, "/film/limited_faces", 0, 1, "1",
+        "cumulative number of face fluxes changed by the positivity limiter");
+    if (fs->kink)
+        SER(s_kerr, "/film/kink_error", 0, 0, "1",
+            "max |psi - tanh((x - x0)/(sqrt(2) xi))| over nodes");
+#undef SER
+    return BF_OK;
+}
+
+bf_status bf_filmsys_output_row(bf_filmsys *fs, long n, double t, bf_err *err)
+{
+    bf_film *f = fs->film;
+    double md, mc;
+    bf_film_totals(f, &md, &mc);
+    fs->drift = fmax(fs->drift, fmax(rel_change(md, fs->m0[0]),
+                                     rel_change(mc, fs->m0[1])));
+    double umax = bf_film_max_speed(f), amin = bf_film_min_alpha(f);
+    unsigned long long ls, lf;
+    bf_film_limiter_counts(f, &ls, &lf);
+    int64_t lim = (int64_t)lf;
+    if (bf_series_append(fs->s_md, &md) || bf_series_append(fs->s_mc, &mc) ||
+        bf_series_append(fs->s_umax, &umax) ||
+        bf_series_append(fs->s_amin, &amin) ||
+        bf_series_append_i64(fs->s_lim, &lim))
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    if (fs->kink) {
+        double e = bf_filmsys_kink_error(fs);
+        if (bf_series_append(fs->s_kerr, &e))
+            return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    if (n % fs->prof_every == 0 || n >= fs->last_step) {
+        if (bf_series_append(fs->s_time, &t) ||
+            bf_series_append(fs->s_h, bf_film_h(f)) ||
+            bf_series_append(fs->s_psi, bf_film_psi(f)) ||
+            bf_series_append(fs->s_ud, bf_film_u_d(f)) ||
+            bf_series_append(fs->s_uc, bf_film_u_c(f)))
+            return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    return BF_OK;
+}
+
+void bf_filmsys_report(const bf_filmsys *fs, FILE *out)
+{
+    bf_film *f = fs->film;
+    double md, mc;
+    bf_film_totals(f, &md, &mc);
+    char why[256];
+    double lim = bf_film_stable_dt(f, why, sizeof why);
+    unsigned long long ls, lf;
+    bf_film_limiter_counts(f, &ls, &lf);
+    fprintf(out, "film: %zu nodes; phase totals d %.15g, c %.15g cm^2 "
+                 "(relative change %.2e, %.2e)\n",
+            fs->n, md, mc, rel_change(md, fs->m0[0]),
+            rel_change(mc, fs->m0[1]));
+    fprintf(out, "film: max |u| %.3e cm/s, min volume fraction %.3e, "
+                 "positivity limiter acted in %llu steps (%llu faces)\n",
+            bf_film_max_speed(f), bf_film_min_alpha(f), ls, lf);
+    fprintf(out, "film: stable dt now %.4g s (dt = %g s)\n", lim, fs->dt);
+    if (fs->kink)
+        fprintf(out, "film: kink error max|psi - kink| = %.6e\n",
+                bf_filmsys_kink_error(fs));
+}
+
+bf_status bf_filmsys_save(const bf_filmsys *fs, bf_ckpt *ck, bf_err *err)
+{
+    bf_status st = bf_film_save(fs->film, ck, "film", err);
+    if (!st)
+        st = bf_ckpt_put(ck, "film.m0", fs->m0, 2, err);
+    if (!st)
+        st = bf_ckpt_put_real(ck, "film.drift", fs->drift, err);
+    return st;
+}
+
+bf_status bf_filmsys_load(bf_filmsys *fs, const bf_ckpt *ck, bf_err *err)
+{
+    bf_status st = bf_film_load(fs->film, ck, "film", err);
+    if (!st)
+        st = bf_ckpt_get(ck, "film.m0", fs->m0, 2, err);
+    if (!st)
+        st = bf_ckpt_get_real(ck, "film.drift", &fs->drift, err);
+    return st;
+}
