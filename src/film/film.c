@@ -306,8 +306,10 @@ double bf_film_stable_dt(const bf_film *f, char *why, size_t cap)
  * each pass lagging the one it depends on, so that a block's data stays in
  * the L1 cache across the passes (a 500-node film's twenty arrays do not
  * fit). */
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC push_options
 #pragma GCC optimize("vect-cost-model=cheap")
+#endif
 
 #define HOT static inline __attribute__((always_inline))
 enum { BLOCK = 128 };
@@ -705,7 +707,9 @@ bf_status bf_film_step_invariant(bf_film *f, double dt, bf_err *err)
 }
 
 #undef HOT
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC pop_options
+#endif
 
 /* ------------------------------------------------------------ diagnostics */
 
