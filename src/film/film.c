@@ -634,7 +634,9 @@ HOT int sweep(bf_film *f, step_ctx *c, int variant)
     return bad | badu;
 }
 
+#if defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("avx512f", "avx2", "default")))
+#endif
 bf_status bf_film_step_invariant(bf_film *f, double dt, bf_err *err)
 {
     const bf_film_params *p = &f->p;
