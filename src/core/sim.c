@@ -78,6 +78,8 @@ static long interval_steps(bf_interval iv, double dt)
     if (!iv.in_time)
         return iv.steps;
     double k = floor(iv.time / dt + 0.5);
+    if (!(k < 9e15)) /* longer than any run: never (the final row is kept) */
+        return (long)9e15;
     return iv.time > 0 && k < 1 ? 1 : (long)k;
 }
 
