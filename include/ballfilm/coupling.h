@@ -66,6 +66,11 @@ const bf_coupling_params *bf_coupling_params_of(const bf_coupling *c);
  * the caller, bf_ode.epoch). */
 void bf_coupling_refresh(bf_coupling *c);
 
+/* Compute the moments at the cells of balls at x (in increasing order)
+ * with two full sums and short recurrences between neighbours, instead of
+ * two full sums per ball (optional: an optimisation after a refresh). */
+void bf_coupling_prepare(bf_coupling *c, size_t nb, const double *x);
+
 /* I(r) and dI/dr (see above), exact for the interpolated g. */
 void bf_coupling_integral(bf_coupling *c, double r, double *I, double *dI);
 /* The same for ball `p` (may use its Taylor anchor). */

@@ -302,6 +302,28 @@ HOT void mu_pass(long N, long K, long j, double cl, double cr,
         k[i] += cr * wr[i];
 }
 
+/* mu_cpl left of cell jmin (CL E^(jmin-i)) and right of cell jmax
+ * (CR E^(i-jmax-1)), zero where the kernel is below 2^-64; the cells in
+ * between are the caller's */
+HOT void mu_sides(long N, long K, long jmin, long jmax, double CL, double CR,
+                  double psis, const double *restrict pw,
+                  const double *restrict pwr, const double *restrict psi,
+                  double *restrict mu)
+{
+    const long i0 = jmin - K > 0 ? jmin - K : 0;
+    const long i1 = jmax + 1 + K < N ? jmax + 1 + K : N;
+    for (long i = 0; i < i0; i++)
+        mu[i] = 0.0;
+    const double *restrict wl = pwr + (N - 1 - jmin);
+    for (long i = i0; i <= jmin; i++)
+        mu[i] = CL * wl[i] * (psi[i] - psis);
+    const double *restrict wr = pw - (jmax + 1);
+    for (long i = jmax + 1; i <= i1; i++)
+        mu[i] = CR * wr[i] * (psi[i] - psis);
+    for (long i = i1 + 1; i <= N; i++)
+        mu[i] = 0.0;
+}
+
 HOT void mu_final(long n, double psis, const double *restrict psi,
                      const double *restrict k, double *restrict mu)
 {
@@ -447,6 +469,61 @@ static long locate(const bf_coupling *c, double r, double *t)
     return j;
 }
 
+/* Moments at the cells of balls at x (sorted by position, as the balls
+ * are): one full dot product for the leftmost ML and one for the rightmost
+ * MR, the others by the recurrences ML_j = E^(j-j') ML_j' + sum_{j'<=k<j}
+ * E^(j-1-k) LC_k (and the mirror for MR) over the few cells between
+ * neighbouring balls.  Same values as moments() up to round-off; cached
+ * for the film level. */
+void bf_coupling_prepare(bf_coupling *c, size_t nb, const double *x)
+{
+    enum { MAXC = NCACHE };
+    long cell[MAXC];
+    int nc = 0;
+    for (size_t p = 0; p < nb; p++) {
+        double t;
+        long j = locate(c, x[p], &t);
+        if (t < 0.0 || t > 1.0)
+            return; /* outside the film: leave it to moments() */
+        if (nc && j <= cell[nc - 1]) {
+            if (j < cell[nc - 1])
+                return; /* not sorted: leave it to moments() */
+            continue;
+        }
+        if (nc == MAXC)
+            return;
+        cell[nc++] = j;
+    }
+    if (nc < 2)
+        return;
+    double ml[MAXC], mr[MAXC];
+    const cell_moments *first = moments(c, cell[0]);
+    ml[0] = first->ml;
+    for (int q = 1; q < nc; q++) {
+        double s = ml[q - 1];
+        for (long k = cell[q - 1]; k < cell[q]; k++)
+            s = c->E * s + c->lc[k];
+        ml[q] = s;
+    }
+    /* MR_(j+1) of the last cell by a dot product, then leftwards */
+    const long jl = cell[nc - 1];
+    long k1 = jl + 1 + c->K < c->N ? jl + 1 + c->K : c->N;
+    mr[nc - 1] = dot(k1 - (jl + 1), c->pw, c->rc + jl + 1);
+    for (int q = nc - 2; q >= 0; q--) {
+        double s = mr[q + 1];
+        for (long k = cell[q + 1]; k > cell[q]; k--)
+            s = c->E * s + c->rc[k];
+        mr[q] = s;
+    }
+    c->ncache = 0;
+    for (int q = 0; q < nc; q++) {
+        c->cache[q].j = cell[q];
+        c->cache[q].ml = ml[q];
+        c->cache[q].mr = mr[q];
+    }
+    c->ncache = nc;
+}
+
 /* spline Taylor coefficients e_k = S^(k)(t)/k! (t in cell units) */
 static void spline_taylor(const bf_coupling *c, long j, double t, double e[4])
 {
@@ -570,6 +647,43 @@ void bf_coupling_mu(const bf_coupling *c, size_t nb, const double *x,
                     const double *R, double *mu)
 {
     const long N = c->N;
+    const double psis = c->p.psi_s, *psi = bf_film_psi(c->film);
+    enum { MAXB = 64 };
+    long jb[MAXB];
+    double cl[MAXB], cr[MAXB];
+    int inside = nb > 0 && nb <= MAXB;
+    long jmin = N, jmax = 0;
+    for (size_t p = 0; inside && p < nb; p++) {
+        double t;
+        jb[p] = locate(c, x[p], &t);
+        inside = t >= 0.0 && t <= 1.0;
+        double a = 8.0 * PI * R[p] * R[p] * c->p.V0;
+        /* exp(-(r - x_j)/r0) and exp(-(x_j+1 - r)/r0) */
+        cl[p] = a * exp(-c->kappa * t);
+        cr[p] = a * exp(-c->kappa * (1.0 - t));
+        jmin = jb[p] < jmin ? jb[p] : jmin;
+        jmax = jb[p] > jmax ? jb[p] : jmax;
+    }
+    if (inside) {
+        /* all balls in the film: left of the leftmost ball's cell the
+         * kernels add up to CL E^(jmin-i), right of the rightmost to
+         * CR E^(i-jmax-1); between them, ball by ball */
+        double CL = 0.0, CR = 0.0;
+        for (size_t p = 0; p < nb; p++) {
+            CL += cl[p] * c->pw[jb[p] - jmin];
+            CR += cr[p] * c->pw[jmax - jb[p]];
+        }
+        mu_sides(N, c->K, jmin, jmax, CL, CR, psis, c->pw, c->pwr, psi, mu);
+        for (long i = jmin + 1; i <= jmax; i++) {
+            double k = 0.0;
+            for (size_t p = 0; p < nb; p++)
+                k += i <= jb[p] ? cl[p] * c->pw[jb[p] - i]
+                                : cr[p] * c->pw[i - jb[p] - 1];
+            mu[i] = k * (psi[i] - psis);
+        }
+        return;
+    }
+    /* a ball outside the film (or very many balls): ball by ball */
     double *k = c->tmp; /* scratch (used by the spline only in refresh) */
     for (long i = 0; i <= N; i++)
         k[i] = 0.0;
@@ -579,22 +693,20 @@ void bf_coupling_mu(const bf_coupling *c, size_t nb, const double *x,
         double a = 8.0 * PI * R[p] * R[p] * c->p.V0;
         if (t < 0.0) {
             /* left of the film: exp(-(x_i - r)/r0) = exp(kappa t) E^i */
-            double cr = a * exp(c->kappa * t);
+            double e = a * exp(c->kappa * t);
             for (long i = 0; i <= N; i++)
-                k[i] += cr * c->pw[i];
+                k[i] += e * c->pw[i];
         } else if (t > 1.0) {
             /* right of it: exp(-(r - x_i)/r0) = exp(-kappa (t-1)) E^(N-i) */
-            double cl = a * exp(-c->kappa * (t - 1.0));
+            double e = a * exp(-c->kappa * (t - 1.0));
             for (long i = 0; i <= N; i++)
-                k[i] += cl * c->pw[N - i];
+                k[i] += e * c->pw[N - i];
         } else {
-            /* exp(-(r - x_j)/r0) E^(j-i) left, exp(-(x_j+1 - r)/r0)
-             * E^(i-j-1) right */
             mu_pass(N, c->K, j, a * exp(-c->kappa * t),
                     a * exp(-c->kappa * (1.0 - t)), c->pw, c->pwr, k);
         }
     }
-    mu_final(N + 1, c->p.psi_s, bf_film_psi(c->film), k, mu);
+    mu_final(N + 1, psis, psi, k, mu);
 }
 
 #undef HOT
@@ -602,40 +714,59 @@ void bf_coupling_mu(const bf_coupling *c, size_t nb, const double *x,
 
 /* ---------------------------------------------------------------- checkpoint */
 
-/* The anchors as one array: positions, then 1/0 for valid, then the two
- * evaluation counters (exact in a double below 2^53). */
+/* One array: the anchor positions, 1/0 for valid, the two evaluation
+ * counters, the number of cached cells and the cache (cell, ML, MR) --
+ * restored as saved, so that a run continued from a checkpoint evaluates
+ * with the same cached moments (bit for bit) even between film steps
+ * (multirate).  Counts and cell numbers are exact in a double. */
 bf_status bf_coupling_save(const bf_coupling *c, bf_ckpt *ck, bf_err *err)
 {
-    const size_t n = c->nballs;
-    double *a = xcalloc(2 * n + 2);
+    const size_t n = c->nballs, len = 2 * n + 3 + 3 * NCACHE;
+    double *a = xcalloc(len);
     if (!a)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     for (size_t p = 0; p < n; p++) {
         a[p] = c->anc[p].r;
         a[n + p] = c->anc[p].valid;
     }
-    a[2 * n] = (double)c->n_exact;
-    a[2 * n + 1] = (double)c->n_taylor;
-    bf_status st = bf_ckpt_put(ck, "coupling.anchors", a, 2 * n + 2, err);
+    double *q = a + 2 * n;
+    q[0] = (double)c->n_exact;
+    q[1] = (double)c->n_taylor;
+    q[2] = c->ncache;
+    for (int k = 0; k < c->ncache; k++) {
+        q[3 + 3 * k] = (double)c->cache[k].j;
+        q[4 + 3 * k] = c->cache[k].ml;
+        q[5 + 3 * k] = c->cache[k].mr;
+    }
+    bf_status st = bf_ckpt_put(ck, "coupling.state", a, len, err);
     free(a);
     return st;
 }
 
 bf_status bf_coupling_load(bf_coupling *c, const bf_ckpt *ck, bf_err *err)
 {
-    const size_t n = c->nballs;
-    double *a = xcalloc(2 * n + 2);
+    const size_t n = c->nballs, len = 2 * n + 3 + 3 * NCACHE;
+    double *a = xcalloc(len);
     if (!a)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    bf_status st = bf_ckpt_get(ck, "coupling.anchors", a, 2 * n + 2, err);
+    bf_status st = bf_ckpt_get(ck, "coupling.state", a, len, err);
     if (!st) {
-        /* the film is loaded: rebuild its tables, then the anchors */
+        /* the film is loaded: rebuild its tables, restore the cached
+         * moments, then the anchors */
         bf_coupling_refresh(c);
+        const double *q = a + 2 * n;
+        c->n_exact = (unsigned long long)q[0];
+        c->n_taylor = (unsigned long long)q[1];
+        c->ncache = (int)q[2];
+        for (int k = 0; k < c->ncache; k++) {
+            c->cache[k].j = (long)q[3 + 3 * k];
+            c->cache[k].ml = q[4 + 3 * k];
+            c->cache[k].mr = q[5 + 3 * k];
+        }
         for (size_t p = 0; p < n; p++)
             if (a[n + p] != 0.0)
                 set_anchor(c, &c->anc[p], a[p]);
-        c->n_exact = (unsigned long long)a[2 * n];
-        c->n_taylor = (unsigned long long)a[2 * n + 1];
+        c->n_exact = (unsigned long long)q[0];
     }
     free(a);
     return st;

@@ -182,6 +182,8 @@ static bf_status coupled_create(void **self, const bf_scene *sc, bf_err *err)
         return st;
     }
     m->mucpl = bf_film_mu_cpl(bf_filmsys_film(m->fs));
+    if (m->dynamic)
+        bf_coupling_prepare(m->cpl, m->nb, m->sys->b.x);
     m->x0 = calloc(m->nb, sizeof(double));
     m->v0 = calloc(m->nb, sizeof(double));
     if (!m->x0 || !m->v0) {
@@ -285,6 +287,7 @@ static bf_status coupled_step(void *self, long n, double t, double dt,
         if (m->timing)
             c3 = wall_now();
         bf_coupling_refresh(m->cpl);
+        bf_coupling_prepare(m->cpl, m->nb, s->b.x);
         s->ode.epoch++;
     } else if (m->timing) {
         c3 = c2;
