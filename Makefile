@@ -54,7 +54,8 @@ RUNNER    := $(BUILD)/tests/runner
 
 .PHONY: all run test check figures bench clean deps deps-plot test-run \
         build-tests fig1 fuzz valgrind mpi stratres mac-checks fig2 fig3 \
-        fig4 converge-figures survey-mass fig5 kink-dx2 film-orders
+        fig4 converge-figures survey-mass fig5 kink-dx2 film-orders fig6 \
+        fig8 fig9 multirate
 
 all: $(PROG)
 
@@ -275,6 +276,54 @@ kink-dx2: $(PROG)
 	      --set film.dx=$$dx | sed -n "s/^film: kink error/dx = $$dx: kink error/p"; \
 	done
 
+# Yasuda Fig. 6: balls in the static kink potential (A: dt = 1e-4 s, B:
+# 8e-4 s, C: peaks for 1e-4, 5.5e-4, 8e-4 s with an ensemble of shifted
+# starts, D: one ball, 500 s).
+KINK_ENS := 1e-12 1e-10 1e-8 1e-6 -1e-8
+fig6: $(PROG)
+	@mkdir -p out
+	$(PROG) run runs/kink_balls_A.ini -q -o out/fig6_A.h5
+	$(PROG) run runs/kink_balls_A.ini -q -o out/fig6_B.h5 --set scene.dt=8e-4
+	$(PROG) run runs/kink_balls_A.ini -q -o out/fig6_C55.h5 --set scene.dt=5.5e-4
+	$(PROG) run runs/kink_ball_D.ini -q -o out/fig6_D.h5
+	@for dt in 5.5e-4 8e-4; do for d in $(KINK_ENS); do \
+	  $(PROG) run runs/kink_balls_A.ini -q -o out/fig6_ens_$${dt}_$$d.h5 \
+	    --set scene.dt=$$dt --set ball.2.position=$$(echo "0.2 + $$d" | \
+	    $(PY) -c "import sys; print(repr(eval(sys.stdin.read())))") \
+	    > /dev/null || exit 1; done; done
+	$(PY) plots/fig6_kink_balls.py out/fig6_A.h5 out/fig6_B.h5 \
+	    out/fig6_C55.h5 out/fig6_D.h5 out/fig6_ens_*.h5 -o out/fig6_kink_balls.png
+
+# Yasuda Figs 8 and 9: four balls in the film, 50 s at dt = 1e-5 s
+# (5e6 coupled steps each; the wall time is printed).
+fig8: $(PROG)
+	@mkdir -p out
+	$(PROG) run runs/coupled_fig8.ini -q -o out/coupled_fig8.h5
+	$(PY) plots/fig8_coupled.py out/coupled_fig8.h5 -o out/fig8_coupled.png
+
+fig9: $(PROG)
+	@mkdir -p out
+	$(PROG) run runs/coupled_fig9.ini -q -o out/coupled_fig9.h5
+	$(PY) plots/fig8_coupled.py out/coupled_fig9.h5 -o out/fig9_coupled.png
+
+# Multirate option against the single-rate run (Fig. 8 scene, 0-1 s).
+MR_K := 3 10 30 100 300
+multirate: $(PROG)
+	@mkdir -p out
+	@rm -f out/multirate_times.txt
+	@w=$$($(PROG) run runs/coupled_fig8.ini -q -o out/mr_ref.h5 --set scene.t_end=1 \
+	    | sed -n 's/^wall time: *\([0-9.]*\) s.*/\1/p'); \
+	  echo "single out/mr_ref.h5 $$w" >> out/multirate_times.txt
+	@w=$$($(PROG) run runs/coupled_fig8.ini -q -o out/mr_half.h5 --set scene.t_end=1 \
+	    --set scene.dt=5e-6 --set scene.output_every=200 \
+	    | sed -n 's/^wall time: *\([0-9.]*\) s.*/\1/p'); \
+	  echo "half out/mr_half.h5 $$w" >> out/multirate_times.txt
+	@for k in $(MR_K); do \
+	  w=$$($(PROG) run runs/coupled_fig8.ini -q -o out/mr_$$k.h5 --set scene.t_end=1 \
+	    --set coupled.film_every=$$k | sed -n 's/^wall time: *\([0-9.]*\) s.*/\1/p'); \
+	  echo "film_every=$$k out/mr_$$k.h5 $$w" >> out/multirate_times.txt; done
+	$(PY) plots/multirate.py out/multirate_times.txt -o out/multirate.png
+
 # Observed orders of the film scheme in dx and in dt (README).
 film-orders: $(BUILD)/bench/film_orders
 	$(BUILD)/bench/film_orders
@@ -292,6 +341,10 @@ figures:
 	@$(MAKE) --no-print-directory mac-checks
 	@$(MAKE) --no-print-directory fig5
 	@$(MAKE) --no-print-directory kink-dx2
+	@$(MAKE) --no-print-directory fig6
+	@$(MAKE) --no-print-directory multirate
+	@$(MAKE) --no-print-directory fig8
+	@$(MAKE) --no-print-directory fig9
 	@echo "figures are in out/"
 
 # Survey (the paper's "issue for further study"): two falling balls, upper

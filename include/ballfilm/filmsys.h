@@ -29,9 +29,11 @@ typedef struct bf_filmsys bf_filmsys;
 
 extern const bf_section_spec bf_filmsys_spec; /* [film] */
 
-/* Build the film of the scene and its initial state; refuse a dt ([scene]
- * dt) above the stable limit unless [film] force_dt is set. */
-bf_status bf_filmsys_create(bf_filmsys **out, const bf_scene *sc, bf_err *err);
+/* Build the film of the scene and its initial state.  The film will step
+ * by film_every x [scene] dt (0: never, a static film); that step is
+ * refused if above the stable limit unless [film] force_dt is set. */
+bf_status bf_filmsys_create(bf_filmsys **out, const bf_scene *sc,
+                            long film_every, bf_err *err);
 void bf_filmsys_free(bf_filmsys *fs);
 
 bf_film *bf_filmsys_film(bf_filmsys *fs);

@@ -7,12 +7,14 @@ extern const bf_effect_type bf_effect_gravity;
 extern const bf_effect_type bf_effect_floor;
 extern const bf_effect_type bf_effect_contact;
 extern const bf_effect_type bf_effect_spring;
+extern const bf_effect_type bf_effect_coupling;
 
 static const bf_effect_type *const all[] = {
     &bf_effect_gravity,
     &bf_effect_floor,
     &bf_effect_contact,
     &bf_effect_spring,
+    &bf_effect_coupling,
 };
 
 const bf_effect_type *const *bf_effect_types(size_t *n)

@@ -10,7 +10,7 @@
 static bf_status film_create(void **self, const bf_scene *sc, bf_err *err)
 {
     bf_filmsys *fs;
-    bf_status st = bf_filmsys_create(&fs, sc, err);
+    bf_status st = bf_filmsys_create(&fs, sc, 1, err);
     if (!st)
         *self = fs;
     return st;

@@ -103,13 +103,14 @@ const bf_section_spec bf_filmsys_spec = {
 struct bf_filmsys {
     bf_film *film;
     size_t n;
-    double dt;
+    double dt, film_dt; /* [scene] dt; the film's own step (0: static) */
     long prof_every, last_step;
     int kink;
     double x0;
     double m0[2];
     double drift; /* largest relative change of the totals seen */
     double *tmp;  /* one profile row */
+    double *kink0; /* the analytic kink on the nodes (initial = kink) */
     bf_series *s_time, *s_h, *s_psi, *s_ud, *s_uc;
     bf_series *s_md, *s_mc, *s_umax, *s_amin, *s_kerr, *s_lim;
 };
@@ -129,6 +130,7 @@ void bf_filmsys_free(bf_filmsys *fs)
         return;
     bf_film_free(fs->film);
     free(fs->tmp);
+    free(fs->kink0);
     free(fs);
 }
 
@@ -229,7 +231,8 @@ static bf_status initial_state(bf_filmsys *fs, const bf_scene *sc, bf_err *err)
     return st;
 }
 
-bf_status bf_filmsys_create(bf_filmsys **out, const bf_scene *sc, bf_err *err)
+bf_status bf_filmsys_create(bf_filmsys **out, const bf_scene *sc,
+                            long film_every, bf_err *err)
 {
     *out = NULL;
     bf_film_params p = {
@@ -264,21 +267,35 @@ bf_status bf_filmsys_create(bf_filmsys **out, const bf_scene *sc, bf_err *err)
     }
     fs->n = bf_film_nodes(fs->film);
     fs->tmp = calloc(fs->n, sizeof(double));
-    bf_status st = fs->tmp ? initial_state(fs, sc, err)
-                           : bf_fail(err, BF_EINTERNAL, "out of memory");
+    fs->kink0 = calloc(fs->n, sizeof(double));
+    bf_status st = fs->tmp && fs->kink0
+                       ? initial_state(fs, sc, err)
+                       : bf_fail(err, BF_EINTERNAL, "out of memory");
+    for (size_t i = 0; !st && i < fs->n; i++)
+        fs->kink0[i] = bf_film_kink(&p, fs->x0, bf_film_x(fs->film)[i]);
     if (st) {
         bf_filmsys_free(fs);
         return st;
     }
     fs->dt = bf_scene_real(sc, "scene", "dt");
+    fs->film_dt = (double)film_every * fs->dt;
     char why[256];
     double lim = bf_film_stable_dt(fs->film, why, sizeof why);
-    if (fs->dt > lim && !bf_scene_bool(sc, "film", "force_dt")) {
-        st = bf_scene_fail(sc, err, "scene", "dt",
-                           "dt = %g s exceeds the film's stable limit %.4g s "
-                           "(%s); use a smaller dt, or set [film] force_dt = "
-                           "true to run anyway",
-                           fs->dt, lim, why);
+    if (film_every > 0 && fs->film_dt > lim &&
+        !bf_scene_bool(sc, "film", "force_dt")) {
+        if (film_every == 1)
+            st = bf_scene_fail(sc, err, "scene", "dt",
+                               "dt = %g s exceeds the film's stable limit "
+                               "%.4g s (%s); use a smaller dt, or set [film] "
+                               "force_dt = true to run anyway",
+                               fs->dt, lim, why);
+        else
+            st = bf_scene_fail(sc, err, "coupled", "film_every",
+                               "the film step %ld x dt = %g s exceeds the "
+                               "film's stable limit %.4g s (%s); use a "
+                               "smaller film_every, or set [film] force_dt = "
+                               "true to run anyway",
+                               film_every, fs->film_dt, lim, why);
         bf_filmsys_free(fs);
         return st;
     }
@@ -307,11 +324,10 @@ double bf_filmsys_kink_error(const bf_filmsys *fs)
 {
     if (!fs->kink)
         return NAN;
-    const bf_film_params *p = bf_film_params_of(fs->film);
-    const double *x = bf_film_x(fs->film), *psi = bf_film_psi(fs->film);
+    const double *psi = bf_film_psi(fs->film);
     double e = 0.0;
     for (size_t i = 0; i < fs->n; i++)
-        e = fmax(e, fabs(psi[i] - bf_film_kink(p, fs->x0, x[i])));
+        e = fmax(e, fabs(psi[i] - fs->kink0[i]));
     return e;
 }
 
@@ -410,7 +426,11 @@ void bf_filmsys_report(const bf_filmsys *fs, FILE *out)
     fprintf(out, "film: max |u| %.3e cm/s, min volume fraction %.3e, "
                  "positivity limiter acted in %llu steps (%llu faces)\n",
             bf_film_max_speed(f), bf_film_min_alpha(f), ls, lf);
-    fprintf(out, "film: stable dt now %.4g s (dt = %g s)\n", lim, fs->dt);
+    if (fs->film_dt > 0)
+        fprintf(out, "film: stable dt now %.4g s (film step %g s)\n", lim,
+                fs->film_dt);
+    else
+        fprintf(out, "film: static (never stepped)\n");
     if (fs->kink)
         fprintf(out, "film: kink error max|psi - kink| = %.6e\n",
                 bf_filmsys_kink_error(fs));

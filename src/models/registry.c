@@ -6,11 +6,13 @@
 extern const bf_model_type bf_model_balls;
 extern const bf_model_type bf_model_mac;
 extern const bf_model_type bf_model_film;
+extern const bf_model_type bf_model_coupled;
 
 static const bf_model_type *const all[] = {
     &bf_model_balls,
     &bf_model_film,
     &bf_model_mac,
+    &bf_model_coupled,
 };
 
 const bf_model_type *const *bf_model_types(size_t *n)

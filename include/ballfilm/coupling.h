@@ -1,0 +1,97 @@
+/* coupling.h: balls coupled to the film through a free energy (Yasuda
+ * 2010, eqs 3.10-3.12).  For a ball p at r_p with radius R_p:
+ *
+ *   (3.10)  F_p = 4 pi R_p^2 V0 I(r_p),
+ *           I(r) = integral h(x) (psi(x) - psi_s)^2 exp(-|x - r|/r0) dx
+ *           (V(s) = V0 exp(-|s|/r0))
+ *   (3.12)  dv_p/dt = -M dF_p/dr_p + (contact forces)/m_p
+ *   (3.11)  mu_cpl(x) = sum_p 8 pi R_p^2 V0 exp(-|x - r_p|/r0) (psi - psi_s)
+ *           (added to the film's mu)
+ *
+ * The integrand g = h (psi - psi_s)^2 is taken on the film's nodes and
+ * interpolated by the natural cubic spline (the paper's "third-order
+ * spline"; `quadrature = linear` drops the spline's curvature terms), and
+ * integrated exactly against the kernel, piecewise on each side of r (the
+ * kernel has a kink there): I = L + R with
+ *   L(r) = integral_{x < r} g exp(-(r - x)/r0) dx,
+ *   R(r) = integral_{x > r} g exp(-(x - r)/r0) dx,
+ *   dI/dr = (R - L)/r0   (exact: the kernel is continuous at x = r).
+ * Per film level the spline, the exact exponential moments of every cell
+ * and, lazily, the moments at the cells holding balls are computed once
+ * (bf_coupling_refresh); a force evaluation then costs O(1).
+ *
+ * The effect "coupling" (src/effects/coupling.c) wraps this for the ball
+ * system; its `self` is the bf_coupling.  The same code serves the static
+ * kink (film never stepped) and the dynamic film.
+ */
+#ifndef BALLFILM_COUPLING_H
+#define BALLFILM_COUPLING_H
+
+#include <stddef.h>
+
+#include "ballfilm/checkpoint.h"
+#include "ballfilm/effects.h"
+#include "ballfilm/error.h"
+#include "ballfilm/film.h"
+
+typedef enum bf_coupling_quad {
+    BF_COUPLING_SPLINE = 0, /* natural cubic spline of g (default) */
+    BF_COUPLING_LINEAR      /* piecewise linear g */
+} bf_coupling_quad;
+
+typedef struct bf_coupling_params {
+    double V0;    /* g/(cm^3 s^2), as in the paper */
+    double r0;    /* cm */
+    double M;     /* mobility, 1/g */
+    double psi_s; /* order parameter of the ball surface */
+    bf_coupling_quad quad;
+    /* balls whose trial positions stay within taylor_radius of the first
+     * position evaluated after a refresh use a 5th-order Taylor expansion
+     * of L and R (exact to < 1e-17 relative); 0 disables it */
+    double taylor_radius; /* cm */
+} bf_coupling_params;
+
+typedef struct bf_coupling bf_coupling;
+
+/* The effect type (to find the coupling among a ball system's effects). */
+extern const bf_effect_type bf_effect_coupling;
+
+bf_status bf_coupling_create(bf_coupling **c, const bf_coupling_params *p,
+                             const bf_film *film, size_t nballs, bf_err *err);
+void bf_coupling_free(bf_coupling *c);
+const bf_coupling_params *bf_coupling_params_of(const bf_coupling *c);
+
+/* Rebuild everything that depends on the film's current level (call after
+ * each film step; the ball integrator's force cache must be invalidated by
+ * the caller, bf_ode.epoch). */
+void bf_coupling_refresh(bf_coupling *c);
+
+/* Compute the moments at the cells of balls at x (in increasing order)
+ * with two full sums and short recurrences between neighbours, instead of
+ * two full sums per ball (optional: an optimisation after a refresh). */
+void bf_coupling_prepare(bf_coupling *c, size_t nb, const double *x);
+
+/* I(r) and dI/dr (see above), exact for the interpolated g. */
+void bf_coupling_integral(bf_coupling *c, double r, double *I, double *dI);
+/* The same for ball `p` (may use its Taylor anchor). */
+void bf_coupling_integral_ball(bf_coupling *c, size_t p, double r, double *I,
+                               double *dI);
+
+/* mu_cpl (3.11) of balls at x (radii R) on the nodes 0..N, written to mu. */
+void bf_coupling_mu(const bf_coupling *c, size_t nb, const double *x,
+                    const double *R, double *mu);
+
+/* Natural cubic spline second derivatives of the current g (for tests). */
+const double *bf_coupling_spline_m(const bf_coupling *c);
+const double *bf_coupling_g(const bf_coupling *c);
+
+/* Counters: exact evaluations and Taylor evaluations since creation. */
+void bf_coupling_counts(const bf_coupling *c, unsigned long long *exact,
+                        unsigned long long *taylor);
+
+/* Checkpoint: the per-ball Taylor anchors (everything else is rebuilt from
+ * the film by bf_coupling_refresh). */
+bf_status bf_coupling_save(const bf_coupling *c, bf_ckpt *ck, bf_err *err);
+bf_status bf_coupling_load(bf_coupling *c, const bf_ckpt *ck, bf_err *err);
+
+#endif

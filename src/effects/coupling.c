@@ -1,0 +1,874 @@
+/* coupling.c: the ball-film coupling, Yasuda eqs 3.10-3.12 (see
+ * coupling.h for the formulas), and the effect "coupling" that applies
+ * -M dF/dr_p to the balls with potential energy m_p M F_p.
+ *
+ * Quadrature.  g_i = h_i (psi_i - psi_s)^2 on the nodes; on cell
+ * [x_j, x_j+1] (t = (x - x_j)/dx) the natural cubic spline is
+ *   S(t) = (1-t) g_j + t g_j+1 + dx^2/6 [((1-t)^3 - (1-t)) M_j + (t^3 - t) M_j+1]
+ * (M: second derivatives; M = 0 for quadrature = linear).  With
+ * kappa = dx/r0 and m_k = integral_0^1 s^k exp(-kappa s) ds the exact cell
+ * moments are
+ *   LC_j = integral_cell S exp(-(x_j+1 - x)/r0) dx
+ *        = dx [m1 g_j + (m0 - m1) g_j+1 + dx^2/6 ((m3 - m1) M_j
+ *              + (3 m2 - 2 m1 - m3) M_j+1)],
+ *   RC_j = the same with j and j+1 exchanged (weight exp(-(x - x_j)/r0)),
+ * and the node moments ML_j = sum_k<j E^(j-1-k) LC_k, MR_j = sum_k>=j
+ * E^(k-j) RC_k (E = exp(-kappa)).  For a ball at t_r in cell j
+ *   L(r) = exp(-kappa t_r) ML_j + dx sum_k (-1)^k e_k T^(k+1) m_k(kappa T),
+ *          T = t_r,
+ *   R(r) = exp(-kappa (1 - t_r)) MR_j+1 + dx sum_k e_k T^(k+1) m_k(kappa T),
+ *          T = 1 - t_r,
+ * where e_k = S^(k)(t_r)/k! are the spline's Taylor coefficients at t_r and
+ * m_k(z) = integral_0^1 s^k exp(-z s) ds (series for z < 0.5, upward
+ * recursion above).  All of it is exact integration of the interpolant:
+ * dI/dr = (R - L)/r0 is the derivative of I to round-off.
+ *
+ * Cost.  Per film level: g, the spline (one tridiagonal solve with
+ * precomputed factors) and LC, RC for all cells (vectorised); lazily, for
+ * each cell a ball is in, ML and MR by a dot product with the powers of E
+ * (cached for the level).  A force evaluation is then O(1).  In the coupled
+ * run the film is frozen during a ball step and the balls move by ~1e-4 cm
+ * per step, so each ball's first evaluation after a refresh anchors a
+ * Taylor expansion of L and R to 5th order (L' = g - L/r0, R' = -g + R/r0,
+ * higher derivatives likewise; exact within a cell since g''' is constant
+ * there), used for later positions in the same cell within taylor_radius
+ * (remainder (d/r0)^6/720 < 1e-19 for d <= 2e-3 r0).
+ *
+ * mu_cpl (3.11): exp(-|x_i - r|/r0) = exp(-kappa t_r) E^(j-i) left of the
+ * ball and exp(-kappa (1 - t_r)) E^(i-j-1) right of it, from a table of
+ * powers of E (no exp per node).
+ */
+#include "ballfilm/coupling.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ballfilm/scene.h"
+
+enum { NCACHE = 16, NSER = 20, I0 = 16 };
+
+static const double PI = 3.14159265358979323846;
+
+typedef struct cell_moments {
+    long j;      /* cell, -1: empty */
+    double ml;   /* ML_j */
+    double mr;   /* MR_j+1 */
+} cell_moments;
+
+typedef struct anchor {
+    int valid;   /* set for the current film level */
+    long j;
+    double r;
+    double L[6], R[6]; /* derivatives 0..5 of L and R at r */
+} anchor;
+
+struct bf_coupling {
+    bf_coupling_params p;
+    const bf_film *film;
+    long N;
+    double dx, x0, kappa, E; /* E = exp(-kappa), kappa = dx/r0 */
+    double w_g0, w_g1, w_m0, w_m1; /* LC weights (times dx) */
+    double *g, *m, *lc, *rc, *pw, *pwr, *tl, *tw, *tmp;
+    long K;                   /* E^K < 2^-64: farther cells are dropped */
+    double mkc[NSER][4];      /* series coefficients of m_k(z), z < 0.5 */
+    int nser;                 /* terms needed for z <= min(kappa, 0.5) */
+    cell_moments cache[NCACHE];
+    int ncache;
+    anchor *anc;
+    size_t nballs;
+    unsigned long long n_exact, n_taylor;
+};
+
+/* ---------------------------------------------------------------- m_k(z) */
+
+/* m_k(z) = integral_0^1 s^k exp(-z s) ds for k = 0..3, z >= 0: for
+ * z < 0.5 the series sum_n (-z)^n / (n! (n + k + 1)) by Horner (the
+ * coefficients are set up once; 0.5^20/20! < 1e-24), above it the upward
+ * recursion m_k = (k m_(k-1) - exp(-z))/z (error growth k/z <= 6). */
+static void mk_coefficients(double c[NSER][4])
+{
+    double f = 1.0; /* (-1)^n / n! */
+    for (int n = 0; n < NSER; n++) {
+        for (int k = 0; k < 4; k++)
+            c[n][k] = f / (double)(n + k + 1);
+        f *= -1.0 / (double)(n + 1);
+    }
+}
+
+static void mk(const double c[NSER][4], int ns, double z, double m[4])
+{
+    if (z < 0.5) {
+        double a0 = c[ns - 1][0], a1 = c[ns - 1][1], a2 = c[ns - 1][2],
+               a3 = c[ns - 1][3];
+        for (int n = ns - 2; n >= 0; n--) {
+            a0 = a0 * z + c[n][0];
+            a1 = a1 * z + c[n][1];
+            a2 = a2 * z + c[n][2];
+            a3 = a3 * z + c[n][3];
+        }
+        m[0] = a0;
+        m[1] = a1;
+        m[2] = a2;
+        m[3] = a3;
+        return;
+    }
+    double e = exp(-z);
+    m[0] = -expm1(-z) / z;
+    for (int k = 1; k < 4; k++)
+        m[k] = ((double)k * m[k - 1] - e) / z;
+}
+
+/* ---------------------------------------------------------------- set-up */
+
+static void *xcalloc(size_t n)
+{
+    return calloc(n ? n : 1, sizeof(double));
+}
+
+bf_status bf_coupling_create(bf_coupling **out, const bf_coupling_params *p,
+                             const bf_film *film, size_t nballs, bf_err *err)
+{
+    *out = NULL;
+    bf_coupling *c = calloc(1, sizeof *c);
+    if (!c)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    c->p = *p;
+    c->film = film;
+    c->N = (long)bf_film_nodes(film) - 1;
+    c->dx = bf_film_params_of(film)->dx;
+    c->x0 = bf_film_x(film)[0];
+    c->kappa = c->dx / p->r0;
+    c->E = exp(-c->kappa);
+    const size_t n = (size_t)c->N + 1;
+    c->g = xcalloc(n);
+    c->m = xcalloc(n);
+    c->lc = xcalloc(n);
+    c->rc = xcalloc(n);
+    c->pw = xcalloc(n);
+    c->pwr = xcalloc(n);
+    c->tl = xcalloc(n);
+    c->tw = xcalloc(n);
+    c->tmp = xcalloc(n);
+    c->nballs = nballs;
+    c->anc = calloc(nballs ? nballs : 1, sizeof *c->anc);
+    if (!c->g || !c->m || !c->lc || !c->rc || !c->pw || !c->pwr || !c->tl ||
+        !c->tw || !c->tmp || !c->anc) {
+        bf_coupling_free(c);
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    /* powers of E, flushed to zero below 1e-300 (no subnormals):
+     * pw[k] = E^k, pwr[k] = E^(N-1-k) */
+    for (long k = 0; k <= c->N; k++) {
+        double v = exp(-c->kappa * (double)k);
+        c->pw[k] = v < 1e-300 ? 0.0 : v;
+    }
+    for (long k = 0; k < c->N; k++)
+        c->pwr[k] = c->pw[c->N - 1 - k];
+    /* cell weights */
+    mk_coefficients(c->mkc);
+    c->K = (long)ceil(64.0 * log(2.0) / c->kappa);
+    /* z^n/n! < 1e-24 for z <= min(kappa, 0.5) (the series is used only
+     * there: z = kappa T with T <= 1) */
+    double zm = fmin(c->kappa, 0.5), term = 1.0;
+    c->nser = 1;
+    while (c->nser < NSER && term > 1e-24) {
+        term *= zm / (double)c->nser;
+        c->nser++;
+    }
+    double m[4];
+    mk(c->mkc, c->nser, c->kappa, m);
+    const double h = c->dx, h26 = h * h / 6.0;
+    c->w_g0 = h * m[1];
+    c->w_g1 = h * (m[0] - m[1]);
+    c->w_m0 = h * h26 * (m[3] - m[1]);
+    c->w_m1 = h * h26 * (3.0 * m[2] - 2.0 * m[1] - m[3]);
+    /* Thomas factors of the natural spline system, rows 1..N-1:
+     * M_i-1 + 4 M_i + M_i+1 = d_i, M_0 = M_N = 0 */
+    if (c->N >= 2) {
+        double w = 4.0;
+        c->tw[1] = 1.0 / w;
+        for (long i = 2; i < c->N; i++) {
+            c->tl[i] = 1.0 / w;
+            w = 4.0 - c->tl[i];
+            c->tw[i] = 1.0 / w;
+        }
+    }
+    bf_coupling_refresh(c);
+    *out = c;
+    return BF_OK;
+}
+
+void bf_coupling_free(bf_coupling *c)
+{
+    if (!c)
+        return;
+    free(c->g);
+    free(c->m);
+    free(c->lc);
+    free(c->rc);
+    free(c->pw);
+    free(c->pwr);
+    free(c->tl);
+    free(c->tw);
+    free(c->tmp);
+    free(c->anc);
+    free(c);
+}
+
+const bf_coupling_params *bf_coupling_params_of(const bf_coupling *c)
+{
+    return &c->p;
+}
+const double *bf_coupling_spline_m(const bf_coupling *c) { return c->m; }
+const double *bf_coupling_g(const bf_coupling *c) { return c->g; }
+
+void bf_coupling_counts(const bf_coupling *c, unsigned long long *exact,
+                        unsigned long long *taylor)
+{
+    *exact = c->n_exact;
+    *taylor = c->n_taylor;
+}
+
+/* ---------------------------------------------------------------- refresh */
+
+/* Hot loops: GCC's "cheap" vectoriser cost model (see film.c), and the
+ * callers cloned for AVX-512 and AVX2 (element-wise, no reordered
+ * reductions: the same bits on every clone).  The helpers are inlined
+ * into each clone. */
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC push_options
+#pragma GCC optimize("vect-cost-model=cheap")
+#endif
+#if defined(__GNUC__) && !defined(__clang__)
+#define BF_SPLINE_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define BF_SPLINE_CLONES
+#endif
+#define HOT static inline __attribute__((always_inline))
+
+HOT void g_pass(long n, double psis, const double *restrict h,
+                   const double *restrict psi, double *restrict g)
+{
+    for (long i = 0; i < n; i++) {
+        double d = psi[i] - psis;
+        g[i] = h[i] * (d * d);
+    }
+}
+
+HOT void rhs_pass(long N, double s, const double *restrict g,
+                     double *restrict d)
+{
+    for (long i = 1; i < N; i++)
+        d[i] = s * ((g[i + 1] - g[i]) - (g[i] - g[i - 1]));
+}
+
+HOT void cell_pass(long N, double a0, double a1, double b0, double b1,
+                      const double *restrict g, const double *restrict m,
+                      double *restrict lc, double *restrict rc)
+{
+    for (long j = 0; j < N; j++) {
+        lc[j] = (a0 * g[j] + a1 * g[j + 1]) + (b0 * m[j] + b1 * m[j + 1]);
+        rc[j] = (a1 * g[j] + a0 * g[j + 1]) + (b1 * m[j] + b0 * m[j + 1]);
+    }
+}
+
+/* sum_k a[k] b[k] with eight partial sums (vectorisable; a fixed order) */
+BF_SPLINE_CLONES
+static double dot(long n, const double *restrict a, const double *restrict b)
+{
+    double s[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    long k = 0;
+    for (; k + 8 <= n; k += 8)
+        for (int l = 0; l < 8; l++)
+            s[l] += a[k + l] * b[k + l];
+    double t = 0.0;
+    for (; k < n; k++)
+        t += a[k] * b[k];
+    return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7])) +
+           t;
+}
+
+/* kernel weights of mu_cpl added for one ball: k[i] += cl E^(j-i) for
+ * i <= j, cr E^(i-j-1) for i > j */
+HOT void mu_pass(long N, long K, long j, double cl, double cr,
+                    const double *restrict pw, const double *restrict pwr,
+                    double *restrict k)
+{
+    /* E^(j-i) = pwr[N-1-j+i] for i = i0..j (j <= N-1); nodes with
+     * E^(j-i) < 2^-64 get nothing */
+    const long i0 = j - K > 0 ? j - K : 0, i1 = j + 1 + K < N ? j + 1 + K : N;
+    const double *restrict wl = pwr + (N - 1 - j);
+    for (long i = i0; i <= j; i++)
+        k[i] += cl * wl[i];
+    const double *restrict wr = pw - (j + 1);
+    for (long i = j + 1; i <= i1; i++)
+        k[i] += cr * wr[i];
+}
+
+/* mu_cpl left of cell jmin (CL E^(jmin-i)) and right of cell jmax
+ * (CR E^(i-jmax-1)), zero where the kernel is below 2^-64; the cells in
+ * between are the caller's */
+HOT void mu_sides(long N, long K, long jmin, long jmax, double CL, double CR,
+                  double psis, const double *restrict pw,
+                  const double *restrict pwr, const double *restrict psi,
+                  double *restrict mu)
+{
+    const long i0 = jmin - K > 0 ? jmin - K : 0;
+    const long i1 = jmax + 1 + K < N ? jmax + 1 + K : N;
+    for (long i = 0; i < i0; i++)
+        mu[i] = 0.0;
+    const double *restrict wl = pwr + (N - 1 - jmin);
+    for (long i = i0; i <= jmin; i++)
+        mu[i] = CL * wl[i] * (psi[i] - psis);
+    const double *restrict wr = pw - (jmax + 1);
+    for (long i = jmax + 1; i <= i1; i++)
+        mu[i] = CR * wr[i] * (psi[i] - psis);
+    for (long i = i1 + 1; i <= N; i++)
+        mu[i] = 0.0;
+}
+
+HOT void mu_final(long n, double psis, const double *restrict psi,
+                     const double *restrict k, double *restrict mu)
+{
+    for (long i = 0; i < n; i++)
+        mu[i] = k[i] * (psi[i] - psis);
+}
+
+/* The natural spline's second derivatives: rows 1..N-1 of
+ * M_(i-1) + 4 M_i + M_(i+1) = d_i, M_0 = M_N = 0, by the LU factors of
+ * create.  Beyond row I0 the factors equal their limit (l = 1/w =
+ * lambda = 2 - sqrt 3 to the last bit), and both sweeps are recurrences
+ * with a constant coefficient, unrolled by eight so that they vectorise:
+ *   y_i = sum_{k<8} (-lambda)^k d_(i-k) + lambda^8 y_(i-8),
+ *   M_i = sum_{k<8} (-1)^k lambda^(k+1) y_(i+k) + lambda^8 M_(i+8).
+ * The same numbers as the plain sweeps up to round-off. */
+BF_SPLINE_CLONES
+static void spline_solve(long N, const double *restrict tl,
+                         const double *restrict tw, const double *restrict d,
+                         double *restrict y, double *restrict t,
+                         double *restrict M)
+{
+    M[0] = M[N] = 0.0;
+    if (N < 2)
+        return;
+    const long last = N - 1;
+    if (last <= 2 * I0 + 16) {
+        y[1] = d[1];
+        for (long i = 2; i <= last; i++)
+            y[i] = d[i] - tl[i] * y[i - 1];
+        M[last] = y[last] * tw[last];
+        for (long i = last - 1; i >= 1; i--)
+            M[i] = (y[i] - M[i + 1]) * tw[i];
+        return;
+    }
+    const double lam = tl[I0];
+    double p[8], q[8];
+    p[0] = 1.0;
+    for (int k = 1; k < 8; k++)
+        p[k] = -lam * p[k - 1];
+    for (int k = 0; k < 8; k++)
+        q[k] = lam * p[k];
+    const double l8 = p[7] * -lam;
+    /* forward */
+    y[1] = d[1];
+    for (long i = 2; i <= I0 + 8; i++)
+        y[i] = d[i] - tl[i] * y[i - 1];
+    for (long i = I0 + 9; i <= last; i++)
+        t[i] = ((p[0] * d[i] + p[1] * d[i - 1]) +
+                (p[2] * d[i - 2] + p[3] * d[i - 3])) +
+               ((p[4] * d[i - 4] + p[5] * d[i - 5]) +
+                (p[6] * d[i - 6] + p[7] * d[i - 7]));
+    {
+        /* blocks of eight with the recurrence in a register */
+        double r[8];
+        long i = I0 + 9;
+        for (int l = 0; l < 8; l++)
+            r[l] = y[i - 8 + l];
+        for (; i + 7 <= last; i += 8)
+            for (int l = 0; l < 8; l++) {
+                r[l] = t[i + l] + l8 * r[l];
+                y[i + l] = r[l];
+            }
+        for (; i <= last; i++)
+            y[i] = t[i] + l8 * y[i - 8];
+    }
+    /* backward */
+    M[last] = y[last] * lam;
+    for (long i = last - 1; i >= last - 7; i--)
+        M[i] = (y[i] - M[i + 1]) * lam;
+    for (long i = I0 + 1; i <= last - 8; i++)
+        t[i] = ((q[0] * y[i] + q[1] * y[i + 1]) +
+                (q[2] * y[i + 2] + q[3] * y[i + 3])) +
+               ((q[4] * y[i + 4] + q[5] * y[i + 5]) +
+                (q[6] * y[i + 6] + q[7] * y[i + 7]));
+    {
+        double r[8];
+        long i = last - 8; /* top of the next block of eight */
+        for (int l = 0; l < 8; l++)
+            r[l] = M[i + 1 + l];
+        for (; i - 7 >= I0 + 1; i -= 8)
+            for (int l = 0; l < 8; l++) {
+                r[l] = t[i - 7 + l] + l8 * r[l];
+                M[i - 7 + l] = r[l];
+            }
+        for (; i >= I0 + 1; i--)
+            M[i] = t[i] + l8 * M[i + 8];
+    }
+    for (long i = I0; i >= 1; i--)
+        M[i] = (y[i] - M[i + 1]) * tw[i];
+}
+
+BF_SPLINE_CLONES
+void bf_coupling_refresh(bf_coupling *c)
+{
+    const long N = c->N;
+    g_pass(N + 1, c->p.psi_s, bf_film_h(c->film), bf_film_psi(c->film), c->g);
+    double *M = c->m;
+    if (c->p.quad == BF_COUPLING_SPLINE) {
+        /* scratch: the right-hand side in lc, the forward sweep in rc
+         * (both rebuilt by cell_pass below) */
+        rhs_pass(N, 6.0 / (c->dx * c->dx), c->g, c->lc);
+        spline_solve(N, c->tl, c->tw, c->lc, c->rc, c->tmp, M);
+    } else {
+        for (long i = 0; i <= N; i++)
+            M[i] = 0.0;
+    }
+    cell_pass(N, c->w_g0, c->w_g1, c->w_m0, c->w_m1, c->g, M, c->lc, c->rc);
+    c->ncache = 0;
+    for (size_t p = 0; p < c->nballs; p++)
+        c->anc[p].valid = 0;
+}
+
+/* ML_j and MR_j+1 of cell j (0 <= j < N), from the cache or computed */
+static const cell_moments *moments(bf_coupling *c, long j)
+{
+    for (int q = 0; q < c->ncache; q++)
+        if (c->cache[q].j == j)
+            return &c->cache[q];
+    cell_moments cm;
+    cm.j = j;
+    /* ML_j = sum_{k<j} E^(j-1-k) LC_k, E^(j-1-k) = pwr[N-j+k]; cells with
+     * E^(j-1-k) < 2^-64 are left out (below the sum's round-off) */
+    long k0 = j - c->K > 0 ? j - c->K : 0;
+    cm.ml = dot(j - k0, c->pwr + (c->N - j + k0), c->lc + k0);
+    /* MR_j+1 = sum_{k>=j+1} E^(k-j-1) RC_k */
+    long k1 = j + 1 + c->K < c->N ? j + 1 + c->K : c->N;
+    cm.mr = dot(k1 - (j + 1), c->pw, c->rc + j + 1);
+    int q = c->ncache < NCACHE ? c->ncache++ : (int)(j % NCACHE);
+    c->cache[q] = cm;
+    return &c->cache[q];
+}
+
+/* cell of r and its local coordinate t in [0, 1] (clamped to the film) */
+static long locate(const bf_coupling *c, double r, double *t)
+{
+    double u = (r - c->x0) / c->dx;
+    long j = (long)floor(u);
+    if (j < 0)
+        j = 0;
+    if (j > c->N - 1)
+        j = c->N - 1;
+    *t = u - (double)j;
+    return j;
+}
+
+/* Moments at the cells of balls at x (sorted by position, as the balls
+ * are): one full dot product for the leftmost ML and one for the rightmost
+ * MR, the others by the recurrences ML_j = E^(j-j') ML_j' + sum_{j'<=k<j}
+ * E^(j-1-k) LC_k (and the mirror for MR) over the few cells between
+ * neighbouring balls.  Same values as moments() up to round-off; cached
+ * for the film level. */
+void bf_coupling_prepare(bf_coupling *c, size_t nb, const double *x)
+{
+    enum { MAXC = NCACHE };
+    long cell[MAXC];
+    int nc = 0;
+    for (size_t p = 0; p < nb; p++) {
+        double t;
+        long j = locate(c, x[p], &t);
+        if (t < 0.0 || t > 1.0)
+            return; /* outside the film: leave it to moments() */
+        if (nc && j <= cell[nc - 1]) {
+            if (j < cell[nc - 1])
+                return; /* not sorted: leave it to moments() */
+            continue;
+        }
+        if (nc == MAXC)
+            return;
+        cell[nc++] = j;
+    }
+    if (nc < 2)
+        return;
+    double ml[MAXC], mr[MAXC];
+    const cell_moments *first = moments(c, cell[0]);
+    ml[0] = first->ml;
+    for (int q = 1; q < nc; q++) {
+        double s = ml[q - 1];
+        for (long k = cell[q - 1]; k < cell[q]; k++)
+            s = c->E * s + c->lc[k];
+        ml[q] = s;
+    }
+    /* MR_(j+1) of the last cell by a dot product, then leftwards */
+    const long jl = cell[nc - 1];
+    long k1 = jl + 1 + c->K < c->N ? jl + 1 + c->K : c->N;
+    mr[nc - 1] = dot(k1 - (jl + 1), c->pw, c->rc + jl + 1);
+    for (int q = nc - 2; q >= 0; q--) {
+        double s = mr[q + 1];
+        for (long k = cell[q + 1]; k > cell[q]; k--)
+            s = c->E * s + c->rc[k];
+        mr[q] = s;
+    }
+    c->ncache = 0;
+    for (int q = 0; q < nc; q++) {
+        c->cache[q].j = cell[q];
+        c->cache[q].ml = ml[q];
+        c->cache[q].mr = mr[q];
+    }
+    c->ncache = nc;
+}
+
+/* spline Taylor coefficients e_k = S^(k)(t)/k! (t in cell units) */
+static void spline_taylor(const bf_coupling *c, long j, double t, double e[4])
+{
+    const double h26 = c->dx * c->dx / 6.0;
+    const double g0 = c->g[j], g1 = c->g[j + 1], M0 = c->m[j], M1 = c->m[j + 1];
+    const double c1 = (g1 - g0) - h26 * (2.0 * M0 + M1);
+    const double c2 = 3.0 * h26 * M0;
+    const double c3 = h26 * (M1 - M0);
+    e[0] = g0 + t * (c1 + t * (c2 + t * c3));
+    e[1] = c1 + t * (2.0 * c2 + 3.0 * t * c3);
+    e[2] = c2 + 3.0 * c3 * t;
+    e[3] = c3;
+}
+
+/* L and R at r (exact for the interpolant); also the cell and t */
+static void exact_lr(bf_coupling *c, double r, long *jo, double *to, double *L,
+                     double *R)
+{
+    double t;
+    long j = locate(c, r, &t);
+    *jo = j;
+    *to = t;
+    const cell_moments *cm = moments(c, j);
+    if (t < 0.0 || t > 1.0) {
+        /* outside the film: the whole film lies on one side */
+        if (t < 0.0) {
+            *L = 0.0;
+            *R = exp(c->kappa * t) * (c->rc[0] + c->E * cm->mr);
+        } else {
+            *L = exp(-c->kappa * (t - 1.0)) * (c->E * cm->ml + c->lc[j]);
+            *R = 0.0;
+        }
+        return;
+    }
+    double e[4], mL[4], mR[4];
+    spline_taylor(c, j, t, e);
+    const double TL = t, TR = 1.0 - t;
+    mk(c->mkc, c->nser, c->kappa * TL, mL);
+    mk(c->mkc, c->nser, c->kappa * TR, mR);
+    double el = exp(-c->kappa * TL), er = exp(-c->kappa * TR);
+    double pl = 0.0, pr = 0.0, tl = TL, tr = TR;
+    for (int k = 0; k < 4; k++) {
+        double s = (k & 1) ? -1.0 : 1.0;
+        pl += s * e[k] * tl * mL[k];
+        pr += e[k] * tr * mR[k];
+        tl *= TL;
+        tr *= TR;
+    }
+    *L = el * cm->ml + c->dx * pl;
+    *R = er * cm->mr + c->dx * pr;
+}
+
+void bf_coupling_integral(bf_coupling *c, double r, double *I, double *dI)
+{
+    long j;
+    double t, L, R;
+    exact_lr(c, r, &j, &t, &L, &R);
+    c->n_exact++;
+    *I = L + R;
+    *dI = (R - L) / c->p.r0;
+}
+
+/* anchor ball p at r: L, R and their derivatives 1..5 (x units) */
+static void set_anchor(bf_coupling *c, anchor *a, double r)
+{
+    double t;
+    exact_lr(c, r, &a->j, &t, &a->L[0], &a->R[0]);
+    a->r = r;
+    a->valid = 1;
+    if (t < 0.0 || t > 1.0) {
+        a->valid = 0; /* outside the film: always exact */
+        return;
+    }
+    double e[4];
+    spline_taylor(c, a->j, t, e);
+    const double h = c->dx, ir = 1.0 / c->p.r0;
+    /* g and its x-derivatives at r; g'''' = 0 within the cell */
+    const double gd[5] = {e[0], e[1] / h, 2.0 * e[2] / (h * h),
+                          6.0 * e[3] / (h * h * h), 0.0};
+    for (int k = 1; k < 6; k++) {
+        a->L[k] = gd[k - 1] - a->L[k - 1] * ir;
+        a->R[k] = -gd[k - 1] + a->R[k - 1] * ir;
+    }
+}
+
+void bf_coupling_integral_ball(bf_coupling *c, size_t p, double r, double *I,
+                               double *dI)
+{
+    anchor *a = &c->anc[p];
+    if (c->p.taylor_radius > 0) {
+        if (!a->valid) {
+            set_anchor(c, a, r);
+            c->n_exact++;
+            *I = a->L[0] + a->R[0];
+            *dI = (a->R[0] - a->L[0]) / c->p.r0;
+            return;
+        }
+        double d = r - a->r, t;
+        if (fabs(d) <= c->p.taylor_radius && locate(c, r, &t) == a->j &&
+            t >= 0.0 && t <= 1.0) {
+            /* Horner in d of sum_k (L_k, R_k) d^k / k! */
+            double L = a->L[5] / 120.0, R = a->R[5] / 120.0;
+            static const double f[5] = {1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0};
+            for (int k = 4; k >= 0; k--) {
+                L = L * d + a->L[k] * f[k];
+                R = R * d + a->R[k] * f[k];
+            }
+            c->n_taylor++;
+            *I = L + R;
+            *dI = (R - L) / c->p.r0;
+            return;
+        }
+    }
+    bf_coupling_integral(c, r, I, dI);
+}
+
+/* ---------------------------------------------------------------- mu_cpl */
+
+BF_SPLINE_CLONES
+void bf_coupling_mu(const bf_coupling *c, size_t nb, const double *x,
+                    const double *R, double *mu)
+{
+    const long N = c->N;
+    const double psis = c->p.psi_s, *psi = bf_film_psi(c->film);
+    enum { MAXB = 64 };
+    long jb[MAXB];
+    double cl[MAXB], cr[MAXB];
+    int inside = nb > 0 && nb <= MAXB;
+    long jmin = N, jmax = 0;
+    for (size_t p = 0; inside && p < nb; p++) {
+        double t;
+        jb[p] = locate(c, x[p], &t);
+        inside = t >= 0.0 && t <= 1.0;
+        double a = 8.0 * PI * R[p] * R[p] * c->p.V0;
+        /* exp(-(r - x_j)/r0) and exp(-(x_j+1 - r)/r0) */
+        cl[p] = a * exp(-c->kappa * t);
+        cr[p] = a * exp(-c->kappa * (1.0 - t));
+        jmin = jb[p] < jmin ? jb[p] : jmin;
+        jmax = jb[p] > jmax ? jb[p] : jmax;
+    }
+    if (inside) {
+        /* all balls in the film: left of the leftmost ball's cell the
+         * kernels add up to CL E^(jmin-i), right of the rightmost to
+         * CR E^(i-jmax-1); between them, ball by ball */
+        double CL = 0.0, CR = 0.0;
+        for (size_t p = 0; p < nb; p++) {
+            CL += cl[p] * c->pw[jb[p] - jmin];
+            CR += cr[p] * c->pw[jmax - jb[p]];
+        }
+        mu_sides(N, c->K, jmin, jmax, CL, CR, psis, c->pw, c->pwr, psi, mu);
+        for (long i = jmin + 1; i <= jmax; i++) {
+            double k = 0.0;
+            for (size_t p = 0; p < nb; p++)
+                k += i <= jb[p] ? cl[p] * c->pw[jb[p] - i]
+                                : cr[p] * c->pw[i - jb[p] - 1];
+            mu[i] = k * (psi[i] - psis);
+        }
+        return;
+    }
+    /* a ball outside the film (or very many balls): ball by ball */
+    double *k = c->tmp; /* scratch (used by the spline only in refresh) */
+    for (long i = 0; i <= N; i++)
+        k[i] = 0.0;
+    for (size_t p = 0; p < nb; p++) {
+        double t;
+        long j = locate(c, x[p], &t);
+        double a = 8.0 * PI * R[p] * R[p] * c->p.V0;
+        if (t < 0.0) {
+            /* left of the film: exp(-(x_i - r)/r0) = exp(kappa t) E^i */
+            double e = a * exp(c->kappa * t);
+            for (long i = 0; i <= N; i++)
+                k[i] += e * c->pw[i];
+        } else if (t > 1.0) {
+            /* right of it: exp(-(r - x_i)/r0) = exp(-kappa (t-1)) E^(N-i) */
+            double e = a * exp(-c->kappa * (t - 1.0));
+            for (long i = 0; i <= N; i++)
+                k[i] += e * c->pw[N - i];
+        } else {
+            mu_pass(N, c->K, j, a * exp(-c->kappa * t),
+                    a * exp(-c->kappa * (1.0 - t)), c->pw, c->pwr, k);
+        }
+    }
+    mu_final(N + 1, psis, psi, k, mu);
+}
+
+#undef HOT
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC pop_options
+#endif
+
+/* ---------------------------------------------------------------- checkpoint */
+
+/* One array: the anchor positions, 1/0 for valid, the two evaluation
+ * counters, the number of cached cells and the cache (cell, ML, MR) --
+ * restored as saved, so that a run continued from a checkpoint evaluates
+ * with the same cached moments (bit for bit) even between film steps
+ * (multirate).  Counts and cell numbers are exact in a double. */
+bf_status bf_coupling_save(const bf_coupling *c, bf_ckpt *ck, bf_err *err)
+{
+    const size_t n = c->nballs, len = 2 * n + 3 + 3 * NCACHE;
+    double *a = xcalloc(len);
+    if (!a)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    for (size_t p = 0; p < n; p++) {
+        a[p] = c->anc[p].r;
+        a[n + p] = c->anc[p].valid;
+    }
+    double *q = a + 2 * n;
+    q[0] = (double)c->n_exact;
+    q[1] = (double)c->n_taylor;
+    q[2] = c->ncache;
+    for (int k = 0; k < c->ncache; k++) {
+        q[3 + 3 * k] = (double)c->cache[k].j;
+        q[4 + 3 * k] = c->cache[k].ml;
+        q[5 + 3 * k] = c->cache[k].mr;
+    }
+    bf_status st = bf_ckpt_put(ck, "coupling.state", a, len, err);
+    free(a);
+    return st;
+}
+
+bf_status bf_coupling_load(bf_coupling *c, const bf_ckpt *ck, bf_err *err)
+{
+    const size_t n = c->nballs, len = 2 * n + 3 + 3 * NCACHE;
+    double *a = xcalloc(len);
+    if (!a)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    bf_status st = bf_ckpt_get(ck, "coupling.state", a, len, err);
+    if (!st) {
+        /* the film is loaded: rebuild its tables, restore the cached
+         * moments, then the anchors */
+        bf_coupling_refresh(c);
+        const double *q = a + 2 * n;
+        c->n_exact = (unsigned long long)q[0];
+        c->n_taylor = (unsigned long long)q[1];
+        c->ncache = (int)q[2];
+        for (int k = 0; k < c->ncache; k++) {
+            c->cache[k].j = (long)q[3 + 3 * k];
+            c->cache[k].ml = q[4 + 3 * k];
+            c->cache[k].mr = q[5 + 3 * k];
+        }
+        for (size_t p = 0; p < n; p++)
+            if (a[n + p] != 0.0)
+                set_anchor(c, &c->anc[p], a[p]);
+        c->n_exact = (unsigned long long)q[0];
+    }
+    free(a);
+    return st;
+}
+
+/* ---------------------------------------------------------------- effect */
+
+static const bf_param coupling_params[] = {
+    {"V0", BF_REAL, "g/(cm^3 s^2)", "0.01",
+     "strength V0 of V(s) = V0 exp(-|s|/r0) (eq. 3.10)", BF_NONNEG, 0, 0,
+     NULL},
+    {"r0", BF_REAL, "cm", "0.5", "range r0 of V(s)", BF_POS, 0, 0, NULL},
+    {"mobility", BF_REAL, "1/g", "1e5", "ball mobility M (eq. 3.12)",
+     BF_NONNEG, 0, 0, NULL},
+    {"psi_s", BF_REAL, "1", "0", "order parameter of the ball surface",
+     BF_MIN | BF_MAX, -1, 1, NULL},
+    {"quadrature", BF_ENUM, "", "spline",
+     "interpolation of g = h (psi - psi_s)^2 for the integral (3.10): "
+     "spline (natural cubic, the paper's) or linear",
+     0, 0, 0, "spline|linear"},
+    {"taylor", BF_BOOL, "", "true",
+     "reuse a 5th-order expansion of the integral around each ball's first "
+     "position per film level (exact to 1e-17 within 2e-3 r0)",
+     0, 0, 0, NULL},
+    {0},
+};
+
+static const bf_section_spec coupling_spec = {
+    "coupling",
+    "balls coupled to the film by the free energy F (Yasuda eqs 3.10-3.12)",
+    coupling_params};
+
+static bf_status coupling_effect_create(void **self, const bf_scene *sc,
+                                        const bf_balls *b,
+                                        const bf_effect_env *env, bf_err *err)
+{
+    if (!env || !env->film)
+        return bf_scene_fail(sc, err, "scene", "effects",
+                             "the coupling effect needs a film: use model = "
+                             "coupled (with film = static for a fixed kink)");
+    bf_coupling_params p = {
+        .V0 = bf_scene_real(sc, "coupling", "V0"),
+        .r0 = bf_scene_real(sc, "coupling", "r0"),
+        .M = bf_scene_real(sc, "coupling", "mobility"),
+        .psi_s = bf_scene_real(sc, "coupling", "psi_s"),
+        .quad = (bf_coupling_quad)bf_scene_enum(sc, "coupling", "quadrature"),
+    };
+    p.taylor_radius = bf_scene_bool(sc, "coupling", "taylor") ? 2e-3 * p.r0
+                                                               : 0.0;
+    bf_coupling *c;
+    bf_status st = bf_coupling_create(&c, &p, env->film, b->n, err);
+    if (!st)
+        *self = c;
+    return st;
+}
+
+static int coupling_accel(const void *self, const bf_balls *b, double t,
+                          const double *x, double *acc)
+{
+    (void)t;
+    bf_coupling *c = (bf_coupling *)self; /* caches are not state */
+    const double k = 4.0 * PI * c->p.V0 * c->p.M;
+    for (size_t i = 0; i < b->n; i++) {
+        double I, dI;
+        bf_coupling_integral_ball(c, i, x[i], &I, &dI);
+        acc[i] -= k * b->R[i] * b->R[i] * dI;
+    }
+    return 0;
+}
+
+static double coupling_potential(const void *self, const bf_balls *b,
+                                 double t, const double *x)
+{
+    (void)t;
+    bf_coupling *c = (bf_coupling *)self;
+    const double k = 4.0 * PI * c->p.V0 * c->p.M;
+    double u = 0.0;
+    for (size_t i = 0; i < b->n; i++) {
+        double I, dI;
+        bf_coupling_integral(c, x[i], &I, &dI);
+        u += b->m[i] * k * b->R[i] * b->R[i] * I;
+    }
+    return u;
+}
+
+static void coupling_destroy(void *self) { bf_coupling_free(self); }
+
+const bf_effect_type bf_effect_coupling = {
+    .name = "coupling",
+    .kind = BF_EFFECT_OTHER,
+    .doc = "ball-film coupling: -M dF/dr with F of eq. 3.10 (model coupled)",
+    .spec = &coupling_spec,
+    .create = coupling_effect_create,
+    .accel = coupling_accel,
+    .potential = coupling_potential,
+    .destroy = coupling_destroy,
+};

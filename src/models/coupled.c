@@ -1,0 +1,487 @@
+/* coupled.c: the "coupled" model: balls in the two-phase film (Yasuda
+ * sec. 3.4-3.5, Figs 6, 8, 9).
+ *
+ * The balls are a ball system (ballsys.h) whose effects include
+ * "coupling" (coupling.h: -M dF/dr, eqs 3.10-3.12) and "contact" (Hertz,
+ * eqs 3.13-3.14); the film is a film system (filmsys.h).
+ *
+ *   film = static   the film is never stepped (the kink potential of sec.
+ *                   3.4): the balls move in F of the initial film, and the
+ *                   energy m v^2/2 + contact + m M F is conserved by the
+ *                   dynamics, so it checks the integrator;
+ *   film = dynamic  explicit coupling as in the paper ("values at n+1 from
+ *                   values at n, combined at the n-th step"): at step n
+ *                   mu_cpl (3.11) is computed from the balls at level n, the
+ *                   balls advance one step in the film frozen at level n, and
+ *                   the film advances with mu^n + mu_cpl^n.  The ball
+ *                   integrator's force cache is invalidated after every film
+ *                   step (bf_ode.epoch).
+ *
+ * Multirate (film_every = K > 1, beyond the paper): the film takes one
+ * step of K dt every K ball steps, with mu_cpl from the balls at the start
+ * of that film step, and the balls see the film of the last film level.
+ * K = 1 is the paper's single-rate scheme, bit for bit.
+ *
+ * Diagnostics (HDF5):
+ *   /balls/position, /balls/velocity [rows x balls]
+ *   /coupled/psi_probe [rows]       psi at [coupled] probe (linear in x)
+ *   /coupled/sym_balls [rows]       max_i |x_i + x_(n+1-i)|, cm
+ *   /coupled/sym_film [rows]        max_i |psi_i + psi_(N-i)|
+ *   /coupled/return_map [events x 3] t, x, v of map_ball each time the
+ *                                   centre of map_pivot is closest to the
+ *                                   origin while touching its inner
+ *                                   neighbour (Fig. 8A)
+ *   /coupled/peaks [events x 2]     t, x of each maximum of peak_ball's
+ *                                   position (Fig. 6C)
+ * Events are located inside the step: the time by linear interpolation of
+ * the velocity's zero, the state there by the cubic Hermite interpolant of
+ * the step's end states (and linear for v).
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "ballfilm/ballsys.h"
+#include "ballfilm/coupling.h"
+#include "ballfilm/filmsys.h"
+#include "ballfilm/model.h"
+
+enum { NSYM = 4 };
+static const double sym_levels[NSYM] = {1e-12, 1e-9, 1e-6, 1e-3};
+
+static const bf_param coupled_params[] = {
+    {"film", BF_ENUM, "", "dynamic",
+     "dynamic: the film is solved and feels the balls (sec. 3.5); static: "
+     "the balls move in the potential of the initial film (sec. 3.4)",
+     0, 0, 0, "dynamic|static"},
+    {"film_every", BF_INT, "steps", "1",
+     "multirate: the film takes one step of film_every x dt every "
+     "film_every ball steps (1: the paper's single rate)",
+     BF_MIN, 1, 0, NULL},
+    {"probe", BF_REAL, "cm", "0.3",
+     "position of the psi probe /coupled/psi_probe (Fig. 8C)", 0, 0, 0,
+     NULL},
+    {"map_ball", BF_INT, "", "0",
+     "ball recorded in the return map (0: the last)", BF_NONNEG, 0, 0, NULL},
+    {"map_pivot", BF_INT, "", "0",
+     "ball whose closest approach to the origin, while touching its inner "
+     "neighbour, triggers the return map (0: ball n/2 + 1)",
+     BF_NONNEG, 0, 0, NULL},
+    {"peak_ball", BF_INT, "", "0",
+     "ball whose position maxima are recorded in /coupled/peaks (0: the "
+     "last)",
+     BF_NONNEG, 0, 0, NULL},
+    {"timing", BF_BOOL, "", "false",
+     "measure the wall time of balls, film and coupling separately (bench)",
+     BF_HIDDEN, 0, 0, NULL},
+    {0},
+};
+
+static const bf_section_spec coupled_spec = {
+    "coupled", "balls coupled to the film (Yasuda sec. 3.4-3.5)",
+    coupled_params};
+
+typedef struct coupled_model {
+    bf_filmsys *fs;
+    bf_ballsys *sys;
+    bf_coupling *cpl;
+    int dynamic, timing;
+    long every;
+    size_t nb, map_ball, map_pivot, peak_ball;
+    double probe;
+    double *mucpl;          /* the film's mu_cpl array */
+    double *x0, *v0;        /* ball state at the start of the step */
+    double sym_t[NSYM];     /* first time the ball symmetry error exceeded */
+    double cpu[3];          /* wall s: balls, film, coupling (timing) */
+    long nmap, npeak;
+    bf_series *pos, *vel, *probe_s, *symb, *symf, *map, *peaks;
+} coupled_model;
+
+static double wall_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void coupled_destroy(void *self)
+{
+    coupled_model *m = self;
+    if (!m)
+        return;
+    bf_ballsys_free(m->sys);
+    bf_filmsys_free(m->fs);
+    free(m->x0);
+    free(m->v0);
+    free(m);
+}
+
+/* a 1-based ball index key (0: default) */
+static bf_status ball_key(const bf_scene *sc, const char *key, size_t nb,
+                          size_t def, size_t *out, bf_err *err)
+{
+    long k = bf_scene_int(sc, "coupled", key);
+    if (k == 0) {
+        *out = def;
+        return BF_OK;
+    }
+    if ((size_t)k > nb)
+        return bf_scene_fail(sc, err, "coupled", key,
+                             "ball %ld does not exist (%zu balls)", k, nb);
+    *out = (size_t)k - 1;
+    return BF_OK;
+}
+
+static bf_status coupled_create(void **self, const bf_scene *sc, bf_err *err)
+{
+    coupled_model *m = calloc(1, sizeof *m);
+    if (!m)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    m->dynamic = bf_scene_enum(sc, "coupled", "film") == 0;
+    m->every = bf_scene_int(sc, "coupled", "film_every");
+    m->timing = bf_scene_bool(sc, "coupled", "timing");
+    m->probe = bf_scene_real(sc, "coupled", "probe");
+    bf_status st = bf_filmsys_create(&m->fs, sc, m->dynamic ? m->every : 0,
+                                     err);
+    if (st) {
+        free(m);
+        return st;
+    }
+    bf_effect_env env = {.film = bf_filmsys_film(m->fs)};
+    if ((st = bf_ballsys_create(&m->sys, sc, &env, err))) {
+        coupled_destroy(m);
+        return st;
+    }
+    for (size_t k = 0; k < m->sys->neff; k++)
+        if (m->sys->eff[k].type == &bf_effect_coupling)
+            m->cpl = m->sys->eff[k].self;
+    if (!m->cpl) {
+        coupled_destroy(m);
+        return bf_scene_fail(sc, err, "scene", "effects",
+                             "model coupled needs the effect 'coupling' (and "
+                             "usually 'contact')");
+    }
+    m->nb = m->sys->b.n;
+    const double *x = bf_film_x(bf_filmsys_film(m->fs));
+    size_t nn = bf_film_nodes(bf_filmsys_film(m->fs));
+    double xa = x[0], xb = x[nn - 1];
+    if (m->probe < xa || m->probe > xb) {
+        coupled_destroy(m);
+        return bf_scene_fail(sc, err, "coupled", "probe",
+                             "probe at %g cm lies outside the film [%g, %g]",
+                             bf_scene_real(sc, "coupled", "probe"), xa, xb);
+    }
+    if ((st = ball_key(sc, "map_ball", m->nb, m->nb - 1, &m->map_ball, err)) ||
+        (st = ball_key(sc, "map_pivot", m->nb, m->nb / 2, &m->map_pivot,
+                       err)) ||
+        (st = ball_key(sc, "peak_ball", m->nb, m->nb - 1, &m->peak_ball,
+                       err))) {
+        coupled_destroy(m);
+        return st;
+    }
+    m->mucpl = bf_film_mu_cpl(bf_filmsys_film(m->fs));
+    if (m->dynamic)
+        bf_coupling_prepare(m->cpl, m->nb, m->sys->b.x);
+    m->x0 = calloc(m->nb, sizeof(double));
+    m->v0 = calloc(m->nb, sizeof(double));
+    if (!m->x0 || !m->v0) {
+        coupled_destroy(m);
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    for (int k = 0; k < NSYM; k++)
+        m->sym_t[k] = NAN;
+    *self = m;
+    return BF_OK;
+}
+
+/* ------------------------------------------------------------ events */
+
+/* the cubic Hermite interpolant of (x0, v0) -> (x1, v1) over dt at s */
+static double hermite(double x0, double v0, double x1, double v1, double dt,
+                      double s)
+{
+    double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
+    double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
+    return h00 * x0 + h10 * dt * v0 + h01 * x1 + h11 * dt * v1;
+}
+
+static double symmetry_error(const double *x, size_t n)
+{
+    double e = 0;
+    for (size_t i = 0; i < n / 2; i++)
+        e = fmax(e, fabs(x[i] + x[n - 1 - i]));
+    return e;
+}
+
+static bf_status events(coupled_model *m, double t, double dt, bf_err *err)
+{
+    const bf_balls *b = &m->sys->b;
+    const double *x1 = b->x, *v1 = b->v, *x0 = m->x0, *v0 = m->v0;
+    /* peaks: the velocity of peak_ball turns from > 0 to <= 0 */
+    size_t q = m->peak_ball;
+    if (v0[q] > 0 && v1[q] <= 0) {
+        double s = v0[q] / (v0[q] - v1[q]);
+        double row[2] = {t + s * dt, hermite(x0[q], v0[q], x1[q], v1[q], dt, s)};
+        if (m->peaks && bf_series_append(m->peaks, row))
+            return bf_fail(err, BF_EINTERNAL, "out of memory");
+        m->npeak++;
+    }
+    /* return map: the pivot's distance from the origin has a minimum
+     * while it touches its inner neighbour */
+    size_t p = m->map_pivot;
+    double sg = x1[p] >= 0 ? 1.0 : -1.0;
+    double s0 = sg * v0[p], s1 = sg * v1[p];
+    if (s0 < 0 && s1 >= 0) {
+        /* the neighbour towards the origin */
+        long in = sg > 0 ? (long)p - 1 : (long)p + 1;
+        if (in >= 0 && in < (long)m->nb) {
+            double rs = b->R[p] + b->R[in];
+            int touch = fabs(x0[p] - x0[in]) < rs || fabs(x1[p] - x1[in]) < rs;
+            if (touch) {
+                double s = s0 / (s0 - s1);
+                size_t r = m->map_ball;
+                double row[3] = {t + s * dt,
+                                 hermite(x0[r], v0[r], x1[r], v1[r], dt, s),
+                                 v0[r] + s * (v1[r] - v0[r])};
+                if (m->map && bf_series_append(m->map, row))
+                    return bf_fail(err, BF_EINTERNAL, "out of memory");
+                m->nmap++;
+            }
+        }
+    }
+    double se = symmetry_error(x1, m->nb);
+    for (int k = 0; k < NSYM; k++)
+        if (isnan(m->sym_t[k]) && se > sym_levels[k])
+            m->sym_t[k] = t + dt;
+    return BF_OK;
+}
+
+/* ------------------------------------------------------------ step */
+
+static bf_status coupled_step(void *self, long n, double t, double dt,
+                              bf_err *err)
+{
+    coupled_model *m = self;
+    bf_ballsys *s = m->sys;
+    double c0 = 0, c1 = 0, c2 = 0, c3 = 0;
+    memcpy(m->x0, s->b.x, m->nb * sizeof(double));
+    memcpy(m->v0, s->b.v, m->nb * sizeof(double));
+    if (m->timing)
+        c0 = wall_now();
+    /* mu_cpl from the balls at level n (at the start of a film step) */
+    if (m->dynamic && n % m->every == 0)
+        bf_coupling_mu(m->cpl, m->nb, s->b.x, s->b.R, m->mucpl);
+    if (m->timing)
+        c1 = wall_now();
+    /* the balls in the film frozen at its last level */
+    bf_status st = bf_ballsys_step(s, t, dt, err);
+    if (st)
+        return st;
+    if (m->timing)
+        c2 = wall_now();
+    if (m->dynamic && (n + 1) % m->every == 0) {
+        if ((st = bf_filmsys_step(m->fs, (double)m->every * dt, err)))
+            return st;
+        if (m->timing)
+            c3 = wall_now();
+        bf_coupling_refresh(m->cpl);
+        bf_coupling_prepare(m->cpl, m->nb, s->b.x);
+        s->ode.epoch++;
+    } else if (m->timing) {
+        c3 = c2;
+    }
+    if (m->timing) {
+        double c4 = wall_now();
+        m->cpu[0] += c2 - c1;
+        m->cpu[1] += c3 - c2;
+        m->cpu[2] += (c1 - c0) + (c4 - c3);
+    }
+    return events(m, t, dt, err);
+}
+
+static void coupled_energy(const void *self, double t, double *kin,
+                           double *pot)
+{
+    const coupled_model *m = self;
+    bf_ballsys_energy(m->sys, t, kin, pot);
+}
+
+/* ------------------------------------------------------------ output */
+
+static bf_status coupled_output_open(void *self, bf_out *out, bf_err *err)
+{
+    coupled_model *m = self;
+    bf_status st = bf_filmsys_output_open(m->fs, out, err);
+    if (st)
+        return st;
+#define SER(var, path, cols, unit, doc)                                        \
+    do {                                                                       \
+        m->var = bf_out_series(out, path, cols, 0, unit, doc, err);           \
+        if (!m->var)                                                           \
+            return err->status;                                                \
+    } while (0)
+    SER(pos, "/balls/position", m->nb, "cm",
+        "ball centre positions, one column per ball");
+    SER(vel, "/balls/velocity", m->nb, "cm/s",
+        "ball velocities, one column per ball");
+    SER(probe_s, "/coupled/psi_probe", 0, "1",
+        "psi at [coupled] probe, linear between nodes");
+    SER(symb, "/coupled/sym_balls", 0, "cm",
+        "left/right symmetry error of the balls max_i |x_i + x_(n+1-i)|");
+    SER(symf, "/coupled/sym_film", 0, "1",
+        "left/right symmetry error of the film max_i |psi_i + psi_(N-i)|");
+    SER(map, "/coupled/return_map", 3, "s, cm, cm/s",
+        "t, x, v of map_ball when map_pivot is closest to the origin while "
+        "touching its inner neighbour (Fig. 8A)");
+    SER(peaks, "/coupled/peaks", 2, "s, cm",
+        "t, x of the maxima of peak_ball's position (Fig. 6C)");
+#undef SER
+    const bf_balls *b = &m->sys->b;
+    if ((st = bf_out_array(out, "/balls/mass", b->m, b->n, 0, "g",
+                           "ball masses", err)))
+        return st;
+    return bf_out_array(out, "/balls/radius", b->R, b->n, 0, "cm",
+                        "ball radii", err);
+}
+
+static double probe_psi(const coupled_model *m)
+{
+    const bf_film *f = bf_filmsys_film(m->fs);
+    const double *x = bf_film_x(f), *psi = bf_film_psi(f);
+    size_t n = bf_film_nodes(f);
+    double u = (m->probe - x[0]) / (x[1] - x[0]);
+    size_t j = (size_t)floor(u);
+    if (j >= n - 1)
+        j = n - 2;
+    double s = u - (double)j;
+    return (1 - s) * psi[j] + s * psi[j + 1];
+}
+
+static bf_status coupled_output_row(void *self, long n, double t, bf_err *err)
+{
+    coupled_model *m = self;
+    bf_status st = bf_filmsys_output_row(m->fs, n, t, err);
+    if (st)
+        return st;
+    const bf_film *f = bf_filmsys_film(m->fs);
+    const double *psi = bf_film_psi(f);
+    size_t nn = bf_film_nodes(f);
+    double sf = 0;
+    for (size_t i = 0; i < nn; i++)
+        sf = fmax(sf, fabs(psi[i] + psi[nn - 1 - i]));
+    double pr = probe_psi(m), sb = symmetry_error(m->sys->b.x, m->nb);
+    if (bf_series_append(m->pos, m->sys->b.x) ||
+        bf_series_append(m->vel, m->sys->b.v) ||
+        bf_series_append(m->probe_s, &pr) || bf_series_append(m->symb, &sb) ||
+        bf_series_append(m->symf, &sf))
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    return BF_OK;
+}
+
+static bf_status coupled_output_close(void *self, bf_out *out, bf_err *err)
+{
+    coupled_model *m = self;
+    double rows[NSYM * 2];
+    for (int k = 0; k < NSYM; k++) {
+        rows[2 * k] = sym_levels[k];
+        rows[2 * k + 1] = m->sym_t[k];
+    }
+    return bf_out_array(out, "/coupled/symmetry_break", rows, NSYM, 2, "cm, s",
+                        "first time the ball symmetry error exceeded each "
+                        "level (NaN: never)",
+                        err);
+}
+
+static void coupled_counters(const void *self, bf_counters *c)
+{
+    const coupled_model *m = self;
+    *c = m->sys->it->count;
+}
+
+static void coupled_report(const void *self, FILE *f)
+{
+    const coupled_model *m = self;
+    bf_filmsys_report(m->fs, f);
+    unsigned long long ex, ta;
+    bf_coupling_counts(m->cpl, &ex, &ta);
+    fprintf(f, "coupling: %llu exact and %llu Taylor evaluations of F; "
+               "%ld return-map points, %ld peaks\n",
+            ex, ta, m->nmap, m->npeak);
+    fprintf(f, "symmetry: ball error first above");
+    for (int k = 0; k < NSYM; k++)
+        fprintf(f, " %g cm at t = %.4g s%s", sym_levels[k], m->sym_t[k],
+                k + 1 < NSYM ? "," : "\n");
+    if (m->timing)
+        fprintf(f, "time: balls %.3f s, film %.3f s, coupling (mu_cpl, "
+                   "refresh) %.3f s\n",
+                m->cpu[0], m->cpu[1], m->cpu[2]);
+}
+
+/* ------------------------------------------------------------ checkpoint */
+
+static bf_status coupled_save(const void *self, bf_ckpt *ck, bf_err *err)
+{
+    const coupled_model *m = self;
+    bf_status st = bf_filmsys_save(m->fs, ck, err);
+    if (!st)
+        st = bf_ballsys_save(m->sys, ck, "balls", err);
+    int64_t meta[3] = {(int64_t)m->sys->ode.epoch, m->nmap, m->npeak};
+    if (!st)
+        st = bf_ckpt_put_i64(ck, "coupled.meta", meta, 3, err);
+    if (!st)
+        st = bf_ckpt_put(ck, "coupled.sym_t", m->sym_t, NSYM, err);
+    if (!st)
+        st = bf_ckpt_put(ck, "coupled.mucpl", m->mucpl,
+                         bf_film_nodes(bf_filmsys_film(m->fs)), err);
+    if (!st)
+        st = bf_coupling_save(m->cpl, ck, err);
+    return st;
+}
+
+static bf_status coupled_load(void *self, const bf_ckpt *ck, bf_err *err)
+{
+    coupled_model *m = self;
+    int64_t meta[3];
+    bf_status st = bf_filmsys_load(m->fs, ck, err);
+    if (!st)
+        st = bf_ballsys_load(m->sys, ck, "balls", err);
+    if (!st)
+        st = bf_ckpt_get_i64(ck, "coupled.meta", meta, 3, err);
+    if (!st)
+        st = bf_ckpt_get(ck, "coupled.sym_t", m->sym_t, NSYM, err);
+    if (!st)
+        st = bf_ckpt_get(ck, "coupled.mucpl", m->mucpl,
+                         bf_film_nodes(bf_filmsys_film(m->fs)), err);
+    if (!st)
+        st = bf_coupling_load(m->cpl, ck, err); /* after the film */
+    if (!st) {
+        m->sys->ode.epoch = (unsigned long)meta[0];
+        m->nmap = (long)meta[1];
+        m->npeak = (long)meta[2];
+    }
+    return st;
+}
+
+static const bf_section_spec *const coupled_specs[] = {
+    &coupled_spec, &bf_filmsys_spec, &bf_ballsys_ball_spec, NULL};
+
+const bf_model_type bf_model_coupled = {
+    .name = "coupled",
+    .doc = "balls coupled to the two-phase film, static kink or dynamic "
+           "film (Yasuda sec. 3.4-3.5)",
+    .flags = BF_MODEL_INTEGRATOR | BF_MODEL_EFFECTS,
+    .specs = coupled_specs,
+    .create = coupled_create,
+    .destroy = coupled_destroy,
+    .step = coupled_step,
+    .energy = coupled_energy,
+    .output_open = coupled_output_open,
+    .output_row = coupled_output_row,
+    .output_close = coupled_output_close,
+    .counters = coupled_counters,
+    .report = coupled_report,
+    .checkpoint_save = coupled_save,
+    .checkpoint_load = coupled_load,
+};

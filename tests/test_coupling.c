@@ -1,0 +1,436 @@
+/* test_coupling.c: the ball-film coupling (Yasuda eqs 3.10-3.12) and the
+ * coupled model, against independent references:
+ *
+ * - the spline: our natural cubic spline of g equals GSL's
+ *   gsl_interp_cspline (second derivatives to 1e-12 of their size);
+ * - dI/dr against a 4th-order finite difference of I (the same code path
+ *   differentiated numerically: consistent to 1e-9 relative);
+ * - I and dI/dr against GSL adaptive quadrature (QAG, 1e-13) of the
+ *   analytic kink h = 1, psi = tanh(x/sqrt 2), piecewise on each side of r:
+ *   the spline's error falls as dx^4 (ratio > 12 for halved dx), the
+ *   linear interpolant's as dx^2 (ratio 3.5..4.5);
+ * - the Taylor fast path equals the exact evaluation to round-off (1e-14
+ *   of I);
+ * - mu_cpl (3.11) equals the formula with one exp() per node to 1e-14;
+ * - the static kink: the ball energy m v^2/2 + contact + m M F is conserved
+ *   to the integrator's accuracy, and the peak deviation at dt = 1e-4 over
+ *   0-10 s is within a factor 1.5 of the paper's -4.31e-5;
+ * - the dynamic film: phase totals conserved to 1e-12, the film changes
+ *   the balls' forces every step (a Verlet integrator must re-evaluate:
+ *   2 evaluations per step, which fails if the force cache were kept),
+ *   restart bit for bit (single rate and multirate).
+ */
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+#include <gsl/gsl_spline.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ballfilm/coupling.h"
+#include "ballfilm/filmsys.h"
+#include "ballfilm/h5out.h"
+#include "ballfilm/registry.h"
+#include "testutil.h"
+
+static const double R0 = 0.5;
+static const double PI = 3.14159265358979323846;
+
+/* a film of length L with psi = tanh(x/sqrt 2), h = 1 */
+static bf_film *kink_film(double L, double dx)
+{
+    bf_film_params p = {.length = L, .dx = dx, .rho_d = 1, .rho_c = 1,
+                        .nu = 0.01, .g = 980, .a = 1, .b = 1, .gamma = 1,
+                        .mu_taylor = BF_FILM_MU_MIDPOINT,
+                        .limit_positive = 1, .vanish = 1e-8};
+    bf_film *f;
+    bf_err err = {0};
+    ck_assert(bf_film_create(&f, &p, &err) == BF_OK);
+    size_t n = bf_film_nodes(f);
+    double *h = malloc(n * sizeof *h), *psi = malloc(n * sizeof *psi),
+           *z = calloc(n, sizeof *z);
+    for (size_t i = 0; i < n; i++) {
+        h[i] = 1.0;
+        psi[i] = tanh(bf_film_x(f)[i] / sqrt(2.0));
+    }
+    ck_assert(bf_film_set_state(f, h, psi, z, z, &err) == BF_OK);
+    free(h);
+    free(psi);
+    free(z);
+    return f;
+}
+
+static bf_coupling *make_cpl(const bf_film *f, bf_coupling_quad q,
+                             double taylor)
+{
+    bf_coupling_params p = {.V0 = 0.01, .r0 = R0, .M = 1e5, .psi_s = 0,
+                            .quad = q, .taylor_radius = taylor};
+    bf_coupling *c;
+    bf_err err = {0};
+    ck_assert(bf_coupling_create(&c, &p, f, 4, &err) == BF_OK);
+    return c;
+}
+
+START_TEST(spline_equals_gsl)
+{
+    bf_film *f = kink_film(50, 0.1);
+    bf_coupling *c = make_cpl(f, BF_COUPLING_SPLINE, 0);
+    size_t n = bf_film_nodes(f);
+    gsl_interp *sp = gsl_interp_alloc(gsl_interp_cspline, n);
+    gsl_interp_accel *acc = gsl_interp_accel_alloc();
+    const double *x = bf_film_x(f), *g = bf_coupling_g(c);
+    gsl_interp_init(sp, x, g, n);
+    const double *M = bf_coupling_spline_m(c);
+    double mmax = 0, d = 0;
+    for (size_t i = 0; i < n; i++) {
+        double mg = gsl_interp_eval_deriv2(sp, x, g, x[i], acc);
+        mmax = fmax(mmax, fabs(mg));
+        d = fmax(d, fabs(M[i] - mg));
+    }
+    ck_assert_msg(mmax > 0.1, "max |g''| = %g", mmax);
+    ck_assert_msg(d < 1e-12 * mmax, "spline differs from GSL by %g (max %g)",
+                  d, mmax);
+    gsl_interp_accel_free(acc);
+    gsl_interp_free(sp);
+    bf_coupling_free(c);
+    bf_film_free(f);
+}
+END_TEST
+
+static double Ival(bf_coupling *c, double r)
+{
+    double I, dI;
+    bf_coupling_integral(c, r, &I, &dI);
+    return I;
+}
+
+START_TEST(derivative_matches_finite_difference)
+{
+    bf_film *f = kink_film(50, 0.1);
+    bf_coupling *c = make_cpl(f, BF_COUPLING_SPLINE, 0);
+    /* inside cells, off the nodes by more than 2 delta; near the kink, in
+     * the tails, near a wall and beyond the film */
+    const double rs[] = {0.0137, 0.2, 0.5321, -0.77, 3.3333, -12.345,
+                         24.96,  -24.97, 25.5, -26.0};
+    const double d = 1e-3;
+    double scale = 0;
+    for (size_t k = 0; k < sizeof rs / sizeof rs[0]; k++) {
+        double I, dI;
+        bf_coupling_integral(c, rs[k], &I, &dI);
+        scale = fmax(scale, fabs(dI));
+    }
+    for (size_t k = 0; k < sizeof rs / sizeof rs[0]; k++) {
+        double r = rs[k], I, dI;
+        bf_coupling_integral(c, r, &I, &dI);
+        double fd = (-Ival(c, r + 2 * d) + 8 * Ival(c, r + d) -
+                     8 * Ival(c, r - d) + Ival(c, r - 2 * d)) /
+                    (12 * d);
+        ck_assert_msg(fabs(dI - fd) < 1e-9 * scale,
+                      "r = %g: dI/dr %.15g, finite difference %.15g", r, dI,
+                      fd);
+    }
+    bf_coupling_free(c);
+    bf_film_free(f);
+}
+END_TEST
+
+/* the analytic integrand and its QAG integrals left and right of r */
+typedef struct qctx {
+    double r;
+    int right;
+} qctx;
+
+static double integrand(double x, void *p)
+{
+    const qctx *q = p;
+    double g = tanh(x / sqrt(2.0));
+    double s = q->right ? x - q->r : q->r - x;
+    return g * g * exp(-s / R0);
+}
+
+static void exact_lr(double L, double r, double *left, double *right)
+{
+    gsl_integration_workspace *w = gsl_integration_workspace_alloc(2000);
+    gsl_set_error_handler_off();
+    double err;
+    qctx q = {r, 0};
+    gsl_function fn = {integrand, &q};
+    /* split at the kink's centre too, where g has its structure */
+    double a = -0.5 * L, b = 0.5 * L, s1 = 0, s2 = 0, part;
+    if (r > 0) {
+        gsl_integration_qag(&fn, a, 0, 0, 1e-13, 2000, GSL_INTEG_GAUSS61, w,
+                            &s1, &err);
+        gsl_integration_qag(&fn, 0, r, 0, 1e-13, 2000, GSL_INTEG_GAUSS61, w,
+                            &part, &err);
+        s1 += part;
+    } else {
+        gsl_integration_qag(&fn, a, r, 0, 1e-13, 2000, GSL_INTEG_GAUSS61, w,
+                            &s1, &err);
+    }
+    q.right = 1;
+    if (r < 0) {
+        gsl_integration_qag(&fn, r, 0, 0, 1e-13, 2000, GSL_INTEG_GAUSS61, w,
+                            &s2, &err);
+        gsl_integration_qag(&fn, 0, b, 0, 1e-13, 2000, GSL_INTEG_GAUSS61, w,
+                            &part, &err);
+        s2 += part;
+    } else {
+        gsl_integration_qag(&fn, r, b, 0, 1e-13, 2000, GSL_INTEG_GAUSS61, w,
+                            &s2, &err);
+    }
+    gsl_integration_workspace_free(w);
+    *left = s1;
+    *right = s2;
+}
+
+/* max relative error of I and dI/dr over a few positions */
+static void quad_error(double dx, bf_coupling_quad q, double *eI, double *eD)
+{
+    bf_film *f = kink_film(50, dx);
+    bf_coupling *c = make_cpl(f, q, 0);
+    const double rs[] = {0.0137, 0.2, -0.45, 0.777, 1.5, -2.2};
+    *eI = *eD = 0;
+    for (size_t k = 0; k < sizeof rs / sizeof rs[0]; k++) {
+        double I, dI, L, R;
+        bf_coupling_integral(c, rs[k], &I, &dI);
+        exact_lr(50, rs[k], &L, &R);
+        *eI = fmax(*eI, fabs(I - (L + R)) / (L + R));
+        *eD = fmax(*eD, fabs(dI - (R - L) / R0) / fabs((R - L) / R0));
+    }
+    bf_coupling_free(c);
+    bf_film_free(f);
+}
+
+START_TEST(integral_against_quadrature_of_the_kink)
+{
+    double i1, d1, i2, d2;
+    quad_error(0.1, BF_COUPLING_SPLINE, &i1, &d1);
+    quad_error(0.05, BF_COUPLING_SPLINE, &i2, &d2);
+    ck_assert_msg(i1 < 1e-5 && d1 < 1e-4, "spline dx = 0.1: %g %g", i1, d1);
+    ck_assert_msg(i1 / i2 > 12 && d1 / d2 > 12,
+                  "spline: dx^4 expected: I %g -> %g, dI %g -> %g", i1, i2, d1,
+                  d2);
+    quad_error(0.1, BF_COUPLING_LINEAR, &i1, &d1);
+    quad_error(0.05, BF_COUPLING_LINEAR, &i2, &d2);
+    ck_assert_msg(i1 / i2 > 3.5 && i1 / i2 < 4.5 && d1 / d2 > 3.5 &&
+                      d1 / d2 < 4.5,
+                  "linear: dx^2 expected: I %g -> %g, dI %g -> %g", i1, i2, d1,
+                  d2);
+}
+END_TEST
+
+START_TEST(taylor_path_equals_exact)
+{
+    bf_film *f = kink_film(50, 0.1);
+    bf_coupling *ct = make_cpl(f, BF_COUPLING_SPLINE, 2e-3 * R0);
+    bf_coupling *ce = make_cpl(f, BF_COUPLING_SPLINE, 0);
+    const double anchors[] = {0.2, -0.5123, 0.0501};
+    for (size_t p = 0; p < 3; p++) {
+        double I, dI, Ie, dIe;
+        bf_coupling_integral_ball(ct, p, anchors[p], &I, &dI); /* anchor */
+        for (int k = -10; k <= 10; k++) {
+            double r = anchors[p] + k * 1e-4;
+            bf_coupling_integral_ball(ct, p, r, &I, &dI);
+            bf_coupling_integral(ce, r, &Ie, &dIe);
+            /* round-off scale: L and R are each up to I, and dI/dr =
+             * (R - L)/r0 cancels */
+            ck_assert_msg(fabs(I - Ie) < 1e-14 * Ie &&
+                              fabs(dI - dIe) < 1e-14 * Ie / R0,
+                          "r = %.6f: %.17g %.17g, %.17g %.17g", r, I, Ie, dI,
+                          dIe);
+        }
+    }
+    unsigned long long ex, ta;
+    bf_coupling_counts(ct, &ex, &ta);
+    ck_assert_msg(ta > 30, "Taylor path used %llu times", ta);
+    bf_coupling_free(ct);
+    bf_coupling_free(ce);
+    bf_film_free(f);
+}
+END_TEST
+
+START_TEST(mu_cpl_matches_direct_formula)
+{
+    bf_film *f = kink_film(20, 0.1);
+    bf_coupling *c = make_cpl(f, BF_COUPLING_SPLINE, 0);
+    const double x[4] = {-0.5, -0.2, 0.2, 0.5}, R[4] = {0.1, 0.1, 0.15, 0.1};
+    const double xo[2] = {-12.0, 11.0}, Ro[2] = {0.1, 0.2}; /* off the film */
+    size_t n = bf_film_nodes(f);
+    double *mu = malloc(n * sizeof *mu);
+    for (int set = 0; set < 2; set++) {
+        const double *bx = set ? xo : x, *bR = set ? Ro : R;
+        size_t nb = set ? 2 : 4;
+        bf_coupling_mu(c, nb, bx, bR, mu);
+        double d = 0, m = 0;
+        for (size_t i = 0; i < n; i++) {
+            double xi = bf_film_x(f)[i], v = 0;
+            for (size_t p = 0; p < nb; p++)
+                v += 8 * PI * bR[p] * bR[p] * 0.01 *
+                     exp(-fabs(xi - bx[p]) / R0) * bf_film_psi(f)[i];
+            d = fmax(d, fabs(mu[i] - v));
+            m = fmax(m, fabs(v));
+        }
+        ck_assert_msg(d < 1e-14 * m, "set %d: mu_cpl off by %g (max %g)", set,
+                      d, m);
+    }
+    free(mu);
+    bf_coupling_free(c);
+    bf_film_free(f);
+}
+END_TEST
+
+/* ------------------------------------------------------------ scenes */
+
+static bf_sim *run(const char *scene, const char *const *sets, bf_scene **scp)
+{
+    bf_scene *sc;
+    bf_err err = {0};
+    ck_assert_msg(bf_scene_load(&sc, scene, &err) == BF_OK, "%s", err.msg);
+    for (; sets && *sets; sets++)
+        ck_assert_msg(bf_scene_set(sc, *sets, "--set", &err) == BF_OK, "%s",
+                      err.msg);
+    ck_assert_msg(bf_registry_resolve(sc, &err) == BF_OK, "%s", err.msg);
+    bf_sim *sim;
+    ck_assert_msg(bf_sim_create(&sim, sc, NULL, &err) == BF_OK, "%s", err.msg);
+    ck_assert_msg(bf_sim_run(sim, &err) == BF_OK, "%s", err.msg);
+    *scp = sc;
+    return sim;
+}
+
+START_TEST(static_kink_energy_and_peaks)
+{
+    /* 10 s of Fig. 6A: energy conserved to the integrator's accuracy; the
+     * right ball's peaks stay within the paper's deviation */
+    const char *path = tu_repo("runs/kink_balls_A.ini");
+    const char *out = tu_tmp("kinkA.h5");
+    char o[600];
+    snprintf(o, sizeof o, "%s", out);
+    ck_assert_int_eq(tu_run(NULL, NULL, "run", path, "-o", o, "-q", "--set",
+                            "scene.t_end=10", "--set", "scene.energy_every=1",
+                            NULL),
+                     0);
+    double *e, *pk;
+    size_t n0, n1, p0, p1;
+    bf_err err = {0};
+    ck_assert(bf_h5_read(o, "/energy/total", &e, &n0, &n1, &err) == 0);
+    double de = 0;
+    for (size_t i = 0; i < n0; i++)
+        de = fmax(de, fabs(e[i] - e[0]) / fabs(e[0]));
+    ck_assert_msg(de < 2e-5, "energy error %g", de);
+    ck_assert(bf_h5_read(o, "/coupled/peaks", &pk, &p0, &p1, &err) == 0);
+    ck_assert_msg(p0 >= 35 && p1 == 2, "%zu peaks", p0);
+    double worst = 0;
+    for (size_t i = 0; i < p0; i++)
+        worst = fmin(worst, (pk[2 * i + 1] - 0.2) / 0.2);
+    ck_assert_msg(worst > -1.5 * 4.31e-5 && worst < -4.31e-5 / 1.5,
+                  "largest relative peak deviation %g (paper -4.31e-5)",
+                  worst);
+    free(e);
+    free(pk);
+}
+END_TEST
+
+START_TEST(dynamic_film_conserves_and_refreshes_forces)
+{
+    /* the Fig. 8 scene with Verlet: the film changes under the
+     * balls every step, so Verlet's first-same-as-last force must be
+     * recomputed: 2 evaluations per step (1 if the cache were reused) */
+    /* 0.3 s: events (peaks, return map) happen without an output file */
+    const char *sets[] = {"scene.t_end=0.3", "scene.integrator=verlet",
+                          NULL};
+    bf_scene *sc;
+    bf_sim *sim = run(tu_repo("runs/coupled_fig8.ini"), sets, &sc);
+    bf_counters cnt;
+    bf_sim_counters(sim, &cnt);
+    ck_assert_uint_eq(cnt.evals, 2 * (unsigned long long)bf_sim_steps_done(sim));
+    bf_sim_free(sim);
+    bf_scene_free(sc);
+    /* phase totals over 2e4 coupled steps */
+    char o[600];
+    snprintf(o, sizeof o, "%s", tu_tmp("dyn.h5"));
+    ck_assert_int_eq(tu_run(NULL, NULL, "run", tu_repo("runs/coupled_fig8.ini"),
+                            "-o", o, "-q", "--set", "scene.t_end=0.2", NULL),
+                     0);
+    const char *ph[2] = {"/film/mass_d", "/film/mass_c"};
+    for (int k = 0; k < 2; k++) {
+        double *m;
+        size_t n0, n1;
+        bf_err err = {0};
+        ck_assert(bf_h5_read(o, ph[k], &m, &n0, &n1, &err) == 0);
+        for (size_t i = 0; i < n0; i++)
+            ck_assert_msg(fabs(m[i] - m[0]) <= 1e-12 * m[0], "%s drifts by %g",
+                          ph[k], (m[i] - m[0]) / m[0]);
+        free(m);
+    }
+}
+END_TEST
+
+static void same(const char *a, const char *b, const char *const *names)
+{
+    bf_err err = {0};
+    for (; *names; names++) {
+        double *da, *db;
+        size_t a0, a1, b0, b1;
+        ck_assert_msg(bf_h5_read(a, *names, &da, &a0, &a1, &err) == 0, "%s",
+                      err.msg);
+        ck_assert_msg(bf_h5_read(b, *names, &db, &b0, &b1, &err) == 0, "%s",
+                      err.msg);
+        ck_assert_msg(a0 == b0 && a1 == b1, "%s: %zux%zu vs %zux%zu", *names,
+                      a0, a1, b0, b1);
+        ck_assert_msg(memcmp(da, db, a0 * (a1 ? a1 : 1) * sizeof *da) == 0,
+                      "%s differs", *names);
+        free(da);
+        free(db);
+    }
+}
+
+static void restart_case(const char *scene, const char *tag, const char *tend,
+                         const char *every, const char *stop)
+{
+    char full[512], part[600];
+    snprintf(full, sizeof full, "%s", tu_tmp(tag));
+    snprintf(part, sizeof part, "%s.part.h5", full);
+    ck_assert_int_eq(tu_run(NULL, NULL, "run", scene, "-o", full, "-q", "--set",
+                            tend, "--set", every, NULL),
+                     0);
+    ck_assert_int_eq(tu_run(NULL, NULL, "run", scene, "-o", part, "-q", "--set",
+                            tend, "--set", every, "--stop-after", stop, NULL),
+                     6);
+    ck_assert_int_eq(tu_run(NULL, NULL, "run", "--restart", part, "-q", NULL),
+                     0);
+    static const char *const names[] = {
+        "/time",          "/balls/position",  "/balls/velocity",
+        "/energy/total",  "/film/psi",        "/film/u_d",
+        "/film/mass_d",   "/coupled/peaks",   "/coupled/return_map",
+        "/coupled/psi_probe", "/coupled/sym_balls", NULL};
+    same(full, part, names);
+}
+
+START_TEST(restart_bit_identical_static_and_dynamic)
+{
+    restart_case(tu_repo("runs/kink_balls_A.ini"), "rs_static.h5",
+                 "scene.t_end=3", "coupled.film=static", "12345");
+    restart_case(tu_repo("runs/coupled_fig8.ini"), "rs_dyn.h5",
+                 "scene.t_end=0.1", "coupled.film_every=1", "4321");
+    restart_case(tu_repo("runs/coupled_fig8.ini"), "rs_multi.h5",
+                 "scene.t_end=0.1", "coupled.film_every=50", "4321");
+}
+END_TEST
+
+Suite *suite_coupling(void)
+{
+    Suite *s = suite_create("coupling");
+    TCase *tc = tu_tcase("quadrature");
+    tcase_add_test(tc, spline_equals_gsl);
+    tcase_add_test(tc, derivative_matches_finite_difference);
+    tcase_add_test(tc, integral_against_quadrature_of_the_kink);
+    tcase_add_test(tc, taylor_path_equals_exact);
+    tcase_add_test(tc, mu_cpl_matches_direct_formula);
+    suite_add_tcase(s, tc);
+    tc = tu_tcase("scenes");
+    tcase_add_test(tc, static_kink_energy_and_peaks);
+    tcase_add_test(tc, dynamic_film_conserves_and_refreshes_forces);
+    tcase_add_test(tc, restart_bit_identical_static_and_dynamic);
+    suite_add_tcase(s, tc);
+    return s;
+}
