@@ -54,7 +54,7 @@ RUNNER    := $(BUILD)/tests/runner
 
 .PHONY: all run test check figures bench clean deps deps-plot test-run \
         build-tests fig1 fuzz valgrind mpi stratres mac-checks fig2 fig3 \
-        fig4 converge-figures survey-mass fig5 kink-dx2 film-orders fig6 \
+        fig4 converge-figures survey-mass survey-length fig5 kink-dx2 film-orders fig6 \
         fig8 fig9 multirate
 
 all: $(PROG)
@@ -337,6 +337,7 @@ figures:
 	@$(MAKE) --no-print-directory fig4
 	@$(MAKE) --no-print-directory converge-figures
 	@$(MAKE) --no-print-directory survey-mass
+	@$(MAKE) --no-print-directory survey-length
 	@$(MAKE) --no-print-directory stratres
 	@$(MAKE) --no-print-directory mac-checks
 	@$(MAKE) --no-print-directory fig5
@@ -358,6 +359,17 @@ survey-mass: $(PROG)
 	    --set scene.output_every=10000 --jobs 2 -q -o out/survey_mass
 	$(PY) plots/survey.py out/survey_mass -o out/survey_mass.png \
 	    --label "lower/upper mass ratio"
+
+# Survey of the coupled film: the fourth ball's return map over film lengths
+# 49.5..50.5 cm (11 points), 50 s each with the multirate option (film step
+# every 30 ball steps, which passed its accuracy check: README, multirate).
+survey-length: $(PROG)
+	@mkdir -p out
+	$(PROG) sweep runs/coupled_fig8.ini --vary film.length=49.5:50.5:11 \
+	    --set coupled.film_every=30 --set scene.output_every=1000 \
+	    --set "film.profile_every=10 s" --jobs 2 -q -o out/survey_length
+	$(PY) plots/survey.py out/survey_length -o out/survey_length.png \
+	    --label "film length [cm]" --maps 11
 
 # ---------------------------------------------------------------- tests
 build-tests: $(PROG) $(RUNNER) $(MPI_PROG)

@@ -36,15 +36,21 @@ cols = 8 if nmaps > 8 else nmaps
 rows = (nmaps + cols - 1) // cols
 fig = plt.figure(figsize=(2.1 * cols, 3.2 + 2.1 * rows))
 gs = fig.add_gridspec(1 + rows, cols, height_ratios=[1.6] + [1] * rows)
+has_lyap = np.isfinite(lyap[ok]).any()
 ax = fig.add_subplot(gs[0, : cols // 2])
-ax.plot(x[ok], lyap[ok], "o-", ms=3)
+if has_lyap:
+    ax.plot(x[ok], lyap[ok], "o-", ms=3)
+else:
+    ax.text(0.5, 0.5, "no Lyapunov estimate for this model",
+            ha="center", transform=ax.transAxes)
 if (~ok).any():
     ax.plot(x[~ok], np.ones((~ok).sum()), "rx",
             label="failed case")
     ax.legend()
 ax.set_xlabel(label)
 ax.set_ylabel("largest Lyapunov exponent [1/s]")
-ax.set_yscale("log")
+if has_lyap:
+    ax.set_yscale("log")
 ax.grid(True, which="both", alpha=0.3)
 ax2 = fig.add_subplot(gs[0, cols // 2:])
 ax2.plot(x[ok], fill[ok], "o-", ms=3, color="C1")
@@ -58,12 +64,16 @@ for n, k in enumerate(pick):
     path = os.path.join(a.dir, "case_%05d.h5" % k)
     try:
         with h5py.File(path, "r") as f:
-            z, v = f["/return_map/z"][()], f["/return_map/v"][()]
-        sub.plot(z, v, ",", color="C0" if lyap[k] > np.nanmedian(lyap) else "C1")
+            if "/return_map/z" in f:
+                z, v = f["/return_map/z"][()], f["/return_map/v"][()]
+            else:  # the coupled model: rows (t, x, v)
+                m = f["/coupled/return_map"][()]
+                z, v = m[:, 1], m[:, 2]
+        sub.plot(z, v, ",", color="C0" if fill[k] > 0.3 else "C1")
     except (OSError, KeyError):
         sub.text(0.5, 0.5, "no map", ha="center", transform=sub.transAxes)
-    sub.set_title("%s = %.3g\nλ = %.3g/s" % (label.split()[0], x[k], lyap[k]),
-                  fontsize=7)
+    sub.set_title("%s = %.4g\nλ = %.3g/s, fill %.2f"
+                  % (label.split()[0], x[k], lyap[k], fill[k]), fontsize=7)
     sub.set_xticks([])
     sub.set_yticks([])
 fig.suptitle("Survey of first-return maps: %s (%d cases, %s)"

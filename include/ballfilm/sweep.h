@@ -45,7 +45,7 @@ typedef struct bf_sweep_row {
     double lyapunov;       /* largest Lyapunov exponent (1/s) or NAN */
     double map_points;     /* number of return-map points or NAN */
     double map_fill;       /* fraction of the map's bounding box visited
-                              (BF_SWEEP_FILL_BINS^2 bins) or NAN */
+                              (see bf_sweep_map_fill) or NAN */
     double energy_error;   /* max relative energy error or NAN */
     long steps;
     char message[512];
@@ -73,9 +73,12 @@ bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
                             bf_err *err);
 
 /* Fraction of the bounding box of the points (z_k, v_k) that they visit,
- * counted on a BF_SWEEP_FILL_BINS x BF_SWEEP_FILL_BINS grid: near 1 for a
- * map that fills a region (chaos), small for closed curves (quasi-periodic
- * motion).  NAN for fewer than 2 points. */
+ * counted on a B x B grid with B = sqrt(n/4) clamped to [5,
+ * BF_SWEEP_FILL_BINS], i.e. about four points per bin, so that the number
+ * does not depend on how many points a run collected: near 1 - e^-4 for a
+ * map that fills its box evenly (chaos), about 1/B for closed curves
+ * (quasi-periodic motion), in between for islands and bands.  NAN for
+ * fewer than 2 points. */
 double bf_sweep_map_fill(const double *z, const double *v, size_t n);
 
 /* Serialise a row as one CSV line (no newline) and back. */

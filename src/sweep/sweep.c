@@ -239,8 +239,9 @@ double bf_sweep_map_fill(const double *z, const double *v, size_t n)
         v0 = fmin(v0, v[k]);
         v1 = fmax(v1, v[k]);
     }
-    enum { B = BF_SWEEP_FILL_BINS };
-    unsigned char seen[B * B];
+    long B = (long)floor(sqrt((double)n / 4.0));
+    B = B < 5 ? 5 : B > BF_SWEEP_FILL_BINS ? BF_SWEEP_FILL_BINS : B;
+    unsigned char seen[BF_SWEEP_FILL_BINS * BF_SWEEP_FILL_BINS];
     memset(seen, 0, sizeof seen);
     double dz = z1 > z0 ? (z1 - z0) / B : 1.0, dv = v1 > v0 ? (v1 - v0) / B : 1.0;
     size_t count = 0;
@@ -399,12 +400,31 @@ bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
             row->lyapunov = v;
         if (!bf_h5_read_attr_real(out, "/", "return_map_points", &v, &ignore))
             row->map_points = v;
-        double *z = NULL, *vz = NULL;
+        double *z = NULL, *vz = NULL, *m3 = NULL;
         size_t nz, nz1, nv, nv1;
         if (!bf_h5_read(out, "/return_map/z", &z, &nz, &nz1, &ignore) &&
             !bf_h5_read(out, "/return_map/v", &vz, &nv, &nv1, &ignore) &&
-            nz == nv)
+            nz == nv) {
             row->map_fill = bf_sweep_map_fill(z, vz, nz);
+        } else if (!bf_h5_read(out, "/coupled/return_map", &m3, &nz, &nz1,
+                               &ignore) &&
+                   nz1 == 3) {
+            /* the coupled model's map: rows of (t, x, v) */
+            free(z);
+            free(vz);
+            z = malloc((nz ? nz : 1) * sizeof *z);
+            vz = malloc((nz ? nz : 1) * sizeof *vz);
+            if (z && vz) {
+                for (size_t q = 0; q < nz; q++) {
+                    z[q] = m3[3 * q + 1];
+                    vz[q] = m3[3 * q + 2];
+                }
+                row->map_fill = bf_sweep_map_fill(z, vz, nz);
+                if (isnan(row->map_points))
+                    row->map_points = (double)nz;
+            }
+            free(m3);
+        }
         free(z);
         free(vz);
     }
@@ -484,7 +504,8 @@ bf_status bf_sweep_write_summary(const bf_sweep *sw, const bf_sweep_row *rows,
                                          "not measured)")
     COLUMN(map_points, "/return_map_points", "1", "number of return-map points")
     COLUMN(map_fill, "/return_map_fill", "1",
-           "fraction of the return map's bounding box visited (50 x 50 bins)")
+           "fraction of the return map's bounding box visited (about 4 "
+           "points per bin)")
     COLUMN(energy_error, "/energy_error", "1", "max relative energy error")
 #undef COLUMN
     if (!st) {
