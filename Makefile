@@ -32,7 +32,7 @@ CPPFLAGS = -Iinclude -Isrc/cli -D_POSIX_C_SOURCE=200809L -DBF_GIT='"$(GIT)"' \
 CFLAGS   = $(CSTD) $(SANITIZE) -MMD -MP
 LDLIBS   = $(shell pkg-config --libs hdf5-serial 2>/dev/null) -lhdf5_hl \
            -lsundials_arkode -lsundials_nvecserial -linih \
-           $(shell pkg-config --libs gsl 2>/dev/null) -lm
+           $(shell pkg-config --libs gsl 2>/dev/null) -lm -fopenmp
 LDFLAGS  = $(SANITIZE)
 CHECK_CFLAGS = $(shell pkg-config --cflags check 2>/dev/null)
 CHECK_LIBS   = $(shell pkg-config --libs check 2>/dev/null)
@@ -53,7 +53,8 @@ PROG      := $(BINDIR)/ballfilm
 RUNNER    := $(BUILD)/tests/runner
 
 .PHONY: all run test check figures bench clean deps deps-plot test-run \
-        build-tests fig1
+        build-tests fig1 fig-g72-ex1 fig-g72-ex1-ensemble fig-g72-ex2 \
+        fig-g72-large
 
 all: $(PROG)
 
@@ -64,6 +65,12 @@ $(BUILD)/obj/%.o: %.c
 $(BUILD)/obj/tests/%.o: tests/%.c $(BUILD)/tests/suites.inc
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) -I$(BUILD)/tests $(CHECK_CFLAGS) $(CFLAGS) -c $< -o $@
+
+# OpenMP (libgomp, part of gcc) only where it pays: the particle forces.
+# Their results do not depend on the number of threads (tested).
+OMP_OBJ := $(addprefix $(BUILD)/obj/,src/particles/support.o \
+             src/particles/repulsion.o src/models/greenspan72.o)
+$(OMP_OBJ): CFLAGS += -fopenmp
 
 $(LIB): $(LIB_OBJ)
 	@mkdir -p $(dir $@)
@@ -142,10 +149,62 @@ fig1: $(PROG)
 	$(PY) plots/fig1_phase.py out/bouncing_ball_verlet.h5 \
 	    out/bouncing_ball_mv2m.h5 -o out/fig1_phase.png
 
+# Greenspan 1972, Example 1 (Figs 3.1-3.9) and the heights of the heavy
+# particles.
+fig-g72-ex1: $(PROG)
+	@mkdir -p out
+	$(PROG) run runs/greenspan72_ex1.ini -q -o out/g72_ex1.h5
+	$(PY) plots/fig_g72_ex1.py out/g72_ex1.h5 -o out/fig_g72_ex1.png \
+	    --heights out/fig_g72_ex1_heights.png
+
+# Example 1's claim (complete interchange by step 2080) over 100 runs whose
+# printed initial velocities are perturbed within their rounding (+-0.005),
+# for the text's reading and for the listing's (cutoff 2d, WALCOL, EPS).
+G72_ENS := $(shell seq 1 100)
+fig-g72-ex1-ensemble: $(PROG)
+	@mkdir -p out/g72_ens
+	@for k in $(G72_ENS); do \
+	  $(PROG) run runs/greenspan72_ex1.ini -q -o out/g72_ens/text_$$k.h5 \
+	    --set greenspan72.perturb=0.005 --set greenspan72.perturb_seed=$$k \
+	    --set greenspan72.output=diagnostics --set scene.output_every=10 \
+	    >/dev/null || exit 1; \
+	  $(PROG) run runs/greenspan72_ex1.ini -q -o out/g72_ens/listing_$$k.h5 \
+	    --set greenspan72.perturb=0.005 --set greenspan72.perturb_seed=$$k \
+	    --set greenspan72.output=diagnostics --set scene.output_every=10 \
+	    --set repulsion.cutoff=40 --set walls.rule=fortran \
+	    --set support.eps=1e-3 >/dev/null || exit 1; \
+	done
+	$(PY) plots/g72_ensemble.py out/g72_ens/text_*.h5 --label "(text)" \
+	    -o out/fig_g72_ex1_ensemble_text.png \
+	    --table out/g72_ex1_ensemble_text.txt
+	$(PY) plots/g72_ensemble.py out/g72_ens/listing_*.h5 \
+	    --label "(listing: cutoff 2d, WALCOL, EPS)" \
+	    -o out/fig_g72_ex1_ensemble_listing.png \
+	    --table out/g72_ex1_ensemble_listing.txt
+
+# Example 2: Figs 3.10-3.14 in both readings of t_k, and the diagnostics
+# over 30000 steps.
+fig-g72-ex2: $(PROG)
+	@mkdir -p out
+	$(PROG) run runs/greenspan72_ex2.ini -q -o out/g72_ex2_short.h5 \
+	    --set scene.t_end=3 --set scene.output_every=1
+	$(PROG) run runs/greenspan72_ex2.ini -q -o out/g72_ex2.h5
+	$(PY) plots/fig_g72_ex2.py out/g72_ex2_short.h5 out/g72_ex2.h5 \
+	    -o out/fig_g72_ex2.png --long-output out/fig_g72_ex2_long.png \
+	    --diag out/fig_g72_ex2_diag.png
+
+# 200704 particles for 3000 steps (several minutes).
+fig-g72-large: $(PROG)
+	@mkdir -p out
+	$(PROG) run runs/greenspan72_large.ini -q -o out/g72_large.h5
+	$(PY) plots/fig_g72_large.py out/g72_large.h5 -o out/fig_g72_large.png
+
 figures:
 	@$(MAKE) --no-print-directory deps deps-plot
 	@$(MAKE) --no-print-directory all
 	@$(MAKE) --no-print-directory fig1
+	@$(MAKE) --no-print-directory fig-g72-ex1 fig-g72-ex1-ensemble \
+	    fig-g72-ex2 fig-g72-large
 	@echo "figures are in out/"
 
 # ---------------------------------------------------------------- tests
@@ -173,7 +232,8 @@ check:
 bench:
 	@$(MAKE) --no-print-directory deps
 	@$(MAKE) --no-print-directory all $(BENCH_BIN)
-	@for b in $(BENCH_BIN); do echo "== $$b"; $$b || exit 1; done
+	@for b in $(BENCH_BIN); do echo "== $$b"; \
+	  BALLFILM_ROOT=$(CURDIR) $$b || exit 1; done
 
 clean:
 	rm -rf build bin

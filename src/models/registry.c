@@ -4,9 +4,11 @@
 #include "ballfilm/model.h"
 
 extern const bf_model_type bf_model_balls;
+extern const bf_model_type bf_model_greenspan72;
 
 static const bf_model_type *const all[] = {
     &bf_model_balls,
+    &bf_model_greenspan72,
 };
 
 const bf_model_type *const *bf_model_types(size_t *n)

@@ -1,0 +1,16 @@
+/* greenspan.h: read access to the state of the Greenspan particle models
+ * (model "greenspan72") for drivers, tests and
+ * benchmarks.  `model` is bf_sim_model() of a sim running that model. */
+#ifndef BALLFILM_GREENSPAN_H
+#define BALLFILM_GREENSPAN_H
+
+#include "ballfilm/particles.h"
+#include "ballfilm/support.h"
+
+/* The particles of a greenspan72 model (positions x^k, velocities
+ * v^{k-1/2}). */
+bf_particles *bf_greenspan72_particles(void *model);
+/* Its support-set gravity workspace. */
+bf_support *bf_greenspan72_support(void *model);
+
+#endif
