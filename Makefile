@@ -54,7 +54,7 @@ RUNNER    := $(BUILD)/tests/runner
 
 .PHONY: all run test check figures bench clean deps deps-plot test-run \
         build-tests fig1 fig-g72-ex1 fig-g72-ex1-ensemble fig-g72-ex2 \
-        fig-g72-large
+        fig-g72-large fig-g73-hex fig-g73-wall
 
 all: $(PROG)
 
@@ -199,12 +199,55 @@ fig-g72-large: $(PROG)
 	$(PROG) run runs/greenspan72_large.ini -q -o out/g72_large.h5
 	$(PY) plots/fig_g72_large.py out/g72_large.h5 -o out/fig_g72_large.png
 
+# Greenspan 1973, Figs 3.2-3.5: the hexagonal flows at V = 50, 300, 1000;
+# V = 1000 also at dt = 0.01 (omega = 1 converges only for dt <= 0.01) and
+# with step halving from dt = 0.1.
+fig-g73-hex: $(PROG)
+	@mkdir -p out
+	$(PROG) run runs/greenspan73_hex_v50.ini -q -o out/g73_hex_v50.h5
+	$(PROG) run runs/greenspan73_hex_v300.ini -q -o out/g73_hex_v300.h5
+	$(PROG) run runs/greenspan73_hex_v1000.ini -q -o out/g73_hex_v1000.h5
+	$(PROG) run runs/greenspan73_hex_v1000.ini -q -o out/g73_hex_v1000_dt01.h5 \
+	    --set scene.dt=0.01 --set greenspan73.omega=1
+	$(PROG) run runs/greenspan73_hex_v1000.ini -q -o out/g73_hex_v1000_halve.h5 \
+	    --set greenspan73.omega=1 --set greenspan73.on_failure=halve
+	$(PY) plots/fig_g73_hex.py out/g73_hex_v50.h5 -o out/fig_g73_3_2.png \
+	    --times 0.2 0.4 0.6 0.8 1.0 1.2 1.4 --label " (Fig. 3.2)"
+	$(PY) plots/fig_g73_hex.py out/g73_hex_v300.h5 -o out/fig_g73_3_3_3_4.png \
+	    --directions --label " (Figs 3.3, 3.4)"
+	$(PY) plots/fig_g73_hex.py out/g73_hex_v1000.h5 -o out/fig_g73_3_5.png \
+	    --compare out/g73_hex_v1000_dt01.h5 --label ", omega = 0.2 (Fig. 3.5)"
+
+# Greenspan 1973, Figs 3.7-3.8 (friction) and 3.10 (penetration), in the
+# readings of the text and of the listing; prints P1 at step 25.
+G73_PEN = $(PROG) run runs/greenspan73_penetration.ini -q
+fig-g73-wall: $(PROG)
+	@mkdir -p out
+	$(PROG) run runs/greenspan73_wall_friction.ini -q -o out/g73_friction_listing.h5
+	$(PROG) run runs/greenspan73_wall_friction.ini -q -o out/g73_friction_text.h5 \
+	    --set greenspan73.mass=paper --set greenspan73.wall_mass=10
+	$(G73_PEN) -o out/g73_pen_listing.h5
+	$(G73_PEN) -o out/g73_pen_listing_gall.h5 --set greenspan73.gravity=all
+	$(G73_PEN) -o out/g73_pen_text.h5 --set greenspan73.mass=paper \
+	    --set greenspan73.wall_mass=10 --set greenspan73.gravity=all
+	$(G73_PEN) -o out/g73_pen_text_m1.h5 --set greenspan73.mass=paper \
+	    --set greenspan73.wall_mass=1
+	$(G73_PEN) -o out/g73_pen_listing_m10.h5 --set greenspan73.wall_mass=10
+	$(G73_PEN) -o out/g73_pen_fixed28.h5 --set greenspan73.fixed="2 8"
+	$(PY) plots/fig_g73_wall.py --friction out/g73_friction_listing.h5 \
+	    out/g73_friction_text.h5 -o out/fig_g73_3_7_3_8.png
+	$(PY) plots/fig_g73_wall.py --penetration out/g73_pen_listing.h5 \
+	    out/g73_pen_listing_gall.h5 out/g73_pen_fixed28.h5 \
+	    out/g73_pen_listing_m10.h5 out/g73_pen_text_m1.h5 \
+	    out/g73_pen_text.h5 -o out/fig_g73_3_10.png \
+	    --table out/g73_penetration.txt
+
 figures:
 	@$(MAKE) --no-print-directory deps deps-plot
 	@$(MAKE) --no-print-directory all
 	@$(MAKE) --no-print-directory fig1
 	@$(MAKE) --no-print-directory fig-g72-ex1 fig-g72-ex1-ensemble \
-	    fig-g72-ex2 fig-g72-large
+	    fig-g72-ex2 fig-g72-large fig-g73-hex fig-g73-wall
 	@echo "figures are in out/"
 
 # ---------------------------------------------------------------- tests

@@ -5,10 +5,12 @@
 
 extern const bf_model_type bf_model_balls;
 extern const bf_model_type bf_model_greenspan72;
+extern const bf_model_type bf_model_greenspan73;
 
 static const bf_model_type *const all[] = {
     &bf_model_balls,
     &bf_model_greenspan72,
+    &bf_model_greenspan73,
 };
 
 const bf_model_type *const *bf_model_types(size_t *n)
