@@ -32,7 +32,7 @@ CPPFLAGS = -Iinclude -Isrc/cli -D_POSIX_C_SOURCE=200809L -DBF_GIT='"$(GIT)"' \
 CFLAGS   = $(CSTD) $(SANITIZE) -MMD -MP
 LDLIBS   = $(shell pkg-config --libs hdf5-serial 2>/dev/null) -lhdf5_hl \
            -lsundials_arkode -lsundials_nvecserial -linih \
-           $(shell pkg-config --libs gsl 2>/dev/null) -lm
+           $(shell pkg-config --libs gsl 2>/dev/null) -lm -fopenmp
 LDFLAGS  = $(SANITIZE)
 CHECK_CFLAGS = $(shell pkg-config --cflags check 2>/dev/null)
 CHECK_LIBS   = $(shell pkg-config --libs check 2>/dev/null)
@@ -54,8 +54,10 @@ RUNNER    := $(BUILD)/tests/runner
 
 .PHONY: all run test check figures bench clean deps deps-plot test-run \
         build-tests fig1 fuzz valgrind mpi stratres mac-checks fig2 fig3 \
-        fig4 converge-figures survey-mass survey-length fig5 kink-dx2 film-orders fig6 \
-        fig8 fig9 multirate
+        fig4 converge-figures survey-mass survey-length fig5 kink-dx2 \
+        film-orders fig6 fig8 fig9 multirate fig-g72-ex1 \
+        fig-g72-ex1-ensemble fig-g72-ex2 fig-g72-large fig-g73-hex \
+        fig-g73-wall
 
 all: $(PROG)
 
@@ -66,6 +68,12 @@ $(BUILD)/obj/%.o: %.c
 $(BUILD)/obj/tests/%.o: tests/%.c $(BUILD)/tests/suites.inc
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) -I$(BUILD)/tests $(CHECK_CFLAGS) $(CFLAGS) -c $< -o $@
+
+# OpenMP (libgomp, part of gcc) only where it pays: the particle forces.
+# Their results do not depend on the number of threads (tested).
+OMP_OBJ := $(addprefix $(BUILD)/obj/,src/particles/support.o \
+             src/particles/repulsion.o src/models/greenspan72.o)
+$(OMP_OBJ): CFLAGS += -fopenmp
 
 $(LIB): $(LIB_OBJ)
 	@mkdir -p $(dir $@)
@@ -327,6 +335,92 @@ multirate: $(PROG)
 # Observed orders of the film scheme in dx and in dt (README).
 film-orders: $(BUILD)/bench/film_orders
 	$(BUILD)/bench/film_orders
+# Greenspan 1972, Example 1 (Figs 3.1-3.9) and the heights of the heavy
+# particles.
+fig-g72-ex1: $(PROG)
+	$(PROG) run runs/greenspan72_ex1.ini -q -o out/g72_ex1.h5
+	$(PY) plots/fig_g72_ex1.py out/g72_ex1.h5 -o out/fig_g72_ex1.png \
+	    --heights out/fig_g72_ex1_heights.png
+
+# Example 1's claim (complete interchange by step 2080) over 100 runs whose
+# printed initial velocities are perturbed within their rounding (+-0.005),
+# for the text's reading and for the listing's (cutoff 2d, WALCOL, EPS).
+G72_ENS := $(shell seq 1 100)
+fig-g72-ex1-ensemble: $(PROG)
+	@mkdir -p out/g72_ens
+	@for k in $(G72_ENS); do \
+	  $(PROG) run runs/greenspan72_ex1.ini -q -o out/g72_ens/text_$$k.h5 \
+	    --set greenspan72.perturb=0.005 --set greenspan72.perturb_seed=$$k \
+	    --set greenspan72.output=diagnostics --set scene.output_every=10 \
+	    >/dev/null || exit 1; \
+	  $(PROG) run runs/greenspan72_ex1.ini -q -o out/g72_ens/listing_$$k.h5 \
+	    --set greenspan72.perturb=0.005 --set greenspan72.perturb_seed=$$k \
+	    --set greenspan72.output=diagnostics --set scene.output_every=10 \
+	    --set repulsion.cutoff=40 --set walls.rule=fortran \
+	    --set support.eps=1e-3 >/dev/null || exit 1; \
+	$(PY) plots/g72_ensemble.py out/g72_ens/text_*.h5 --label "(text)" \
+	    -o out/fig_g72_ex1_ensemble_text.png \
+	    --table out/g72_ex1_ensemble_text.txt
+	$(PY) plots/g72_ensemble.py out/g72_ens/listing_*.h5 \
+	    --label "(listing: cutoff 2d, WALCOL, EPS)" \
+	    -o out/fig_g72_ex1_ensemble_listing.png \
+	    --table out/g72_ex1_ensemble_listing.txt
+
+# Example 2: Figs 3.10-3.14 in both readings of t_k, and the diagnostics
+# over 30000 steps.
+fig-g72-ex2: $(PROG)
+	$(PROG) run runs/greenspan72_ex2.ini -q -o out/g72_ex2_short.h5 \
+	    --set scene.t_end=3 --set scene.output_every=1
+	$(PROG) run runs/greenspan72_ex2.ini -q -o out/g72_ex2.h5
+	$(PY) plots/fig_g72_ex2.py out/g72_ex2_short.h5 out/g72_ex2.h5 \
+	    -o out/fig_g72_ex2.png --long-output out/fig_g72_ex2_long.png \
+	    --diag out/fig_g72_ex2_diag.png
+
+# 200704 particles for 3000 steps (several minutes).
+fig-g72-large: $(PROG)
+	$(PROG) run runs/greenspan72_large.ini -q -o out/g72_large.h5
+	$(PY) plots/fig_g72_large.py out/g72_large.h5 -o out/fig_g72_large.png
+
+# Greenspan 1973, Figs 3.2-3.5: the hexagonal flows at V = 50, 300, 1000;
+# V = 1000 also at dt = 0.01 (omega = 1 converges only for dt <= 0.01) and
+# with step halving from dt = 0.1.
+fig-g73-hex: $(PROG)
+	$(PROG) run runs/greenspan73_hex_v50.ini -q -o out/g73_hex_v50.h5
+	$(PROG) run runs/greenspan73_hex_v300.ini -q -o out/g73_hex_v300.h5
+	$(PROG) run runs/greenspan73_hex_v1000.ini -q -o out/g73_hex_v1000.h5
+	$(PROG) run runs/greenspan73_hex_v1000.ini -q -o out/g73_hex_v1000_dt01.h5 \
+	    --set scene.dt=0.01 --set greenspan73.omega=1
+	$(PROG) run runs/greenspan73_hex_v1000.ini -q -o out/g73_hex_v1000_halve.h5 \
+	    --set greenspan73.omega=1 --set greenspan73.on_failure=halve
+	$(PY) plots/fig_g73_hex.py out/g73_hex_v50.h5 -o out/fig_g73_3_2.png \
+	    --times 0.2 0.4 0.6 0.8 1.0 1.2 1.4 --label " (Fig. 3.2)"
+	$(PY) plots/fig_g73_hex.py out/g73_hex_v300.h5 -o out/fig_g73_3_3_3_4.png \
+	    --directions --label " (Figs 3.3, 3.4)"
+	$(PY) plots/fig_g73_hex.py out/g73_hex_v1000.h5 -o out/fig_g73_3_5.png \
+	    --compare out/g73_hex_v1000_dt01.h5 --label ", omega = 0.2 (Fig. 3.5)"
+
+# Greenspan 1973, Figs 3.7-3.8 (friction) and 3.10 (penetration), in the
+# readings of the text and of the listing; prints P1 at step 25.
+G73_PEN = $(PROG) run runs/greenspan73_penetration.ini -q
+fig-g73-wall: $(PROG)
+	$(PROG) run runs/greenspan73_wall_friction.ini -q -o out/g73_friction_listing.h5
+	$(PROG) run runs/greenspan73_wall_friction.ini -q -o out/g73_friction_text.h5 \
+	    --set greenspan73.mass=paper --set greenspan73.wall_mass=10
+	$(G73_PEN) -o out/g73_pen_listing.h5
+	$(G73_PEN) -o out/g73_pen_listing_gall.h5 --set greenspan73.gravity=all
+	$(G73_PEN) -o out/g73_pen_text.h5 --set greenspan73.mass=paper \
+	    --set greenspan73.wall_mass=10 --set greenspan73.gravity=all
+	$(G73_PEN) -o out/g73_pen_text_m1.h5 --set greenspan73.mass=paper \
+	    --set greenspan73.wall_mass=1
+	$(G73_PEN) -o out/g73_pen_listing_m10.h5 --set greenspan73.wall_mass=10
+	$(G73_PEN) -o out/g73_pen_fixed28.h5 --set greenspan73.fixed="2 8"
+	$(PY) plots/fig_g73_wall.py --friction out/g73_friction_listing.h5 \
+	    out/g73_friction_text.h5 -o out/fig_g73_3_7_3_8.png
+	$(PY) plots/fig_g73_wall.py --penetration out/g73_pen_listing.h5 \
+	    out/g73_pen_listing_gall.h5 out/g73_pen_fixed28.h5 \
+	    out/g73_pen_listing_m10.h5 out/g73_pen_text_m1.h5 \
+	    out/g73_pen_text.h5 -o out/fig_g73_3_10.png \
+	    --table out/g73_penetration.txt
 
 figures:
 	@$(MAKE) --no-print-directory deps deps-plot
@@ -346,6 +440,8 @@ figures:
 	@$(MAKE) --no-print-directory multirate
 	@$(MAKE) --no-print-directory fig8
 	@$(MAKE) --no-print-directory fig9
+	@$(MAKE) --no-print-directory fig-g72-ex1 fig-g72-ex1-ensemble \
+	    fig-g72-ex2 fig-g72-large fig-g73-hex fig-g73-wall
 	@echo "figures are in out/"
 
 # Survey (the paper's "issue for further study"): two falling balls, upper
@@ -438,7 +534,8 @@ fuzz:
 bench:
 	@$(MAKE) --no-print-directory deps
 	@$(MAKE) --no-print-directory all mpi $(BENCH_BIN)
-	@for b in $(BENCH_BIN); do echo "== $$b"; $$b || exit 1; done
+	@for b in $(BENCH_BIN); do echo "== $$b"; \
+	  BALLFILM_ROOT=$(CURDIR) $$b || exit 1; done
 	@for b in bench/*.sh; do echo "== $$b"; $$b || exit 1; done
 
 clean:

@@ -7,12 +7,16 @@ extern const bf_model_type bf_model_balls;
 extern const bf_model_type bf_model_mac;
 extern const bf_model_type bf_model_film;
 extern const bf_model_type bf_model_coupled;
+extern const bf_model_type bf_model_greenspan72;
+extern const bf_model_type bf_model_greenspan73;
 
 static const bf_model_type *const all[] = {
     &bf_model_balls,
     &bf_model_film,
-    &bf_model_mac,
     &bf_model_coupled,
+    &bf_model_greenspan72,
+    &bf_model_greenspan73,
+    &bf_model_mac,
 };
 
 const bf_model_type *const *bf_model_types(size_t *n)

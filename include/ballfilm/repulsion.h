@@ -1,0 +1,77 @@
+/* repulsion.h: Greenspan's interparticle repulsion (1972, eqs 2.10-2.12).
+ *
+ * The acceleration of particle j from particle i at distance r < r_c is
+ *
+ *   a_j += alpha m_i (x_j - x_i) / D(r),
+ *   D(r) = (r + xi)^p                       for r >= d,
+ *   D(r) = (r + xi)^p ((r + xi)/d)^beta     for r <  d,
+ *
+ * i.e. a push away from i (eq. 2.11 and the listing; the text's eq. 2.10
+ * writes x_i - x_j, a sign slip that would make the "repulsion" an
+ * attraction).  p and beta are integers (the listing declares them
+ * INTEGER).  The force m_j a_j is symmetric in i and j.  r_c is the
+ * optional cutoff (Example 2: r < 2d = 10); 0 means every pair interacts.
+ *
+ * Units: lengths cm, masses g; alpha m r / r^p is an acceleration, so alpha
+ * is in cm^(p-1) g^-1 s^-2 (Greenspan's examples set alpha = 1 and treat
+ * the numbers as CGS).
+ */
+#ifndef BALLFILM_REPULSION_H
+#define BALLFILM_REPULSION_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "ballfilm/cells.h"
+#include "ballfilm/error.h"
+#include "ballfilm/scene.h"
+
+typedef struct bf_repulsion {
+    double alpha;  /* strength */
+    double xi;     /* added to r (the text's xi = epsilon) */
+    double d;      /* particle width: beta acts for r < d */
+    int p, beta;   /* integer exponents */
+    double cutoff; /* r_c; 0: no cutoff */
+    int use_cells; /* 1: cell list (needs cutoff > 0); 0: all pairs */
+    double cell;   /* requested cell side (0: half the cutoff) */
+    double inv_d;  /* 1/d */
+} bf_repulsion;
+
+extern const bf_section_spec bf_repulsion_spec; /* [repulsion] */
+
+/* Read [repulsion]; d comes from the model. */
+bf_status bf_repulsion_from_scene(bf_repulsion *r, const bf_scene *sc,
+                                  double d, bf_err *err);
+
+/* Accelerations (cm/s^2), overwriting ax, ay: all pairs, O(N^2).  Returns 0,
+ * or 1 if two particles coincide with xi = 0 (the direction is undefined;
+ * *bi, *bj name them). */
+int bf_repulsion_all_pairs(const bf_repulsion *r, const double *x,
+                           const double *y, const double *m, size_t n,
+                           double *ax, double *ay, size_t *bi, size_t *bj);
+
+/* Scratch for bf_repulsion_cells: accelerations in slot order and, per
+ * thread, the list of neighbours of one particle. */
+typedef struct bf_repulsion_work {
+    size_t cap;
+    int threads; /* OpenMP threads (1 without OpenMP) */
+    double *sax, *say, *r2;
+    uint32_t *nb;
+} bf_repulsion_work;
+
+/* threads <= 0: OpenMP's default. */
+bf_status bf_repulsion_work_init(bf_repulsion_work *w, size_t cap, int threads,
+                                 bf_err *err);
+void bf_repulsion_work_free(bf_repulsion_work *w);
+
+/* The same from a cell list built with the masses as weights (any cell
+ * side; the search reaches ceil(cutoff/side) cells).  Pairs within the
+ * cutoff only.  The columns of cells are processed in stripes of reach + 1
+ * columns, first the even stripes, then the odd ones: a stripe only writes
+ * to itself and the next one, so the stripes of a phase run in parallel,
+ * and the order of every sum is the same for any number of threads. */
+int bf_repulsion_cells(const bf_repulsion *r, const bf_cells *c,
+                       bf_repulsion_work *w, double *ax, double *ay,
+                       size_t *bi, size_t *bj);
+
+#endif

@@ -1,0 +1,117 @@
+/* support.h: Greenspan's support-set gravity (1972, eqs 2.8-2.9).
+ *
+ * Gravity on particle j is an acceleration g_j (cm/s^2, along y) that
+ * depends on how much of the container below j is filled by the other
+ * particles.  Each particle i is a square Q_i of side d centred on it and
+ * clipped to the box.  With
+ *
+ *   [gamma_j, delta_j] = [x_j - dx/2, x_j + dx/2] clipped,  W_j = delta - gamma,
+ *   K_j = floor((y_j - ay)/dx),   band q = [ay + (q-1) dx, ay + q dx],
+ *   S(P_j) = { i != j : y_i <= y_j }      (tie = le; y_i < y_j for tie = lt),
+ *   A(R)   = sum over i in S(P_j) of |Q_i n R|   (overlaps count repeatedly),
+ *
+ *   K_j = 0, y_j - ay <= d:  g_j = 0                           (resting)
+ *   K_j = 0, y_j - ay >  d:  g_j = -g0 (1 - A(R)/(W (y_j - ay) + eps)),
+ *                            R = [gamma, delta] x [ay, y_j]     (2.8)
+ *   K_j >= 1: if some band q = 1..K_j has no square of S(P_j) overlapping
+ *             [gamma, delta] x band_q with positive area, g_j = -g0 (free
+ *             fall); otherwise
+ *             g_j = -g0 (1 - sum_q A(band_q)/(W K_j dx + eps))   (2.9)
+ *
+ * g_j > 0 ("antigravity") when the squares below overfill the region.  eps
+ * is 0 in the text and 1e-3 in Schubert's listing.  There is no potential
+ * and no reaction force, so the model does not conserve energy.
+ *
+ * Three exact methods give the same decisions and the same g to round-off:
+ *   naive  O(N^2): every particle against every other (the reference);
+ *   cell   O(N * particles in the column below): a cell list.  With
+ *          K <= 64 the area of bands 1..K is sum f2 (min(t, hi_K) - b) and
+ *          the empty-band test is a 64-bit mask of the bands each counted
+ *          square reaches; cheapest for small boxes (Example 2: K <= 16);
+ *   fast   O(N log N), needs d <= 2 dx.  For K_j >= 1 every square that
+ *          reaches a band q <= K_j - 1 belongs to a particle with
+ *          y_i < ay + (K_j-1) dx + d/2 <= y_j, so those bands need no
+ *          support-set test.  Their total area
+ *            S_j = sum_i H_i(K_j - 1) |[l_i, r_i] n [gamma_j, delta_j]|
+ *          (H_i(m): height of Q_i below ay + m dx) is F(delta_j) - F(gamma_j)
+ *          with F(x) = sum_{l_i<=x} H_i (x - l_i) - sum_{r_i<=x} H_i (x - r_i),
+ *          evaluated by one sweep in x over the sorted square edges with a
+ *          Fenwick tree over levels (H_i is a sum of two ramps in the level,
+ *          so each edge is two tree updates).  "Some band q <= K_j - 1 is
+ *          empty" is decided exactly from the gaps between consecutive
+ *          x-sorted squares of each band: a strip fits a gap iff no square
+ *          of that band overlaps it; the strips that fit a gap are a
+ *          contiguous range of the x order, and a skip list assigns each
+ *          particle its lowest empty band once.  The top band K_j (where the
+ *          y_i <= y_j test matters) and the K_j = 0 rectangle use the cell
+ *          list.
+ */
+#ifndef BALLFILM_SUPPORT_H
+#define BALLFILM_SUPPORT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "ballfilm/cells.h"
+#include "ballfilm/error.h"
+#include "ballfilm/scene.h"
+#include "ballfilm/walls.h"
+
+typedef enum bf_support_method {
+    BF_SUPPORT_FAST = 0,
+    BF_SUPPORT_CELL = 1,
+    BF_SUPPORT_NAIVE = 2,
+    BF_SUPPORT_AUTO = 3 /* cell if the box has <= 64 bands, else fast */
+} bf_support_method;
+
+/* What g_j is for each particle (diagnostics; eval's `kind` output). */
+enum {
+    BF_SUP_REST = 0,    /* K = 0 and y - ay <= d: g = 0 */
+    BF_SUP_PARTIAL = 1, /* -g0 < g <= 0 from (2.8)/(2.9) */
+    BF_SUP_FREE = 2,    /* an empty band (or no area at all): g = -g0 */
+    BF_SUP_ANTI = 3     /* g > 0: the region below is overfull */
+};
+
+typedef struct bf_support_params {
+    bf_box box;
+    double g0;  /* cm/s^2 (980) */
+    double dx;  /* band height and strip width, cm */
+    double d;   /* side of a particle's square, cm */
+    double eps; /* added to the denominators (listing: 1e-3), cm^2 */
+    int tie;    /* 1: y_i = y_j counts in S(P_j) (listing); 0: strict */
+    bf_support_method method;
+    int threads;   /* OpenMP threads for method fast (<= 0: the default) */
+    double inv_dx; /* 1/dx (set by bf_support_create) */
+} bf_support_params;
+
+extern const bf_section_spec bf_support_spec; /* [support] */
+
+/* Read [support] (g, dx, method, tie, eps); box and d come from the model. */
+bf_status bf_support_params_from_scene(bf_support_params *p,
+                                       const bf_scene *sc, bf_box box,
+                                       double d, bf_err *err);
+
+typedef struct bf_support bf_support;
+
+/* Workspace for up to `cap` particles.  Refuses method fast with d > 2 dx. */
+bf_status bf_support_create(bf_support **out, const bf_support_params *p,
+                            size_t cap, bf_err *err);
+void bf_support_free(bf_support *s);
+
+/* g[j] for j < n.  `cells` must be built on (x, y) for methods cell and
+ * fast (NULL is fine for naive).  kind[j] (may be NULL) gets BF_SUP_*.
+ * Positions must lie in the box. */
+void bf_support_eval(bf_support *s, const double *x, const double *y,
+                     size_t n, const bf_cells *cells, double *g,
+                     uint8_t *kind);
+
+/* The parameters the workspace was created with. */
+const bf_support_params *bf_support_params_of(const bf_support *s);
+
+/* The same with another method on the same workspace (tests, benchmarks);
+ * fast with d > 2 dx falls back to cell. */
+void bf_support_eval_with(bf_support *s, bf_support_method m, const double *x,
+                          const double *y, size_t n, const bf_cells *cells,
+                          double *g, uint8_t *kind);
+
+#endif

@@ -1,0 +1,703 @@
+/* greenspan72.c: model "greenspan72", Greenspan's particle model of two
+ * fluids mixing (Univ. Wisconsin CS TR 153, 1972).
+ *
+ * Particles of two fluids in the box [0, width] x [0, height]: L1 (the
+ * heavy fluid, tag 1) starts above the line y = interface, L2 (tag 2)
+ * below.  Leapfrog, eqs 2.1-2.4, with the half step first:
+ *
+ *   v^{1/2}   = v^0 + (dt/2) a(x^0)
+ *   v^{k+1/2} = v^{k-1/2} + dt a(x^k)          (k >= 1)
+ *   x^{k+1}   = x^k + dt v^{k+1/2},  then the walls (eq. 2.13, walls.h)
+ *
+ * a_j = (repulsion 2.11, 2.12 (repulsion.h)) + g_j y^ (support-set gravity
+ * 2.8, 2.9 (support.h)).  Initial velocities: the scene's, or uniform in
+ * [-V, V] per component from GSL's mt19937 with [greenspan72] seed; an
+ * optional uniform perturbation of +-perturb (another seed) for ensembles.
+ *
+ * The model does not conserve energy (support-set gravity has no potential
+ * and no reaction), so it reports no energy to the time loop; the kinetic
+ * energy is a diagnostic (dataset diag/kinetic), computed with the half-step
+ * velocities v^{k-1/2} that the scheme carries.
+ *
+ * Invariant: every particle is in the closed box after every step (checked
+ * every step in every build; the check costs < 1 % of a step).
+ *
+ * Output (rows at [scene] output_every): /particles/x, /particles/y and
+ * (output = all) /particles/vx, /particles/vy [rows x N] (velocities at
+ * t - dt/2), at every particles_every-th row, their steps in
+ * /particles/step; diag/... (kinetic energy, mean heights, counts per horizontal
+ * quarter, support kinds, settling criteria); /particles/mass and
+ * /particles/tag once.
+ */
+#include <gsl/gsl_rng.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ballfilm/cells.h"
+#include "ballfilm/greenspan.h"
+#include "ballfilm/model.h"
+#include "ballfilm/particles.h"
+#include "ballfilm/pdiag.h"
+#include "ballfilm/repulsion.h"
+#include "ballfilm/support.h"
+#include "ballfilm/walls.h"
+
+enum { TAG_HEAVY = 1, TAG_LIGHT = 2 };
+enum { OUT_ALL = 0, OUT_POSITIONS = 1, OUT_DIAG = 2 };
+enum { NSETTLE = 4 };
+
+static const bf_param g72_params[] = {
+    {"width", BF_REAL, "cm", "100", "box width |AB| (x from 0)", BF_POS, 0, 0,
+     NULL},
+    {"height", BF_REAL, "cm", "100", "box height (y from 0)", BF_POS, 0, 0,
+     NULL},
+    {"interface", BF_REAL, "cm", "75",
+     "b: particles starting above y = b are the heavy fluid L1 (tag 1), the "
+     "others L2 (tag 2)",
+     0, 0, 0, NULL},
+    {"d", BF_REAL, "cm", NULL,
+     "particle width d: side of its square in the support-set gravity and "
+     "the distance below which beta acts",
+     BF_POS, 0, 0, NULL},
+    {"m_heavy", BF_REAL, "g", NULL, "mass m(L1) of a heavy particle", BF_POS,
+     0, 0, NULL},
+    {"m_light", BF_REAL, "g", NULL, "mass m(L2) of a light particle", BF_POS,
+     0, 0, NULL},
+    {"layout", BF_ENUM, "", "grid",
+     "grid: grid_nx x grid_ny cell centres in the listing's order (top row "
+     "first, left to right); list: the positions key",
+     0, 0, 0, "grid|list"},
+    {"grid_nx", BF_INT, "1", "16", "grid columns", BF_MIN, 1, 0, NULL},
+    {"grid_ny", BF_INT, "1", "16", "grid rows", BF_MIN, 1, 0, NULL},
+    {"positions", BF_REALS, "cm", "",
+     "layout = list: x1 y1 x2 y2 ... (particle k is pair k)", 0, 0, 0, NULL},
+    {"velocities", BF_REALS, "cm/s", "",
+     "vx1 vy1 vx2 vy2 ... at t = 0 (default: random in [-V, V])", 0, 0, 0,
+     NULL},
+    {"v_random", BF_REAL, "cm/s", "0",
+     "V: random initial velocity components uniform in [-V, V] (when no "
+     "velocities are given)",
+     BF_NONNEG, 0, 0, NULL},
+    {"seed", BF_INT, "1", "1972", "seed of the random velocities (GSL mt19937)",
+     BF_MIN, 0, 0, NULL},
+    {"set_velocity", BF_REALS, "1, cm/s", "",
+     "triples k vx vy: particle k (1-based) starts with (vx, vy) after the "
+     "random draw",
+     0, 0, 0, NULL},
+    {"perturb", BF_REAL, "cm/s", "0",
+     "add a uniform perturbation in [-perturb, perturb] to every initial "
+     "velocity component (ensembles)",
+     BF_NONNEG, 0, 0, NULL},
+    {"perturb_seed", BF_INT, "1", "1", "seed of the perturbation", BF_MIN, 0,
+     0, NULL},
+    {"bottom", BF_REAL, "cm", "0",
+     "height of 'the bottom' in the settling diagnostics (0: the support "
+     "band height dx)",
+     BF_NONNEG, 0, 0, NULL},
+    {"threads", BF_INT, "1", "0",
+     "OpenMP threads for the forces (0: OMP_NUM_THREADS if set, else 1); "
+     "the results do not depend on it",
+     BF_NONNEG, 0, 0, NULL},
+    {"particles_every", BF_INT, "1", "1",
+     "write the per-particle rows (/particles/x ...) at every N-th output "
+     "row only; their steps are in /particles/step",
+     BF_MIN, 1, 0, NULL},
+    {"output", BF_ENUM, "", "all",
+     "per-row datasets: all (positions, velocities, diagnostics), positions "
+     "(no velocities), diagnostics (none per particle)",
+     0, 0, 0, "all|positions|diagnostics"},
+    {0},
+};
+
+static const bf_section_spec g72_spec = {
+    "greenspan72",
+    "two fluids mixing, Greenspan 1972: box, particles, initial data",
+    g72_params};
+
+typedef struct g72 {
+    bf_particles p;
+    size_t n_heavy;
+    double width, height, interface, bottom;
+    bf_walls walls;
+    bf_repulsion rep;
+    bf_support *sup;
+    int need_cells;
+    bf_cells cells;
+    bf_repulsion_work rw;
+    double *ax, *ay, *g, *x0, *y0;
+    uint8_t *kind;
+    int acc_valid; /* ax, ay, g, kind are those of the current positions */
+    unsigned long long steps, evals, wall_hits;
+    unsigned long long kind_total[4]; /* particle-steps of each BF_SUP_ kind */
+    int out_mode, threads, nthr; /* requested threads, threads used */
+    long particles_every, rows; /* output rows written */
+    bf_series *s_pstep, *s_x, *s_y, *s_vx, *s_vy, *s_kin, *s_mean, *s_layers, *s_kinds,
+        *s_settle;
+    /* settling criteria at output rows: first step it held, last step it
+     * failed (-1: never) */
+    long settle_first[NSETTLE], settle_lastfail[NSETTLE], settle_last_row;
+} g72;
+
+bf_particles *bf_greenspan72_particles(void *model)
+{
+    return &((g72 *)model)->p;
+}
+
+bf_support *bf_greenspan72_support(void *model)
+{
+    return ((g72 *)model)->sup;
+}
+
+static void g72_destroy(void *self)
+{
+    g72 *m = self;
+    if (!m)
+        return;
+    bf_particles_free(&m->p);
+    bf_support_free(m->sup);
+    bf_cells_free(&m->cells);
+    free(m->ax);
+    free(m->ay);
+    free(m->g);
+    bf_repulsion_work_free(&m->rw);
+    free(m->x0);
+    free(m->y0);
+    free(m->kind);
+    free(m);
+}
+
+/* Positions and initial velocities from the scene. */
+static bf_status g72_initial(g72 *m, const bf_scene *sc, bf_err *err)
+{
+    const char *S = "greenspan72";
+    size_t n, nv, npos;
+    const double *pos = bf_scene_reals(sc, S, "positions", &npos);
+    const double *vel = bf_scene_reals(sc, S, "velocities", &nv);
+    int list = bf_scene_enum(sc, S, "layout") == 1;
+    long gx = bf_scene_int(sc, S, "grid_nx"), gy = bf_scene_int(sc, S, "grid_ny");
+    if (list) {
+        if (npos == 0 || npos % 2)
+            return bf_scene_fail(sc, err, S, "positions",
+                                 "layout = list needs x y pairs (%zu numbers "
+                                 "given)",
+                                 npos);
+        n = npos / 2;
+    } else {
+        if (npos)
+            return bf_scene_fail(sc, err, S, "positions",
+                                 "positions are only used with layout = list");
+        if ((double)gx * (double)gy > 5e7)
+            return bf_scene_fail(sc, err, S, "grid_nx", "%ld x %ld particles "
+                                 "is too many", gx, gy);
+        n = (size_t)gx * (size_t)gy;
+    }
+    if (nv && nv != 2 * n)
+        return bf_scene_fail(sc, err, S, "velocities",
+                             "%zu numbers for %zu particles (need %zu)", nv, n,
+                             2 * n);
+    bf_status st = bf_particles_init(&m->p, n, err);
+    if (st)
+        return st;
+    bf_particles *p = &m->p;
+    for (size_t k = 0; k < n; k++) {
+        if (list) {
+            p->x[k] = pos[2 * k];
+            p->y[k] = pos[2 * k + 1];
+        } else {
+            /* listing INITAL: k = (I-1) NCOL + J, row I = 1 at the top */
+            size_t I = k / (size_t)gx, J = k % (size_t)gx;
+            double bx = m->width / (double)gx, by = m->height / (double)gy;
+            p->x[k] = bx * (double)J + 0.5 * bx;
+            p->y[k] = by * (double)((size_t)gy - 1 - I) + 0.5 * by;
+        }
+        if (!(p->x[k] >= 0 && p->x[k] <= m->width && p->y[k] >= 0 &&
+              p->y[k] <= m->height))
+            return bf_scene_fail(sc, err, S, "positions",
+                                 "particle %zu at (%g, %g) is outside the box "
+                                 "[0, %g] x [0, %g]",
+                                 k + 1, p->x[k], p->y[k], m->width, m->height);
+    }
+    if (nv) {
+        for (size_t k = 0; k < n; k++) {
+            p->vx[k] = vel[2 * k];
+            p->vy[k] = vel[2 * k + 1];
+        }
+    } else {
+        double V = bf_scene_real(sc, S, "v_random");
+        gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+        if (!r)
+            return bf_fail(err, BF_EINTERNAL, "out of memory");
+        gsl_rng_set(r, (unsigned long)bf_scene_int(sc, S, "seed"));
+        for (size_t k = 0; k < n; k++) {
+            p->vx[k] = V * (2.0 * gsl_rng_uniform(r) - 1.0);
+            p->vy[k] = V * (2.0 * gsl_rng_uniform(r) - 1.0);
+        }
+        gsl_rng_free(r);
+    }
+    size_t ns;
+    const double *set = bf_scene_reals(sc, S, "set_velocity", &ns);
+    if (ns % 3)
+        return bf_scene_fail(sc, err, S, "set_velocity",
+                             "needs triples k vx vy (%zu numbers)", ns);
+    for (size_t t = 0; t < ns; t += 3) {
+        double k = set[t];
+        if (!(k >= 1 && k <= (double)n && k == floor(k)))
+            return bf_scene_fail(sc, err, S, "set_velocity",
+                                 "particle number %g is not in 1..%zu", k, n);
+        p->vx[(size_t)k - 1] = set[t + 1];
+        p->vy[(size_t)k - 1] = set[t + 2];
+    }
+    double eps = bf_scene_real(sc, S, "perturb");
+    if (eps > 0) {
+        gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+        if (!r)
+            return bf_fail(err, BF_EINTERNAL, "out of memory");
+        gsl_rng_set(r, (unsigned long)bf_scene_int(sc, S, "perturb_seed"));
+        for (size_t k = 0; k < n; k++) {
+            p->vx[k] += eps * (2.0 * gsl_rng_uniform(r) - 1.0);
+            p->vy[k] += eps * (2.0 * gsl_rng_uniform(r) - 1.0);
+        }
+        gsl_rng_free(r);
+    }
+    double mh = bf_scene_real(sc, S, "m_heavy"), ml = bf_scene_real(sc, S, "m_light");
+    m->n_heavy = 0;
+    for (size_t k = 0; k < n; k++) {
+        int heavy = p->y[k] > m->interface;
+        p->tag[k] = heavy ? TAG_HEAVY : TAG_LIGHT;
+        p->m[k] = heavy ? mh : ml;
+        m->n_heavy += (size_t)heavy;
+    }
+    return BF_OK;
+}
+
+static bf_status g72_create(void **self, const bf_scene *sc, bf_err *err)
+{
+    const char *S = "greenspan72";
+    g72 *m = calloc(1, sizeof *m);
+    if (!m)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    bf_status st;
+    m->width = bf_scene_real(sc, S, "width");
+    m->height = bf_scene_real(sc, S, "height");
+    m->interface = bf_scene_real(sc, S, "interface");
+    double d = bf_scene_real(sc, S, "d");
+    m->out_mode = bf_scene_enum(sc, S, "output");
+    m->particles_every = bf_scene_int(sc, S, "particles_every");
+    m->threads = (int)bf_scene_int(sc, S, "threads");
+#ifdef _OPENMP
+    /* opt-in: spinning threads on a machine whose other cores are busy are
+     * slower than one thread */
+    if (m->threads == 0)
+        m->threads = getenv("OMP_NUM_THREADS") ? omp_get_max_threads() : 1;
+    m->nthr = m->threads;
+#else
+    m->threads = m->nthr = 1;
+#endif
+    bf_box box = {0.0, m->width, 0.0, m->height};
+    bf_support_params sp;
+    if ((st = bf_walls_from_scene(&m->walls, sc, box, err)) ||
+        (st = bf_repulsion_from_scene(&m->rep, sc, d, err)) ||
+        (st = bf_support_params_from_scene(&sp, sc, box, d, err)) ||
+        (st = g72_initial(m, sc, err)))
+        goto fail;
+    sp.threads = m->threads;
+    m->bottom = bf_scene_real(sc, S, "bottom");
+    if (m->bottom == 0)
+        m->bottom = sp.dx;
+    const size_t n = m->p.n;
+    if ((st = bf_support_create(&m->sup, &sp, n, err)))
+        goto fail;
+    m->need_cells = m->rep.use_cells || sp.method != BF_SUPPORT_NAIVE;
+    if (m->need_cells) {
+        /* cells of half the cutoff (or the requested side) for the
+         * repulsion (fewer candidates than cells of the cutoff, for the
+         * repulsion and the support queries alike); without a cutoff,
+         * cells of dx for the support queries */
+        double h = m->rep.use_cells ? (m->rep.cell > 0 ? m->rep.cell
+                                                        : 0.5 * m->rep.cutoff)
+                                    : sp.dx;
+        if ((st = bf_cells_init(&m->cells, 0.0, 0.0, m->width, m->height, h,
+                                n, err)))
+            goto fail;
+    }
+    size_t k = n ? n : 1;
+    m->ax = malloc(k * sizeof *m->ax);
+    m->ay = malloc(k * sizeof *m->ay);
+    m->g = malloc(k * sizeof *m->g);
+    m->x0 = malloc(k * sizeof *m->x0);
+    m->y0 = malloc(k * sizeof *m->y0);
+    m->kind = malloc(k * sizeof *m->kind);
+    if (!m->ax || !m->ay || !m->g || !m->x0 || !m->y0 || !m->kind) {
+        st = bf_fail(err, BF_EINTERNAL, "out of memory (%zu particles)", n);
+        goto fail;
+    }
+    if (m->rep.use_cells &&
+        (st = bf_repulsion_work_init(&m->rw, n, m->threads, err)))
+        goto fail;
+    for (int c = 0; c < NSETTLE; c++) {
+        m->settle_first[c] = -1;
+        m->settle_lastfail[c] = -1;
+    }
+    m->settle_last_row = -1;
+    *self = m;
+    return BF_OK;
+fail:
+    g72_destroy(m);
+    return st;
+}
+
+/* a(x): repulsion into ax, ay; support-set gravity into g (and kind).
+ * With two or more threads and few particles the two run side by side (they
+ * are independent); with many particles each is parallel inside. */
+static bf_status g72_accel(g72 *m, bf_err *err)
+{
+    bf_particles *p = &m->p;
+    size_t bi = 0, bj = 0;
+    int bad = 0;
+    if (m->need_cells)
+        bf_cells_build(&m->cells, p->x, p->y, p->m, p->n);
+    const bf_cells *c = m->need_cells ? &m->cells : NULL;
+#ifdef _OPENMP
+#pragma omp parallel sections num_threads(2) if (m->nthr >= 2 && p->n < 4096)
+#endif
+    {
+#ifdef _OPENMP
+#pragma omp section
+#endif
+        {
+            if (m->rep.use_cells)
+                bad = bf_repulsion_cells(&m->rep, c, &m->rw, m->ax, m->ay, &bi,
+                                         &bj);
+            else
+                bad = bf_repulsion_all_pairs(&m->rep, p->x, p->y, p->m, p->n,
+                                             m->ax, m->ay, &bi, &bj);
+        }
+#ifdef _OPENMP
+#pragma omp section
+#endif
+        bf_support_eval(m->sup, p->x, p->y, p->n, c, m->g, m->kind);
+    }
+    if (bad)
+        return bf_fail(err, BF_EUNSTABLE,
+                       "particles %zu and %zu coincide at (%.9g, %.9g) with "
+                       "xi = 0: the repulsion has no direction",
+                       bi + 1, bj + 1, p->x[bi], p->y[bi]);
+    m->evals++;
+    m->acc_valid = 1;
+    return BF_OK;
+}
+
+static bf_status g72_step(void *self, long n, double t, double dt, bf_err *err)
+{
+    (void)t;
+    g72 *m = self;
+    bf_particles *p = &m->p;
+    bf_status st;
+    if (!m->acc_valid && (st = g72_accel(m, err)))
+        return st;
+    for (size_t i = 0; i < p->n; i++)
+        m->kind_total[m->kind[i]]++;
+    const double h = n == 0 ? 0.5 * dt : dt; /* eqs 2.1-2.2: half step first */
+    const size_t np = p->n;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(m->nthr) if (np >= 16384)
+#endif
+    for (size_t i = 0; i < np; i++) {
+        p->vx[i] += h * m->ax[i];
+        p->vy[i] += h * (m->ay[i] + m->g[i]);
+        m->x0[i] = p->x[i];
+        m->y0[i] = p->y[i];
+        p->x[i] += dt * p->vx[i];
+        p->y[i] += dt * p->vy[i];
+    }
+    m->acc_valid = 0;
+    if ((st = bf_walls_apply(&m->walls, p, m->x0, m->y0, &m->wall_hits, err)))
+        return st;
+    /* the invariant (a non-finite position would fail it too: the wall
+     * rule refuses non-finite particles) */
+    size_t bad;
+    if (!bf_box_contains_all(&m->walls.box, p, &bad))
+        return bf_fail(err, BF_EINTERNAL,
+                       "particle %zu left the box: (%.17g, %.17g) (a bug in "
+                       "the wall rule)",
+                       bad + 1, p->x[bad], p->y[bad]);
+    m->steps++;
+    return g72_accel(m, err);
+}
+
+static bf_status g72_output_open(void *self, bf_out *out, bf_err *err)
+{
+    g72 *m = self;
+    const size_t n = m->p.n;
+    if (m->out_mode != OUT_DIAG) {
+        if (!(m->s_pstep = bf_out_series(out, "/particles/step", 0, 1, "1",
+                                         "step of each row of the "
+                                         "per-particle datasets",
+                                         err)) ||
+            !(m->s_x = bf_out_series(out, "/particles/x", n, 0, "cm",
+                                     "x of every particle", err)) ||
+            !(m->s_y = bf_out_series(out, "/particles/y", n, 0, "cm",
+                                     "y of every particle", err)))
+            return err->status;
+    }
+    if (m->out_mode == OUT_ALL) {
+        if (!(m->s_vx = bf_out_series(out, "/particles/vx", n, 0, "cm/s",
+                                      "x velocity at t - dt/2 (leapfrog half "
+                                      "step; the initial velocity in row 0)",
+                                      err)) ||
+            !(m->s_vy = bf_out_series(out, "/particles/vy", n, 0, "cm/s",
+                                      "y velocity at t - dt/2 (leapfrog half "
+                                      "step; the initial velocity in row 0)",
+                                      err)))
+            return err->status;
+    }
+    if (!(m->s_kin = bf_out_series(out, "/diag/kinetic", 3, 0, "erg",
+                                   "kinetic energy sum m|v|^2/2 with the "
+                                   "half-step velocities: all, heavy (L1), "
+                                   "light (L2)",
+                                   err)) ||
+        !(m->s_mean = bf_out_series(out, "/diag/mean_y", 2, 0, "cm",
+                                    "mean height of the heavy (L1) and light "
+                                    "(L2) particles",
+                                    err)) ||
+        !(m->s_layers = bf_out_series(out, "/diag/quarters", 8, 0, "1",
+                                      "particles per horizontal quarter of "
+                                      "the box, bottom to top: heavy q1..q4, "
+                                      "then light q1..q4",
+                                      err)) ||
+        !(m->s_kinds = bf_out_series(out, "/diag/support_kinds", 4, 0, "1",
+                                     "particles whose support-set gravity is: "
+                                     "resting (g = 0), partial, free fall "
+                                     "(g = -g0), antigravity (g > 0)",
+                                     err)) ||
+        !(m->s_settle = bf_out_series(out, "/diag/settle", 4, 0, "1",
+                                      "(a) 1 if every heavy particle is below "
+                                      "every light one; (b) 1 if every heavy "
+                                      "one is below 'bottom'; (c) heavy "
+                                      "particles below 'bottom'; (d) 1 if the "
+                                      "mean height of the heavy is below that "
+                                      "of the light",
+                                      err)))
+        return err->status;
+    bf_status st = bf_out_array(out, "/particles/mass", m->p.m, n, 0, "g",
+                                "particle masses", err);
+    if (st)
+        return st;
+    double *tag = malloc((n ? n : 1) * sizeof *tag);
+    if (!tag)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    for (size_t i = 0; i < n; i++)
+        tag[i] = m->p.tag[i];
+    st = bf_out_array(out, "/particles/tag", tag, n, 0, "1",
+                      "1: heavy fluid L1 (started above the interface), 2: "
+                      "light fluid L2",
+                      err);
+    free(tag);
+    if (!st)
+        st = bf_out_attr_real(out, "/diag", "bottom", m->bottom, err);
+    return st;
+}
+
+/* The four settling criteria of spec sec. 1.7 at the current positions. */
+static void g72_settle(const g72 *m, double crit[NSETTLE])
+{
+    bf_pdiag_group h = bf_pdiag_group_of(&m->p, TAG_HEAVY);
+    bf_pdiag_group l = bf_pdiag_group_of(&m->p, TAG_LIGHT);
+    size_t below = 0;
+    for (size_t i = 0; i < m->p.n; i++)
+        below += m->p.tag[i] == TAG_HEAVY && m->p.y[i] < m->bottom;
+    crit[0] = h.max_y < l.min_y;
+    crit[1] = below == h.count;
+    crit[2] = (double)below;
+    crit[3] = h.mean_y < l.mean_y;
+}
+
+static bf_status g72_output_row(void *self, long n, double t, bf_err *err)
+{
+    (void)t;
+    g72 *m = self;
+    bf_particles *p = &m->p;
+    bf_status st;
+    if (!m->acc_valid && (st = g72_accel(m, err)))
+        return st;
+    int fail = 0;
+    if (m->rows++ % m->particles_every == 0) {
+        int64_t st64 = n;
+        if (m->s_x)
+            fail |= bf_series_append_i64(m->s_pstep, &st64) |
+                    bf_series_append(m->s_x, p->x) |
+                    bf_series_append(m->s_y, p->y);
+        if (m->s_vx)
+            fail |= bf_series_append(m->s_vx, p->vx) |
+                    bf_series_append(m->s_vy, p->vy);
+    }
+    bf_pdiag_group h = bf_pdiag_group_of(p, TAG_HEAVY);
+    bf_pdiag_group l = bf_pdiag_group_of(p, TAG_LIGHT);
+    double kin[3] = {h.kin + l.kin, h.kin, l.kin};
+    double mean[2] = {h.mean_y, l.mean_y};
+    double lay[8], kinds[4] = {0, 0, 0, 0}, crit[NSETTLE];
+    bf_pdiag_layers(p, TAG_HEAVY, 0.0, m->height, 4, lay);
+    bf_pdiag_layers(p, TAG_LIGHT, 0.0, m->height, 4, lay + 4);
+    for (size_t i = 0; i < p->n; i++)
+        kinds[m->kind[i]] += 1.0;
+    g72_settle(m, crit);
+    /* criterion (c) holds when at most one heavy particle is off the
+     * bottom ("at least three of the four stay at the bottom") */
+    int holds[NSETTLE] = {crit[0] > 0, crit[1] > 0,
+                          crit[2] + 1.0 >= (double)m->n_heavy, crit[3] > 0};
+    for (int c = 0; c < NSETTLE; c++) {
+        if (holds[c] && m->settle_first[c] < 0)
+            m->settle_first[c] = n;
+        if (!holds[c])
+            m->settle_lastfail[c] = n;
+    }
+    m->settle_last_row = n;
+    fail |= bf_series_append(m->s_kin, kin) | bf_series_append(m->s_mean, mean) |
+            bf_series_append(m->s_layers, lay) |
+            bf_series_append(m->s_kinds, kinds) |
+            bf_series_append(m->s_settle, crit);
+    if (fail)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    return BF_OK;
+}
+
+static bf_status g72_output_close(void *self, bf_out *out, bf_err *err)
+{
+    g72 *m = self;
+    static const char *names[NSETTLE] = {"a_heavy_below_light",
+                                         "b_all_heavy_at_bottom",
+                                         "c_all_but_one_heavy_at_bottom",
+                                         "d_mean_heavy_below_light"};
+    bf_status st = bf_out_attr_int(out, "/", "wall_hits",
+                                   (int64_t)m->wall_hits, err);
+    for (int c = 0; !st && c < NSETTLE; c++) {
+        char nm[96];
+        snprintf(nm, sizeof nm, "settle_%s_first_step", names[c]);
+        st = bf_out_attr_int(out, "/diag", nm, m->settle_first[c], err);
+        if (!st) {
+            /* first step from which it held at every later row (-1: not at
+             * the last row) */
+            long from = m->settle_lastfail[c] == m->settle_last_row
+                            ? -1
+                            : m->settle_lastfail[c] + 1;
+            snprintf(nm, sizeof nm, "settle_%s_holds_from", names[c]);
+            st = bf_out_attr_int(out, "/diag", nm, from, err);
+        }
+    }
+    return st;
+}
+
+static void g72_counters(const void *self, bf_counters *c)
+{
+    const g72 *m = self;
+    c->steps = m->steps;
+    c->evals = m->evals;
+}
+
+static void g72_report(const void *self, FILE *f)
+{
+    const g72 *m = self;
+    unsigned long long tot = 0;
+    for (int k = 0; k < 4; k++)
+        tot += m->kind_total[k];
+    fprintf(f, "particles:         %zu (%zu heavy), wall hits %llu\n", m->p.n,
+            m->n_heavy, m->wall_hits);
+    if (tot)
+        fprintf(f, "support gravity:   resting %.3f, partial %.3f, free fall "
+                   "%.3f, antigravity %.3f (fractions of particle-steps)\n",
+                (double)m->kind_total[0] / (double)tot,
+                (double)m->kind_total[1] / (double)tot,
+                (double)m->kind_total[2] / (double)tot,
+                (double)m->kind_total[3] / (double)tot);
+    static const char *what[NSETTLE] = {
+        "(a) every heavy particle below every light one",
+        "(b) every heavy particle below 'bottom'",
+        "(c) all heavy but at most one below 'bottom'",
+        "(d) mean height of heavy below that of light"};
+    if (m->settle_last_row >= 0)
+        for (int c = 0; c < NSETTLE; c++) {
+            long from = m->settle_lastfail[c] == m->settle_last_row
+                            ? -1
+                            : m->settle_lastfail[c] + 1;
+            fprintf(f, "settling %s: first at step %ld, ", what[c],
+                    m->settle_first[c]);
+            if (from < 0)
+                fprintf(f, "not at the end\n");
+            else
+                fprintf(f, "holds at every output row from step %ld on\n",
+                        from);
+        }
+}
+
+static bf_status g72_save(const void *self, bf_ckpt *ck, bf_err *err)
+{
+    const g72 *m = self;
+    int64_t c[4 + 3 + 2 * NSETTLE + 2];
+    size_t k = 0;
+    for (int q = 0; q < 4; q++)
+        c[k++] = (int64_t)m->kind_total[q];
+    c[k++] = (int64_t)m->steps;
+    c[k++] = (int64_t)m->evals;
+    c[k++] = (int64_t)m->wall_hits;
+    for (int q = 0; q < NSETTLE; q++) {
+        c[k++] = m->settle_first[q];
+        c[k++] = m->settle_lastfail[q];
+    }
+    c[k++] = m->settle_last_row;
+    c[k++] = m->rows;
+    bf_status st = bf_particles_save(&m->p, ck, "g72.p", err);
+    if (!st)
+        st = bf_ckpt_put_i64(ck, "g72.counters", c, k, err);
+    return st;
+}
+
+static bf_status g72_load(void *self, const bf_ckpt *ck, bf_err *err)
+{
+    g72 *m = self;
+    int64_t c[4 + 3 + 2 * NSETTLE + 2];
+    bf_status st = bf_particles_load(&m->p, ck, "g72.p", err);
+    if (!st)
+        st = bf_ckpt_get_i64(ck, "g72.counters", c, sizeof c / sizeof c[0],
+                             err);
+    if (st)
+        return st;
+    size_t k = 0;
+    for (int q = 0; q < 4; q++)
+        m->kind_total[q] = (unsigned long long)c[k++];
+    m->steps = (unsigned long long)c[k++];
+    m->evals = (unsigned long long)c[k++];
+    m->wall_hits = (unsigned long long)c[k++];
+    for (int q = 0; q < NSETTLE; q++) {
+        m->settle_first[q] = (long)c[k++];
+        m->settle_lastfail[q] = (long)c[k++];
+    }
+    m->settle_last_row = (long)c[k++];
+    m->rows = (long)c[k++];
+    m->acc_valid = 0; /* a(x) is recomputed from the restored positions */
+    return BF_OK;
+}
+
+static const bf_section_spec *const g72_specs[] = {
+    &g72_spec, &bf_repulsion_spec, &bf_support_spec, &bf_walls_spec, NULL};
+
+const bf_model_type bf_model_greenspan72 = {
+    .name = "greenspan72",
+    .doc = "two fluids mixing: support-set gravity, repulsion, damped walls "
+           "(Greenspan 1972)",
+    .flags = 0,
+    .specs = g72_specs,
+    .create = g72_create,
+    .destroy = g72_destroy,
+    .step = g72_step,
+    .output_open = g72_output_open,
+    .output_row = g72_output_row,
+    .output_close = g72_output_close,
+    .counters = g72_counters,
+    .report = g72_report,
+    .checkpoint_save = g72_save,
+    .checkpoint_load = g72_load,
+};

@@ -1,0 +1,620 @@
+/* greenspan73.c: model "greenspan73", Greenspan's arithmetic particle
+ * theory of fluids (Univ. Wisconsin CS TR 171, 1973): the implicit,
+ * exactly energy-conserving scheme (2.1)-(2.4) (implicit.h, dforce.h).
+ *
+ * Layouts (the paper's examples; the spec greenspan.md secs 2.5-2.6):
+ *   hexagon  P1-P11 at ((i+1/2) r0, h), P12-P23 at (i r0, 0), P24-P34 at
+ *            ((i+1/2) r0, -h), r0 the pair equilibrium distance, h = r0
+ *            sqrt(3)/2; v_i = (V + e_i1, e_i2), the 68 numbers e drawn once
+ *            (GSL mt19937, seed) uniform in (-1, 1) and scaled so that
+ *            max |e| = J V / 100.
+ *   wall     P2..P9 at x = 0, BX, ..., 7 BX (BX = r0), y = 0; the fluid
+ *            particle P1 at (1.5 BX, BY) (hollow, the reconstruction of the
+ *            text's (0.1717, 0.9914)), at the text's numbers literally, or
+ *            at (3.5 BX, BY) (centre, the penetration example), BY = r0
+ *            sqrt(3)/2, with speed |v| at angle theta below (or, the
+ *            listing's sign, above) the horizontal; P10 at (3.5 BX, -BY)
+ *            if below = true.
+ *   list     positions, velocities, masses from the scene.
+ * The readings where the text and Jones's listing differ are options: the
+ * inertia of the update (mass = paper: a = F/m; fortran: v += dt F), the
+ * wall mass, who feels gravity (listed particles or all free ones), the
+ * fixed particles, the start of P1, the sign of theta.
+ *
+ * A step that the solver cannot do is retried as two half steps (up to
+ * max_halvings times, counted and reported) when on_failure = halve, or
+ * stops the run with BF_ENOCONV (on_failure = stop); never a silent
+ * continue.  Every (sub)step conserves K + V to the solver tolerance.
+ *
+ * Energy to the time loop: K = sum mu |v|^2/2 over free particles,
+ * V = pair potential (2.17) + gravity.  Output: /particles/x, y, vx, vy
+ * [rows x n]; diag/energy [rows x 5]: K, V pair, V gravity, E, E - K_cm;
+ * diag/energy_drift [rows x 2]: (E - E_0)/|E_0| and the same for E - K_cm;
+ * diag/iterations and diag/substeps of the step ending at the row.
+ */
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ballfilm/dforce.h"
+#include "ballfilm/greenspan.h"
+#include "ballfilm/implicit.h"
+#include "ballfilm/model.h"
+#include "ballfilm/particles.h"
+#include "ballfilm/pdiag.h"
+
+static const bf_param g73_params[] = {
+    {"layout", BF_ENUM, "", "hexagon",
+     "hexagon: the 34-particle flow; wall: a fluid particle and the wall "
+     "particles P2-P9 (and P10); list: positions/velocities/masses",
+     0, 0, 0, "hexagon|wall|list"},
+    {"alpha", BF_INT, "1", "7", "attraction exponent alpha (p / r^alpha)",
+     BF_MIN | BF_MAX, 2, 60, NULL},
+    {"beta", BF_INT, "1", "10", "repulsion exponent beta (q / r^beta)",
+     BF_MIN | BF_MAX, 2, 60, NULL},
+    {"p", BF_REAL, "1", "1", "attraction constant p_ij of every pair",
+     BF_NONNEG, 0, 0, NULL},
+    {"q", BF_REAL, "1", "1", "repulsion constant q_ij of every pair",
+     BF_NONNEG, 0, 0, NULL},
+    {"pairs", BF_REALS, "1", "",
+     "quadruples i j p q: other constants for the pair (i, j), 1-based", 0,
+     0, 0, NULL},
+    {"g", BF_REAL, "cm/s^2", "0", "gravity (along -y)", BF_NONNEG, 0, 0, NULL},
+    {"gravity", BF_ENUM, "", "listed",
+     "who feels gravity: the particles in gravity_on (the listing: P1), or "
+     "all free particles (the text's eq. 2.4)",
+     0, 0, 0, "listed|all"},
+    {"gravity_on", BF_REALS, "1", "1", "particle numbers that feel gravity",
+     BF_MIN, 1, 0, NULL},
+    {"fixed", BF_REALS, "1", "",
+     "particle numbers held fixed (the listing: 2 9; the text: 2 8)", BF_MIN,
+     1, 0, NULL},
+    {"mass", BF_ENUM, "", "paper",
+     "inertia of the update: paper (F = m a, v += dt F/m) or fortran (the "
+     "listing: v += dt F, i.e. inertia 1)",
+     0, 0, 0, "paper|fortran"},
+    {"speed", BF_REAL, "cm/s", "50",
+     "hexagon: the drift V; wall: the speed |v| of P1", BF_NONNEG, 0, 0,
+     NULL},
+    {"jitter", BF_REAL, "%", "1",
+     "hexagon: J, the largest random velocity component is J V / 100",
+     BF_NONNEG, 0, 0, NULL},
+    {"seed", BF_INT, "1", "1973", "hexagon: seed of the random components",
+     BF_MIN, 0, 0, NULL},
+    {"theta", BF_REAL, "deg", "30", "wall: angle of P1's velocity to the "
+     "horizontal", 0, 0, 0, NULL},
+    {"theta_dir", BF_ENUM, "", "down",
+     "wall: down: v = |v| (cos, -sin) towards the wall (the text); up: "
+     "(cos, sin) (the listing's VY0 = VEL sin)",
+     0, 0, 0, "down|up"},
+    {"start", BF_ENUM, "", "hollow",
+     "wall: P1 at (1.5 BX, BY) (hollow), the text's (0.1717, 0.9914) "
+     "(text), or (3.5 BX, BY) (centre)",
+     0, 0, 0, "hollow|text|centre"},
+    {"below", BF_BOOL, "", "false", "wall: add P10 at (3.5 BX, -BY)", 0, 0,
+     0, NULL},
+    {"fluid_mass", BF_REAL, "g", "0.1", "wall: mass of P1", BF_POS, 0, 0,
+     NULL},
+    {"wall_mass", BF_REAL, "g", "10",
+     "wall: mass of the wall particles (the text: 10)", BF_POS, 0, 0, NULL},
+    {"positions", BF_REALS, "cm", "", "list: x1 y1 x2 y2 ...", 0, 0, 0, NULL},
+    {"velocities", BF_REALS, "cm/s", "", "list: vx1 vy1 ... (default 0)", 0,
+     0, 0, NULL},
+    {"masses", BF_REALS, "g", "", "list: m1 m2 ... (default 1)", BF_POS, 0,
+     0, NULL},
+    {"solver", BF_ENUM, "", "fixed_point",
+     "fixed_point: the listing's relaxed iteration; newton: the text's "
+     "Newton method",
+     0, 0, 0, "fixed_point|newton"},
+    {"omega", BF_REAL, "1", "1", "relaxation of the fixed-point iteration",
+     BF_POS | BF_MAX, 0, 1, NULL},
+    {"tol", BF_REAL, "cm, cm/s", "1e-10",
+     "stop iterating when no x or v changes by more than this", BF_POS, 0, 0,
+     NULL},
+    {"max_iter", BF_INT, "1", "500", "iterations before a step fails",
+     BF_MIN, 1, 0, NULL},
+    {"jacobian", BF_ENUM, "", "dense",
+     "Newton: dense (LU) or sparse (GMRES, pairs beyond jacobian_cutoff "
+     "left out)",
+     0, 0, 0, "dense|sparse"},
+    {"jacobian_cutoff", BF_REAL, "cm", "0",
+     "sparse Jacobian: leave out pairs farther apart (0: keep all)",
+     BF_NONNEG, 0, 0, NULL},
+    {"on_failure", BF_ENUM, "", "stop",
+     "when the solver fails: stop the run (exit 4) or halve the step "
+     "(repeatedly, up to max_halvings)",
+     0, 0, 0, "stop|halve"},
+    {"max_halvings", BF_INT, "1", "12", "most halvings of one step",
+     BF_MIN | BF_MAX, 0, 40, NULL},
+    {"watch", BF_INT, "1", "1",
+     "particle whose final position the summary prints", BF_MIN, 1, 0, NULL},
+    {0},
+};
+
+static const bf_section_spec g73_spec = {
+    "greenspan73",
+    "the implicit energy-conserving particle scheme, Greenspan 1973",
+    g73_params};
+
+typedef struct g73 {
+    bf_particles p;
+    bf_dforce f;
+    bf_implicit *solver;
+    double *mu, *r;
+    int halve, max_halvings, watch;
+    char reading[256];
+    unsigned long long steps, substeps, iterations, failed;
+    int depth_max;  /* most halvings in one step */
+    long last_iter, last_sub;
+    double e0, eint0; /* E and E - K_cm of the initial state */
+    bf_series *s_x, *s_y, *s_vx, *s_vy, *s_e, *s_drift, *s_it, *s_sub;
+} g73;
+
+static void g73_destroy(void *self)
+{
+    g73 *m = self;
+    if (!m)
+        return;
+    bf_particles_free(&m->p);
+    bf_dforce_free(&m->f);
+    bf_implicit_free(m->solver);
+    free(m->mu);
+    free(m->r);
+    free(m);
+}
+
+bf_particles *bf_greenspan73_particles(void *model)
+{
+    return &((g73 *)model)->p;
+}
+
+/* A particle-number list from the scene into flags (1-based numbers). */
+static bf_status number_list(const bf_scene *sc, const char *key, size_t n,
+                             uint8_t *flag, bf_err *err)
+{
+    size_t k;
+    const double *v = bf_scene_reals(sc, "greenspan73", key, &k);
+    for (size_t a = 0; a < k; a++) {
+        if (!(v[a] == floor(v[a]) && v[a] >= 1 && v[a] <= (double)n))
+            return bf_scene_fail(sc, err, "greenspan73", key,
+                                 "%g is not a particle number 1..%zu", v[a],
+                                 n);
+        flag[(size_t)v[a] - 1] = 1;
+    }
+    return BF_OK;
+}
+
+static bf_status g73_layout(g73 *m, const bf_scene *sc, bf_err *err)
+{
+    const char *S = "greenspan73";
+    const int layout = bf_scene_enum(sc, S, "layout");
+    const int alpha = (int)bf_scene_int(sc, S, "alpha"),
+              beta = (int)bf_scene_int(sc, S, "beta");
+    const double p = bf_scene_real(sc, S, "p"), q = bf_scene_real(sc, S, "q");
+    if (alpha == beta)
+        return bf_scene_fail(sc, err, S, "beta", "alpha = beta = %d: no "
+                             "equilibrium distance", alpha);
+    double r0 = layout == 2 ? 1.0 : bf_dforce_r0(alpha, beta, p, q);
+    if (layout != 2 && !(r0 > 0 && isfinite(r0)))
+        return bf_scene_fail(sc, err, S, "p", "p = %g, q = %g give no "
+                             "equilibrium distance", p, q);
+    size_t n;
+    bf_status st;
+    if (layout == 0) {
+        n = 34;
+    } else if (layout == 1) {
+        n = bf_scene_bool(sc, S, "below") ? 10 : 9;
+    } else {
+        size_t np;
+        bf_scene_reals(sc, S, "positions", &np);
+        if (np == 0 || np % 2)
+            return bf_scene_fail(sc, err, S, "positions",
+                                 "layout = list needs x y pairs (%zu "
+                                 "numbers)",
+                                 np);
+        n = np / 2;
+    }
+    if ((st = bf_particles_init(&m->p, n, err)) ||
+        (st = bf_dforce_init(&m->f, n, alpha, beta, err)))
+        return st;
+    bf_particles *P = &m->p;
+    const double V = bf_scene_real(sc, S, "speed");
+    if (layout == 0) {
+        const double h = r0 * sqrt(3.0) / 2.0;
+        size_t k = 0;
+        for (int i = 0; i < 11; i++, k++) {
+            P->x[k] = (i + 0.5) * r0;
+            P->y[k] = h;
+        }
+        for (int i = 0; i < 12; i++, k++) {
+            P->x[k] = i * r0;
+            P->y[k] = 0.0;
+        }
+        for (int i = 0; i < 11; i++, k++) {
+            P->x[k] = (i + 0.5) * r0;
+            P->y[k] = -h;
+        }
+        /* one set of 68 random numbers, scaled for each V */
+        double e[68], emax = 0.0;
+        gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+        if (!r)
+            return bf_fail(err, BF_EINTERNAL, "out of memory");
+        gsl_rng_set(r, (unsigned long)bf_scene_int(sc, S, "seed"));
+        for (int a = 0; a < 68; a++) {
+            e[a] = 2.0 * gsl_rng_uniform(r) - 1.0;
+            emax = fmax(emax, fabs(e[a]));
+        }
+        gsl_rng_free(r);
+        const double scale = bf_scene_real(sc, S, "jitter") * V / 100.0 / emax;
+        for (size_t i = 0; i < 34; i++) {
+            P->vx[i] = V + scale * e[2 * i];
+            P->vy[i] = scale * e[2 * i + 1];
+            P->m[i] = 1.0;
+        }
+    } else if (layout == 1) {
+        /* Jones's SUBROUTINE INP, read as in the spec sec. 2.6 */
+        const double BX = r0, BY = sqrt(BX * BX - 0.25 * BX * BX);
+        const double wm = bf_scene_real(sc, S, "wall_mass");
+        for (size_t i = 1; i < 9; i++) {
+            P->x[i] = (double)(i - 1) * BX;
+            P->y[i] = 0.0;
+            P->m[i] = wm;
+        }
+        int start = bf_scene_enum(sc, S, "start");
+        P->x[0] = start == 0 ? 1.5 * BX : start == 1 ? 0.1717 : 3.5 * BX;
+        P->y[0] = start == 1 ? 0.9914 : BY;
+        P->m[0] = bf_scene_real(sc, S, "fluid_mass");
+        double th = bf_scene_real(sc, S, "theta") * (3.14159265358979323846 / 180.0);
+        double sgn = bf_scene_enum(sc, S, "theta_dir") == 0 ? -1.0 : 1.0;
+        P->vx[0] = V * cos(th);
+        P->vy[0] = sgn * V * sin(th);
+        if (n == 10) {
+            P->x[9] = 3.5 * BX;
+            P->y[9] = -BY;
+            P->m[9] = wm;
+        }
+    } else {
+        size_t nv, nm;
+        const double *pos = bf_scene_reals(sc, S, "positions", &n);
+        const double *vel = bf_scene_reals(sc, S, "velocities", &nv);
+        const double *mas = bf_scene_reals(sc, S, "masses", &nm);
+        n /= 2;
+        if (nv && nv != 2 * n)
+            return bf_scene_fail(sc, err, S, "velocities",
+                                 "%zu numbers for %zu particles", nv, n);
+        if (nm && nm != n)
+            return bf_scene_fail(sc, err, S, "masses",
+                                 "%zu numbers for %zu particles", nm, n);
+        for (size_t i = 0; i < n; i++) {
+            P->x[i] = pos[2 * i];
+            P->y[i] = pos[2 * i + 1];
+            P->vx[i] = nv ? vel[2 * i] : 0.0;
+            P->vy[i] = nv ? vel[2 * i + 1] : 0.0;
+            P->m[i] = nm ? mas[i] : 1.0;
+        }
+    }
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = i + 1; j < n; j++)
+            if (P->x[i] == P->x[j] && P->y[i] == P->y[j])
+                return bf_scene_fail(sc, err, S, "positions",
+                                     "particles %zu and %zu coincide", i + 1,
+                                     j + 1);
+    return BF_OK;
+}
+
+static void g73_energy(const void *self, double t, double *kin, double *pot);
+
+static bf_status g73_create(void **self, const bf_scene *sc, bf_err *err)
+{
+    const char *S = "greenspan73";
+    g73 *m = calloc(1, sizeof *m);
+    if (!m)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    bf_status st = g73_layout(m, sc, err);
+    if (st)
+        goto fail;
+    const size_t n = m->p.n;
+    bf_dforce *f = &m->f;
+    f->g = bf_scene_real(sc, S, "g");
+    for (size_t i = 0; i < n; i++) {
+        f->m[i] = m->p.m[i];
+        for (size_t j = 0; j < n; j++) {
+            f->p[i * n + j] = bf_scene_real(sc, S, "p");
+            f->q[i * n + j] = bf_scene_real(sc, S, "q");
+        }
+    }
+    size_t np;
+    const double *pr = bf_scene_reals(sc, S, "pairs", &np);
+    if (np % 4) {
+        st = bf_scene_fail(sc, err, S, "pairs", "needs quadruples i j p q");
+        goto fail;
+    }
+    for (size_t a = 0; a < np; a += 4) {
+        double i = pr[a], j = pr[a + 1];
+        if (!(i >= 1 && j >= 1 && i <= (double)n && j <= (double)n &&
+              i == floor(i) && j == floor(j) && i != j && pr[a + 2] >= 0 &&
+              pr[a + 3] >= 0)) {
+            st = bf_scene_fail(sc, err, S, "pairs", "bad pair %g %g", i, j);
+            goto fail;
+        }
+        size_t ii = (size_t)i - 1, jj = (size_t)j - 1;
+        f->p[ii * n + jj] = f->p[jj * n + ii] = pr[a + 2];
+        f->q[ii * n + jj] = f->q[jj * n + ii] = pr[a + 3];
+    }
+    if ((st = number_list(sc, "fixed", n, f->fixed, err)))
+        goto fail;
+    if (bf_scene_enum(sc, S, "gravity") == 1) {
+        for (size_t i = 0; i < n; i++)
+            f->gravity[i] = !f->fixed[i];
+    } else if ((st = number_list(sc, "gravity_on", n, f->gravity, err))) {
+        goto fail;
+    }
+    for (size_t i = 0; i < n; i++) {
+        if (f->fixed[i]) {
+            m->p.flags[i] |= BF_PART_FIXED;
+            m->p.vx[i] = m->p.vy[i] = 0.0;
+        }
+        m->p.tag[i] = f->gravity[i];
+    }
+    m->mu = malloc((n ? n : 1) * sizeof *m->mu);
+    m->r = malloc((n ? n * n : 1) * sizeof *m->r);
+    if (!m->mu || !m->r) {
+        st = bf_fail(err, BF_EINTERNAL, "out of memory");
+        goto fail;
+    }
+    int fortran = bf_scene_enum(sc, S, "mass") == 1;
+    for (size_t i = 0; i < n; i++)
+        m->mu[i] = fortran ? 1.0 : m->p.m[i];
+    bf_implicit_opts o = {
+        .method = (bf_implicit_method)bf_scene_enum(sc, S, "solver"),
+        .omega = bf_scene_real(sc, S, "omega"),
+        .tol = bf_scene_real(sc, S, "tol"),
+        .max_iter = (int)bf_scene_int(sc, S, "max_iter"),
+        .sparse = bf_scene_enum(sc, S, "jacobian") == 1,
+        .jac_cutoff = bf_scene_real(sc, S, "jacobian_cutoff"),
+    };
+    if ((st = bf_implicit_create(&m->solver, f, &o, err)))
+        goto fail;
+    m->halve = bf_scene_enum(sc, S, "on_failure") == 1;
+    m->max_halvings = (int)bf_scene_int(sc, S, "max_halvings");
+    m->watch = (int)bf_scene_int(sc, S, "watch");
+    if ((size_t)m->watch > n) {
+        st = bf_scene_fail(sc, err, S, "watch", "particle %d of %zu", m->watch,
+                           n);
+        goto fail;
+    }
+    size_t nfx;
+    const double *fx = bf_scene_reals(sc, S, "fixed", &nfx);
+    char fixed[64] = "";
+    for (size_t a = 0; a < nfx && a < 6; a++)
+        snprintf(fixed + strlen(fixed), sizeof fixed - strlen(fixed), "%s%g",
+                 a ? " " : "", fx[a]);
+    snprintf(m->reading, sizeof m->reading,
+             "mass = %s, gravity = %s, fixed = %s%s%s",
+             fortran ? "fortran (v += dt F)" : "paper (a = F/m)",
+             bf_scene_enum(sc, S, "gravity") == 1 ? "all free particles"
+                                                   : "listed",
+             nfx ? fixed : "none",
+             bf_scene_enum(sc, S, "layout") == 1 ? ", wall_mass = " : "",
+             "");
+    if (bf_scene_enum(sc, S, "layout") == 1)
+        snprintf(m->reading + strlen(m->reading),
+                 sizeof m->reading - strlen(m->reading), "%g, start = %s",
+                 bf_scene_real(sc, S, "wall_mass"),
+                 bf_scene_str(sc, S, "start"));
+    double K, V;
+    g73_energy(m, 0.0, &K, &V);
+    m->e0 = K + V;
+    m->eint0 = m->e0 - bf_pdiag_cm_kinetic(&m->p, m->mu);
+    *self = m;
+    return BF_OK;
+fail:
+    g73_destroy(m);
+    return st;
+}
+
+/* One step of dt, or (on_failure = halve) two of dt/2, recursively. */
+static bf_status advance(g73 *m, double dt, int depth, bf_err *err)
+{
+    bf_particles *p = &m->p;
+    int it = 0;
+    bf_status st = bf_implicit_step(m->solver, &m->f, m->mu, p->x, p->y,
+                                    p->vx, p->vy, dt, &it, err);
+    m->iterations += (unsigned long long)it;
+    m->last_iter += it;
+    if (st == BF_OK) {
+        m->substeps++;
+        m->last_sub++;
+        return BF_OK;
+    }
+    if (st != BF_ENOCONV)
+        return st;
+    m->failed++;
+    if (!m->halve || depth >= m->max_halvings) {
+        bf_err_prefix(err, "dt = %g%s", dt,
+                      !m->halve ? " (on_failure = stop)"
+                                : " (the most halvings allowed)");
+        return st;
+    }
+    if (depth + 1 > m->depth_max)
+        m->depth_max = depth + 1;
+    if ((st = advance(m, 0.5 * dt, depth + 1, err)) ||
+        (st = advance(m, 0.5 * dt, depth + 1, err)))
+        return st;
+    return BF_OK;
+}
+
+static bf_status g73_step(void *self, long n, double t, double dt, bf_err *err)
+{
+    (void)n;
+    (void)t;
+    g73 *m = self;
+    m->last_iter = m->last_sub = 0;
+    bf_status st = advance(m, dt, 0, err);
+    if (st)
+        return st;
+    m->steps++;
+    return BF_OK;
+}
+
+static void g73_energy(const void *self, double t, double *kin, double *pot)
+{
+    (void)t;
+    const g73 *m = self;
+    bf_dforce_distances(&m->f, m->p.x, m->p.y, m->r);
+    *kin = bf_pdiag_kinetic(&m->p, m->mu);
+    *pot = bf_dforce_pair_energy(&m->f, m->r) +
+           bf_dforce_gravity_energy(&m->f, m->p.y);
+}
+
+static bf_status g73_output_open(void *self, bf_out *out, bf_err *err)
+{
+    g73 *m = self;
+    const size_t n = m->p.n;
+    if (!(m->s_x = bf_out_series(out, "/particles/x", n, 0, "cm", "x", err)) ||
+        !(m->s_y = bf_out_series(out, "/particles/y", n, 0, "cm", "y", err)) ||
+        !(m->s_vx = bf_out_series(out, "/particles/vx", n, 0, "cm/s", "vx",
+                                  err)) ||
+        !(m->s_vy = bf_out_series(out, "/particles/vy", n, 0, "cm/s", "vy",
+                                  err)) ||
+        !(m->s_e = bf_out_series(out, "/diag/energy", 5, 0, "erg",
+                                 "K (inertia of the update), V pair (2.17), "
+                                 "V gravity, E = K + V, E - K of the centre "
+                                 "of mass",
+                                 err)) ||
+        !(m->s_drift = bf_out_series(out, "/diag/energy_drift", 2, 0, "1",
+                                     "relative change since t = 0 of E and "
+                                     "of E - K_cm",
+                                     err)) ||
+        !(m->s_it = bf_out_series(out, "/diag/iterations", 0, 1, "1",
+                                  "solver iterations of the step ending at "
+                                  "the row (all substeps)",
+                                  err)) ||
+        !(m->s_sub = bf_out_series(out, "/diag/substeps", 0, 1, "1",
+                                   "substeps of the step ending at the row "
+                                   "(> 1 after halvings)",
+                                   err)))
+        return err->status;
+    double *tmp = malloc((n ? n : 1) * sizeof *tmp);
+    if (!tmp)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    bf_status st = bf_out_array(out, "/particles/mass", m->p.m, n, 0, "g",
+                                "masses (pair strengths, gravity)", err);
+    if (!st)
+        st = bf_out_array(out, "/particles/inertia", m->mu, n, 0, "g",
+                          "inertia of the update (mass, or 1 for mass = "
+                          "fortran)",
+                          err);
+    for (size_t i = 0; i < n; i++)
+        tmp[i] = m->f.fixed[i];
+    if (!st)
+        st = bf_out_array(out, "/particles/fixed", tmp, n, 0, "1",
+                          "1: held fixed", err);
+    for (size_t i = 0; i < n; i++)
+        tmp[i] = m->f.gravity[i];
+    if (!st)
+        st = bf_out_array(out, "/particles/gravity", tmp, n, 0, "1",
+                          "1: feels gravity", err);
+    free(tmp);
+    if (!st)
+        st = bf_out_attr_str(out, "/", "reading", m->reading, err);
+    return st;
+}
+
+static bf_status g73_output_row(void *self, long n, double t, bf_err *err)
+{
+    (void)n;
+    g73 *m = self;
+    double K, V;
+    g73_energy(m, t, &K, &V);
+    double vp = bf_dforce_pair_energy(&m->f, m->r);
+    double e[5] = {K, vp, V - vp, K + V,
+                   K + V - bf_pdiag_cm_kinetic(&m->p, m->mu)};
+    double drift[2] = {(e[3] - m->e0) / fabs(m->e0),
+                       (e[4] - m->eint0) / fabs(m->eint0)};
+    int64_t it = m->last_iter, sub = m->last_sub;
+    if (bf_series_append(m->s_drift, drift) ||
+        bf_series_append(m->s_x, m->p.x) || bf_series_append(m->s_y, m->p.y) ||
+        bf_series_append(m->s_vx, m->p.vx) ||
+        bf_series_append(m->s_vy, m->p.vy) || bf_series_append(m->s_e, e) ||
+        bf_series_append_i64(m->s_it, &it) ||
+        bf_series_append_i64(m->s_sub, &sub))
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    return BF_OK;
+}
+
+static void g73_counters(const void *self, bf_counters *c)
+{
+    const g73 *m = self;
+    c->steps = m->steps;
+    c->evals = m->iterations;
+    c->iterations = m->iterations;
+    c->rejected = m->failed;
+}
+
+static void g73_report(const void *self, FILE *f)
+{
+    const g73 *m = self;
+    const size_t w = (size_t)m->watch - 1;
+    fprintf(f, "implicit solver:   %llu substeps, %llu iterations (%.2f per "
+               "substep), %llu failed solves, most halvings of a step %d\n",
+            m->substeps, m->iterations,
+            m->substeps ? (double)m->iterations / (double)m->substeps : 0.0,
+            m->failed, m->depth_max);
+    fprintf(f, "particle %zu at the end: (%.5f, %.5f), v = (%.4g, %.4g)\n",
+            w + 1, m->p.x[w], m->p.y[w], m->p.vx[w], m->p.vy[w]);
+    fprintf(f, "reading:           %s\n", m->reading);
+}
+
+static bf_status g73_save(const void *self, bf_ckpt *ck, bf_err *err)
+{
+    const g73 *m = self;
+    int64_t c[7] = {(int64_t)m->steps,      (int64_t)m->substeps,
+                    (int64_t)m->iterations, (int64_t)m->failed,
+                    m->depth_max,           m->last_iter,
+                    m->last_sub};
+    bf_status st = bf_particles_save(&m->p, ck, "g73.p", err);
+    if (!st)
+        st = bf_ckpt_put_i64(ck, "g73.counters", c, 7, err);
+    return st;
+}
+
+static bf_status g73_load(void *self, const bf_ckpt *ck, bf_err *err)
+{
+    g73 *m = self;
+    int64_t c[7];
+    bf_status st = bf_particles_load(&m->p, ck, "g73.p", err);
+    if (!st)
+        st = bf_ckpt_get_i64(ck, "g73.counters", c, 7, err);
+    if (st)
+        return st;
+    m->steps = (unsigned long long)c[0];
+    m->substeps = (unsigned long long)c[1];
+    m->iterations = (unsigned long long)c[2];
+    m->failed = (unsigned long long)c[3];
+    m->depth_max = (int)c[4];
+    m->last_iter = (long)c[5];
+    m->last_sub = (long)c[6];
+    return BF_OK;
+}
+
+static const bf_section_spec *const g73_specs[] = {&g73_spec, NULL};
+
+const bf_model_type bf_model_greenspan73 = {
+    .name = "greenspan73",
+    .doc = "implicit, exactly energy-conserving particle scheme (Greenspan "
+           "1973)",
+    .flags = 0,
+    .specs = g73_specs,
+    .create = g73_create,
+    .destroy = g73_destroy,
+    .step = g73_step,
+    .energy = g73_energy,
+    .output_open = g73_output_open,
+    .output_row = g73_output_row,
+    .counters = g73_counters,
+    .report = g73_report,
+    .checkpoint_save = g73_save,
+    .checkpoint_load = g73_load,
+};

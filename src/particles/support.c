@@ -1,0 +1,922 @@
+/* support.c: support-set gravity, Greenspan 1972 eqs 2.8-2.9 (see
+ * support.h for the definitions and the three methods).
+ *
+ * Every method decides "square i overlaps strip j in band q with positive
+ * area" with the same two floating-point expressions,
+ *   f2 = min(r_i, delta_j) - max(l_i, gamma_j) > 0,
+ *   f1 = min(t_i, hi_q) - max(b_i, lo_q) > 0,
+ * and the same band edges lo_q = ay + (q-1) dx, hi_q = ay + q dx, so the
+ * free-fall decisions are identical; only the order of the area sums (and,
+ * in the fast method, their form) differs, which changes g by round-off.
+ */
+#include "ballfilm/support.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const bf_param support_params[] = {
+    {"g", BF_REAL, "cm/s^2", "980",
+     "gravitational acceleration g0 of a particle with nothing below it",
+     BF_NONNEG, 0, 0, NULL},
+    {"dx", BF_REAL, "cm", NULL,
+     "Delta x: height of the bands below a particle and width of its strip "
+     "(eqs 2.8-2.9)",
+     BF_POS, 0, 0, NULL},
+    {"method", BF_ENUM, "", "auto",
+     "fast: exact O(N log N) sweep (needs d <= 2 dx); cell: cell list, "
+     "O(N * column); naive: all pairs O(N^2); auto: cell for boxes of at "
+     "most 64 bands, else fast.  All give the same free-fall decisions and "
+     "the same g to round-off",
+     0, 0, 0, "fast|cell|naive|auto"},
+    {"tie", BF_ENUM, "", "le",
+     "support set S(P_j): le counts particles with y_i <= y_j (the listing), "
+     "lt only y_i < y_j (the text)",
+     0, 0, 0, "le|lt"},
+    {"eps", BF_REAL, "cm^2", "0",
+     "added to the denominators of 2.8 and 2.9 (0: the text; 1e-3: the "
+     "listing)",
+     BF_NONNEG, 0, 0, NULL},
+    {0},
+};
+
+const bf_section_spec bf_support_spec = {
+    "support", "support-set gravity (Greenspan 1972 eqs 2.8-2.9)",
+    support_params};
+
+bf_status bf_support_params_from_scene(bf_support_params *p,
+                                       const bf_scene *sc, bf_box box,
+                                       double d, bf_err *err)
+{
+    p->box = box;
+    p->d = d;
+    p->g0 = bf_scene_real(sc, "support", "g");
+    p->dx = bf_scene_real(sc, "support", "dx");
+    p->method = (bf_support_method)bf_scene_enum(sc, "support", "method");
+    p->tie = bf_scene_enum(sc, "support", "tie") == 0;
+    p->eps = bf_scene_real(sc, "support", "eps");
+    if (p->dx > box.bx - box.ax || p->dx > box.by - box.ay)
+        return bf_scene_fail(sc, err, "support", "dx",
+                             "dx = %g is larger than the box", p->dx);
+    if (p->method == BF_SUPPORT_AUTO)
+        p->method = floor((box.by - box.ay) / p->dx) <= 64 || d > 2 * p->dx
+                        ? BF_SUPPORT_CELL
+                        : BF_SUPPORT_FAST;
+    if (p->method == BF_SUPPORT_FAST && d > 2 * p->dx)
+        return bf_scene_fail(sc, err, "support", "method",
+                             "method fast needs d <= 2 dx (d = %g, dx = %g); "
+                             "use method = cell",
+                             d, p->dx);
+    return BF_OK;
+}
+
+struct bf_support {
+    bf_support_params p;
+    size_t cap;
+    int kmax;        /* largest K of a particle in the box */
+    int threads;     /* OpenMP threads */
+    double hd, hdx;  /* d/2, dx/2 */
+    /* x-sorted order and geometry in that order (fast method) */
+    uint32_t *ord, *binc; /* x order, bin counts */
+    double *ls, *rs, *bs, *ts, *gs, *ds, *ys;
+    int32_t *ks, *mb, *mt; /* K, and the levels where H starts / stops rising */
+    double *lower; /* area of the bands below the top band */
+    double *cl, *cr, *cb, *ct; /* square edges in cell-list order */
+    uint64_t *bm;              /* bands 1..64 each square reaches */
+    double *fgam;  /* F(gamma) while sweeping */
+    int32_t *lowe; /* lowest empty band below the top band */
+    uint32_t *nxt; /* skip list of particles without a lowest empty band */
+    double *fen;   /* Fenwick tree over levels: 4 sums per node */
+    uint32_t *bstart, *bfill, *blist;
+    /* per-band sums for one particle (naive and cell) */
+    double *area;
+    uint32_t *cnt;
+};
+
+/* ---------------------------------------------------------- geometry */
+
+static inline double dmax(double a, double b) { return a > b ? a : b; }
+static inline double dmin(double a, double b) { return a < b ? a : b; }
+
+static inline double band_lo(const bf_support_params *p, int q)
+{
+    return p->box.ay + (double)(q - 1) * p->dx;
+}
+
+static inline double band_hi(const bf_support_params *p, int q)
+{
+    return p->box.ay + (double)q * p->dx;
+}
+
+/* K(y) = floor((y - ay)/dx) >= 0, with the reciprocal of dx (one
+ * definition for every method; at an exact band edge it may differ from a
+ * division by one ulp's worth, which only moves the edge by round-off). */
+static inline int k_of(const bf_support_params *p, double y)
+{
+    double k = (y - p->box.ay) * p->inv_dx;
+    return k > 0 ? (int)k : 0;
+}
+
+bf_status bf_support_create(bf_support **out, const bf_support_params *p,
+                            size_t cap, bf_err *err)
+{
+    *out = NULL;
+    if (p->method == BF_SUPPORT_FAST && p->d > 2 * p->dx)
+        return bf_fail(err, BF_EINPUT,
+                       "support: method fast needs d <= 2 dx (d = %g, dx = %g)",
+                       p->d, p->dx);
+    bf_support *s = calloc(1, sizeof *s);
+    if (!s)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    s->p = *p;
+    s->p.inv_dx = 1.0 / p->dx;
+    s->cap = cap;
+    s->hd = 0.5 * p->d;
+    s->hdx = 0.5 * p->dx;
+    s->kmax = k_of(&s->p, p->box.by);
+#ifdef _OPENMP
+    s->threads = p->threads > 0 ? p->threads : omp_get_max_threads();
+#else
+    s->threads = 1;
+#endif
+    size_t k = cap ? cap : 1, nb = (size_t)s->kmax + 3;
+    s->ord = malloc(k * sizeof *s->ord);
+    s->binc = malloc((k + 1) * sizeof *s->binc);
+    s->ls = malloc(k * sizeof *s->ls);
+    s->rs = malloc(k * sizeof *s->rs);
+    s->bs = malloc(k * sizeof *s->bs);
+    s->ts = malloc(k * sizeof *s->ts);
+    s->gs = malloc(k * sizeof *s->gs);
+    s->ds = malloc(k * sizeof *s->ds);
+    s->ys = malloc(k * sizeof *s->ys);
+    s->ks = malloc(k * sizeof *s->ks);
+    s->mb = malloc(k * sizeof *s->mb);
+    s->mt = malloc(k * sizeof *s->mt);
+    s->lower = malloc(k * sizeof *s->lower);
+    s->cl = malloc(k * sizeof *s->cl);
+    s->cr = malloc(k * sizeof *s->cr);
+    s->cb = malloc(k * sizeof *s->cb);
+    s->ct = malloc(k * sizeof *s->ct);
+    s->bm = malloc(k * sizeof *s->bm);
+    s->fgam = malloc(k * sizeof *s->fgam);
+    s->lowe = malloc(k * sizeof *s->lowe);
+    s->nxt = malloc((k + 1) * sizeof *s->nxt);
+    s->fen = malloc(2 * nb * (size_t)s->threads * sizeof *s->fen);
+    s->bstart = malloc((nb + 1) * sizeof *s->bstart);
+    s->bfill = malloc((nb + 1) * sizeof *s->bfill);
+    /* a square of height <= 2 dx has positive area in at most 3 bands */
+    s->blist = malloc(3 * k * sizeof *s->blist);
+    s->area = malloc(nb * (size_t)s->threads * sizeof *s->area);
+    s->cnt = malloc(nb * (size_t)s->threads * sizeof *s->cnt);
+    if (!s->ord || !s->binc || !s->ls || !s->rs || !s->bs || !s->ts ||
+        !s->gs || !s->ds || !s->ys || !s->ks || !s->mb || !s->mt || !s->lower || !s->cl || !s->cr ||
+        !s->cb || !s->ct || !s->bm || !s->fgam ||
+        !s->lowe || !s->nxt || !s->fen || !s->bstart || !s->bfill ||
+        !s->blist || !s->area || !s->cnt) {
+        bf_support_free(s);
+        return bf_fail(err, BF_EINTERNAL, "out of memory (support, %zu "
+                       "particles)", cap);
+    }
+    *out = s;
+    return BF_OK;
+}
+
+const bf_support_params *bf_support_params_of(const bf_support *s)
+{
+    return &s->p;
+}
+
+void bf_support_free(bf_support *s)
+{
+    if (!s)
+        return;
+    free(s->ord);
+    free(s->binc);
+    free(s->ls);
+    free(s->rs);
+    free(s->bs);
+    free(s->ts);
+    free(s->gs);
+    free(s->ds);
+    free(s->ys);
+    free(s->ks);
+    free(s->mb);
+    free(s->mt);
+    free(s->lower);
+    free(s->cl);
+    free(s->cr);
+    free(s->cb);
+    free(s->ct);
+    free(s->bm);
+    free(s->fgam);
+    free(s->lowe);
+    free(s->nxt);
+    free(s->fen);
+    free(s->bstart);
+    free(s->bfill);
+    free(s->blist);
+    free(s->area);
+    free(s->cnt);
+    free(s);
+}
+
+/* ------------------------------------------- one square, one strip */
+
+/* Add the area of square i (centre xi, yi) in the strip [gam, del] to the
+ * bands q0..K (K >= 1) at index q - base, or to the rectangle [ay, yj]
+ * (K == 0) at index 0. */
+static inline void add_square(const bf_support *s, double xi, double yi,
+                              double gam, double del, int K, int q0, int base,
+                              double yj, double *area, uint32_t *cnt)
+{
+    const bf_support_params *p = &s->p;
+    double li = dmax(xi - s->hd, p->box.ax), ri = dmin(xi + s->hd, p->box.bx);
+    double f2 = dmin(ri, del) - dmax(li, gam);
+    if (!(f2 > 0))
+        return;
+    double bi = dmax(yi - s->hd, p->box.ay), ti = dmin(yi + s->hd, p->box.by);
+    if (K == 0) {
+        double f1 = dmin(ti, yj) - dmax(bi, p->box.ay);
+        if (f1 > 0) {
+            area[0] += f1 * f2;
+            cnt[0]++;
+        }
+        return;
+    }
+    /* the bands the square can reach, with a margin of one for rounding */
+    int qa = k_of(p, bi), qb = k_of(p, ti) + 2;
+    if (qa < q0)
+        qa = q0;
+    if (qb > K)
+        qb = K;
+    for (int q = qa; q <= qb; q++) {
+        double f1 = dmin(ti, band_hi(p, q)) - dmax(bi, band_lo(p, q));
+        if (f1 > 0) {
+            area[q - base] += f1 * f2;
+            cnt[q - base]++;
+        }
+    }
+}
+
+/* g from the band sums (K >= 1) or the rectangle (K == 0). */
+static inline double finish(const bf_support *s, double yj, double W, int K,
+                            const double *area, const uint32_t *cnt,
+                            double lower, uint8_t *kind)
+{
+    const bf_support_params *p = &s->p;
+    double g;
+    if (K == 0) {
+        if (cnt[0] == 0) {
+            *kind = BF_SUP_FREE;
+            return -p->g0;
+        }
+        g = -p->g0 * (1.0 - area[0] / (W * (yj - p->box.ay) + p->eps));
+    } else {
+        double tot = lower;
+        for (int q = 1; q <= K; q++)
+            tot += area[q];
+        g = -p->g0 * (1.0 - tot / (W * ((double)K * p->dx) + p->eps));
+    }
+    *kind = g > 0 ? BF_SUP_ANTI : BF_SUP_PARTIAL;
+    return g;
+}
+
+/* The lowest level m >= 1 whose line z_m = band_hi(m) is at or above t:
+ * exact with respect to band_hi, so that "full below z_m" (the sweep) and
+ * "cut by z_m" (t > z_m, the cell query) never disagree. */
+static inline int full_level(const bf_support_params *p, double t)
+{
+    int m = k_of(p, t);
+    if (m < 1)
+        m = 1;
+    while (m > 1 && band_hi(p, m - 1) >= t)
+        m--;
+    while (band_hi(p, m) < t)
+        m++;
+    return m;
+}
+
+/* Particle j is resting on the floor band. */
+static inline int resting(const bf_support *s, double yj, int K)
+{
+    return K == 0 && yj - s->p.box.ay <= s->p.d;
+}
+
+/* Is y_i in the support set of a particle at y_j? */
+static inline int below(int tie, double yi, double yj)
+{
+    return tie ? yi <= yj : yi < yj;
+}
+
+/* Bands q0..K (or the K = 0 rectangle) of particle j from the cell list,
+ * band q at index q - base. */
+static void column_from_cells(const bf_support *s, const bf_cells *c,
+                              size_t j, double yj, double gam, double del,
+                              int K, int q0, int base, double *area,
+                              uint32_t *cnt)
+{
+    const bf_support_params *p = &s->p;
+    const int tie = p->tie;
+    double ylo = K == 0 ? p->box.ay : band_lo(p, q0) - s->hd;
+    int c0 = bf_cells_col(c, gam - s->hd), c1 = bf_cells_col(c, del + s->hd);
+    int r0 = bf_cells_row(c, ylo), r1 = bf_cells_row(c, yj);
+    for (int col = c0; col <= c1; col++) {
+        uint32_t u0, u1;
+        bf_cells_run(c, col, r0, r1, &u0, &u1);
+        for (uint32_t t = u0; t < u1; t++) {
+            double yi = c->sy[t];
+            if (!below(tie, yi, yj) || c->idx[t] == j)
+                continue;
+            add_square(s, c->sx[t], yi, gam, del, K, q0, base, yj, area, cnt);
+        }
+    }
+}
+
+/* ------------------------------------------------------ naive, cell */
+
+/* g of particle j from per-band sums: every other particle (cells == NULL,
+ * the naive method) or the cell list (the column below j).  area and cnt
+ * have room for K + 1 bands. */
+static double one_particle(const bf_support *s, const bf_cells *c,
+                           const double *x, const double *y, size_t n,
+                           size_t j, double *area, uint32_t *cnt,
+                           uint8_t *kind)
+{
+    const bf_support_params *p = &s->p;
+    double yj = y[j];
+    int K = k_of(p, yj);
+    if (resting(s, yj, K)) {
+        *kind = BF_SUP_REST;
+        return 0.0;
+    }
+    double gam = dmax(x[j] - s->hdx, p->box.ax);
+    double del = dmin(x[j] + s->hdx, p->box.bx);
+    for (int q = 0; q <= K; q++) {
+        area[q] = 0.0;
+        cnt[q] = 0;
+    }
+    if (c) {
+        column_from_cells(s, c, j, yj, gam, del, K, 1, 0, area, cnt);
+    } else {
+        for (size_t i = 0; i < n; i++)
+            if (i != j && below(p->tie, y[i], yj))
+                add_square(s, x[i], y[i], gam, del, K, 1, 0, yj, area, cnt);
+    }
+    for (int q = K == 0 ? 0 : 1; q <= K; q++)
+        if (cnt[q] == 0) {
+            *kind = BF_SUP_FREE;
+            return -p->g0;
+        }
+    return finish(s, yj, del - gam, K, area, cnt, 0.0, kind);
+}
+
+static void eval_naive(bf_support *s, const double *x, const double *y,
+                       size_t n, double *g, uint8_t *kind)
+{
+    for (size_t j = 0; j < n; j++) {
+        uint8_t kd;
+        g[j] = one_particle(s, NULL, x, y, n, j, s->area, s->cnt, &kd);
+        if (kind)
+            kind[j] = kd;
+    }
+}
+
+/* OpenMP only pays from a few thousand particles on. */
+#define PAR_MIN 4096
+
+/* Square edges in cell-list order, and (masks) the bands 1..64 in which
+ * each square has positive height: bit q-1 is set iff b < hi_q and
+ * t > lo_q, the exact condition f1 > 0 of add_square. */
+static void slot_edges(bf_support *s, const bf_cells *c, size_t n, int masks)
+{
+    const bf_support_params *p = &s->p;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(s->threads) \
+    if (n >= PAR_MIN)
+#endif
+    for (size_t t = 0; t < n; t++) {
+        double xi = c->sx[t], yi = c->sy[t];
+        double b = dmax(yi - s->hd, p->box.ay), tp = dmin(yi + s->hd, p->box.by);
+        s->cl[t] = dmax(xi - s->hd, p->box.ax);
+        s->cr[t] = dmin(xi + s->hd, p->box.bx);
+        s->cb[t] = b;
+        s->ct[t] = tp;
+        if (masks) {
+            /* bands qa..qb, with qa, qb moved by one if rounding put them
+             * beyond the exact edges */
+            int qa = k_of(p, b) + 1, qb = k_of(p, tp) + 1;
+            if (qa > 1 && b < band_hi(p, qa - 1))
+                qa--;
+            if (!(b < band_hi(p, qa)))
+                qa++;
+            if (!(tp > band_lo(p, qb)))
+                qb--;
+            if (tp > band_lo(p, qb + 1))
+                qb++;
+            if (qb > 64)
+                qb = 64;
+            s->bm[t] = qa > qb ? 0
+                               : (((uint64_t)2 << (qb - 1)) - 1) &
+                                     ~(((uint64_t)1 << (qa - 1)) - 1);
+        }
+    }
+}
+
+/* The cell method: for 1 <= K <= 64 the area of bands 1..K is
+ * sum f2 (min(t, hi_K) - b) over the squares of S(P_j) below, and a band
+ * is empty iff no counted square has its bit; the other cases (K = 0,
+ * K > 64) go band by band (one_particle). */
+static void eval_cell(bf_support *s, const double *x, const double *y,
+                      size_t n, const bf_cells *c, double *g, uint8_t *kind)
+{
+    const bf_support_params *p = &s->p;
+    const size_t nbands = (size_t)s->kmax + 3;
+    slot_edges(s, c, n, 1);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 64) num_threads(s->threads) \
+    if (n >= PAR_MIN)
+#endif
+    for (size_t t = 0; t < n; t++) {
+        int tid = 0;
+#ifdef _OPENMP
+        tid = omp_get_thread_num();
+#endif
+        const uint32_t j = c->idx[t];
+        const double xj = c->sx[t], yj = c->sy[t];
+        const int K = k_of(p, yj);
+        uint8_t kd;
+        double gj;
+        if (K == 0 || K > 64) {
+            gj = one_particle(s, c, x, y, n, j, s->area + (size_t)tid * nbands,
+                              s->cnt + (size_t)tid * nbands, &kd);
+        } else {
+            const double gam = dmax(xj - s->hdx, p->box.ax);
+            const double del = dmin(xj + s->hdx, p->box.bx);
+            const double hi = band_hi(p, K), hd = s->hd;
+            const double ytop = p->tie ? yj : nextafter(yj, -INFINITY);
+            const double *cl = s->cl, *cr = s->cr, *cb = s->cb, *ct = s->ct,
+                         *sy = c->sy;
+            const uint64_t *bm = s->bm;
+            int c0 = bf_cells_col(c, gam - hd), c1 = bf_cells_col(c, del + hd);
+            int r1 = bf_cells_row(c, yj);
+            double area = 0.0;
+            uint64_t mask = 0;
+            for (int col = c0; col <= c1; col++) {
+                /* rows below j's row: every particle is below j (no height
+                 * test, and j is not there) */
+                uint32_t u, u1, v1;
+                bf_cells_run(c, col, 0, r1, &u, &v1);
+                u1 = r1 > 0 ? c->start[(size_t)col * (size_t)c->ny + (size_t)r1]
+                            : u;
+                for (; u < u1; u++) {
+                    /* branch-free: the tests fail at random */
+                    double f2 = dmin(cr[u], del) - dmax(cl[u], gam);
+                    double hh = dmin(ct[u], hi) - cb[u];
+                    int ok = (f2 > 0) & (hh > 0);
+                    area += (double)ok * (f2 * hh);
+                    mask |= bm[u] & (0 - (uint64_t)ok);
+                }
+                /* j's row: the support-set test, j itself skipped */
+                for (; u < v1; u++) {
+                    double f2 = dmin(cr[u], del) - dmax(cl[u], gam);
+                    double hh = dmin(ct[u], hi) - cb[u];
+                    int ok = (sy[u] <= ytop) & (f2 > 0) & (hh > 0) & (u != t);
+                    area += (double)ok * (f2 * hh);
+                    mask |= bm[u] & (0 - (uint64_t)ok);
+                }
+            }
+            const uint64_t need = K == 64 ? ~(uint64_t)0
+                                          : ((uint64_t)1 << K) - 1;
+            if ((mask & need) != need) {
+                gj = -p->g0;
+                kd = BF_SUP_FREE;
+            } else {
+                gj = -p->g0 * (1.0 - area / ((del - gam) * ((double)K * p->dx) +
+                                             p->eps));
+                kd = gj > 0 ? BF_SUP_ANTI : BF_SUP_PARTIAL;
+            }
+        }
+        g[j] = gj;
+        if (kind)
+            kind[j] = kd;
+    }
+}
+
+/* ------------------------------------------------------------- fast */
+
+/* Sort the particles by x: counting sort into n bins, then insertion sort
+ * inside each bin (ties keep the index order).  Expected O(n). */
+static void sort_by_x(bf_support *s, const double *x, size_t n)
+{
+    const double ax = s->p.box.ax, w = s->p.box.bx - s->p.box.ax;
+    const double scale = (double)n / w;
+    uint32_t *binc = s->binc, *ord = s->ord, *tmp = s->nxt;
+    memset(binc, 0, (n + 1) * sizeof *binc);
+    for (size_t i = 0; i < n; i++) {
+        double f = (x[i] - ax) * scale;
+        size_t b = f > 0 ? (size_t)f : 0;
+        if (b >= n)
+            b = n - 1;
+        tmp[i] = (uint32_t)b;
+        binc[b + 1]++;
+    }
+    for (size_t b = 0; b < n; b++)
+        binc[b + 1] += binc[b];
+    for (size_t i = 0; i < n; i++)
+        ord[binc[tmp[i]]++] = (uint32_t)i;
+    /* binc[b] is now the end of bin b; insertion sort each bin */
+    size_t lo = 0;
+    for (size_t b = 0; b < n; b++) {
+        size_t hi = binc[b];
+        for (size_t a = lo + 1; a < hi; a++) {
+            uint32_t v = ord[a];
+            double xv = x[v];
+            size_t c = a;
+            while (c > lo && x[ord[c - 1]] > xv) {
+                ord[c] = ord[c - 1];
+                c--;
+            }
+            ord[c] = v;
+        }
+        lo = hi;
+    }
+}
+
+/* Fenwick tree over levels 1..m of 2 sums (A, B). */
+static inline void fen_add(double *fen, int m, int level, double a, double b)
+{
+    for (int k = level; k <= m; k += k & -k) {
+        fen[2 * k] += a;
+        fen[2 * k + 1] += b;
+    }
+}
+
+/* The square at sorted position p, with its left (sigma = +1) or right
+ * (sigma = -1) edge at local coordinate e, enters the sweep.  It counts
+ * with its full height h at every level m whose line z_m = ay + m dx is at
+ * or above its top (m >= mt[p]); squares cut by the line z_m are added by
+ * the cell-list query of the particle asking (top_band). */
+static inline void sweep_add(const bf_support *s, double *fen, int mq,
+                             size_t p, double sigma, double e)
+{
+    const int mt = s->mt[p];
+    if (mt <= mq) {
+        double h = sigma * (s->ts[p] - s->bs[p]);
+        fen_add(fen, mq, mt, h, h * e);
+    }
+}
+
+/* G(x) = x A - B at level m (local coordinates). */
+static inline double sweep_eval(const double *fen, double x, int m)
+{
+    double a = 0, b = 0;
+    for (int k = m; k > 0; k -= k & -k) {
+        a += fen[2 * k];
+        b += fen[2 * k + 1];
+    }
+    return x * a - b;
+}
+
+/* First sorted position p in [lo, hi) with v[p] > key (or >= if ge). */
+static size_t bsearch_pos(const double *v, size_t lo, size_t hi, double key,
+                          int ge)
+{
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (ge ? v[mid] >= key : v[mid] > key)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return lo;
+}
+
+/* Lower-band areas of the particles whose strips start in the chunk
+ * [X0, X1): a sweep over the square edges in (X0, X1 + dx], in coordinates
+ * relative to X0 so that the sums stay small (their round-off does not
+ * grow with the box).  Squares straddling X0 enter with their left edge at
+ * X0: G(x) = integral from X0 to x of the filled height. */
+static void sweep_chunk(bf_support *s, double *fen, size_t n, int mq,
+                        double X0, double X1, int last)
+{
+    const double *ls = s->ls, *rs = s->rs, *gs = s->gs, *ds = s->ds;
+    size_t q0 = bsearch_pos(gs, 0, n, X0, 1);
+    size_t q1 = last ? n : bsearch_pos(gs, q0, n, X1, 1);
+    if (q0 == q1)
+        return;
+    memset(fen, 0, 2 * (size_t)(mq + 1) * sizeof *fen);
+    /* squares with l <= X0 < r enter at X0 */
+    size_t pr = bsearch_pos(rs, 0, n, X0, 0);
+    size_t pl = bsearch_pos(ls, 0, n, X0, 0);
+    for (size_t p = pr; p < pl; p++)
+        sweep_add(s, fen, mq, p, 1.0, 0.0);
+    size_t pg = q0, pd = q0;
+    const double inf = INFINITY;
+    while (pd < q1) {
+        double vl = pl < n ? ls[pl] : inf, vr = pr < n ? rs[pr] : inf;
+        double vg = pg < q1 ? gs[pg] : inf, vd = ds[pd];
+        if (vl <= vr && vl <= vg && vl <= vd) {
+            sweep_add(s, fen, mq, pl, 1.0, vl - X0);
+            pl++;
+        } else if (vr <= vg && vr <= vd) {
+            sweep_add(s, fen, mq, pr, -1.0, vr - X0);
+            pr++;
+        } else if (vg <= vd) {
+            if (s->ks[pg] >= 2)
+                s->fgam[pg] = sweep_eval(fen, vg - X0, s->ks[pg] - 1);
+            pg++;
+        } else {
+            if (s->ks[pd] >= 2)
+                s->lower[pd] = sweep_eval(fen, vd - X0, s->ks[pd] - 1) -
+                               s->fgam[pd];
+            pd++;
+        }
+    }
+}
+
+static inline uint32_t skip_find(uint32_t *nxt, uint32_t p)
+{
+    while (nxt[p] != p) {
+        nxt[p] = nxt[nxt[p]];
+        p = nxt[p];
+    }
+    return p;
+}
+
+/* For every sorted position, the lowest band q <= mq in which no square
+ * overlaps its strip with positive area (lowe), or a value > mq. */
+static void empty_bands(bf_support *s, size_t n, int mq)
+{
+    const bf_support_params *p = &s->p;
+    uint32_t *bstart = s->bstart, *bfill = s->bfill, *blist = s->blist;
+    uint32_t *nxt = s->nxt;
+    memset(bstart, 0, (size_t)(mq + 2) * sizeof *bstart);
+    /* squares per band, in x order */
+    for (int pass = 0; pass < 2; pass++) {
+        for (size_t k = 0; k < n; k++) {
+            /* f1 > 0 needs mb <= q <= mt; one band of margin each way for
+             * the rounding of mb and mt, the test itself is exact */
+            double b = s->bs[k], t = s->ts[k];
+            int qa = s->mb[k] - 1, qb = s->mt[k] + 1;
+            if (qa < 1)
+                qa = 1;
+            if (qb > mq)
+                qb = mq;
+            for (int q = qa; q <= qb; q++)
+                if (dmin(t, band_hi(p, q)) - dmax(b, band_lo(p, q)) > 0) {
+                    if (pass == 0)
+                        bstart[q + 1]++;
+                    else
+                        blist[bfill[q]++] = (uint32_t)k;
+                }
+        }
+        if (pass == 0) {
+            for (int q = 1; q <= mq; q++)
+                bstart[q + 1] += bstart[q];
+            memcpy(bfill, bstart, (size_t)(mq + 2) * sizeof *bfill);
+        }
+    }
+    double wmin = INFINITY;
+    for (size_t k = 0; k < n; k++) {
+        double w = s->ds[k] - s->gs[k];
+        if (w < wmin)
+            wmin = w;
+        s->lowe[k] = mq + 1;
+        nxt[k] = (uint32_t)k;
+    }
+    nxt[n] = (uint32_t)n;
+    size_t left = n;
+    for (int q = 1; q <= mq && left; q++) {
+        uint32_t a = bstart[q], e = bstart[q + 1];
+        /* gaps: (-inf, l_first], [r_k, l_{k+1}], [r_last, +inf) */
+        for (uint32_t k = a; k <= e; k++) {
+            double lo = k == a ? -INFINITY : s->rs[blist[k - 1]];
+            double hi = k == e ? INFINITY : s->ls[blist[k]];
+            /* rounding is monotone: a strip of width w fits only if the
+             * rounded gap width is >= w */
+            if (!(hi - lo >= wmin))
+                continue;
+            size_t p0 = bsearch_pos(s->gs, 0, n, lo, 1);
+            size_t p1 = bsearch_pos(s->ds, 0, n, hi, 0);
+            for (uint32_t j = skip_find(nxt, (uint32_t)p0); j < p1;
+                 j = skip_find(nxt, j + 1)) {
+                s->lowe[j] = q;
+                nxt[j] = j + 1;
+                left--;
+            }
+        }
+    }
+}
+
+/* The constants of one top-band query. */
+typedef struct topq {
+    double del, gam, hi, lo, ytop;
+    double cut; /* 1 if K >= 2: add the parts of squares cut by z = lo */
+} topq;
+
+/* Slots [u, u1) of a top-band query (see top_band), branch-free: the tests
+ * fail at random, which branches would mispredict. */
+static inline void top_range(const bf_support *s, const double *sy,
+                             const topq *q, uint32_t u, uint32_t u1,
+                             double *acc, uint32_t *cnt)
+{
+    const double *cl = s->cl, *cr = s->cr, *cb = s->cb, *ct = s->ct;
+    const double del = q->del, gam = q->gam, hi = q->hi, lo = q->lo,
+                 ytop = q->ytop, cutk = q->cut;
+    double a = *acc;
+    uint32_t n = *cnt;
+    for (; u < u1; u++) {
+        double f2 = dmin(cr[u], del) - dmax(cl[u], gam);
+        double f1 = dmin(ct[u], hi) - dmax(cb[u], lo);
+        int ok = (sy[u] <= ytop) & (f2 > 0) & (f1 > 0);
+        int cut = (ct[u] > lo) & (cb[u] < lo);
+        a += dmax(f2, 0.0) * ((double)ok * f1 + cutk * (double)cut * (lo - cb[u]));
+        n += (uint32_t)ok;
+    }
+    *acc = a;
+    *cnt = n;
+}
+
+/* Particle j (slot tj of the cell list, height yj, strip [gam, del]): the
+ * area of the squares of S(P_j) in its top band K >= 1, plus (K >= 2) the
+ * area below the line z = lo_K of the squares that this line cuts (the
+ * part of the lower bands that the sweep leaves out).  *count is the number
+ * of squares of S(P_j) overlapping the top band with positive area: f2 > 0
+ * and f1 > 0 are the same expressions as in add_square, so it (the
+ * free-fall decision) is exact.  Square edges come from s->cl..ct in
+ * cell-list order; j itself is skipped by splitting its row at tj. */
+static inline double top_band(const bf_support *s, const bf_cells *c,
+                              uint32_t tj, double yj, double gam, double del,
+                              int K, uint32_t *count)
+{
+    const bf_support_params *p = &s->p;
+    const double hd = s->hd;
+    topq q = {del, gam, band_hi(p, K), band_lo(p, K),
+              p->tie ? yj : nextafter(yj, -INFINITY), K >= 2 ? 1.0 : 0.0};
+    int c0 = bf_cells_col(c, gam - hd), c1 = bf_cells_col(c, del + hd);
+    int r0 = bf_cells_row(c, q.lo - hd), r1 = bf_cells_row(c, yj);
+    double acc = 0.0;
+    uint32_t cnt = 0;
+    for (int col = c0; col <= c1; col++) {
+        uint32_t u0, u1;
+        bf_cells_run(c, col, r0, r1, &u0, &u1);
+        if (tj >= u0 && tj < u1) {
+            top_range(s, c->sy, &q, u0, tj, &acc, &cnt);
+            top_range(s, c->sy, &q, tj + 1, u1, &acc, &cnt);
+        } else {
+            top_range(s, c->sy, &q, u0, u1, &acc, &cnt);
+        }
+    }
+    *count = cnt;
+    return acc;
+}
+
+static void eval_fast(bf_support *s, const double *x, const double *y,
+                      size_t n, const bf_cells *c, double *g, uint8_t *kind)
+{
+    const bf_support_params *p = &s->p;
+    const int nt = s->threads;
+    (void)nt;
+    if (n == 0)
+        return;
+    sort_by_x(s, x, n);
+    int kmax = 0;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(nt) if (n >= PAR_MIN) \
+    reduction(max : kmax)
+#endif
+    for (size_t k = 0; k < n; k++) {
+        uint32_t i = s->ord[k];
+        double xi = x[i], yi = y[i];
+        s->ys[k] = yi;
+        s->ls[k] = dmax(xi - s->hd, p->box.ax);
+        s->rs[k] = dmin(xi + s->hd, p->box.bx);
+        s->bs[k] = dmax(yi - s->hd, p->box.ay);
+        s->ts[k] = dmin(yi + s->hd, p->box.by);
+        s->gs[k] = dmax(xi - s->hdx, p->box.ax);
+        s->ds[k] = dmin(xi + s->hdx, p->box.bx);
+        int K = k_of(p, yi);
+        s->ks[k] = K;
+        s->mb[k] = k_of(p, s->bs[k]) + 1;
+        s->mt[k] = full_level(p, s->ts[k]);
+        s->lower[k] = 0.0;
+        s->lowe[k] = INT32_MAX;
+        if (K > kmax)
+            kmax = K;
+    }
+    int mq = kmax - 1; /* highest lower band */
+    if (mq >= 1) {
+        /* the chunks are independent (each has its own tree), so they run
+         * in parallel with results independent of the thread count */
+        const double w = p->box.bx - p->box.ax, chunk = 8.0 * p->dx;
+        long nch = (long)ceil(w / chunk);
+        if (nch < 1)
+            nch = 1;
+        const size_t fsz = 2 * ((size_t)s->kmax + 3);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) \
+    if (n >= PAR_MIN)
+#endif
+        for (long ch = 0; ch < nch; ch++) {
+            int tid = 0;
+#ifdef _OPENMP
+            tid = omp_get_thread_num();
+#endif
+            sweep_chunk(s, s->fen + (size_t)tid * fsz, n, mq,
+                        p->box.ax + (double)ch * chunk,
+                        p->box.ax + (double)(ch + 1) * chunk, ch == nch - 1);
+        }
+        empty_bands(s, n, mq);
+    }
+    /* the lower-band results and the square edges in the order of the cell
+     * list */
+    double *lower = s->fgam;
+    int32_t *lowe = s->ks;
+    slot_edges(s, c, n, 0);
+#ifdef _OPENMP
+#pragma omp parallel num_threads(nt) if (n >= PAR_MIN)
+#endif
+    {
+#ifdef _OPENMP
+#pragma omp for schedule(static)
+#endif
+        for (size_t k = 0; k < n; k++) {
+            uint32_t t = c->slot[s->ord[k]];
+            lower[t] = s->lower[k];
+            lowe[t] = s->lowe[k];
+        }
+        /* the top band, in the order of the cell list (neighbouring queries
+         * read neighbouring cells) */
+#ifdef _OPENMP
+#pragma omp for schedule(dynamic, 256)
+#endif
+        for (size_t t = 0; t < n; t++) {
+            uint32_t j = c->idx[t];
+            const double xj = c->sx[t], yj = c->sy[t];
+            const int K = k_of(p, yj);
+            uint8_t kd = BF_SUP_REST;
+            double gj;
+            if (resting(s, yj, K)) {
+                gj = 0.0;
+            } else if (K >= 2 && lowe[t] <= K - 1) {
+                gj = -p->g0;
+                kd = BF_SUP_FREE;
+            } else {
+                /* the top band (K >= 1) or the K = 0 rectangle */
+                double gam = dmax(xj - s->hdx, p->box.ax);
+                double del = dmin(xj + s->hdx, p->box.bx);
+                double area = 0.0;
+                uint32_t cnt = 0;
+                if (K == 0)
+                    column_from_cells(s, c, j, yj, gam, del, 0, 0, 0, &area,
+                                      &cnt);
+                else
+                    area = top_band(s, c, (uint32_t)t, yj, gam, del, K, &cnt);
+                if (cnt == 0) {
+                    gj = -p->g0;
+                    kd = BF_SUP_FREE;
+                } else {
+                    double tot = (K >= 2 ? lower[t] : 0.0) + area;
+                    double den = K == 0 ? (del - gam) * (yj - p->box.ay)
+                                        : (del - gam) * ((double)K * p->dx);
+                    gj = -p->g0 * (1.0 - tot / (den + p->eps));
+                    kd = gj > 0 ? BF_SUP_ANTI : BF_SUP_PARTIAL;
+                }
+            }
+            g[j] = gj;
+            if (kind)
+                kind[j] = kd;
+        }
+    }
+}
+
+void bf_support_eval_with(bf_support *s, bf_support_method m, const double *x,
+                          const double *y, size_t n, const bf_cells *cells,
+                          double *g, uint8_t *kind)
+{
+    if (m == BF_SUPPORT_AUTO)
+        m = s->kmax <= 64 ? BF_SUPPORT_CELL : BF_SUPPORT_FAST;
+    if (m == BF_SUPPORT_FAST && s->p.d > 2 * s->p.dx)
+        m = BF_SUPPORT_CELL;
+    switch (m) {
+    case BF_SUPPORT_FAST:
+        eval_fast(s, x, y, n, cells, g, kind);
+        break;
+    case BF_SUPPORT_CELL:
+        eval_cell(s, x, y, n, cells, g, kind);
+        break;
+    default:
+        eval_naive(s, x, y, n, g, kind);
+        break;
+    }
+}
+
+void bf_support_eval(bf_support *s, const double *x, const double *y,
+                     size_t n, const bf_cells *cells, double *g, uint8_t *kind)
+{
+    bf_support_eval_with(s, s->p.method, x, y, n, cells, g, kind);
+}
