@@ -15,18 +15,6 @@
 #include "ballfilm/registry.h"
 #include "testutil.h"
 
-static bf_ballsys *make_sys(const char *text)
-{
-    bf_scene *sc = tu_scene(text);
-    bf_ballsys *sys;
-    bf_effect_env env = {0};
-    bf_err err = {0};
-    ck_assert_msg(bf_ballsys_create(&sys, sc, &env, &err) == BF_OK, "%s",
-                  err.msg);
-    bf_scene_free(sc); /* the system copies what it needs */
-    return sys;
-}
-
 /* Scenes covering every path of ballsys.c: the two fixed effect lists of
  * the long runs (one ball with gravity and floor; two balls with gravity,
  * floor and contact), any other list (three balls; a spring), for the
@@ -93,7 +81,7 @@ START_TEST(advance_matches_steps)
     for (size_t si = 0; si < sizeof scenes / sizeof *scenes; si++)
         for (size_t mi = 0; mi < sizeof methods / sizeof *methods; mi++) {
             const char *text = scene_text(&scenes[si], methods[mi], dt);
-            bf_ballsys *ref = make_sys(text), *run = make_sys(text);
+            bf_ballsys *ref = tu_ballsys(text), *run = tu_ballsys(text);
             char what[64];
             snprintf(what, sizeof what, "scene %zu, %s", si, methods[mi]);
             bf_err err = {0};
@@ -145,7 +133,7 @@ START_TEST(advance_with_callers_force)
 {
     for (size_t mi = 0; mi < 2; mi++) {
         const char *text = scene_text(&scenes[1], methods[mi], 1e-2);
-        bf_ballsys *ref = make_sys(text), *run = make_sys(text);
+        bf_ballsys *ref = tu_ballsys(text), *run = tu_ballsys(text);
         ref->ode.accel = run->ode.accel = harmonic;
         bf_err err = {0};
         for (long j = 0; j < 300; j++)
@@ -171,7 +159,7 @@ static void blowup(const scene_case *body, const char *method, double dt,
                    long expect_step)
 {
     const char *text = scene_text(body, method, dt);
-    bf_ballsys *ref = make_sys(text), *run = make_sys(text);
+    bf_ballsys *ref = tu_ballsys(text), *run = tu_ballsys(text);
     bf_err eref = {0}, erun = {0};
     long fail = 0;
     for (long j = 0; j < 100000 && !fail; j++)

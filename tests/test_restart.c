@@ -44,6 +44,22 @@ START_TEST(stop_and_restart_bit_identical)
 }
 END_TEST
 
+/* argv of `run SCENE -o OUT COMMON...` into argv (room for 8 more
+ * arguments); returns the number of arguments */
+static size_t run_argv(const char **argv, const char *scene, const char *out,
+                       const char *const *common, size_t ncommon)
+{
+    size_t n = 0;
+    argv[n++] = "run";
+    argv[n++] = scene;
+    argv[n++] = "-o";
+    argv[n++] = out;
+    for (size_t k = 0; k < ncommon; k++)
+        argv[n++] = common[k];
+    argv[n] = NULL;
+    return n;
+}
+
 /* The same for runs of steps (core loop -> model advance -> ball system,
  * test_advance.c): no per-step analysis and energy checks every 11 steps,
  * so the loop hands the model runs up to the next row, check, checkpoint
@@ -61,14 +77,8 @@ static void restart_runs(const char *method)
                             "scene.energy_every=11", "--set",
                             "return_map.enabled=no", "-q"};
     const char *argv[32];
-    size_t n = 0;
-    argv[n++] = "run";
-    argv[n++] = scene;
-    argv[n++] = "-o";
-    argv[n++] = full;
-    for (size_t k = 0; k < sizeof common / sizeof common[0]; k++)
-        argv[n++] = common[k];
-    argv[n] = NULL;
+    size_t n = run_argv(argv, scene, full, common,
+                        sizeof common / sizeof common[0]);
     ck_assert_int_eq(tu_runv(NULL, NULL, argv), 0);
     argv[3] = part;
     argv[n++] = "--set";
@@ -158,14 +168,8 @@ START_TEST(return_map_and_lyapunov_restart_identical)
                             "return_map.enabled=yes", "--set",
                             "lyapunov.enabled=yes", "-q"};
     const char *argv[32];
-    size_t n = 0;
-    argv[n++] = "run";
-    argv[n++] = scene;
-    argv[n++] = "-o";
-    argv[n++] = full;
-    for (size_t k = 0; k < sizeof common / sizeof common[0]; k++)
-        argv[n++] = common[k];
-    argv[n] = NULL;
+    size_t n = run_argv(argv, scene, full, common,
+                        sizeof common / sizeof common[0]);
     ck_assert_int_eq(tu_runv(NULL, NULL, argv), 0);
     /* first stop two steps after the 100th lowest point, i.e. inside that
      * floor contact with its candidate pending (checked in the checkpoint),

@@ -315,31 +315,23 @@ static bf_status step_verlet_any(bf_ballsys *s, double t, double dt,
     return not_finite(s, err);
 }
 
-BALLSYS_HOT
-static bf_status advance_mv2m_any(bf_ballsys *s, long n0, long k, double dt,
-                                  long *done, bf_err *err)
-{
-    if (s->ode.accel != ballsys_accel || k == 1)
-        return advance_steps(s, n0, k, dt, done, err);
-    long j;
-    bf_status st = bf_mv2m_run(s->it, &s->ode, ballsys_accel_inl, s,
-                               stop_not_finite, s->b.n, s->it->work, n0, k, dt,
-                               s->b.x, s->b.v, &j, err);
-    return run_end(s, st, j, done, err);
-}
+/* runs of any effects, any n: in place, finiteness checked after every
+ * step */
+#define BALLSYS_ADVANCE_ANY(NAME, RUN)                                         \
+    BALLSYS_HOT static bf_status NAME(bf_ballsys *s, long n0, long k,         \
+                                      double dt, long *done, bf_err *err)     \
+    {                                                                         \
+        if (s->ode.accel != ballsys_accel || k == 1)                          \
+            return advance_steps(s, n0, k, dt, done, err);                    \
+        long j;                                                               \
+        bf_status st = RUN(s->it, &s->ode, ballsys_accel_inl, s,              \
+                           stop_not_finite, s->b.n, s->it->work, n0, k, dt,   \
+                           s->b.x, s->b.v, &j, err);                          \
+        return run_end(s, st, j, done, err);                                  \
+    }
 
-BALLSYS_HOT
-static bf_status advance_verlet_any(bf_ballsys *s, long n0, long k, double dt,
-                                    long *done, bf_err *err)
-{
-    if (s->ode.accel != ballsys_accel || k == 1)
-        return advance_steps(s, n0, k, dt, done, err);
-    long j;
-    bf_status st = bf_verlet_run(s->it, &s->ode, ballsys_accel_inl, s,
-                                 stop_not_finite, s->b.n, s->it->work, n0, k,
-                                 dt, s->b.x, s->b.v, &j, err);
-    return run_end(s, st, j, done, err);
-}
+BALLSYS_ADVANCE_ANY(advance_mv2m_any, bf_mv2m_run)
+BALLSYS_ADVANCE_ANY(advance_verlet_any, bf_verlet_run)
 
 /* Is the effect list exactly these kinds, in this order? */
 static int effects_are(const bf_ballsys *s, const bf_effect_kind *k, size_t nk)
