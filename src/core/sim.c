@@ -346,8 +346,6 @@ static long run_length(const bf_sim *s)
 {
     const long n = s->n;
     const int energy = s->has_energy && s->energy_every;
-    if (energy && s->energy_every == 1)
-        return 1;
     long k = min_long(s->nsteps - n, RUN_MAX - (n & (RUN_MAX - 1)));
     k = min_long(k, s->out_every - n % s->out_every);
     if (energy)
@@ -367,6 +365,10 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
     if (s->n == 0 && (st = write_row(s, err)))
         return st;
     const long every = s->out_every, eevery = s->energy_every;
+    /* runs of more than one step are possible at all (energy checks or
+     * rows every step leave none) */
+    const int runs = s->mt->advance && every > 1 &&
+                     !(s->has_energy && eevery == 1);
     s->steps_this_run = 0;
     while (s->n < s->nsteps) {
         if ((s->opts.stop_flag && *s->opts.stop_flag) ||
@@ -375,7 +377,7 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
             break;
         }
         /* a run of steps up to the next event, or one step */
-        long k = s->mt->advance ? run_length(s) : 1, done = 1;
+        long k = runs ? run_length(s) : 1, done = 1;
         if (k > 1)
             st = s->mt->advance(s->model, s->n, k, s->dt, &done, err);
         else if ((st = s->mt->step(s->model, s->n, (double)s->n * s->dt,
