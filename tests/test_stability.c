@@ -30,18 +30,6 @@
 #include "ballfilm/registry.h"
 #include "testutil.h"
 
-static bf_ballsys *make_sys(const char *text)
-{
-    bf_scene *sc = tu_scene(text); /* kept alive by the caller's free */
-    bf_ballsys *sys;
-    bf_effect_env env = {0};
-    bf_err err = {0};
-    ck_assert_msg(bf_ballsys_create(&sys, sc, &env, &err) == BF_OK, "%s",
-                  err.msg);
-    bf_scene_free(sc); /* the system copies what it needs */
-    return sys;
-}
-
 static double energy(const bf_ballsys *s)
 {
     double k, p;
@@ -59,7 +47,7 @@ static void oscillator(const char *method, double dt, long n, double *ratio,
              "[scene]\nintegrator = %s\neffects = spring\ndt = %g\n"
              "t_end = 1\n[spring]\nstiffness = 1\n[ball.1]\nposition = 1\n",
              method, dt);
-    bf_ballsys *s = make_sys(text);
+    bf_ballsys *s = tu_ballsys(text);
     bf_err err = {0};
     const double e0 = energy(s);
     *q1max = *q4max = 0;
@@ -116,7 +104,7 @@ static void flight_energy(const char *method, const char *keys, double e8[8])
              "[scene]\nintegrator = %s\neffects = gravity floor\ndt = 1e-4\n"
              "t_end = 1\n%s\n[ball.1]\nposition = 0.2\n",
              method, keys);
-    bf_ballsys *s = make_sys(text);
+    bf_ballsys *s = tu_ballsys(text);
     bf_err err = {0};
     const double e0 = energy(s), dt = 1e-4;
     const long n = 50000;
@@ -215,7 +203,7 @@ static int overflow(void *ctx, double t, const double *x, const double *v,
 /* A non-finite state stops the step with BF_EUNSTABLE naming the ball. */
 START_TEST(non_finite_state_named)
 {
-    bf_ballsys *s = make_sys("[scene]\nintegrator = mv2m\ndt = 1e-3\n"
+    bf_ballsys *s = tu_ballsys("[scene]\nintegrator = mv2m\ndt = 1e-3\n"
                              "t_end = 1\n[ball.1]\nposition = 1\n"
                              "[ball.2]\nposition = 2\n");
     s->ode.accel = overflow;

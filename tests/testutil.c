@@ -333,6 +333,18 @@ int tu_accel_harmonic(void *ctx, double t, const double *x, const double *v,
     return 0;
 }
 
+bf_ballsys *tu_ballsys(const char *text)
+{
+    bf_scene *sc = tu_scene(text);
+    bf_ballsys *sys;
+    bf_effect_env env = {0};
+    bf_err err = {0};
+    ck_assert_msg(bf_ballsys_create(&sys, sc, &env, &err) == BF_OK, "%s",
+                  err.msg);
+    bf_scene_free(sc); /* the system copies what it needs */
+    return sys;
+}
+
 bf_integrator *tu_integrator(const char *name, const char *keys, size_t n)
 {
     char text[1024];

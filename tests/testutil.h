@@ -10,6 +10,7 @@
 #include <check.h>
 #include <stddef.h>
 
+#include "ballfilm/ballsys.h"
 #include "ballfilm/integrator.h"
 #include "ballfilm/scene.h"
 #include "ballfilm/sim.h"
@@ -52,6 +53,10 @@ double tu_absmax(const double *v, size_t n);
 /* An integrator of n unknowns with [integrator] keys given as
  * "key=value;key=value" (NULL: defaults); fails the test on error. */
 bf_integrator *tu_integrator(const char *name, const char *keys, size_t n);
+
+/* A ball system (balls, effects, integrator) from scene text; fails the
+ * test on error.  Free it with bf_ballsys_free. */
+bf_ballsys *tu_ballsys(const char *text);
 
 /* x'' = -x for one unknown (a bf_accel_fn; ctx, t and v unused). */
 int tu_accel_harmonic(void *ctx, double t, const double *x, const double *v,

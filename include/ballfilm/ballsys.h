@@ -21,6 +21,9 @@ typedef struct bf_ballsys {
     /* one step: the integrator's generic step, or for Verlet and MV2M the
      * bit-identical specialised one (ballsys.c) */
     bf_status (*step)(struct bf_ballsys *s, double t, double dt, bf_err *err);
+    /* k steps (bf_ballsys_advance), chosen with step */
+    bf_status (*advance)(struct bf_ballsys *s, long n0, long k, double dt,
+                         long *done, bf_err *err);
 } bf_ballsys;
 
 extern const bf_section_spec bf_ballsys_ball_spec; /* [ball.N] */
@@ -39,6 +42,17 @@ static inline bf_status bf_ballsys_step(bf_ballsys *s, double t, double dt,
                                         bf_err *err)
 {
     return s->step(s, t, dt, err);
+}
+
+/* k >= 0 steps, step j from t = (n0 + j) dt to (n0 + j + 1) dt: the same
+ * bits, counters and force cache as k calls of bf_ballsys_step with those
+ * times, in one call (for Verlet and MV2M the state stays in registers
+ * between steps).  *done receives the number of steps that succeeded; on
+ * failure the state is that of the failed step, as with bf_ballsys_step. */
+static inline bf_status bf_ballsys_advance(bf_ballsys *s, long n0, long k,
+                                           double dt, long *done, bf_err *err)
+{
+    return s->advance(s, n0, k, dt, done, err);
 }
 
 /* Checkpoint: positions, velocities and integrator state under names

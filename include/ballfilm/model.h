@@ -60,6 +60,16 @@ typedef struct bf_model_type {
      * refuses checkpoint_every and restarts with a clear message. */
     bf_status (*checkpoint_save)(const void *self, bf_ckpt *ck, bf_err *err);
     bf_status (*checkpoint_load)(void *self, const bf_ckpt *ck, bf_err *err);
+    /* Optional: k >= 1 steps in one call, step j from t = (n + j) dt to
+     * (n + j + 1) dt, with exactly the results of k calls of step (same
+     * bits, counters, everything a checkpoint saves); *done receives the
+     * number of steps that succeeded (on failure the state is that of the
+     * failed step, as with step).  The loop hands such a model the runs of
+     * steps between the events it owns (output rows, energy checks,
+     * checkpoints, stop conditions), so that a step of a few nanoseconds
+     * does not pay for a call and the loop's bookkeeping. */
+    bf_status (*advance)(void *self, long n, long k, double dt, long *done,
+                         bf_err *err);
 } bf_model_type;
 
 const bf_model_type *bf_model_find(const char *name);

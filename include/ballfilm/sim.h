@@ -22,7 +22,8 @@ typedef struct bf_sim bf_sim;
 
 typedef struct bf_sim_opts {
     int progress; /* 1: print an updating progress line on stderr */
-    /* Set asynchronously (signal handler) to stop after the current step. */
+    /* Set asynchronously (signal handler) to stop after the current step
+     * (or run of steps, at most 1024: model.h, advance). */
     const volatile sig_atomic_t *stop_flag;
     /* Stop as if interrupted after this many steps of this invocation
      * (0: never); used to run in chunks and by the restart tests. */

@@ -6,7 +6,8 @@
  * indirect call per force evaluation, any model).  bf_ballsys (ballsys.c)
  * instantiates them with its own force function, a compile-time constant,
  * so the compiler inlines the effect kernels into the step: no indirect
- * call per evaluation, no call per step, small loops it can see through.
+ * call per evaluation, small loops it can see through, and with the run
+ * kernels no call per step either.
  * Both instantiations execute the same floating-point operations in the
  * same order, so they give bit-identical results (bench/bench_balls.c
  * checks it), and the counters and the Verlet force cache behave the same.
@@ -56,12 +57,72 @@ BF_ALWAYS_INLINE void bf_vec_copy(double *dst, const double *src, size_t n)
 
 /* The kernels take the size n and the scratch `work` explicitly: the
  * generic callers pass ode->n and it->work, a specialised caller a
- * compile-time n and a local array.  x, v and work are distinct arrays
+ * compile-time n and local arrays.  x, v and work are distinct arrays
  * (restrict), which lets the compiler keep values in registers across the
- * stores of a step. */
+ * stores of a step.
+ *
+ * Each method has a core (the formulas of one step, no bookkeeping), a
+ * one-step kernel (core + counters + force cache: what verlet.c and mv2m.c
+ * run) and a run kernel: k steps in one call, with step j going from
+ * t = (n0 + j) dt to (n0 + j + 1) dt (t = n dt as in the core loop), the
+ * same bits, counters and cache as k calls of the one-step kernel.  A run
+ * keeps the state, the carried force and the counters in locals (registers
+ * when n is a compile-time constant and x, v are local arrays) and touches
+ * the integrator's memory only at its ends.  After every step it asks
+ * `stop(x, v, n)` whether to end the run there (the general runs of the
+ * ball system stop at a non-finite state; its fixed runs check once at the
+ * end, see ballsys.c). */
+typedef int (*bf_stop_fn)(const double *x, const double *v, size_t n);
 
-/* Velocity Verlet with the first-same-as-last force cache (integrator.h);
- * work holds 3n doubles. */
+/* ---- velocity Verlet ---- */
+
+/* a0 = a(x) from the first-same-as-last cache (integrator.h); 1 if found */
+BF_ALWAYS_INLINE int bf_verlet_cache_get(const bf_integrator *it,
+                                         const bf_ode *ode, size_t n,
+                                         const double *x, double *a0)
+{
+    if (it->cache_valid && it->cache_epoch == ode->epoch &&
+        bf_vec_same(it->cache_x, x, n)) {
+        bf_vec_copy(a0, it->cache_a, n);
+        return 1;
+    }
+    return 0;
+}
+
+BF_ALWAYS_INLINE void bf_verlet_cache_put(bf_integrator *it, const bf_ode *ode,
+                                          size_t n, const double *x,
+                                          const double *a)
+{
+    bf_vec_copy(it->cache_x, x, n);
+    bf_vec_copy(it->cache_a, a, n);
+    it->cache_epoch = ode->epoch;
+    it->cache_valid = 1;
+}
+
+/* One step (eqs 2.9-2.11) with a0 = a(x^n) given: x, v advanced in place,
+ * a1 = a(x^{n+1}).  Non-zero if the force fails (x, v unchanged then).
+ * xn: n doubles of scratch. */
+BF_ALWAYS_INLINE int bf_verlet_core(bf_accel_fn accel, void *ctx, size_t n,
+                                    double t, double dt, double *restrict x,
+                                    double *restrict v,
+                                    const double *restrict a0,
+                                    double *restrict a1, double *restrict xn)
+{
+    const double h2 = 0.5 * dt * dt;
+    BF_KUNROLL
+    for (size_t i = 0; i < n; i++)
+        xn[i] = x[i] + (dt * v[i] + h2 * a0[i]);
+    if (accel(ctx, t + dt, xn, v, a1))
+        return 1;
+    BF_KUNROLL
+    for (size_t i = 0; i < n; i++) {
+        x[i] = xn[i];
+        v[i] += 0.5 * dt * (a1[i] + a0[i]);
+    }
+    return 0;
+}
+
+/* One step with the force cache; work holds 3n doubles. */
 BF_ALWAYS_INLINE bf_status bf_verlet_kernel(bf_integrator *it,
                                             const bf_ode *ode,
                                             bf_accel_fn accel, void *ctx,
@@ -71,49 +132,74 @@ BF_ALWAYS_INLINE bf_status bf_verlet_kernel(bf_integrator *it,
                                             double *restrict v, bf_err *err)
 {
     double *a0 = work, *a1 = work + n, *xn = work + 2 * n;
-    if (it->cache_valid && it->cache_epoch == ode->epoch &&
-        bf_vec_same(it->cache_x, x, n)) {
-        bf_vec_copy(a0, it->cache_a, n);
-    } else {
+    if (!bf_verlet_cache_get(it, ode, n, x, a0)) {
         it->count.evals++;
         if (accel(ctx, t, x, v, a0))
             return bf_ode_eval_failed(err);
     }
-    const double h2 = 0.5 * dt * dt;
-    BF_KUNROLL
-    for (size_t i = 0; i < n; i++)
-        xn[i] = x[i] + (dt * v[i] + h2 * a0[i]);
     it->count.evals++;
-    if (accel(ctx, t + dt, xn, v, a1))
+    if (bf_verlet_core(accel, ctx, n, t, dt, x, v, a0, a1, xn))
         return bf_ode_eval_failed(err);
-    BF_KUNROLL
-    for (size_t i = 0; i < n; i++) {
-        x[i] = xn[i];
-        v[i] += 0.5 * dt * (a1[i] + a0[i]);
-    }
-    bf_vec_copy(it->cache_x, x, n);
-    bf_vec_copy(it->cache_a, a1, n);
-    it->cache_epoch = ode->epoch;
-    it->cache_valid = 1;
+    bf_verlet_cache_put(it, ode, n, x, a1);
     it->count.steps++;
     return BF_OK;
 }
 
-/* MV2M: three evaluations, increments formed first (see mv2m.c); work
- * holds 5n doubles. */
-BF_ALWAYS_INLINE bf_status bf_mv2m_kernel(bf_integrator *it, const bf_ode *ode,
-                                          bf_accel_fn accel, void *ctx,
-                                          size_t n, double *restrict work,
-                                          double t, double dt,
-                                          double *restrict x,
-                                          double *restrict v, bf_err *err)
+/* k >= 0 steps from t = n0 dt (see above); work holds 3n doubles.  *done:
+ * steps taken, the one after which `stop` ended the run included.  If the
+ * force fails in step j, *done = j and x, v are those after step j - 1. */
+BF_ALWAYS_INLINE bf_status bf_verlet_run(bf_integrator *it, const bf_ode *ode,
+                                         bf_accel_fn accel, void *ctx,
+                                         bf_stop_fn stop, size_t n,
+                                         double *restrict work, long n0,
+                                         long k, double dt, double *restrict x,
+                                         double *restrict v, long *done,
+                                         bf_err *err)
 {
-    (void)ode;
+    double *a0 = work, *a1 = work + n, *xn = work + 2 * n;
+    unsigned long long evals = 0;
+    long j = 0;
+    bf_status st = BF_OK;
+    if (k > 0 && !bf_verlet_cache_get(it, ode, n, x, a0)) {
+        evals++;
+        if (accel(ctx, (double)n0 * dt, x, v, a0))
+            st = bf_ode_eval_failed(err);
+    }
+    while (!st && j < k) {
+        evals++;
+        if (bf_verlet_core(accel, ctx, n, (double)(n0 + j) * dt, dt, x, v, a0,
+                           a1, xn)) {
+            st = bf_ode_eval_failed(err);
+            break;
+        }
+        j++;
+        bf_vec_copy(a0, a1, n); /* the next step's a(x^n) */
+        if (stop(x, v, n))
+            break;
+    }
+    it->count.evals += evals;
+    it->count.steps += (unsigned long long)j;
+    if (j > 0)
+        bf_verlet_cache_put(it, ode, n, x, a0);
+    *done = j;
+    return st;
+}
+
+/* ---- MV2M ---- */
+
+/* One step (eqs 2.19-2.21, 2.24; increments formed first, see mv2m.c):
+ * three evaluations, each counted in *evals before it is made.  Non-zero
+ * if the force fails (x, v unchanged then).  work holds 5n doubles. */
+BF_ALWAYS_INLINE int bf_mv2m_core(bf_accel_fn accel, void *ctx, size_t n,
+                                  double t, double dt, double *restrict x,
+                                  double *restrict v, double *restrict work,
+                                  unsigned long long *evals)
+{
     double *a0 = work, *aV = work + n, *aT = work + 2 * n, *xV = work + 3 * n,
            *xT = work + 4 * n;
-    it->count.evals++;
+    ++*evals;
     if (accel(ctx, t, x, v, a0))
-        return bf_ode_eval_failed(err);
+        return 1;
     const double dt2 = dt * dt, hdt = 0.5 * dt, hdt2 = 0.5 * dt2,
                  edt2 = 0.125 * dt2, dt6 = dt / 6.0, dt26 = dt2 / 6.0;
     BF_KUNROLL
@@ -122,12 +208,12 @@ BF_ALWAYS_INLINE bf_status bf_mv2m_kernel(bf_integrator *it, const bf_ode *ode,
         xT[i] = x[i] + (hdt * v[i] + edt2 * a0[i]);
     }
     /* both predictors: the velocity argument is unused (a = a(x)) */
-    it->count.evals++;
+    ++*evals;
     if (accel(ctx, t + dt, xV, v, aV))
-        return bf_ode_eval_failed(err);
-    it->count.evals++;
+        return 1;
+    ++*evals;
     if (accel(ctx, t + hdt, xT, v, aT))
-        return bf_ode_eval_failed(err);
+        return 1;
     BF_KUNROLL
     for (size_t i = 0; i < n; i++) {
         /* (vV + 2 vT)/3 - v^n = dt/6 (a0 + aV + 4 aT)
@@ -137,8 +223,55 @@ BF_ALWAYS_INLINE bf_status bf_mv2m_kernel(bf_integrator *it, const bf_ode *ode,
         x[i] += dx;
         v[i] += dv;
     }
+    return 0;
+}
+
+/* One step; work holds 5n doubles. */
+BF_ALWAYS_INLINE bf_status bf_mv2m_kernel(bf_integrator *it, const bf_ode *ode,
+                                          bf_accel_fn accel, void *ctx,
+                                          size_t n, double *restrict work,
+                                          double t, double dt,
+                                          double *restrict x,
+                                          double *restrict v, bf_err *err)
+{
+    (void)ode;
+    unsigned long long evals = 0;
+    int fail = bf_mv2m_core(accel, ctx, n, t, dt, x, v, work, &evals);
+    it->count.evals += evals;
+    if (fail)
+        return bf_ode_eval_failed(err);
     it->count.steps++;
     return BF_OK;
+}
+
+/* k >= 0 steps from t = n0 dt, as bf_verlet_run (no cache: MV2M evaluates
+ * no force at x^{n+1}); work holds 5n doubles. */
+BF_ALWAYS_INLINE bf_status bf_mv2m_run(bf_integrator *it, const bf_ode *ode,
+                                       bf_accel_fn accel, void *ctx,
+                                       bf_stop_fn stop, size_t n,
+                                       double *restrict work, long n0, long k,
+                                       double dt, double *restrict x,
+                                       double *restrict v, long *done,
+                                       bf_err *err)
+{
+    (void)ode;
+    unsigned long long evals = 0;
+    long j = 0;
+    bf_status st = BF_OK;
+    while (j < k) {
+        if (bf_mv2m_core(accel, ctx, n, (double)(n0 + j) * dt, dt, x, v, work,
+                         &evals)) {
+            st = bf_ode_eval_failed(err);
+            break;
+        }
+        j++;
+        if (stop(x, v, n))
+            break;
+    }
+    it->count.evals += evals;
+    it->count.steps += (unsigned long long)j;
+    *done = j;
+    return st;
 }
 
 #endif

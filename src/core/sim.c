@@ -2,6 +2,11 @@
  *
  * Time is t = n dt with n the step counter, never a running sum, so the
  * time of step 10^7 carries no accumulated round-off.
+ *
+ * A model with an `advance` hook (model.h) gets the steps between two
+ * events of the loop in one call; the events (rows, energy checks,
+ * checkpoints, stops) happen at the same steps as with one call per step,
+ * and the results are the same bits.
  */
 #include "ballfilm/clock.h"
 #include "ballfilm/sim.h"
@@ -327,6 +332,31 @@ static bf_status interrupt(bf_sim *s, bf_err *err)
                    s->n, t, s->out ? "model" : "run without output");
 }
 
+/* The loop checks the interruption flag and the progress line at least
+ * every RUN_MAX steps of a run (and after every step of a model without
+ * advance). */
+enum { RUN_MAX = 1024 };
+
+static long min_long(long a, long b) { return a < b ? a : b; }
+
+/* Steps from s->n to the next event the loop must see: an energy check,
+ * an output row, a checkpoint, the end, the --stop-after limit, a multiple
+ * of RUN_MAX (progress line, interruption flag).  At least 1. */
+static long run_length(const bf_sim *s)
+{
+    const long n = s->n;
+    const int energy = s->has_energy && s->energy_every;
+    long k = min_long(s->nsteps - n, RUN_MAX - (n & (RUN_MAX - 1)));
+    k = min_long(k, s->out_every - n % s->out_every);
+    if (energy)
+        k = min_long(k, s->energy_every - n % s->energy_every);
+    if (s->ckpt_every && s->out)
+        k = min_long(k, s->ckpt_every - n % s->ckpt_every);
+    if (s->opts.stop_after)
+        k = min_long(k, s->opts.stop_after - s->steps_this_run);
+    return k;
+}
+
 bf_status bf_sim_run(bf_sim *s, bf_err *err)
 {
     bf_status st = BF_OK;
@@ -335,6 +365,10 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
     if (s->n == 0 && (st = write_row(s, err)))
         return st;
     const long every = s->out_every, eevery = s->energy_every;
+    /* runs of more than one step are possible at all (energy checks or
+     * rows every step leave none) */
+    const int runs = s->mt->advance && every > 1 &&
+                     !(s->has_energy && eevery == 1);
     s->steps_this_run = 0;
     while (s->n < s->nsteps) {
         if ((s->opts.stop_flag && *s->opts.stop_flag) ||
@@ -342,15 +376,20 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
             st = interrupt(s, err);
             break;
         }
-        double t = (double)s->n * s->dt;
-        st = s->mt->step(s->model, s->n, t, s->dt, err);
+        /* a run of steps up to the next event, or one step */
+        long k = runs ? run_length(s) : 1, done = 1;
+        if (k > 1)
+            st = s->mt->advance(s->model, s->n, k, s->dt, &done, err);
+        else if ((st = s->mt->step(s->model, s->n, (double)s->n * s->dt,
+                                   s->dt, err)))
+            done = 0;
+        s->n += done;
+        s->steps_this_run += done;
         if (st) {
-            bf_err_prefix(err, "step %ld (t = %.9g s to %.9g s)", s->n + 1, t,
-                          (double)(s->n + 1) * s->dt);
+            bf_err_prefix(err, "step %ld (t = %.9g s to %.9g s)", s->n + 1,
+                          (double)s->n * s->dt, (double)(s->n + 1) * s->dt);
             break;
         }
-        s->n++;
-        s->steps_this_run++;
         if (s->has_energy && eevery && s->n % eevery == 0) {
             double rel = check_energy(s);
             if (s->energy_bound > 0 && !(rel <= s->energy_bound)) {

@@ -7,7 +7,8 @@
  * returnmap.h), the largest Lyapunov exponent ([lyapunov], lyapunov.h) and
  * the one-step comparison of two integrators at output rows ([compare],
  * compare.h).
- * With both off a step is exactly bf_ballsys_step.
+ * With both off a step is exactly bf_ballsys_step, and a run of steps
+ * between the core loop's events exactly bf_ballsys_advance.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -105,6 +106,26 @@ static bf_status balls_step(void *self, long n, double t, double dt, bf_err *err
     if (!st && m->ly)
         st = bf_lyap_after_step(m->ly, m->sys, n + 1, t, dt, err);
     return st;
+}
+
+/* Without per-step analyses the ball system takes the whole run (for
+ * Verlet and MV2M in one call that keeps the state in registers);
+ * otherwise one step at a time. */
+static bf_status balls_advance(void *self, long n, long k, double dt,
+                               long *done, bf_err *err)
+{
+    balls_model *m = self;
+    if (!m->rm && !m->ly)
+        return bf_ballsys_advance(m->sys, n, k, dt, done, err);
+    for (long j = 0; j < k; j++) {
+        bf_status st = balls_step(self, n + j, (double)(n + j) * dt, dt, err);
+        if (st) {
+            *done = j;
+            return st;
+        }
+    }
+    *done = k;
+    return BF_OK;
 }
 
 static void balls_energy(const void *self, double t, double *kin, double *pot)
@@ -227,4 +248,5 @@ const bf_model_type bf_model_balls = {
     .report = balls_report,
     .checkpoint_save = balls_save,
     .checkpoint_load = balls_load,
+    .advance = balls_advance,
 };

@@ -8,6 +8,12 @@
  * as the generic path (bench/bench_balls.c compares them), same counters.
  * Any other integrator takes the generic path, and so does every step
  * when a caller has replaced s->ode.accel by its own force function.
+ *
+ * Runs of steps (bf_ballsys_advance, used by the core loop between its
+ * events): the run kernels of step_kernels.h keep the state, Verlet's
+ * carried force and the counters in locals for the whole run, so a step
+ * costs what the hand-fused loop of bench_balls.c costs; same bits,
+ * counters and force cache as one call per step (tests/test_advance.c).
  */
 #include "ballfilm/ballsys.h"
 
@@ -117,16 +123,28 @@ BF_ALWAYS_INLINE int gfc_accel(void *ctx, double t, const double *x,
     return 0;
 }
 
-/* all of x and v finite?  |y| <= DBL_MAX is false for inf and NaN; the
- * comparisons are independent (no chain of dependent additions), so the
- * check costs almost nothing next to the step */
-BF_ALWAYS_INLINE int state_finite(const bf_ballsys *s, size_t n)
+/* all of x and v finite?  y * 0 is 0 for finite y and NaN for inf and
+ * NaN, so the sum is 0 exactly when every value is finite (no branch per
+ * value) */
+BF_ALWAYS_INLINE int vec_finite(const double *x, const double *v, size_t n)
 {
     double z = 0.0;
     BF_UNROLL
     for (size_t i = 0; i < n; i++)
-        z += s->b.x[i] * 0.0 + s->b.v[i] * 0.0;
+        z += x[i] * 0.0 + v[i] * 0.0;
     return z == 0.0;
+}
+
+BF_ALWAYS_INLINE int state_finite(const bf_ballsys *s, size_t n)
+{
+    return vec_finite(s->b.x, s->b.v, n);
+}
+
+/* the runs of step_kernels.h stop at the first non-finite state */
+BF_ALWAYS_INLINE int stop_not_finite(const double *x, const double *v,
+                                     size_t n)
+{
+    return !vec_finite(x, v, n);
 }
 
 static bf_status not_finite(const bf_ballsys *s, bf_err *err);
@@ -140,6 +158,35 @@ static bf_status step_generic(bf_ballsys *s, double t, double dt, bf_err *err)
     if (st || state_finite(s, s->b.n))
         return st;
     return not_finite(s, err);
+}
+
+/* k calls of s->step: what every advance falls back to */
+static bf_status advance_steps(bf_ballsys *s, long n0, long k, double dt,
+                               long *done, bf_err *err)
+{
+    for (long j = 0; j < k; j++) {
+        bf_status st = s->step(s, (double)(n0 + j) * dt, dt, err);
+        if (st) {
+            *done = j;
+            return st;
+        }
+    }
+    *done = k;
+    return BF_OK;
+}
+
+/* After a run kernel took j steps: a force failure, or the state after
+ * the j-th step is not finite (the run stopped there; that step failed),
+ * or all went well. */
+static bf_status run_end(bf_ballsys *s, bf_status st, long j, long *done,
+                         bf_err *err)
+{
+    if (!st && j > 0 && !state_finite(s, s->b.n)) {
+        *done = j - 1;
+        return not_finite(s, err);
+    }
+    *done = j;
+    return st;
 }
 
 #define BALLSYS_STEP_FIXED(NAME, KERNEL, NWORK, ACCEL, N)                      \
@@ -158,10 +205,88 @@ static bf_status step_generic(bf_ballsys *s, double t, double dt, bf_err *err)
         return not_finite(s, err);                                            \
     }
 
+/* Runs of the fixed steps check finiteness once, at the end of the run,
+ * not after every step (that check cost about 3 ns of a 12 ns Verlet step
+ * in bench_balls): once a position or velocity is not finite, every later
+ * position is not finite either, because both kernels form
+ * x^{n+1} = x^n + (dt v^n + ...) and IEEE arithmetic keeps inf and NaN in
+ * a sum (inf + finite = inf, inf - inf = NaN, NaN + y = NaN; dt > 0).  So
+ * a finite end state means that every state of the run was finite.  If
+ * the end state is not finite, the run is undone (the state was worked on
+ * in local copies; counters and force cache are restored) and taken again
+ * step by step, which stops at the failing step with the state, counters
+ * and message of bf_ballsys_step.  The state is copied into local arrays
+ * for the run: nothing the loop stores can then alias it, and it stays in
+ * registers. */
+BF_ALWAYS_INLINE int never_stop(const double *x, const double *v, size_t n)
+{
+    (void)x;
+    (void)v;
+    (void)n;
+    return 0;
+}
+
+/* what a run changes in the integrator, for undoing it (n <= 2) */
+typedef struct run_mark {
+    bf_counters count;
+    int cache_valid;
+    unsigned long cache_epoch;
+    double cache_x[2], cache_a[2];
+} run_mark;
+
+BF_ALWAYS_INLINE void run_mark_set(run_mark *m, const bf_integrator *it,
+                                   size_t n)
+{
+    m->count = it->count;
+    m->cache_valid = it->cache_valid;
+    m->cache_epoch = it->cache_epoch;
+    bf_vec_copy(m->cache_x, it->cache_x, n);
+    bf_vec_copy(m->cache_a, it->cache_a, n);
+}
+
+static void run_mark_undo(const run_mark *m, bf_integrator *it, size_t n)
+{
+    it->count = m->count;
+    it->cache_valid = m->cache_valid;
+    it->cache_epoch = m->cache_epoch;
+    bf_vec_copy(it->cache_x, m->cache_x, n);
+    bf_vec_copy(it->cache_a, m->cache_a, n);
+}
+
+#define BALLSYS_ADVANCE_FIXED(NAME, RUN, NWORK, ACCEL, N)                      \
+    BALLSYS_HOT static bf_status NAME(bf_ballsys *s, long n0, long k,         \
+                                      double dt, long *done, bf_err *err)     \
+    {                                                                         \
+        if (s->ode.accel != ballsys_accel || k == 1)                          \
+            return advance_steps(s, n0, k, dt, done, err);                    \
+        fixed_forces F;                                                       \
+        run_mark mark;                                                        \
+        double w[NWORK * N] = {0}, x[N], v[N];                                \
+        long j;                                                               \
+        fixed_setup(&F, s, N);                                                \
+        run_mark_set(&mark, s->it, N);                                        \
+        bf_vec_copy(x, s->b.x, N);                                            \
+        bf_vec_copy(v, s->b.v, N);                                            \
+        bf_status st = RUN(s->it, &s->ode, ACCEL, &F, never_stop, N, w, n0,   \
+                           k, dt, x, v, &j, err);                             \
+        if (!vec_finite(x, v, N)) {                                           \
+            run_mark_undo(&mark, s->it, N);                                   \
+            return advance_steps(s, n0, k, dt, done, err);                    \
+        }                                                                     \
+        bf_vec_copy(s->b.x, x, N);                                            \
+        bf_vec_copy(s->b.v, v, N);                                            \
+        *done = j;                                                            \
+        return st;                                                            \
+    }
+
 BALLSYS_STEP_FIXED(step_mv2m_gf1, bf_mv2m_kernel, 5, gf_accel, 1)
 BALLSYS_STEP_FIXED(step_mv2m_gfc2, bf_mv2m_kernel, 5, gfc_accel, 2)
 BALLSYS_STEP_FIXED(step_verlet_gf1, bf_verlet_kernel, 3, gf_accel, 1)
 BALLSYS_STEP_FIXED(step_verlet_gfc2, bf_verlet_kernel, 3, gfc_accel, 2)
+BALLSYS_ADVANCE_FIXED(advance_mv2m_gf1, bf_mv2m_run, 5, gf_accel, 1)
+BALLSYS_ADVANCE_FIXED(advance_mv2m_gfc2, bf_mv2m_run, 5, gfc_accel, 2)
+BALLSYS_ADVANCE_FIXED(advance_verlet_gf1, bf_verlet_run, 3, gf_accel, 1)
+BALLSYS_ADVANCE_FIXED(advance_verlet_gfc2, bf_verlet_run, 3, gfc_accel, 2)
 
 /* any effects, any n: only the dispatch is inlined */
 BALLSYS_HOT
@@ -190,6 +315,23 @@ static bf_status step_verlet_any(bf_ballsys *s, double t, double dt,
     return not_finite(s, err);
 }
 
+/* runs of any effects, any n: in place, finiteness checked after every
+ * step */
+#define BALLSYS_ADVANCE_ANY(NAME, RUN)                                         \
+    BALLSYS_HOT static bf_status NAME(bf_ballsys *s, long n0, long k,         \
+                                      double dt, long *done, bf_err *err)     \
+    {                                                                         \
+        if (s->ode.accel != ballsys_accel || k == 1)                          \
+            return advance_steps(s, n0, k, dt, done, err);                    \
+        long j;                                                               \
+        bf_status st = RUN(s->it, &s->ode, ballsys_accel_inl, s,              \
+                           stop_not_finite, s->b.n, s->it->work, n0, k, dt,   \
+                           s->b.x, s->b.v, &j, err);                          \
+        return run_end(s, st, j, done, err);                                  \
+    }
+
+BALLSYS_ADVANCE_ANY(advance_mv2m_any, bf_mv2m_run)
+BALLSYS_ADVANCE_ANY(advance_verlet_any, bf_verlet_run)
 
 /* Is the effect list exactly these kinds, in this order? */
 static int effects_are(const bf_ballsys *s, const bf_effect_kind *k, size_t nk)
@@ -210,14 +352,22 @@ static void choose_step(bf_ballsys *s)
     const int mv2m = !strcmp(iname, "mv2m"), verlet = !strcmp(iname, "verlet");
     const int gf1 = s->b.n == 1 && effects_are(s, gfc, 2);
     const int gfc2 = s->b.n == 2 && effects_are(s, gfc, 3);
-    if (mv2m)
+    if (mv2m) {
         s->step = gf1 ? step_mv2m_gf1 : gfc2 ? step_mv2m_gfc2 : step_mv2m_any;
-    else if (verlet)
+        s->advance = gf1    ? advance_mv2m_gf1
+                     : gfc2 ? advance_mv2m_gfc2
+                            : advance_mv2m_any;
+    } else if (verlet) {
         s->step = gf1    ? step_verlet_gf1
                   : gfc2 ? step_verlet_gfc2
                          : step_verlet_any;
-    else
+        s->advance = gf1    ? advance_verlet_gf1
+                     : gfc2 ? advance_verlet_gfc2
+                            : advance_verlet_any;
+    } else {
         s->step = step_generic;
+        s->advance = advance_steps;
+    }
 }
 
 void bf_ballsys_free(bf_ballsys *s)
