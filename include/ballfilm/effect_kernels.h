@@ -88,6 +88,80 @@ BF_EFFECT_INLINE void bf_spring_accel(const bf_spring *p, const bf_balls *b,
         acc[i] -= p->s * (x[i] - p->rest) * b->inv_m[i];
 }
 
+/* ---- potential energies (erg), the exact antiderivatives of the forces
+ * above: the energy check of a long run evaluates them every step, so they
+ * are inline too (one definition each; the effects' .c files use them). */
+
+BF_EFFECT_INLINE double bf_gravity_potential(const bf_gravity *p,
+                                             const bf_balls *b,
+                                             const double *x)
+{
+    double u = 0.0;
+    for (size_t i = 0; i < b->n; i++)
+        u += b->m[i] * p->g * x[i];
+    return u;
+}
+
+BF_EFFECT_INLINE double bf_floor_potential(const bf_floor *p, const bf_balls *b,
+                                           const double *x)
+{
+    double u = 0.0;
+    for (size_t i = 0; i < b->n; i++)
+        if (x[i] < b->R[i])
+            u += bf_hertz_floor_energy(p->k, b->R[i], x[i]);
+    return u;
+}
+
+BF_EFFECT_INLINE double bf_contact_potential(const bf_contact *p,
+                                             const bf_balls *b,
+                                             const double *x)
+{
+    double u = 0.0;
+    for (size_t i = 0; i + 1 < b->n; i++)
+        if (x[i + 1] - x[i] < b->R[i] + b->R[i + 1])
+            u += bf_hertz_pair_energy(p->k, b->R[i], b->R[i + 1],
+                                      x[i + 1] - x[i]);
+    return u;
+}
+
+BF_EFFECT_INLINE double bf_spring_potential(const bf_spring *p,
+                                            const bf_balls *b, const double *x)
+{
+    double u = 0.0;
+    for (size_t i = 0; i < b->n; i++)
+        u += 0.5 * p->s * (x[i] - p->rest) * (x[i] - p->rest);
+    return u;
+}
+
+/* sum of the effects' potentials at x */
+BF_EFFECT_INLINE double bf_effects_potential_inline(const bf_effect *e,
+                                                    size_t ne,
+                                                    const bf_balls *b,
+                                                    double t, const double *x)
+{
+    double u = 0.0;
+    for (size_t k = 0; k < ne; k++) {
+        switch (e[k].type->kind) {
+        case BF_EFFECT_GRAVITY:
+            u += bf_gravity_potential(e[k].self, b, x);
+            break;
+        case BF_EFFECT_FLOOR:
+            u += bf_floor_potential(e[k].self, b, x);
+            break;
+        case BF_EFFECT_CONTACT:
+            u += bf_contact_potential(e[k].self, b, x);
+            break;
+        case BF_EFFECT_SPRING:
+            u += bf_spring_potential(e[k].self, b, x);
+            break;
+        default:
+            if (e[k].type->potential)
+                u += e[k].type->potential(e[k].self, b, t, x);
+        }
+    }
+    return u;
+}
+
 /* acc = sum over the effects; returns non-zero if an effect fails. */
 BF_EFFECT_INLINE int bf_effects_accel_inline(const bf_effect *e, size_t ne,
                                           const bf_balls *b, double t,

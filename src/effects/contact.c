@@ -47,11 +47,7 @@ static double contact_potential(const void *self, const bf_balls *b, double t,
                                 const double *x)
 {
     (void)t;
-    const double k = ((const contact *)self)->k;
-    double u = 0.0;
-    for (size_t i = 0; i + 1 < b->n; i++)
-        u += bf_hertz_pair_energy(k, b->R[i], b->R[i + 1], x[i + 1] - x[i]);
-    return u;
+    return bf_contact_potential(self, b, x);
 }
 
 const bf_effect_type bf_effect_contact = {

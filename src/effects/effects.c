@@ -18,9 +18,5 @@ int bf_effects_accel(const bf_effect *e, size_t ne, const bf_balls *b, double t,
 double bf_effects_potential(const bf_effect *e, size_t ne, const bf_balls *b,
                             double t, const double *x)
 {
-    double u = 0.0;
-    for (size_t k = 0; k < ne; k++)
-        if (e[k].type->potential)
-            u += e[k].type->potential(e[k].self, b, t, x);
-    return u;
+    return bf_effects_potential_inline(e, ne, b, t, x);
 }

@@ -54,11 +54,7 @@ static double floor_potential(const void *self, const bf_balls *b, double t,
                               const double *x)
 {
     (void)t;
-    const double k = ((const floor_ *)self)->k;
-    double u = 0.0;
-    for (size_t i = 0; i < b->n; i++)
-        u += bf_hertz_floor_energy(k, b->R[i], x[i]);
-    return u;
+    return bf_floor_potential(self, b, x);
 }
 
 const bf_effect_type bf_effect_floor = {

@@ -43,11 +43,7 @@ static double gravity_potential(const void *self, const bf_balls *b, double t,
                                 const double *x)
 {
     (void)t;
-    const double g = ((const gravity *)self)->g;
-    double u = 0.0;
-    for (size_t i = 0; i < b->n; i++)
-        u += b->m[i] * g * x[i];
-    return u;
+    return bf_gravity_potential(self, b, x);
 }
 
 const bf_effect_type bf_effect_gravity = {

@@ -45,11 +45,7 @@ static double spring_potential(const void *self, const bf_balls *b, double t,
                                const double *x)
 {
     (void)t;
-    const spring *s = self;
-    double u = 0.0;
-    for (size_t i = 0; i < b->n; i++)
-        u += 0.5 * s->s * (x[i] - s->rest) * (x[i] - s->rest);
-    return u;
+    return bf_spring_potential(self, b, x);
 }
 
 const bf_effect_type bf_effect_spring = {

@@ -496,7 +496,7 @@ void bf_ballsys_energy(const bf_ballsys *s, double t, double *kin, double *pot)
     for (size_t i = 0; i < s->b.n; i++)
         k += 0.5 * s->b.m[i] * s->b.v[i] * s->b.v[i];
     *kin = k;
-    *pot = bf_effects_potential(s->eff, s->neff, &s->b, t, s->b.x);
+    *pot = bf_effects_potential_inline(s->eff, s->neff, &s->b, t, s->b.x);
 }
 
 bf_status bf_ballsys_save(const bf_ballsys *s, bf_ckpt *ck, const char *prefix,
