@@ -14,6 +14,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* At most NRUN columns in a neighbourhood: reach <= NRUN - 1, i.e. cells
+ * of at least cutoff / (NRUN - 1) (bf_repulsion_from_scene refuses smaller
+ * ones; bf_repulsion_cells falls back to all pairs). */
+enum { NRUN = 16 };
+
 static const bf_param repulsion_params[] = {
     {"alpha", BF_REAL, "1", "1", "strength alpha of eqs 2.11-2.12",
      BF_NONNEG, 0, 0, NULL},
@@ -63,26 +68,48 @@ bf_status bf_repulsion_from_scene(bf_repulsion *r, const bf_scene *sc,
         return bf_scene_fail(sc, err, "repulsion", "cell",
                              "cell side %g is above the cutoff %g", r->cell,
                              r->cutoff);
+    if (r->cell > 0 && r->cell * (NRUN - 1) < r->cutoff)
+        return bf_scene_fail(sc, err, "repulsion", "cell",
+                             "cell side %g is below cutoff/%d (the search "
+                             "reaches at most %d cells)",
+                             r->cell, NRUN - 1, NRUN - 1);
     return BF_OK;
 }
 
-/* alpha / D(r) for r^2 = r2, or -1 if D = 0. */
-static inline double factor(const bf_repulsion *r, double r2)
+/* The force law with its constants in locals: the stores to the
+ * accelerations (double *) could otherwise alias the struct's doubles and
+ * force a reload of every constant for every pair. */
+typedef struct law {
+    double alpha, xi, d, inv_d;
+    int p, beta;
+} law;
+
+/* D(r) for r^2 = r2: D (s/d)^beta for r < d, else D, as arithmetic
+ * rather than a branch (the test is random, a branch would mispredict):
+ * (double)(r < d) is 0 or 1, so in B + (1 - in) is exactly B or 1 (B is
+ * finite).  p and beta are constants in the specialised copies of
+ * law_factors. */
+static inline double law_D(const law *L, double r2, int p, int beta)
 {
     double d = sqrt(r2);
-    double s = d + r->xi;
-    /* D (s/d)^beta for r < d, else D; as arithmetic (exact: B is finite)
-     * because the test is random and a branch would mispredict */
-    double D = bf_ipow(s, r->p), B = bf_ipow(s * r->inv_d, r->beta);
-    double in = (double)(d < r->d);
-    D *= in * B + (1.0 - in);
-    return D > 0 ? r->alpha / D : -1.0;
+    double s = d + L->xi;
+    double D = bf_ipow(s, p), B = bf_ipow(s * L->inv_d, beta);
+    double in = (double)(d < L->d);
+    return D * (in * B + (1.0 - in));
+}
+
+/* alpha / D(r), or -1 if D = 0. */
+static inline double law_factor(const law *L, double r2)
+{
+    double D = law_D(L, r2, L->p, L->beta);
+    return D > 0 ? L->alpha / D : -1.0;
 }
 
 int bf_repulsion_all_pairs(const bf_repulsion *r, const double *x,
                            const double *y, const double *m, size_t n,
                            double *ax, double *ay, size_t *bi, size_t *bj)
 {
+    const law L = {r->alpha, r->xi, r->d, r->inv_d, r->p, r->beta};
     const double rc2 = r->cutoff > 0 ? r->cutoff * r->cutoff : INFINITY;
     memset(ax, 0, n * sizeof *ax);
     memset(ay, 0, n * sizeof *ay);
@@ -92,7 +119,7 @@ int bf_repulsion_all_pairs(const bf_repulsion *r, const double *x,
             double r2 = dx * dx + dy * dy;
             if (!(r2 < rc2))
                 continue;
-            double f = factor(r, r2);
+            double f = law_factor(&L, r2);
             if (f < 0) {
                 *bi = j;
                 *bj = i;
@@ -139,64 +166,144 @@ void bf_repulsion_work_free(bf_repulsion_work *w)
     w->nb = NULL;
 }
 
-/* Columns [x0, x1) of the cell list; the first coincident pair found is
- * reported through bad (slots). */
-static void cols_pairs(const bf_repulsion *r, const bf_cells *c, int reach,
-                       int x0, int x1, double *r2b, uint32_t *nb, double *sax,
-                       double *say, uint32_t bad[2], int *found)
+/* v[k] = alpha / D for the m squared distances v[k], in place; returns 1
+ * if some D = 0 (their v[k] are not finite).  The exponent pairs of
+ * Greenspan's examples (Example 1: p = 2, beta = 5; Example 2: p = 2,
+ * beta = 2) get copies in which the powers are a few multiplications
+ * without a switch. */
+static int law_factors(const law *L, double *restrict v, size_t m)
 {
+    int zero = 0;
+#define LAW_LOOP(P, B)                                                         \
+    for (size_t k = 0; k < m; k++) {                                           \
+        double D = law_D(L, v[k], P, B);                                       \
+        zero |= !(D > 0);                                                      \
+        v[k] = L->alpha / D;                                                   \
+    }
+    if (L->p == 2 && L->beta == 2)
+        LAW_LOOP(2, 2)
+    else if (L->p == 2 && L->beta == 5)
+        LAW_LOOP(2, 5)
+    else
+        LAW_LOOP(L->p, L->beta)
+#undef LAW_LOOP
+    return zero;
+}
+
+/* The particles t in the slot runs [t0[k], t1[k]) within the cutoff of the
+ * particle at (xs, ys): their slots in nb and squared distances in r2;
+ * returns their number.  Branch-free: about half of the candidates are
+ * beyond the cutoff, at random, which a branch would mispredict. */
+static size_t neighbours(const double *restrict sx, const double *restrict sy,
+                         double xs, double ys, double rc2, const uint32_t *t0,
+                         const uint32_t *t1, int nrun, uint32_t *restrict nb,
+                         double *restrict r2)
+{
+    size_t m = 0;
+    for (int k = 0; k < nrun; k++) {
+        const uint32_t e = t1[k];
+        for (uint32_t t = t0[k]; t < e; t++) {
+            double dx = xs - sx[t], dy = ys - sy[t];
+            double q = dx * dx + dy * dy;
+            nb[m] = t;
+            r2[m] = q;
+            m += q < rc2;
+        }
+    }
+    return m;
+}
+
+/* Particle s (at xs, ys, mass ws) and its m neighbours nb with the factors
+ * f: both accelerations of each pair, in the order of the list. */
+static void pair_forces(const double *restrict sx, const double *restrict sy,
+                        const double *restrict sw, uint32_t s, double xs,
+                        double ys, double ws, const uint32_t *restrict nb,
+                        const double *restrict f, size_t m,
+                        double *restrict sax, double *restrict say)
+{
+    double axs = 0, ays = 0;
+    for (size_t k = 0; k < m; k++) {
+        const uint32_t t = nb[k];
+        double tx = (xs - sx[t]) * f[k], ty = (ys - sy[t]) * f[k];
+        axs += sw[t] * tx;
+        ays += sw[t] * ty;
+        sax[t] -= ws * tx;
+        say[t] -= ws * ty;
+    }
+    sax[s] += axs;
+    say[s] += ays;
+}
+
+/* Columns [x0, x1) of the cell list; the first coincident pair found is
+ * reported through bad (slots).  For each particle s, in slot order: the
+ * neighbours in half of its neighbourhood (its own column: the slots after
+ * s up to row cy + reach; the columns to the right: rows cy - reach ..
+ * cy + reach), their factors in one loop (the square roots and divisions of
+ * different pairs overlap), then both accelerations of each pair.  The
+ * sums run in the order of one loop over the pairs. */
+static void cols_pairs(const bf_repulsion *r, const bf_cells *c, int reach,
+                       int x0, int x1, double *restrict f,
+                       uint32_t *restrict nb, double *restrict sax,
+                       double *restrict say, uint32_t bad[2], int *found)
+{
+    const law L = {r->alpha, r->xi, r->d, r->inv_d, r->p, r->beta};
     const double rc2 = r->cutoff * r->cutoff;
     const int nx = c->nx, ny = c->ny;
-    const double *sx = c->sx, *sy = c->sy, *sw = c->sw;
-    for (int cx = x0; cx < x1; cx++)
+    const double *restrict sx = c->sx, *restrict sy = c->sy,
+                           *restrict sw = c->sw;
+    uint32_t t0[NRUN], t1[NRUN];
+    for (int cx = x0; cx < x1; cx++) {
+        const int nrun = cx + reach < nx ? reach + 1 : nx - cx;
         for (int cy = 0; cy < ny; cy++) {
             uint32_t a0, a1;
             bf_cells_run(c, cx, cy, cy, &a0, &a1);
+            if (a0 == a1)
+                continue;
             const int ylo = cy - reach < 0 ? 0 : cy - reach,
                       yhi = cy + reach >= ny ? ny - 1 : cy + reach;
+            /* the same runs for every particle of the cell, but for the
+             * start of the first (s + 1) */
+            for (int ox = 0; ox < nrun; ox++)
+                bf_cells_run(c, cx + ox, ox == 0 ? cy : ylo, yhi, &t0[ox],
+                             &t1[ox]);
             for (uint32_t s = a0; s < a1; s++) {
-                const double xs = sx[s], ys = sy[s], ws = sw[s];
-                /* the neighbours in half of the neighbourhood (this column:
-                 * the slots after s up to row cy + reach; the columns to
-                 * the right: rows cy - reach .. cy + reach), collected
-                 * without branches: about half of the candidates are
-                 * beyond the cutoff, at random */
-                size_t m = 0;
-                for (int ox = 0; ox <= reach && cx + ox < nx; ox++) {
-                    uint32_t b0, b1;
-                    bf_cells_run(c, cx + ox, ox == 0 ? cy : ylo, yhi, &b0, &b1);
-                    if (ox == 0)
-                        b0 = s + 1;
-                    for (uint32_t t = b0; t < b1; t++) {
+                const double xs = sx[s], ys = sy[s];
+                t0[0] = s + 1;
+                size_t m = neighbours(sx, sy, xs, ys, rc2, t0, t1, nrun, nb,
+                                      f);
+                if (law_factors(&L, f, m))
+                    /* rare (r = 0 with xi = 0): which pairs */
+                    for (size_t k = 0; k < m; k++) {
+                        const uint32_t t = nb[k];
                         double dx = xs - sx[t], dy = ys - sy[t];
-                        double q = dx * dx + dy * dy;
-                        nb[m] = t;
-                        r2b[m] = q;
-                        m += q < rc2;
-                    }
-                }
-                double axs = 0, ays = 0;
-                for (size_t k = 0; k < m; k++) {
-                    uint32_t t = nb[k];
-                    double f = factor(r, r2b[k]);
-                    if (f < 0) {
+                        if (law_D(&L, dx * dx + dy * dy, L.p, L.beta) > 0)
+                            continue;
                         if (!*found) {
                             *found = 1;
                             bad[0] = s;
                             bad[1] = t;
                         }
-                        f = 0.0;
+                        f[k] = 0.0;
                     }
-                    double tx = (xs - sx[t]) * f, ty = (ys - sy[t]) * f;
-                    axs += sw[t] * tx;
-                    ays += sw[t] * ty;
-                    sax[t] -= ws * tx;
-                    say[t] -= ws * ty;
-                }
-                sax[s] += axs;
-                say[s] += ays;
+                pair_forces(sx, sy, sw, s, xs, ys, sw[s], nb, f, m, sax, say);
             }
         }
+    }
+}
+
+/* ax, ay in particle order from the sums in slot order. */
+static void to_index_order(const bf_cells *c, const bf_repulsion_work *w,
+                           double *ax, double *ay)
+{
+    const size_t n = c->n;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(w->threads) \
+    if (n >= 4096)
+#endif
+    for (size_t s = 0; s < n; s++) {
+        ax[c->idx[s]] = w->sax[s];
+        ay[c->idx[s]] = w->say[s];
+    }
 }
 
 int bf_repulsion_cells(const bf_repulsion *r, const bf_cells *c,
@@ -204,9 +311,21 @@ int bf_repulsion_cells(const bf_repulsion *r, const bf_cells *c,
                        size_t *bi, size_t *bj)
 {
     const int reach = (int)ceil(r->cutoff * c->inv_h * (1.0 - 1e-12));
+    const size_t n = c->n;
+    if (reach >= NRUN) {
+        /* cells far below the cutoff (a direct call; scenes refuse them):
+         * all pairs, in slot order */
+        if (bf_repulsion_all_pairs(r, c->sx, c->sy, c->sw, n, w->sax, w->say,
+                                   bi, bj)) {
+            *bi = c->idx[*bi];
+            *bj = c->idx[*bj];
+            return 1;
+        }
+        to_index_order(c, w, ax, ay);
+        return 0;
+    }
     const int nx = c->nx, width = reach + 1;
     const int nstripes = (nx + width - 1) / width;
-    const size_t n = c->n;
     double *sax = w->sax, *say = w->say;
     memset(sax, 0, n * sizeof *sax);
     memset(say, 0, n * sizeof *say);
@@ -245,13 +364,6 @@ int bf_repulsion_cells(const bf_repulsion *r, const bf_cells *c,
         *bj = c->idx[bad[1]];
         return 1;
     }
-#ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(w->threads) \
-    if (n >= 4096)
-#endif
-    for (size_t s = 0; s < n; s++) {
-        ax[c->idx[s]] = sax[s];
-        ay[c->idx[s]] = say[s];
-    }
+    to_index_order(c, w, ax, ay);
     return 0;
 }
