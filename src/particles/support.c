@@ -84,7 +84,10 @@ struct bf_support {
     uint32_t *ord, *binc; /* x order, bin counts */
     double *ls, *rs, *bs, *ts, *gs, *ds, *ys;
     int32_t *ks, *mb, *mt; /* K, and the levels where H starts / stops rising */
-    double *lower; /* area of the bands below the top band */
+    int32_t *sl, *csl; /* sweep level: mt, or INT32_MAX for a square clipped
+                          by the ceiling (never in the sweep); x order, cell
+                          order */
+    double *lower; /* area of the squares entirely below z_K (the sweep) */
     double *cl, *cr, *cb, *ct; /* square edges in cell-list order */
     uint64_t *bm;              /* bands 1..64 each square reaches */
     double *fgam;  /* F(gamma) while sweeping */
@@ -156,6 +159,8 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->ks = malloc(k * sizeof *s->ks);
     s->mb = malloc(k * sizeof *s->mb);
     s->mt = malloc(k * sizeof *s->mt);
+    s->sl = malloc(k * sizeof *s->sl);
+    s->csl = malloc(k * sizeof *s->csl);
     s->lower = malloc(k * sizeof *s->lower);
     s->cl = malloc(k * sizeof *s->cl);
     s->cr = malloc(k * sizeof *s->cr);
@@ -173,7 +178,7 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->area = malloc(nb * (size_t)s->threads * sizeof *s->area);
     s->cnt = malloc(nb * (size_t)s->threads * sizeof *s->cnt);
     if (!s->ord || !s->binc || !s->ls || !s->rs || !s->bs || !s->ts ||
-        !s->gs || !s->ds || !s->ys || !s->ks || !s->mb || !s->mt || !s->lower || !s->cl || !s->cr ||
+        !s->gs || !s->ds || !s->ys || !s->ks || !s->mb || !s->mt || !s->sl || !s->csl || !s->lower || !s->cl || !s->cr ||
         !s->cb || !s->ct || !s->bm || !s->fgam ||
         !s->lowe || !s->nxt || !s->fen || !s->bstart || !s->bfill ||
         !s->blist || !s->area || !s->cnt) {
@@ -206,6 +211,8 @@ void bf_support_free(bf_support *s)
     free(s->ks);
     free(s->mb);
     free(s->mt);
+    free(s->sl);
+    free(s->csl);
     free(s->lower);
     free(s->cl);
     free(s->cr);
@@ -558,12 +565,13 @@ static inline void fen_add(double *fen, int m, int level, double a, double b)
 /* The square at sorted position p, with its left (sigma = +1) or right
  * (sigma = -1) edge at local coordinate e, enters the sweep.  It counts
  * with its full height h at every level m whose line z_m = ay + m dx is at
- * or above its top (m >= mt[p]); squares cut by the line z_m are added by
- * the cell-list query of the particle asking (top_band). */
+ * or above its top (m >= sl[p]; a square clipped by the ceiling never
+ * counts); squares cut by the line z_m are added by the cell-list query of
+ * the particle asking (cut_band). */
 static inline void sweep_add(const bf_support *s, double *fen, int mq,
                              size_t p, double sigma, double e)
 {
-    const int mt = s->mt[p];
+    const int mt = s->sl[p];
     if (mt <= mq) {
         double h = sigma * (s->ts[p] - s->bs[p]);
         fen_add(fen, mq, mt, h, h * e);
@@ -626,12 +634,12 @@ static void sweep_chunk(bf_support *s, double *fen, size_t n, int mq,
             sweep_add(s, fen, mq, pr, -1.0, vr - X0);
             pr++;
         } else if (vg <= vd) {
-            if (s->ks[pg] >= 2)
-                s->fgam[pg] = sweep_eval(fen, vg - X0, s->ks[pg] - 1);
+            if (s->ks[pg] >= 1)
+                s->fgam[pg] = sweep_eval(fen, vg - X0, s->ks[pg]);
             pg++;
         } else {
-            if (s->ks[pd] >= 2)
-                s->lower[pd] = sweep_eval(fen, vd - X0, s->ks[pd] - 1) -
+            if (s->ks[pd] >= 1)
+                s->lower[pd] = sweep_eval(fen, vd - X0, s->ks[pd]) -
                                s->fgam[pd];
             pd++;
         }
@@ -712,67 +720,111 @@ static void empty_bands(bf_support *s, size_t n, int mq)
     }
 }
 
-/* The constants of one top-band query. */
-typedef struct topq {
-    double del, gam, hi, lo, ytop;
-    double cut; /* 1 if K >= 2: add the parts of squares cut by z = lo */
-} topq;
+/* The constants of the cell queries of one particle j. */
+typedef struct cutq {
+    double del, gam; /* its strip */
+    double hi, lo;   /* its band K */
+    double ytop;     /* S(P_j): y_i <= ytop */
+    int K;
+} cutq;
 
-/* Slots [u, u1) of a top-band query (see top_band), branch-free: the tests
+/* Slots [u, u1) of a cut query (see cut_band), branch-free: the tests
  * fail at random, which branches would mispredict. */
-static inline void top_range(const bf_support *s, const double *sy,
-                             const topq *q, uint32_t u, uint32_t u1,
+static inline void cut_range(const bf_support *s, const double *sy,
+                             const cutq *q, uint32_t u, uint32_t u1,
                              double *acc, uint32_t *cnt)
 {
     const double *cl = s->cl, *cr = s->cr, *cb = s->cb, *ct = s->ct;
-    const double del = q->del, gam = q->gam, hi = q->hi, lo = q->lo,
-                 ytop = q->ytop, cutk = q->cut;
+    const int32_t *csl = s->csl;
+    const double del = q->del, gam = q->gam, hi = q->hi, ytop = q->ytop;
+    const int K = q->K;
     double a = *acc;
     uint32_t n = *cnt;
     for (; u < u1; u++) {
         double f2 = dmin(cr[u], del) - dmax(cl[u], gam);
-        double f1 = dmin(ct[u], hi) - dmax(cb[u], lo);
-        int ok = (sy[u] <= ytop) & (f2 > 0) & (f1 > 0);
-        int cut = (ct[u] > lo) & (cb[u] < lo);
-        a += dmax(f2, 0.0) * ((double)ok * f1 + cutk * (double)cut * (lo - cb[u]));
+        double hh = dmin(ct[u], hi) - cb[u];
+        int ok = (csl[u] > K) & (sy[u] <= ytop) & (f2 > 0) & (hh > 0);
+        a += (double)ok * (f2 * hh);
         n += (uint32_t)ok;
     }
     *acc = a;
     *cnt = n;
 }
 
-/* Particle j (slot tj of the cell list, height yj, strip [gam, del]): the
- * area of the squares of S(P_j) in its top band K >= 1, plus (K >= 2) the
- * area below the line z = lo_K of the squares that this line cuts (the
- * part of the lower bands that the sweep leaves out).  *count is the number
- * of squares of S(P_j) overlapping the top band with positive area: f2 > 0
- * and f1 > 0 are the same expressions as in add_square, so it (the
- * free-fall decision) is exact.  Square edges come from s->cl..ct in
- * cell-list order; j itself is skipped by splitting its row at tj. */
-static inline double top_band(const bf_support *s, const bf_cells *c,
-                              uint32_t tj, double yj, double gam, double del,
-                              int K, uint32_t *count)
+/* Slots [u, u1): is there a square of S(P_j) with positive area in the
+ * strip in band K (f2 > 0, f1 > 0 as in add_square)? */
+static inline int band_range(const bf_support *s, const double *sy,
+                             const cutq *q, uint32_t u, uint32_t u1)
 {
-    const bf_support_params *p = &s->p;
-    const double hd = s->hd;
-    topq q = {del, gam, band_hi(p, K), band_lo(p, K),
-              p->tie ? yj : nextafter(yj, -INFINITY), K >= 2 ? 1.0 : 0.0};
-    int c0 = bf_cells_col(c, gam - hd), c1 = bf_cells_col(c, del + hd);
-    int r0 = bf_cells_row(c, q.lo - hd), r1 = bf_cells_row(c, yj);
+    for (; u < u1; u++) {
+        double f2 = dmin(s->cr[u], q->del) - dmax(s->cl[u], q->gam);
+        double f1 = dmin(s->ct[u], q->hi) - dmax(s->cb[u], q->lo);
+        if (sy[u] <= q->ytop && f2 > 0 && f1 > 0)
+            return 1;
+    }
+    return 0;
+}
+
+/* The slots [u0, u1) of column col, rows r0..r1, without tj. */
+static inline void run_without(const bf_cells *c, int col, int r0, int r1,
+                               uint32_t tj, uint32_t u[4])
+{
+    bf_cells_run(c, col, r0, r1, &u[0], &u[3]);
+    if (tj >= u[0] && tj < u[3]) {
+        u[1] = tj;
+        u[2] = tj + 1;
+    } else {
+        u[1] = u[2] = u[3];
+    }
+}
+
+/* Particle j (slot tj of the cell list, height yj, strip [gam, del],
+ * K >= 1): the area in bands 1..K of the squares of S(P_j) that the sweep
+ * at level K leaves out (sweep level csl > K: the squares cut by the line
+ * z_K = hi_K, and those clipped by the ceiling), area min(t, hi_K) - b
+ * times f2.  Each of them has positive area in band K (b < hi_K <= t or
+ * the ceiling); *count is how many, with f2 > 0 as in add_square.  They
+ * lie in hi_K - d/2 < y < hi_K + d/2 (with a margin for rounding), a
+ * window about half as tall as band K with the squares that reach it.
+ * j itself is skipped. */
+static inline double cut_band(const bf_support *s, const bf_cells *c,
+                              const cutq *q, uint32_t tj, double yj,
+                              uint32_t *count)
+{
+    const double hd = s->hd, eps = 1e-12 * (fabs(q->hi) + hd);
+    int c0 = bf_cells_col(c, q->gam - hd), c1 = bf_cells_col(c, q->del + hd);
+    int r0 = bf_cells_row(c, q->hi - hd - eps),
+        r1 = bf_cells_row(c, dmin(yj, q->hi + hd + eps));
     double acc = 0.0;
     uint32_t cnt = 0;
     for (int col = c0; col <= c1; col++) {
-        uint32_t u0, u1;
-        bf_cells_run(c, col, r0, r1, &u0, &u1);
-        if (tj >= u0 && tj < u1) {
-            top_range(s, c->sy, &q, u0, tj, &acc, &cnt);
-            top_range(s, c->sy, &q, tj + 1, u1, &acc, &cnt);
-        } else {
-            top_range(s, c->sy, &q, u0, u1, &acc, &cnt);
-        }
+        uint32_t u[4];
+        run_without(c, col, r0, r1, tj, u);
+        cut_range(s, c->sy, q, u[0], u[1], &acc, &cnt);
+        cut_range(s, c->sy, q, u[2], u[3], &acc, &cnt);
     }
     *count = cnt;
     return acc;
+}
+
+/* Is band K of particle j non-empty: a square of S(P_j) with positive area
+ * in it (those cut by z_K are not enough when cut_band counted none: the
+ * squares of sweep level K count too)?  Only asked when cut_band found
+ * none, so rarely. */
+static int band_filled(const bf_support *s, const bf_cells *c, const cutq *q,
+                       uint32_t tj, double yj)
+{
+    const double hd = s->hd, eps = 1e-12 * (fabs(q->lo) + hd);
+    int c0 = bf_cells_col(c, q->gam - hd), c1 = bf_cells_col(c, q->del + hd);
+    int r0 = bf_cells_row(c, q->lo - hd - eps), r1 = bf_cells_row(c, yj);
+    for (int col = c0; col <= c1; col++) {
+        uint32_t u[4];
+        run_without(c, col, r0, r1, tj, u);
+        if (band_range(s, c->sy, q, u[0], u[1]) ||
+            band_range(s, c->sy, q, u[2], u[3]))
+            return 1;
+    }
+    return 0;
 }
 
 static void eval_fast(bf_support *s, const double *x, const double *y,
@@ -803,13 +855,13 @@ static void eval_fast(bf_support *s, const double *x, const double *y,
         s->ks[k] = K;
         s->mb[k] = k_of(p, s->bs[k]) + 1;
         s->mt[k] = full_level(p, s->ts[k]);
+        s->sl[k] = yi + s->hd > p->box.by ? INT32_MAX : s->mt[k];
         s->lower[k] = 0.0;
         s->lowe[k] = INT32_MAX;
         if (K > kmax)
             kmax = K;
     }
-    int mq = kmax - 1; /* highest lower band */
-    if (mq >= 1) {
+    if (kmax >= 1) {
         /* the chunks are independent (each has its own tree), so they run
          * in parallel with results independent of the thread count */
         const double w = p->box.bx - p->box.ax, chunk = 8.0 * p->dx;
@@ -826,11 +878,12 @@ static void eval_fast(bf_support *s, const double *x, const double *y,
 #ifdef _OPENMP
             tid = omp_get_thread_num();
 #endif
-            sweep_chunk(s, s->fen + (size_t)tid * fsz, n, mq,
+            sweep_chunk(s, s->fen + (size_t)tid * fsz, n, kmax,
                         p->box.ax + (double)ch * chunk,
                         p->box.ax + (double)(ch + 1) * chunk, ch == nch - 1);
         }
-        empty_bands(s, n, mq);
+        if (kmax >= 2) /* bands 1..kmax - 1, below every top band */
+            empty_bands(s, n, kmax - 1);
     }
     /* the lower-band results and the square edges in the order of the cell
      * list */
@@ -848,9 +901,10 @@ static void eval_fast(bf_support *s, const double *x, const double *y,
             uint32_t t = c->slot[s->ord[k]];
             lower[t] = s->lower[k];
             lowe[t] = s->lowe[k];
+            s->csl[t] = s->sl[k];
         }
-        /* the top band, in the order of the cell list (neighbouring queries
-         * read neighbouring cells) */
+        /* g, in the order of the cell list (neighbouring queries read
+         * neighbouring cells) */
 #ifdef _OPENMP
 #pragma omp for schedule(dynamic, 256)
 #endif
@@ -866,21 +920,27 @@ static void eval_fast(bf_support *s, const double *x, const double *y,
                 gj = -p->g0;
                 kd = BF_SUP_FREE;
             } else {
-                /* the top band (K >= 1) or the K = 0 rectangle */
+                /* the K = 0 rectangle, or the squares that the sweep at
+                 * level K leaves out and the test of band K */
                 double gam = dmax(xj - s->hdx, p->box.ax);
                 double del = dmin(xj + s->hdx, p->box.bx);
                 double area = 0.0;
                 uint32_t cnt = 0;
-                if (K == 0)
+                if (K == 0) {
                     column_from_cells(s, c, j, yj, gam, del, 0, 0, 0, &area,
                                       &cnt);
-                else
-                    area = top_band(s, c, (uint32_t)t, yj, gam, del, K, &cnt);
+                } else {
+                    cutq q = {del, gam, band_hi(p, K), band_lo(p, K),
+                              p->tie ? yj : nextafter(yj, -INFINITY), K};
+                    area = cut_band(s, c, &q, (uint32_t)t, yj, &cnt);
+                    if (cnt == 0 && band_filled(s, c, &q, (uint32_t)t, yj))
+                        cnt = 1;
+                }
                 if (cnt == 0) {
                     gj = -p->g0;
                     kd = BF_SUP_FREE;
                 } else {
-                    double tot = (K >= 2 ? lower[t] : 0.0) + area;
+                    double tot = (K >= 1 ? lower[t] : 0.0) + area;
                     double den = K == 0 ? (del - gam) * (yj - p->box.ay)
                                         : (del - gam) * ((double)K * p->dx);
                     gj = -p->g0 * (1.0 - tot / (den + p->eps));
