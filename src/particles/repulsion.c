@@ -13,6 +13,12 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+/* Small kernels that must be inlined with constant arguments. */
+#define HOT static inline __attribute__((always_inline))
 
 /* At most NRUN columns in a neighbourhood: reach <= NRUN - 1, i.e. cells
  * of at least cutoff / (NRUN - 1) (bf_repulsion_from_scene refuses smaller
@@ -145,11 +151,10 @@ bf_status bf_repulsion_work_init(bf_repulsion_work *w, size_t cap, int threads,
 #endif
     size_t k = cap ? cap : 1, nt = (size_t)w->threads;
     w->cap = cap;
-    w->sax = malloc(k * sizeof *w->sax);
-    w->say = malloc(k * sizeof *w->say);
+    w->sa = malloc(2 * k * sizeof *w->sa);
     w->r2 = malloc(nt * k * sizeof *w->r2);
     w->nb = malloc(nt * k * sizeof *w->nb);
-    if (!w->sax || !w->say || !w->r2 || !w->nb) {
+    if (!w->sa || !w->r2 || !w->nb) {
         bf_repulsion_work_free(w);
         return bf_fail(err, BF_EINTERNAL, "out of memory (repulsion)");
     }
@@ -158,12 +163,78 @@ bf_status bf_repulsion_work_init(bf_repulsion_work *w, size_t cap, int threads,
 
 void bf_repulsion_work_free(bf_repulsion_work *w)
 {
-    free(w->sax);
-    free(w->say);
+    free(w->sa);
     free(w->r2);
     free(w->nb);
-    w->sax = w->say = w->r2 = NULL;
+    w->sa = w->r2 = NULL;
     w->nb = NULL;
+}
+
+#if defined(__SSE2__)
+/* bf_ipow on two lanes, with the same multiplications in the same order
+ * (so the same bits); e is a constant where it is inlined. */
+HOT __m128d ipow_pd(__m128d b, int e)
+{
+    switch (e) {
+    case 0:
+        return _mm_set1_pd(1.0);
+    case 1:
+        return b;
+    case 2:
+        return _mm_mul_pd(b, b);
+    case 3:
+        return _mm_mul_pd(_mm_mul_pd(b, b), b);
+    case 4: {
+        __m128d b2 = _mm_mul_pd(b, b);
+        return _mm_mul_pd(b2, b2);
+    }
+    case 5: {
+        __m128d b2 = _mm_mul_pd(b, b);
+        return _mm_mul_pd(_mm_mul_pd(b2, b2), b);
+    }
+    default: {
+        __m128d r = _mm_set1_pd(1.0);
+        while (e) {
+            if (e & 1)
+                r = _mm_mul_pd(r, b);
+            b = _mm_mul_pd(b, b);
+            e >>= 1;
+        }
+        return r;
+    }
+    }
+}
+#endif
+
+/* law_factors with the exponents p, beta (constants where inlined).  With
+ * SSE2 two pairs at a time: sqrt, +, *, / are the same IEEE operations and
+ * the select of B or 1 gives what in B + (1 - in) gives, so the same bits
+ * as law_D. */
+HOT int law_factors_pb(const law *L, double *restrict v, size_t m, int p,
+                       int beta)
+{
+    int zero = 0;
+    size_t k = 0;
+#if defined(__SSE2__)
+    const __m128d XI = _mm_set1_pd(L->xi), ID = _mm_set1_pd(L->inv_d),
+                  DD = _mm_set1_pd(L->d), A = _mm_set1_pd(L->alpha),
+                  ONE = _mm_set1_pd(1.0), Z = _mm_setzero_pd();
+    for (; k + 2 <= m; k += 2) {
+        __m128d d = _mm_sqrt_pd(_mm_loadu_pd(v + k));
+        __m128d s = _mm_add_pd(d, XI);
+        __m128d D = ipow_pd(s, p), B = ipow_pd(_mm_mul_pd(s, ID), beta);
+        __m128d in = _mm_cmplt_pd(d, DD);
+        D = _mm_mul_pd(D, _mm_or_pd(_mm_and_pd(in, B), _mm_andnot_pd(in, ONE)));
+        zero |= _mm_movemask_pd(_mm_cmpngt_pd(D, Z));
+        _mm_storeu_pd(v + k, _mm_div_pd(A, D));
+    }
+#endif
+    for (; k < m; k++) {
+        double D = law_D(L, v[k], p, beta);
+        zero |= !(D > 0);
+        v[k] = L->alpha / D;
+    }
+    return zero != 0;
 }
 
 /* v[k] = alpha / D for the m squared distances v[k], in place; returns 1
@@ -173,21 +244,11 @@ void bf_repulsion_work_free(bf_repulsion_work *w)
  * without a switch. */
 static int law_factors(const law *L, double *restrict v, size_t m)
 {
-    int zero = 0;
-#define LAW_LOOP(P, B)                                                         \
-    for (size_t k = 0; k < m; k++) {                                           \
-        double D = law_D(L, v[k], P, B);                                       \
-        zero |= !(D > 0);                                                      \
-        v[k] = L->alpha / D;                                                   \
-    }
     if (L->p == 2 && L->beta == 2)
-        LAW_LOOP(2, 2)
-    else if (L->p == 2 && L->beta == 5)
-        LAW_LOOP(2, 5)
-    else
-        LAW_LOOP(L->p, L->beta)
-#undef LAW_LOOP
-    return zero;
+        return law_factors_pb(L, v, m, 2, 2);
+    if (L->p == 2 && L->beta == 5)
+        return law_factors_pb(L, v, m, 2, 5);
+    return law_factors_pb(L, v, m, L->p, L->beta);
 }
 
 /* The particles t in the slot runs [t0[k], t1[k]) within the cutoff of the
@@ -200,9 +261,29 @@ static size_t neighbours(const double *restrict sx, const double *restrict sy,
                          double *restrict r2)
 {
     size_t m = 0;
+#if defined(__SSE2__)
+    const __m128d XS = _mm_set1_pd(xs), YS = _mm_set1_pd(ys),
+                  RC = _mm_set1_pd(rc2);
+#endif
     for (int k = 0; k < nrun; k++) {
         const uint32_t e = t1[k];
-        for (uint32_t t = t0[k]; t < e; t++) {
+        uint32_t t = t0[k];
+#if defined(__SSE2__)
+        /* two candidates at a time (the same operations, so the same r2) */
+        for (; t + 2 <= e; t += 2) {
+            __m128d dx = _mm_sub_pd(XS, _mm_loadu_pd(sx + t)),
+                    dy = _mm_sub_pd(YS, _mm_loadu_pd(sy + t));
+            __m128d q = _mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy));
+            const int in = _mm_movemask_pd(_mm_cmplt_pd(q, RC));
+            nb[m] = t;
+            _mm_storel_pd(r2 + m, q);
+            m += (size_t)(in & 1);
+            nb[m] = t + 1;
+            _mm_storeh_pd(r2 + m, q);
+            m += (size_t)(in >> 1);
+        }
+#endif
+        for (; t < e; t++) {
             double dx = xs - sx[t], dy = ys - sy[t];
             double q = dx * dx + dy * dy;
             nb[m] = t;
@@ -214,24 +295,42 @@ static size_t neighbours(const double *restrict sx, const double *restrict sy,
 }
 
 /* Particle s (at xs, ys, mass ws) and its m neighbours nb with the factors
- * f: both accelerations of each pair, in the order of the list. */
+ * f: both accelerations of each pair, in the order of the list, into sa
+ * (x and y of slot t at 2t, 2t + 1).  With SSE2 the x and y components
+ * share one register: the same operations per component, in the same
+ * order, so the same bits. */
 static void pair_forces(const double *restrict sx, const double *restrict sy,
                         const double *restrict sw, uint32_t s, double xs,
                         double ys, double ws, const uint32_t *restrict nb,
                         const double *restrict f, size_t m,
-                        double *restrict sax, double *restrict say)
+                        double *restrict sa)
 {
+#if defined(__SSE2__)
+    const __m128d P = _mm_set_pd(ys, xs), W = _mm_set1_pd(ws);
+    __m128d acc = _mm_setzero_pd();
+    for (size_t k = 0; k < m; k++) {
+        const uint32_t t = nb[k];
+        __m128d q = _mm_loadh_pd(_mm_load_sd(sx + t), sy + t);
+        __m128d txy = _mm_mul_pd(_mm_sub_pd(P, q), _mm_set1_pd(f[k]));
+        acc = _mm_add_pd(acc, _mm_mul_pd(_mm_set1_pd(sw[t]), txy));
+        double *at = sa + 2 * (size_t)t;
+        _mm_storeu_pd(at, _mm_sub_pd(_mm_loadu_pd(at), _mm_mul_pd(W, txy)));
+    }
+    double *as = sa + 2 * (size_t)s;
+    _mm_storeu_pd(as, _mm_add_pd(_mm_loadu_pd(as), acc));
+#else
     double axs = 0, ays = 0;
     for (size_t k = 0; k < m; k++) {
         const uint32_t t = nb[k];
         double tx = (xs - sx[t]) * f[k], ty = (ys - sy[t]) * f[k];
         axs += sw[t] * tx;
         ays += sw[t] * ty;
-        sax[t] -= ws * tx;
-        say[t] -= ws * ty;
+        sa[2 * (size_t)t] -= ws * tx;
+        sa[2 * (size_t)t + 1] -= ws * ty;
     }
-    sax[s] += axs;
-    say[s] += ays;
+    sa[2 * (size_t)s] += axs;
+    sa[2 * (size_t)s + 1] += ays;
+#endif
 }
 
 /* Columns [x0, x1) of the cell list; the first coincident pair found is
@@ -243,8 +342,8 @@ static void pair_forces(const double *restrict sx, const double *restrict sy,
  * sums run in the order of one loop over the pairs. */
 static void cols_pairs(const bf_repulsion *r, const bf_cells *c, int reach,
                        int x0, int x1, double *restrict f,
-                       uint32_t *restrict nb, double *restrict sax,
-                       double *restrict say, uint32_t bad[2], int *found)
+                       uint32_t *restrict nb, double *restrict sa,
+                       uint32_t bad[2], int *found)
 {
     const law L = {r->alpha, r->xi, r->d, r->inv_d, r->p, r->beta};
     const double rc2 = r->cutoff * r->cutoff;
@@ -285,7 +384,7 @@ static void cols_pairs(const bf_repulsion *r, const bf_cells *c, int reach,
                         }
                         f[k] = 0.0;
                     }
-                pair_forces(sx, sy, sw, s, xs, ys, sw[s], nb, f, m, sax, say);
+                pair_forces(sx, sy, sw, s, xs, ys, sw[s], nb, f, m, sa);
             }
         }
     }
@@ -301,8 +400,8 @@ static void to_index_order(const bf_cells *c, const bf_repulsion_work *w,
     if (n >= 4096)
 #endif
     for (size_t s = 0; s < n; s++) {
-        ax[c->idx[s]] = w->sax[s];
-        ay[c->idx[s]] = w->say[s];
+        ax[c->idx[s]] = w->sa[2 * s];
+        ay[c->idx[s]] = w->sa[2 * s + 1];
     }
 }
 
@@ -315,20 +414,22 @@ int bf_repulsion_cells(const bf_repulsion *r, const bf_cells *c,
     if (reach >= NRUN) {
         /* cells far below the cutoff (a direct call; scenes refuse them):
          * all pairs, in slot order */
-        if (bf_repulsion_all_pairs(r, c->sx, c->sy, c->sw, n, w->sax, w->say,
-                                   bi, bj)) {
+        double *tx = w->sa, *ty = w->sa + n;
+        if (bf_repulsion_all_pairs(r, c->sx, c->sy, c->sw, n, tx, ty, bi,
+                                   bj)) {
             *bi = c->idx[*bi];
             *bj = c->idx[*bj];
             return 1;
         }
-        to_index_order(c, w, ax, ay);
+        for (size_t s = 0; s < n; s++) {
+            ax[c->idx[s]] = tx[s];
+            ay[c->idx[s]] = ty[s];
+        }
         return 0;
     }
     const int nx = c->nx, width = reach + 1;
     const int nstripes = (nx + width - 1) / width;
-    double *sax = w->sax, *say = w->say;
-    memset(sax, 0, n * sizeof *sax);
-    memset(say, 0, n * sizeof *say);
+    memset(w->sa, 0, 2 * n * sizeof *w->sa);
     /* the first coincident pair in stripe order (thread-count independent) */
     uint32_t bad[2] = {0, 0};
     int found = 0;
@@ -346,7 +447,7 @@ int bf_repulsion_cells(const bf_repulsion *r, const bf_cells *c,
             int f = 0;
             int x1 = (k + 1) * width < nx ? (k + 1) * width : nx;
             cols_pairs(r, c, reach, k * width, x1, w->r2 + (size_t)tid * n,
-                       w->nb + (size_t)tid * n, sax, say, b, &f);
+                       w->nb + (size_t)tid * n, w->sa, b, &f);
             if (f) {
 #ifdef _OPENMP
 #pragma omp critical(bf_repulsion_bad)
