@@ -22,6 +22,9 @@
 #include <emmintrin.h>
 #endif
 
+/* Small kernels that must be inlined with constant arguments. */
+#define HOT static inline __attribute__((always_inline))
+
 static const bf_param support_params[] = {
     {"g", BF_REAL, "cm/s^2", "980",
      "gravitational acceleration g0 of a particle with nothing below it",
@@ -436,15 +439,16 @@ static void slot_edges(bf_support *s, const bf_cells *c, size_t n, int masks)
     }
 }
 
-/* The squares of slots [u, u1), all below particle j (no support-set
- * test): sum of f2 hh over those with f2 > 0 and hh > 0, and the OR of
- * their band masks.  Branch-free (the tests fail at random); with SSE2 two
+/* The squares of slots [u, u1) (not j itself), with the support-set test
+ * y <= ytop if `test` (j's row; the rows below hold only squares below j):
+ * the sum of f2 hh over those with f2 > 0 and hh > 0, and the OR of their
+ * band masks.  Branch-free (the tests fail at random); with SSE2 two
  * squares at a time: min/max/sub/mul are the same IEEE operations, the
  * masked term is f2 hh or +0 and the sum runs in slot order, so the
  * result is the same bits as the scalar loop. */
-static inline void cell_rows(const bf_support *s, uint32_t u, uint32_t u1,
-                             double gam, double del, double hi, double *area,
-                             uint64_t *mask)
+HOT void cell_rows(const bf_support *s, const double *restrict sy,
+                   uint32_t u, uint32_t u1, double gam, double del, double hi,
+                   int test, double ytop, double *area, uint64_t *mask)
 {
     const double *restrict cl = s->cl, *restrict cr = s->cr,
                            *restrict cb = s->cb, *restrict ct = s->ct;
@@ -453,25 +457,32 @@ static inline void cell_rows(const bf_support *s, uint32_t u, uint32_t u1,
     uint64_t m = *mask;
 #if defined(__SSE2__)
     const __m128d G = _mm_set1_pd(gam), D = _mm_set1_pd(del),
-                  H = _mm_set1_pd(hi), Z = _mm_setzero_pd();
+                  H = _mm_set1_pd(hi), Y = _mm_set1_pd(ytop),
+                  Z = _mm_setzero_pd();
+    __m128i M = _mm_setzero_si128();
     for (; u + 2 <= u1; u += 2) {
         __m128d f2 = _mm_sub_pd(_mm_min_pd(_mm_loadu_pd(cr + u), D),
                                 _mm_max_pd(_mm_loadu_pd(cl + u), G));
         __m128d hh = _mm_sub_pd(_mm_min_pd(_mm_loadu_pd(ct + u), H),
                                 _mm_loadu_pd(cb + u));
         __m128d ok = _mm_and_pd(_mm_cmpgt_pd(f2, Z), _mm_cmpgt_pd(hh, Z));
+        if (test)
+            ok = _mm_and_pd(ok, _mm_cmple_pd(_mm_loadu_pd(sy + u), Y));
         __m128d term = _mm_and_pd(ok, _mm_mul_pd(f2, hh));
         a += _mm_cvtsd_f64(term);
         a += _mm_cvtsd_f64(_mm_unpackhi_pd(term, term));
-        const int bits = _mm_movemask_pd(ok);
-        m |= bm[u] & (0 - (uint64_t)(bits & 1));
-        m |= bm[u + 1] & (0 - (uint64_t)(bits >> 1));
+        /* ok is all ones or zeros in each 64-bit lane */
+        M = _mm_or_si128(M, _mm_and_si128(_mm_castpd_si128(ok),
+                                          _mm_loadu_si128((const void *)(bm + u))));
     }
+    uint64_t mv[2];
+    _mm_storeu_si128((void *)mv, M);
+    m |= mv[0] | mv[1];
 #endif
     for (; u < u1; u++) {
         double f2 = dmin(cr[u], del) - dmax(cl[u], gam);
         double hh = dmin(ct[u], hi) - cb[u];
-        int ok = (f2 > 0) & (hh > 0);
+        int ok = (f2 > 0) & (hh > 0) & (!test | (sy[u] <= ytop));
         a += (double)ok * (f2 * hh);
         m |= bm[u] & (0 - (uint64_t)ok);
     }
@@ -511,29 +522,26 @@ static void eval_cell(bf_support *s, const double *x, const double *y,
             const double del = dmin(xj + s->hdx, p->box.bx);
             const double hi = band_hi(p, K), hd = s->hd;
             const double ytop = p->tie ? yj : nextafter(yj, -INFINITY);
-            const double *cl = s->cl, *cr = s->cr, *cb = s->cb, *ct = s->ct,
-                         *sy = c->sy;
-            const uint64_t *bm = s->bm;
+            const double *sy = c->sy;
             int c0 = bf_cells_col(c, gam - hd), c1 = bf_cells_col(c, del + hd);
             int r1 = bf_cells_row(c, yj);
             double area = 0.0;
             uint64_t mask = 0;
             for (int col = c0; col <= c1; col++) {
                 /* rows below j's row: every particle is below j (no height
-                 * test, and j is not there) */
-                uint32_t u, u1, v1;
-                bf_cells_run(c, col, 0, r1, &u, &v1);
-                u1 = r1 > 0 ? c->start[(size_t)col * (size_t)c->ny + (size_t)r1]
-                            : u;
-                cell_rows(s, u, u1, gam, del, hi, &area, &mask);
-                u = u1;
-                /* j's row: the support-set test, j itself skipped */
-                for (; u < v1; u++) {
-                    double f2 = dmin(cr[u], del) - dmax(cl[u], gam);
-                    double hh = dmin(ct[u], hi) - cb[u];
-                    int ok = (sy[u] <= ytop) & (f2 > 0) & (hh > 0) & (u != t);
-                    area += (double)ok * (f2 * hh);
-                    mask |= bm[u] & (0 - (uint64_t)ok);
+                 * test, and j is not there); j's row: the support-set
+                 * test, j itself skipped */
+                const uint32_t *st = c->start + (size_t)col * (size_t)c->ny;
+                const uint32_t u0 = st[0], u1 = st[r1], v1 = st[r1 + 1];
+                cell_rows(s, sy, u0, u1, gam, del, hi, 0, ytop, &area, &mask);
+                if (t >= u1 && t < v1) {
+                    cell_rows(s, sy, u1, (uint32_t)t, gam, del, hi, 1, ytop,
+                              &area, &mask);
+                    cell_rows(s, sy, (uint32_t)t + 1, v1, gam, del, hi, 1,
+                              ytop, &area, &mask);
+                } else {
+                    cell_rows(s, sy, u1, v1, gam, del, hi, 1, ytop, &area,
+                              &mask);
                 }
             }
             const uint64_t need = K == 64 ? ~(uint64_t)0
