@@ -390,18 +390,32 @@ static void cols_pairs(const bf_repulsion *r, const bf_cells *c, int reach,
     }
 }
 
+/* OpenMP only pays from a few thousand particles on, and only with more
+ * than one thread; otherwise no parallel region is entered (libgomp
+ * allocates a team for every region, even for one with if (0)). */
+static inline int par(const bf_repulsion_work *w, size_t n)
+{
+    return w->threads > 1 && n >= 4096;
+}
+
 /* ax, ay in particle order from the sums in slot order. */
 static void to_index_order(const bf_cells *c, const bf_repulsion_work *w,
                            double *ax, double *ay)
 {
     const size_t n = c->n;
+    if (par(w, n)) {
 #ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(w->threads) \
-    if (n >= 4096)
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+        for (size_t s = 0; s < n; s++) {
+            ax[c->idx[s]] = w->sa[2 * s];
+            ay[c->idx[s]] = w->sa[2 * s + 1];
+        }
 #endif
-    for (size_t s = 0; s < n; s++) {
-        ax[c->idx[s]] = w->sa[2 * s];
-        ay[c->idx[s]] = w->sa[2 * s + 1];
+    } else {
+        for (size_t s = 0; s < n; s++) {
+            ax[c->idx[s]] = w->sa[2 * s];
+            ay[c->idx[s]] = w->sa[2 * s + 1];
+        }
     }
 }
 
@@ -433,32 +447,45 @@ int bf_repulsion_cells(const bf_repulsion *r, const bf_cells *c,
     /* the first coincident pair in stripe order (thread-count independent) */
     uint32_t bad[2] = {0, 0};
     int found = 0;
-    for (int phase = 0; phase < 2; phase++) {
+    if (par(w, n)) {
+        for (int phase = 0; phase < 2; phase++) {
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(w->threads) \
-    if (n >= 4096)
-#endif
-        for (int k = phase; k < nstripes; k += 2) {
-            int tid = 0;
-#ifdef _OPENMP
-            tid = omp_get_thread_num();
-#endif
-            uint32_t b[2];
-            int f = 0;
-            int x1 = (k + 1) * width < nx ? (k + 1) * width : nx;
-            cols_pairs(r, c, reach, k * width, x1, w->r2 + (size_t)tid * n,
-                       w->nb + (size_t)tid * n, w->sa, b, &f);
-            if (f) {
-#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(w->threads)
+            for (int k = phase; k < nstripes; k += 2) {
+                int tid = omp_get_thread_num();
+                uint32_t b[2];
+                int f = 0;
+                int x1 = (k + 1) * width < nx ? (k + 1) * width : nx;
+                cols_pairs(r, c, reach, k * width, x1,
+                           w->r2 + (size_t)tid * n, w->nb + (size_t)tid * n,
+                           w->sa, b, &f);
+                if (f) {
 #pragma omp critical(bf_repulsion_bad)
+                    if (!found || b[0] < bad[0]) {
+                        found = 1;
+                        bad[0] = b[0];
+                        bad[1] = b[1];
+                    }
+                }
+            }
 #endif
-                if (!found || b[0] < bad[0]) {
+        }
+    } else {
+        /* the stripes in the same order as above: every stripe of a phase
+         * writes only to itself and the next one */
+        for (int phase = 0; phase < 2; phase++)
+            for (int k = phase; k < nstripes; k += 2) {
+                int x1 = (k + 1) * width < nx ? (k + 1) * width : nx;
+                uint32_t b[2];
+                int f = 0;
+                cols_pairs(r, c, reach, k * width, x1, w->r2, w->nb, w->sa, b,
+                           &f);
+                if (f && (!found || b[0] < bad[0])) {
                     found = 1;
                     bad[0] = b[0];
                     bad[1] = b[1];
                 }
             }
-        }
     }
     if (found) {
         *bi = c->idx[bad[0]];

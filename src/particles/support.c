@@ -398,44 +398,61 @@ static void eval_naive(bf_support *s, const double *x, const double *y,
     }
 }
 
-/* OpenMP only pays from a few thousand particles on. */
+/* OpenMP only pays from a few thousand particles on, and only with more
+ * than one thread.  Otherwise the loops run without entering a parallel
+ * region at all: libgomp allocates a team for every region, even for one
+ * with if (0). */
 #define PAR_MIN 4096
+
+static inline int par(const bf_support *s, size_t n)
+{
+    return s->threads > 1 && n >= PAR_MIN;
+}
 
 /* Square edges in cell-list order, and (masks) the bands 1..64 in which
  * each square has positive height: bit q-1 is set iff b < hi_q and
  * t > lo_q, the exact condition f1 > 0 of add_square. */
-static void slot_edges(bf_support *s, const bf_cells *c, size_t n, int masks)
+static inline void slot_edge(bf_support *s, const bf_cells *c, size_t t,
+                             int masks)
 {
     const bf_support_params *p = &s->p;
+    double xi = c->sx[t], yi = c->sy[t];
+    double b = dmax(yi - s->hd, p->box.ay), tp = dmin(yi + s->hd, p->box.by);
+    s->cl[t] = dmax(xi - s->hd, p->box.ax);
+    s->cr[t] = dmin(xi + s->hd, p->box.bx);
+    s->cb[t] = b;
+    s->ct[t] = tp;
+    if (masks) {
+        /* bands qa..qb, with qa, qb moved by one if rounding put them
+         * beyond the exact edges */
+        int qa = k_of(p, b) + 1, qb = k_of(p, tp) + 1;
+        if (qa > 1 && b < band_hi(p, qa - 1))
+            qa--;
+        if (!(b < band_hi(p, qa)))
+            qa++;
+        if (!(tp > band_lo(p, qb)))
+            qb--;
+        if (tp > band_lo(p, qb + 1))
+            qb++;
+        if (qb > 64)
+            qb = 64;
+        s->bm[t] = qa > qb ? 0
+                           : (((uint64_t)2 << (qb - 1)) - 1) &
+                                 ~(((uint64_t)1 << (qa - 1)) - 1);
+    }
+}
+
+static void slot_edges(bf_support *s, const bf_cells *c, size_t n, int masks)
+{
+    if (par(s, n)) {
 #ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(s->threads) \
-    if (n >= PAR_MIN)
+#pragma omp parallel for schedule(static) num_threads(s->threads)
 #endif
-    for (size_t t = 0; t < n; t++) {
-        double xi = c->sx[t], yi = c->sy[t];
-        double b = dmax(yi - s->hd, p->box.ay), tp = dmin(yi + s->hd, p->box.by);
-        s->cl[t] = dmax(xi - s->hd, p->box.ax);
-        s->cr[t] = dmin(xi + s->hd, p->box.bx);
-        s->cb[t] = b;
-        s->ct[t] = tp;
-        if (masks) {
-            /* bands qa..qb, with qa, qb moved by one if rounding put them
-             * beyond the exact edges */
-            int qa = k_of(p, b) + 1, qb = k_of(p, tp) + 1;
-            if (qa > 1 && b < band_hi(p, qa - 1))
-                qa--;
-            if (!(b < band_hi(p, qa)))
-                qa++;
-            if (!(tp > band_lo(p, qb)))
-                qb--;
-            if (tp > band_lo(p, qb + 1))
-                qb++;
-            if (qb > 64)
-                qb = 64;
-            s->bm[t] = qa > qb ? 0
-                               : (((uint64_t)2 << (qb - 1)) - 1) &
-                                     ~(((uint64_t)1 << (qa - 1)) - 1);
-        }
+        for (size_t t = 0; t < n; t++)
+            slot_edge(s, c, t, masks);
+    } else {
+        for (size_t t = 0; t < n; t++)
+            slot_edge(s, c, t, masks);
     }
 }
 
@@ -494,70 +511,77 @@ HOT void cell_rows(const bf_support *s, const double *restrict sy,
  * sum f2 (min(t, hi_K) - b) over the squares of S(P_j) below, and a band
  * is empty iff no counted square has its bit; the other cases (K = 0,
  * K > 64) go band by band (one_particle). */
-static void eval_cell(bf_support *s, const double *x, const double *y,
-                      size_t n, const bf_cells *c, double *g, uint8_t *kind)
+/* g of the particle in slot t (thread tid's scratch). */
+static inline void cell_one(bf_support *s, const double *x, const double *y,
+                            size_t n, const bf_cells *c, size_t t, int tid,
+                            double *g, uint8_t *kind)
 {
     const bf_support_params *p = &s->p;
     const size_t nbands = (size_t)s->kmax + 3;
-    slot_edges(s, c, n, 1);
-#ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 64) num_threads(s->threads) \
-    if (n >= PAR_MIN)
-#endif
-    for (size_t t = 0; t < n; t++) {
-        int tid = 0;
-#ifdef _OPENMP
-        tid = omp_get_thread_num();
-#endif
-        const uint32_t j = c->idx[t];
-        const double xj = c->sx[t], yj = c->sy[t];
-        const int K = k_of(p, yj);
-        uint8_t kd;
-        double gj;
-        if (K == 0 || K > 64) {
-            gj = one_particle(s, c, x, y, n, j, s->area + (size_t)tid * nbands,
-                              s->cnt + (size_t)tid * nbands, &kd);
-        } else {
-            const double gam = dmax(xj - s->hdx, p->box.ax);
-            const double del = dmin(xj + s->hdx, p->box.bx);
-            const double hi = band_hi(p, K), hd = s->hd;
-            const double ytop = p->tie ? yj : nextafter(yj, -INFINITY);
-            const double *sy = c->sy;
-            int c0 = bf_cells_col(c, gam - hd), c1 = bf_cells_col(c, del + hd);
-            int r1 = bf_cells_row(c, yj);
-            double area = 0.0;
-            uint64_t mask = 0;
-            for (int col = c0; col <= c1; col++) {
-                /* rows below j's row: every particle is below j (no height
-                 * test, and j is not there); j's row: the support-set
-                 * test, j itself skipped */
-                const uint32_t *st = c->start + (size_t)col * (size_t)c->ny;
-                const uint32_t u0 = st[0], u1 = st[r1], v1 = st[r1 + 1];
-                cell_rows(s, sy, u0, u1, gam, del, hi, 0, ytop, &area, &mask);
-                if (t >= u1 && t < v1) {
-                    cell_rows(s, sy, u1, (uint32_t)t, gam, del, hi, 1, ytop,
-                              &area, &mask);
-                    cell_rows(s, sy, (uint32_t)t + 1, v1, gam, del, hi, 1,
-                              ytop, &area, &mask);
-                } else {
-                    cell_rows(s, sy, u1, v1, gam, del, hi, 1, ytop, &area,
-                              &mask);
-                }
-            }
-            const uint64_t need = K == 64 ? ~(uint64_t)0
-                                          : ((uint64_t)1 << K) - 1;
-            if ((mask & need) != need) {
-                gj = -p->g0;
-                kd = BF_SUP_FREE;
+    const uint32_t j = c->idx[t];
+    const double xj = c->sx[t], yj = c->sy[t];
+    const int K = k_of(p, yj);
+    uint8_t kd;
+    double gj;
+    if (K == 0 || K > 64) {
+        gj = one_particle(s, c, x, y, n, j, s->area + (size_t)tid * nbands,
+                          s->cnt + (size_t)tid * nbands, &kd);
+    } else {
+        const double gam = dmax(xj - s->hdx, p->box.ax);
+        const double del = dmin(xj + s->hdx, p->box.bx);
+        const double hi = band_hi(p, K), hd = s->hd;
+        const double ytop = p->tie ? yj : nextafter(yj, -INFINITY);
+        const double *sy = c->sy;
+        int c0 = bf_cells_col(c, gam - hd), c1 = bf_cells_col(c, del + hd);
+        int r1 = bf_cells_row(c, yj);
+        double area = 0.0;
+        uint64_t mask = 0;
+        for (int col = c0; col <= c1; col++) {
+            /* rows below j's row: every particle is below j (no height
+             * test, and j is not there); j's row: the support-set
+             * test, j itself skipped */
+            const uint32_t *st = c->start + (size_t)col * (size_t)c->ny;
+            const uint32_t u0 = st[0], u1 = st[r1], v1 = st[r1 + 1];
+            cell_rows(s, sy, u0, u1, gam, del, hi, 0, ytop, &area, &mask);
+            if (t >= u1 && t < v1) {
+                cell_rows(s, sy, u1, (uint32_t)t, gam, del, hi, 1, ytop,
+                          &area, &mask);
+                cell_rows(s, sy, (uint32_t)t + 1, v1, gam, del, hi, 1,
+                          ytop, &area, &mask);
             } else {
-                gj = -p->g0 * (1.0 - area / ((del - gam) * ((double)K * p->dx) +
-                                             p->eps));
-                kd = gj > 0 ? BF_SUP_ANTI : BF_SUP_PARTIAL;
+                cell_rows(s, sy, u1, v1, gam, del, hi, 1, ytop, &area,
+                          &mask);
             }
         }
-        g[j] = gj;
-        if (kind)
-            kind[j] = kd;
+        const uint64_t need = K == 64 ? ~(uint64_t)0
+                                      : ((uint64_t)1 << K) - 1;
+        if ((mask & need) != need) {
+            gj = -p->g0;
+            kd = BF_SUP_FREE;
+        } else {
+            gj = -p->g0 * (1.0 - area / ((del - gam) * ((double)K * p->dx) +
+                                         p->eps));
+            kd = gj > 0 ? BF_SUP_ANTI : BF_SUP_PARTIAL;
+        }
+    }
+    g[j] = gj;
+    if (kind)
+        kind[j] = kd;
+}
+
+static void eval_cell(bf_support *s, const double *x, const double *y,
+                      size_t n, const bf_cells *c, double *g, uint8_t *kind)
+{
+    slot_edges(s, c, n, 1);
+    if (par(s, n)) {
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 64) num_threads(s->threads)
+        for (size_t t = 0; t < n; t++)
+            cell_one(s, x, y, n, c, t, omp_get_thread_num(), g, kind);
+#endif
+    } else {
+        for (size_t t = 0; t < n; t++)
+            cell_one(s, x, y, n, c, t, 0, g, kind);
     }
 }
 
@@ -875,39 +899,112 @@ static int band_filled(const bf_support *s, const bf_cells *c, const cutq *q,
     return 0;
 }
 
+/* The square, strip and levels of the particle at sorted position k;
+ * returns its K. */
+static inline int fast_setup(bf_support *s, const double *x, const double *y,
+                             size_t k)
+{
+    const bf_support_params *p = &s->p;
+    uint32_t i = s->ord[k];
+    double xi = x[i], yi = y[i];
+    s->ys[k] = yi;
+    s->ls[k] = dmax(xi - s->hd, p->box.ax);
+    s->rs[k] = dmin(xi + s->hd, p->box.bx);
+    s->bs[k] = dmax(yi - s->hd, p->box.ay);
+    s->ts[k] = dmin(yi + s->hd, p->box.by);
+    s->gs[k] = dmax(xi - s->hdx, p->box.ax);
+    s->ds[k] = dmin(xi + s->hdx, p->box.bx);
+    int K = k_of(p, yi);
+    s->ks[k] = K;
+    s->mb[k] = k_of(p, s->bs[k]) + 1;
+    s->mt[k] = full_level(p, s->ts[k]);
+    s->sl[k] = yi + s->hd > p->box.by ? INT32_MAX : s->mt[k];
+    s->lower[k] = 0.0;
+    s->lowe[k] = INT32_MAX;
+    return K;
+}
+
+/* The results of sorted position k into the order of the cell list. */
+static inline void fast_to_slots(bf_support *s, const bf_cells *c, size_t k)
+{
+    uint32_t t = c->slot[s->ord[k]];
+    s->fgam[t] = s->lower[k];
+    s->ks[t] = s->lowe[k];
+    s->csl[t] = s->sl[k];
+}
+
+/* g of the particle in slot t: lower (the sweep) and lowe (the lowest
+ * empty band) are in the order of the cell list. */
+static inline void fast_one(const bf_support *s, const bf_cells *c,
+                            const double *lower, const int32_t *lowe,
+                            size_t t, double *g, uint8_t *kind)
+{
+    const bf_support_params *p = &s->p;
+    uint32_t j = c->idx[t];
+    const double xj = c->sx[t], yj = c->sy[t];
+    const int K = k_of(p, yj);
+    uint8_t kd = BF_SUP_REST;
+    double gj;
+    if (resting(s, yj, K)) {
+        gj = 0.0;
+    } else if (K >= 2 && lowe[t] <= K - 1) {
+        gj = -p->g0;
+        kd = BF_SUP_FREE;
+    } else {
+        /* the K = 0 rectangle, or the squares that the sweep at level K
+         * leaves out and the test of band K */
+        double gam = dmax(xj - s->hdx, p->box.ax);
+        double del = dmin(xj + s->hdx, p->box.bx);
+        double area = 0.0;
+        uint32_t cnt = 0;
+        if (K == 0) {
+            column_from_cells(s, c, j, yj, gam, del, 0, 0, 0, &area, &cnt);
+        } else {
+            cutq q = {del, gam, band_hi(p, K), band_lo(p, K),
+                      p->tie ? yj : nextafter(yj, -INFINITY), K};
+            area = cut_band(s, c, &q, (uint32_t)t, yj, &cnt);
+            if (cnt == 0 && band_filled(s, c, &q, (uint32_t)t, yj))
+                cnt = 1;
+        }
+        if (cnt == 0) {
+            gj = -p->g0;
+            kd = BF_SUP_FREE;
+        } else {
+            double tot = (K >= 1 ? lower[t] : 0.0) + area;
+            double den = K == 0 ? (del - gam) * (yj - p->box.ay)
+                                : (del - gam) * ((double)K * p->dx);
+            gj = -p->g0 * (1.0 - tot / (den + p->eps));
+            kd = gj > 0 ? BF_SUP_ANTI : BF_SUP_PARTIAL;
+        }
+    }
+    g[j] = gj;
+    if (kind)
+        kind[j] = kd;
+}
+
 static void eval_fast(bf_support *s, const double *x, const double *y,
                       size_t n, const bf_cells *c, double *g, uint8_t *kind)
 {
     const bf_support_params *p = &s->p;
-    const int nt = s->threads;
+    const int nt = s->threads, pr = par(s, n);
     (void)nt;
     if (n == 0)
         return;
     sort_by_x(s, x, n);
     int kmax = 0;
+    if (pr) {
 #ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(nt) if (n >= PAR_MIN) \
-    reduction(max : kmax)
+#pragma omp parallel for schedule(static) num_threads(nt) reduction(max : kmax)
+        for (size_t k = 0; k < n; k++) {
+            int K = fast_setup(s, x, y, k);
+            kmax = K > kmax ? K : kmax;
+        }
 #endif
-    for (size_t k = 0; k < n; k++) {
-        uint32_t i = s->ord[k];
-        double xi = x[i], yi = y[i];
-        s->ys[k] = yi;
-        s->ls[k] = dmax(xi - s->hd, p->box.ax);
-        s->rs[k] = dmin(xi + s->hd, p->box.bx);
-        s->bs[k] = dmax(yi - s->hd, p->box.ay);
-        s->ts[k] = dmin(yi + s->hd, p->box.by);
-        s->gs[k] = dmax(xi - s->hdx, p->box.ax);
-        s->ds[k] = dmin(xi + s->hdx, p->box.bx);
-        int K = k_of(p, yi);
-        s->ks[k] = K;
-        s->mb[k] = k_of(p, s->bs[k]) + 1;
-        s->mt[k] = full_level(p, s->ts[k]);
-        s->sl[k] = yi + s->hd > p->box.by ? INT32_MAX : s->mt[k];
-        s->lower[k] = 0.0;
-        s->lowe[k] = INT32_MAX;
-        if (K > kmax)
-            kmax = K;
+    } else {
+        for (size_t k = 0; k < n; k++) {
+            int K = fast_setup(s, x, y, k);
+            kmax = K > kmax ? K : kmax;
+        }
     }
     if (kmax >= 1) {
         /* the chunks are independent (each has its own tree), so they run
@@ -917,88 +1014,46 @@ static void eval_fast(bf_support *s, const double *x, const double *y,
         if (nch < 1)
             nch = 1;
         const size_t fsz = 2 * ((size_t)s->kmax + 3);
+        if (pr) {
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) \
-    if (n >= PAR_MIN)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+            for (long ch = 0; ch < nch; ch++)
+                sweep_chunk(s, s->fen + (size_t)omp_get_thread_num() * fsz, n,
+                            kmax, p->box.ax + (double)ch * chunk,
+                            p->box.ax + (double)(ch + 1) * chunk,
+                            ch == nch - 1);
 #endif
-        for (long ch = 0; ch < nch; ch++) {
-            int tid = 0;
-#ifdef _OPENMP
-            tid = omp_get_thread_num();
-#endif
-            sweep_chunk(s, s->fen + (size_t)tid * fsz, n, kmax,
-                        p->box.ax + (double)ch * chunk,
-                        p->box.ax + (double)(ch + 1) * chunk, ch == nch - 1);
+        } else {
+            for (long ch = 0; ch < nch; ch++)
+                sweep_chunk(s, s->fen, n, kmax,
+                            p->box.ax + (double)ch * chunk,
+                            p->box.ax + (double)(ch + 1) * chunk,
+                            ch == nch - 1);
         }
         if (kmax >= 2) /* bands 1..kmax - 1, below every top band */
             empty_bands(s, n, kmax - 1);
     }
-    /* the lower-band results and the square edges in the order of the cell
-     * list */
-    double *lower = s->fgam;
-    int32_t *lowe = s->ks;
+    /* the sweep's results and the square edges in the order of the cell
+     * list; then g in that order (neighbouring queries read neighbouring
+     * cells) */
     slot_edges(s, c, n, 0);
+    if (pr) {
 #ifdef _OPENMP
-#pragma omp parallel num_threads(nt) if (n >= PAR_MIN)
-#endif
-    {
-#ifdef _OPENMP
+#pragma omp parallel num_threads(nt)
+        {
 #pragma omp for schedule(static)
-#endif
-        for (size_t k = 0; k < n; k++) {
-            uint32_t t = c->slot[s->ord[k]];
-            lower[t] = s->lower[k];
-            lowe[t] = s->lowe[k];
-            s->csl[t] = s->sl[k];
-        }
-        /* g, in the order of the cell list (neighbouring queries read
-         * neighbouring cells) */
-#ifdef _OPENMP
+            for (size_t k = 0; k < n; k++)
+                fast_to_slots(s, c, k);
 #pragma omp for schedule(dynamic, 256)
-#endif
-        for (size_t t = 0; t < n; t++) {
-            uint32_t j = c->idx[t];
-            const double xj = c->sx[t], yj = c->sy[t];
-            const int K = k_of(p, yj);
-            uint8_t kd = BF_SUP_REST;
-            double gj;
-            if (resting(s, yj, K)) {
-                gj = 0.0;
-            } else if (K >= 2 && lowe[t] <= K - 1) {
-                gj = -p->g0;
-                kd = BF_SUP_FREE;
-            } else {
-                /* the K = 0 rectangle, or the squares that the sweep at
-                 * level K leaves out and the test of band K */
-                double gam = dmax(xj - s->hdx, p->box.ax);
-                double del = dmin(xj + s->hdx, p->box.bx);
-                double area = 0.0;
-                uint32_t cnt = 0;
-                if (K == 0) {
-                    column_from_cells(s, c, j, yj, gam, del, 0, 0, 0, &area,
-                                      &cnt);
-                } else {
-                    cutq q = {del, gam, band_hi(p, K), band_lo(p, K),
-                              p->tie ? yj : nextafter(yj, -INFINITY), K};
-                    area = cut_band(s, c, &q, (uint32_t)t, yj, &cnt);
-                    if (cnt == 0 && band_filled(s, c, &q, (uint32_t)t, yj))
-                        cnt = 1;
-                }
-                if (cnt == 0) {
-                    gj = -p->g0;
-                    kd = BF_SUP_FREE;
-                } else {
-                    double tot = (K >= 1 ? lower[t] : 0.0) + area;
-                    double den = K == 0 ? (del - gam) * (yj - p->box.ay)
-                                        : (del - gam) * ((double)K * p->dx);
-                    gj = -p->g0 * (1.0 - tot / (den + p->eps));
-                    kd = gj > 0 ? BF_SUP_ANTI : BF_SUP_PARTIAL;
-                }
-            }
-            g[j] = gj;
-            if (kind)
-                kind[j] = kd;
+            for (size_t t = 0; t < n; t++)
+                fast_one(s, c, s->fgam, s->ks, t, g, kind);
         }
+#endif
+    } else {
+        for (size_t k = 0; k < n; k++)
+            fast_to_slots(s, c, k);
+        for (size_t t = 0; t < n; t++)
+            fast_one(s, c, s->fgam, s->ks, t, g, kind);
     }
 }
 
