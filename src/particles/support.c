@@ -456,16 +456,26 @@ static void slot_edges(bf_support *s, const bf_cells *c, size_t n, int masks)
     }
 }
 
-/* The squares of slots [u, u1) (not j itself), with the support-set test
- * y <= ytop if `test` (j's row; the rows below hold only squares below j):
- * the sum of f2 hh over those with f2 > 0 and hh > 0, and the OR of their
- * band masks.  Branch-free (the tests fail at random); with SSE2 two
- * squares at a time: min/max/sub/mul are the same IEEE operations, the
- * masked term is f2 hh or +0 and the sum runs in slot order, so the
- * result is the same bits as the scalar loop. */
-HOT void cell_rows(const bf_support *s, const double *restrict sy,
-                   uint32_t u, uint32_t u1, double gam, double del, double hi,
-                   int test, double ytop, double *area, uint64_t *mask)
+/* The constants of one particle's query in the cell method. */
+typedef struct cellq {
+    double gam, del; /* its strip */
+    double hi;       /* the top of its band K */
+    double ytop;     /* S(P_j): y_i <= ytop */
+#if defined(__SSE2__)
+    __m128d G, D, H, Y; /* the same in both lanes */
+#endif
+} cellq;
+
+/* The squares of slots [u, u1) (not j itself): the sum of f2 hh over those
+ * with y <= ytop, f2 > 0 and hh > 0, and the OR of their band masks.  (The
+ * height test only matters in j's row: the rows below hold only squares
+ * below j, which pass it.)  Branch-free, the tests fail at random; with
+ * SSE2 two squares at a time: min/max/sub/mul are the same IEEE
+ * operations, the masked term is f2 hh or +0 and the sum runs in slot
+ * order, so the result is the same bits as the scalar loop. */
+HOT void cell_range(const bf_support *s, const double *restrict sy,
+                    const cellq *q, uint32_t u, uint32_t u1, double *area,
+                    uint64_t *mask)
 {
     const double *restrict cl = s->cl, *restrict cr = s->cr,
                            *restrict cb = s->cb, *restrict ct = s->ct;
@@ -473,18 +483,15 @@ HOT void cell_rows(const bf_support *s, const double *restrict sy,
     double a = *area;
     uint64_t m = *mask;
 #if defined(__SSE2__)
-    const __m128d G = _mm_set1_pd(gam), D = _mm_set1_pd(del),
-                  H = _mm_set1_pd(hi), Y = _mm_set1_pd(ytop),
-                  Z = _mm_setzero_pd();
+    const __m128d Z = _mm_setzero_pd();
     __m128i M = _mm_setzero_si128();
     for (; u + 2 <= u1; u += 2) {
-        __m128d f2 = _mm_sub_pd(_mm_min_pd(_mm_loadu_pd(cr + u), D),
-                                _mm_max_pd(_mm_loadu_pd(cl + u), G));
-        __m128d hh = _mm_sub_pd(_mm_min_pd(_mm_loadu_pd(ct + u), H),
+        __m128d f2 = _mm_sub_pd(_mm_min_pd(_mm_loadu_pd(cr + u), q->D),
+                                _mm_max_pd(_mm_loadu_pd(cl + u), q->G));
+        __m128d hh = _mm_sub_pd(_mm_min_pd(_mm_loadu_pd(ct + u), q->H),
                                 _mm_loadu_pd(cb + u));
         __m128d ok = _mm_and_pd(_mm_cmpgt_pd(f2, Z), _mm_cmpgt_pd(hh, Z));
-        if (test)
-            ok = _mm_and_pd(ok, _mm_cmple_pd(_mm_loadu_pd(sy + u), Y));
+        ok = _mm_and_pd(ok, _mm_cmple_pd(_mm_loadu_pd(sy + u), q->Y));
         __m128d term = _mm_and_pd(ok, _mm_mul_pd(f2, hh));
         a += _mm_cvtsd_f64(term);
         a += _mm_cvtsd_f64(_mm_unpackhi_pd(term, term));
@@ -497,9 +504,9 @@ HOT void cell_rows(const bf_support *s, const double *restrict sy,
     m |= mv[0] | mv[1];
 #endif
     for (; u < u1; u++) {
-        double f2 = dmin(cr[u], del) - dmax(cl[u], gam);
-        double hh = dmin(ct[u], hi) - cb[u];
-        int ok = (f2 > 0) & (hh > 0) & (!test | (sy[u] <= ytop));
+        double f2 = dmin(cr[u], q->del) - dmax(cl[u], q->gam);
+        double hh = dmin(ct[u], q->hi) - cb[u];
+        int ok = (f2 > 0) & (hh > 0) & (sy[u] <= q->ytop);
         a += (double)ok * (f2 * hh);
         m |= bm[u] & (0 - (uint64_t)ok);
     }
@@ -529,28 +536,28 @@ static inline void cell_one(bf_support *s, const double *x, const double *y,
     } else {
         const double gam = dmax(xj - s->hdx, p->box.ax);
         const double del = dmin(xj + s->hdx, p->box.bx);
-        const double hi = band_hi(p, K), hd = s->hd;
+        const double hd = s->hd, hi = band_hi(p, K);
         const double ytop = p->tie ? yj : nextafter(yj, -INFINITY);
-        const double *sy = c->sy;
+        const cellq q = {gam, del, hi, ytop
+#if defined(__SSE2__)
+                         ,
+                         _mm_set1_pd(gam), _mm_set1_pd(del), _mm_set1_pd(hi),
+                         _mm_set1_pd(ytop)
+#endif
+        };
         int c0 = bf_cells_col(c, gam - hd), c1 = bf_cells_col(c, del + hd);
         int r1 = bf_cells_row(c, yj);
         double area = 0.0;
         uint64_t mask = 0;
         for (int col = c0; col <= c1; col++) {
-            /* rows below j's row: every particle is below j (no height
-             * test, and j is not there); j's row: the support-set
-             * test, j itself skipped */
-            const uint32_t *st = c->start + (size_t)col * (size_t)c->ny;
-            const uint32_t u0 = st[0], u1 = st[r1], v1 = st[r1 + 1];
-            cell_rows(s, sy, u0, u1, gam, del, hi, 0, ytop, &area, &mask);
-            if (t >= u1 && t < v1) {
-                cell_rows(s, sy, u1, (uint32_t)t, gam, del, hi, 1, ytop,
-                          &area, &mask);
-                cell_rows(s, sy, (uint32_t)t + 1, v1, gam, del, hi, 1,
-                          ytop, &area, &mask);
+            /* rows 0..r1 of the column, j itself skipped */
+            uint32_t u0, u1;
+            bf_cells_run(c, col, 0, r1, &u0, &u1);
+            if (t >= u0 && t < u1) {
+                cell_range(s, c->sy, &q, u0, (uint32_t)t, &area, &mask);
+                cell_range(s, c->sy, &q, (uint32_t)t + 1, u1, &area, &mask);
             } else {
-                cell_rows(s, sy, u1, v1, gam, del, hi, 1, ytop, &area,
-                          &mask);
+                cell_range(s, c->sy, &q, u0, u1, &area, &mask);
             }
         }
         const uint64_t need = K == 64 ? ~(uint64_t)0
