@@ -219,14 +219,22 @@ HOT int law_factors_pb(const law *L, double *restrict v, size_t m, int p,
     const __m128d XI = _mm_set1_pd(L->xi), ID = _mm_set1_pd(L->inv_d),
                   DD = _mm_set1_pd(L->d), A = _mm_set1_pd(L->alpha),
                   ONE = _mm_set1_pd(1.0), Z = _mm_setzero_pd();
-    for (; k + 2 <= m; k += 2) {
-        __m128d d = _mm_sqrt_pd(_mm_loadu_pd(v + k));
+    for (; k < m; k += 2) {
+        /* a last odd one in lane 0 (lane 1 computes on 0 and is dropped):
+         * no scalar tail, whose branches would mispredict */
+        const int two = k + 2 <= m;
+        __m128d r2 = two ? _mm_loadu_pd(v + k) : _mm_load_sd(v + k);
+        __m128d d = _mm_sqrt_pd(r2);
         __m128d s = _mm_add_pd(d, XI);
         __m128d D = ipow_pd(s, p), B = ipow_pd(_mm_mul_pd(s, ID), beta);
         __m128d in = _mm_cmplt_pd(d, DD);
         D = _mm_mul_pd(D, _mm_or_pd(_mm_and_pd(in, B), _mm_andnot_pd(in, ONE)));
-        zero |= _mm_movemask_pd(_mm_cmpngt_pd(D, Z));
-        _mm_storeu_pd(v + k, _mm_div_pd(A, D));
+        __m128d f = _mm_div_pd(A, D);
+        zero |= _mm_movemask_pd(_mm_cmpngt_pd(D, Z)) & (two ? 3 : 1);
+        if (two)
+            _mm_storeu_pd(v + k, f);
+        else
+            _mm_store_sd(v + k, f);
     }
 #endif
     for (; k < m; k++) {
