@@ -84,6 +84,7 @@ struct bf_support {
     bf_support_params p;
     size_t cap;
     int kmax;        /* largest K of a particle in the box */
+    double *bz;      /* [kmax + 3]: the band edges z_q (line_z) */
     int threads;     /* OpenMP threads */
     double hd, hdx;  /* d/2, dx/2 */
     /* x-sorted order and geometry in that order (fast method) */
@@ -111,15 +112,18 @@ struct bf_support {
 static inline double dmax(double a, double b) { return a > b ? a : b; }
 static inline double dmin(double a, double b) { return a < b ? a : b; }
 
-static inline double band_lo(const bf_support_params *p, int q)
-{
-    return p->box.ay + (double)(q - 1) * p->dx;
-}
-
-static inline double band_hi(const bf_support_params *p, int q)
+/* The lines z_q = ay + q dx, q = 0..kmax + 2, computed once (bf_support
+ * create) with this expression: band q is [z_{q-1}, z_q].  Particles in
+ * the box never ask beyond kmax + 2 (kmax = K of the ceiling; one level of
+ * margin each for rounding in k_of and full_level). */
+static inline double line_z(const bf_support_params *p, int q)
 {
     return p->box.ay + (double)q * p->dx;
 }
+
+static inline double band_lo(const bf_support *s, int q) { return s->bz[q - 1]; }
+
+static inline double band_hi(const bf_support *s, int q) { return s->bz[q]; }
 
 /* K(y) = floor((y - ay)/dx) >= 0, with the reciprocal of dx (one
  * definition for every method; at an exact band edge it may differ from a
@@ -153,6 +157,7 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->threads = 1;
 #endif
     size_t k = cap ? cap : 1, nb = (size_t)s->kmax + 3;
+    s->bz = malloc(nb * sizeof *s->bz);
     s->ord = malloc(k * sizeof *s->ord);
     s->binc = malloc((k + 1) * sizeof *s->binc);
     s->ls = malloc(k * sizeof *s->ls);
@@ -183,7 +188,7 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->blist = malloc(3 * k * sizeof *s->blist);
     s->area = malloc(nb * (size_t)s->threads * sizeof *s->area);
     s->cnt = malloc(nb * (size_t)s->threads * sizeof *s->cnt);
-    if (!s->ord || !s->binc || !s->ls || !s->rs || !s->bs || !s->ts ||
+    if (!s->bz || !s->ord || !s->binc || !s->ls || !s->rs || !s->bs || !s->ts ||
         !s->gs || !s->ds || !s->ys || !s->ks || !s->mb || !s->mt || !s->sl || !s->csl || !s->lower || !s->cl || !s->cr ||
         !s->cb || !s->ct || !s->bm || !s->fgam ||
         !s->lowe || !s->nxt || !s->fen || !s->bstart || !s->bfill ||
@@ -192,6 +197,8 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
         return bf_fail(err, BF_EINTERNAL, "out of memory (support, %zu "
                        "particles)", cap);
     }
+    for (size_t q = 0; q < nb; q++)
+        s->bz[q] = line_z(&s->p, (int)q);
     *out = s;
     return BF_OK;
 }
@@ -205,6 +212,7 @@ void bf_support_free(bf_support *s)
 {
     if (!s)
         return;
+    free(s->bz);
     free(s->ord);
     free(s->binc);
     free(s->ls);
@@ -267,7 +275,7 @@ static inline void add_square(const bf_support *s, double xi, double yi,
     if (qb > K)
         qb = K;
     for (int q = qa; q <= qb; q++) {
-        double f1 = dmin(ti, band_hi(p, q)) - dmax(bi, band_lo(p, q));
+        double f1 = dmin(ti, band_hi(s, q)) - dmax(bi, band_lo(s, q));
         if (f1 > 0) {
             area[q - base] += f1 * f2;
             cnt[q - base]++;
@@ -301,14 +309,14 @@ static inline double finish(const bf_support *s, double yj, double W, int K,
 /* The lowest level m >= 1 whose line z_m = band_hi(m) is at or above t:
  * exact with respect to band_hi, so that "full below z_m" (the sweep) and
  * "cut by z_m" (t > z_m, the cell query) never disagree. */
-static inline int full_level(const bf_support_params *p, double t)
+static inline int full_level(const bf_support *s, double t)
 {
-    int m = k_of(p, t);
+    int m = k_of(&s->p, t);
     if (m < 1)
         m = 1;
-    while (m > 1 && band_hi(p, m - 1) >= t)
+    while (m > 1 && band_hi(s, m - 1) >= t)
         m--;
-    while (band_hi(p, m) < t)
+    while (band_hi(s, m) < t)
         m++;
     return m;
 }
@@ -334,7 +342,7 @@ static void column_from_cells(const bf_support *s, const bf_cells *c,
 {
     const bf_support_params *p = &s->p;
     const int tie = p->tie;
-    double ylo = K == 0 ? p->box.ay : band_lo(p, q0) - s->hd;
+    double ylo = K == 0 ? p->box.ay : band_lo(s, q0) - s->hd;
     int c0 = bf_cells_col(c, gam - s->hd), c1 = bf_cells_col(c, del + s->hd);
     int r0 = bf_cells_row(c, ylo), r1 = bf_cells_row(c, yj);
     for (int col = c0; col <= c1; col++) {
@@ -426,13 +434,13 @@ static inline void slot_edge(bf_support *s, const bf_cells *c, size_t t,
         /* bands qa..qb, with qa, qb moved by one if rounding put them
          * beyond the exact edges */
         int qa = k_of(p, b) + 1, qb = k_of(p, tp) + 1;
-        if (qa > 1 && b < band_hi(p, qa - 1))
+        if (qa > 1 && b < band_hi(s, qa - 1))
             qa--;
-        if (!(b < band_hi(p, qa)))
+        if (!(b < band_hi(s, qa)))
             qa++;
-        if (!(tp > band_lo(p, qb)))
+        if (!(tp > band_lo(s, qb)))
             qb--;
-        if (tp > band_lo(p, qb + 1))
+        if (tp > band_lo(s, qb + 1))
             qb++;
         if (qb > 64)
             qb = 64;
@@ -536,7 +544,7 @@ static inline void cell_one(bf_support *s, const double *x, const double *y,
     } else {
         const double gam = dmax(xj - s->hdx, p->box.ax);
         const double del = dmin(xj + s->hdx, p->box.bx);
-        const double hd = s->hd, hi = band_hi(p, K);
+        const double hd = s->hd, hi = band_hi(s, K);
         const double ytop = p->tie ? yj : nextafter(yj, -INFINITY);
         const cellq q = {gam, del, hi, ytop
 #if defined(__SSE2__)
@@ -632,13 +640,20 @@ static void sort_by_x(bf_support *s, const double *x, size_t n)
     }
 }
 
-/* Fenwick tree over levels 1..m of 2 sums (A, B). */
+/* Fenwick tree over levels 1..m of 2 sums (A, B), stored side by side
+ * (with SSE2 both in one register: the same additions, the same bits). */
 static inline void fen_add(double *fen, int m, int level, double a, double b)
 {
+#if defined(__SSE2__)
+    const __m128d ab = _mm_set_pd(b, a);
+    for (int k = level; k <= m; k += k & -k)
+        _mm_storeu_pd(fen + 2 * k, _mm_add_pd(_mm_loadu_pd(fen + 2 * k), ab));
+#else
     for (int k = level; k <= m; k += k & -k) {
         fen[2 * k] += a;
         fen[2 * k + 1] += b;
     }
+#endif
 }
 
 /* The square at sorted position p, with its left (sigma = +1) or right
@@ -660,12 +675,19 @@ static inline void sweep_add(const bf_support *s, double *fen, int mq,
 /* G(x) = x A - B at level m (local coordinates). */
 static inline double sweep_eval(const double *fen, double x, int m)
 {
+#if defined(__SSE2__)
+    __m128d ab = _mm_setzero_pd();
+    for (int k = m; k > 0; k -= k & -k)
+        ab = _mm_add_pd(ab, _mm_loadu_pd(fen + 2 * k));
+    return x * _mm_cvtsd_f64(ab) - _mm_cvtsd_f64(_mm_unpackhi_pd(ab, ab));
+#else
     double a = 0, b = 0;
     for (int k = m; k > 0; k -= k & -k) {
         a += fen[2 * k];
         b += fen[2 * k + 1];
     }
     return x * a - b;
+#endif
 }
 
 /* First sorted position p in [lo, hi) with v[p] > key (or >= if ge). */
@@ -738,7 +760,6 @@ static inline uint32_t skip_find(uint32_t *nxt, uint32_t p)
  * overlaps its strip with positive area (lowe), or a value > mq. */
 static void empty_bands(bf_support *s, size_t n, int mq)
 {
-    const bf_support_params *p = &s->p;
     uint32_t *bstart = s->bstart, *bfill = s->bfill, *blist = s->blist;
     uint32_t *nxt = s->nxt;
     memset(bstart, 0, (size_t)(mq + 2) * sizeof *bstart);
@@ -754,7 +775,7 @@ static void empty_bands(bf_support *s, size_t n, int mq)
             if (qb > mq)
                 qb = mq;
             for (int q = qa; q <= qb; q++)
-                if (dmin(t, band_hi(p, q)) - dmax(b, band_lo(p, q)) > 0) {
+                if (dmin(t, band_hi(s, q)) - dmax(b, band_lo(s, q)) > 0) {
                     if (pass == 0)
                         bstart[q + 1]++;
                     else
@@ -805,20 +826,48 @@ typedef struct cutq {
     double hi, lo;   /* its band K */
     double ytop;     /* S(P_j): y_i <= ytop */
     int K;
+#if defined(__SSE2__)
+    __m128d G, D, H, Y; /* gam, del, hi, ytop in both lanes */
+    __m128i KK;         /* K in every 32-bit lane */
+#endif
 } cutq;
 
 /* Slots [u, u1) of a cut query (see cut_band), branch-free: the tests
- * fail at random, which branches would mispredict. */
-static inline void cut_range(const bf_support *s, const double *sy,
-                             const cutq *q, uint32_t u, uint32_t u1,
-                             double *acc, uint32_t *cnt)
+ * fail at random, which branches would mispredict.  With SSE2 two squares
+ * at a time, the same operations and the same order of the sum (the
+ * masked term is f2 hh or +0): the same bits. */
+HOT void cut_range(const bf_support *s, const double *restrict sy,
+                   const cutq *q, uint32_t u, uint32_t u1, double *acc,
+                   uint32_t *cnt)
 {
-    const double *cl = s->cl, *cr = s->cr, *cb = s->cb, *ct = s->ct;
-    const int32_t *csl = s->csl;
+    const double *restrict cl = s->cl, *restrict cr = s->cr,
+                           *restrict cb = s->cb, *restrict ct = s->ct;
+    const int32_t *restrict csl = s->csl;
     const double del = q->del, gam = q->gam, hi = q->hi, ytop = q->ytop;
     const int K = q->K;
     double a = *acc;
     uint32_t n = *cnt;
+#if defined(__SSE2__)
+    const __m128d Z = _mm_setzero_pd();
+    for (; u + 2 <= u1; u += 2) {
+        __m128d f2 = _mm_sub_pd(_mm_min_pd(_mm_loadu_pd(cr + u), q->D),
+                                _mm_max_pd(_mm_loadu_pd(cl + u), q->G));
+        __m128d hh = _mm_sub_pd(_mm_min_pd(_mm_loadu_pd(ct + u), q->H),
+                                _mm_loadu_pd(cb + u));
+        /* csl > K, widened from two 32-bit lanes to two 64-bit ones */
+        __m128i out = _mm_cmpgt_epi32(_mm_loadl_epi64((const void *)(csl + u)),
+                                      q->KK);
+        __m128d ok = _mm_castsi128_pd(_mm_unpacklo_epi32(out, out));
+        ok = _mm_and_pd(ok, _mm_cmple_pd(_mm_loadu_pd(sy + u), q->Y));
+        ok = _mm_and_pd(ok, _mm_and_pd(_mm_cmpgt_pd(f2, Z),
+                                       _mm_cmpgt_pd(hh, Z)));
+        __m128d term = _mm_and_pd(ok, _mm_mul_pd(f2, hh));
+        a += _mm_cvtsd_f64(term);
+        a += _mm_cvtsd_f64(_mm_unpackhi_pd(term, term));
+        const int bits = _mm_movemask_pd(ok);
+        n += (uint32_t)((bits & 1) + (bits >> 1));
+    }
+#endif
     for (; u < u1; u++) {
         double f2 = dmin(cr[u], del) - dmax(cl[u], gam);
         double hh = dmin(ct[u], hi) - cb[u];
@@ -877,10 +926,14 @@ static inline double cut_band(const bf_support *s, const bf_cells *c,
     double acc = 0.0;
     uint32_t cnt = 0;
     for (int col = c0; col <= c1; col++) {
-        uint32_t u[4];
-        run_without(c, col, r0, r1, tj, u);
-        cut_range(s, c->sy, q, u[0], u[1], &acc, &cnt);
-        cut_range(s, c->sy, q, u[2], u[3], &acc, &cnt);
+        uint32_t u0, u1;
+        bf_cells_run(c, col, r0, r1, &u0, &u1);
+        if (tj >= u0 && tj < u1) {
+            cut_range(s, c->sy, q, u0, tj, &acc, &cnt);
+            cut_range(s, c->sy, q, tj + 1, u1, &acc, &cnt);
+        } else {
+            cut_range(s, c->sy, q, u0, u1, &acc, &cnt);
+        }
     }
     *count = cnt;
     return acc;
@@ -924,7 +977,7 @@ static inline int fast_setup(bf_support *s, const double *x, const double *y,
     int K = k_of(p, yi);
     s->ks[k] = K;
     s->mb[k] = k_of(p, s->bs[k]) + 1;
-    s->mt[k] = full_level(p, s->ts[k]);
+    s->mt[k] = full_level(s, s->ts[k]);
     s->sl[k] = yi + s->hd > p->box.by ? INT32_MAX : s->mt[k];
     s->lower[k] = 0.0;
     s->lowe[k] = INT32_MAX;
@@ -967,8 +1020,16 @@ static inline void fast_one(const bf_support *s, const bf_cells *c,
         if (K == 0) {
             column_from_cells(s, c, j, yj, gam, del, 0, 0, 0, &area, &cnt);
         } else {
-            cutq q = {del, gam, band_hi(p, K), band_lo(p, K),
-                      p->tie ? yj : nextafter(yj, -INFINITY), K};
+            const double hi = band_hi(s, K);
+            const double ytop = p->tie ? yj : nextafter(yj, -INFINITY);
+            const cutq q = {del, gam, hi, band_lo(s, K), ytop, K
+#if defined(__SSE2__)
+                            ,
+                            _mm_set1_pd(gam), _mm_set1_pd(del),
+                            _mm_set1_pd(hi), _mm_set1_pd(ytop),
+                            _mm_set1_epi32(K)
+#endif
+            };
             area = cut_band(s, c, &q, (uint32_t)t, yj, &cnt);
             if (cnt == 0 && band_filled(s, c, &q, (uint32_t)t, yj))
                 cnt = 1;
