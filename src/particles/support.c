@@ -602,8 +602,9 @@ static void eval_cell(bf_support *s, const double *x, const double *y,
 
 /* ------------------------------------------------------------- fast */
 
-/* Sort the particles by x: counting sort into n bins, then insertion sort
- * inside each bin (ties keep the index order).  Expected O(n). */
+/* Sort the indices 0..n-1 of x[] by x: counting sort into n bins, then
+ * insertion sort inside each bin (ties keep the index order).  Expected
+ * O(n). */
 static void sort_by_x(bf_support *s, const double *x, size_t n)
 {
     const double ax = s->p.box.ax, w = s->p.box.bx - s->p.box.ax;
@@ -959,14 +960,14 @@ static int band_filled(const bf_support *s, const bf_cells *c, const cutq *q,
     return 0;
 }
 
-/* The square, strip and levels of the particle at sorted position k;
- * returns its K. */
-static inline int fast_setup(bf_support *s, const double *x, const double *y,
-                             size_t k)
+/* The square, strip and levels of the particle at sorted position k (slot
+ * ord[k] of the cell list, positions sx, sy); returns its K. */
+static inline int fast_setup(bf_support *s, const double *sx,
+                             const double *sy, size_t k)
 {
     const bf_support_params *p = &s->p;
     uint32_t i = s->ord[k];
-    double xi = x[i], yi = y[i];
+    double xi = sx[i], yi = sy[i];
     s->ys[k] = yi;
     s->ls[k] = dmax(xi - s->hd, p->box.ax);
     s->rs[k] = dmin(xi + s->hd, p->box.bx);
@@ -985,9 +986,9 @@ static inline int fast_setup(bf_support *s, const double *x, const double *y,
 }
 
 /* The results of sorted position k into the order of the cell list. */
-static inline void fast_to_slots(bf_support *s, const bf_cells *c, size_t k)
+static inline void fast_to_slots(bf_support *s, size_t k)
 {
-    uint32_t t = c->slot[s->ord[k]];
+    uint32_t t = s->ord[k];
     s->fgam[t] = s->lower[k];
     s->ks[t] = s->lowe[k];
     s->csl[t] = s->sl[k];
@@ -1050,27 +1051,31 @@ static inline void fast_one(const bf_support *s, const bf_cells *c,
         kind[j] = kd;
 }
 
-static void eval_fast(bf_support *s, const double *x, const double *y,
-                      size_t n, const bf_cells *c, double *g, uint8_t *kind)
+/* (The positions come from the cell list, which holds them in its order.) */
+static void eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
+                      uint8_t *kind)
 {
     const bf_support_params *p = &s->p;
     const int nt = s->threads, pr = par(s, n);
     (void)nt;
     if (n == 0)
         return;
-    sort_by_x(s, x, n);
+    /* the slots of the cell list in x order: the cell list is already
+     * sorted by columns of cells, so the reads and writes through ord stay
+     * within a column's block of slots (in the cache) */
+    sort_by_x(s, c->sx, n);
     int kmax = 0;
     if (pr) {
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static) num_threads(nt) reduction(max : kmax)
         for (size_t k = 0; k < n; k++) {
-            int K = fast_setup(s, x, y, k);
+            int K = fast_setup(s, c->sx, c->sy, k);
             kmax = K > kmax ? K : kmax;
         }
 #endif
     } else {
         for (size_t k = 0; k < n; k++) {
-            int K = fast_setup(s, x, y, k);
+            int K = fast_setup(s, c->sx, c->sy, k);
             kmax = K > kmax ? K : kmax;
         }
     }
@@ -1111,7 +1116,7 @@ static void eval_fast(bf_support *s, const double *x, const double *y,
         {
 #pragma omp for schedule(static)
             for (size_t k = 0; k < n; k++)
-                fast_to_slots(s, c, k);
+                fast_to_slots(s, k);
 #pragma omp for schedule(dynamic, 256)
             for (size_t t = 0; t < n; t++)
                 fast_one(s, c, s->fgam, s->ks, t, g, kind);
@@ -1119,7 +1124,7 @@ static void eval_fast(bf_support *s, const double *x, const double *y,
 #endif
     } else {
         for (size_t k = 0; k < n; k++)
-            fast_to_slots(s, c, k);
+            fast_to_slots(s, k);
         for (size_t t = 0; t < n; t++)
             fast_one(s, c, s->fgam, s->ks, t, g, kind);
     }
@@ -1135,7 +1140,7 @@ void bf_support_eval_with(bf_support *s, bf_support_method m, const double *x,
         m = BF_SUPPORT_CELL;
     switch (m) {
     case BF_SUPPORT_FAST:
-        eval_fast(s, x, y, n, cells, g, kind);
+        eval_fast(s, n, cells, g, kind);
         break;
     case BF_SUPPORT_CELL:
         eval_cell(s, x, y, n, cells, g, kind);
