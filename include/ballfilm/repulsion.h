@@ -33,7 +33,7 @@ typedef struct bf_repulsion {
     int p, beta;   /* integer exponents */
     double cutoff; /* r_c; 0: no cutoff */
     int use_cells; /* 1: cell list (needs cutoff > 0); 0: all pairs */
-    double cell;   /* requested cell side (0: half the cutoff) */
+    double cell;   /* requested cell side (0: the cutoff) */
     double inv_d;  /* 1/d */
 } bf_repulsion;
 

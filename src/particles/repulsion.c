@@ -44,7 +44,7 @@ static const bf_param repulsion_params[] = {
      "there is a cutoff",
      0, 0, 0, "auto|cells|pairs"},
     {"cell", BF_REAL, "cm", "0",
-     "side of the cell-list cells (0: half the cutoff); smaller cells test "
+     "side of the cell-list cells (0: the cutoff); smaller cells test "
      "fewer pairs but visit more cells",
      BF_NONNEG | BF_HIDDEN, 0, 0, NULL},
     {0},
