@@ -321,6 +321,19 @@ static inline int full_level(const bf_support *s, double t)
     return m;
 }
 
+/* The lowest band q >= 1 whose top z_q is above b: with full_level, a
+ * square reaches (positive height, if t > b) exactly the bands
+ * first_band(b) .. full_level(t). */
+static inline int first_band(const bf_support *s, double b)
+{
+    int q = k_of(&s->p, b) + 1;
+    while (q > 1 && band_hi(s, q - 1) > b)
+        q--;
+    while (!(band_hi(s, q) > b))
+        q++;
+    return q;
+}
+
 /* Particle j is resting on the floor band. */
 static inline int resting(const bf_support *s, double yj, int K)
 {
@@ -767,21 +780,17 @@ static void empty_bands(bf_support *s, size_t n, int mq)
     /* squares per band, in x order */
     for (int pass = 0; pass < 2; pass++) {
         for (size_t k = 0; k < n; k++) {
-            /* f1 > 0 needs mb <= q <= mt; one band of margin each way for
-             * the rounding of mb and mt, the test itself is exact */
-            double b = s->bs[k], t = s->ts[k];
-            int qa = s->mb[k] - 1, qb = s->mt[k] + 1;
-            if (qa < 1)
-                qa = 1;
-            if (qb > mq)
-                qb = mq;
-            for (int q = qa; q <= qb; q++)
-                if (dmin(t, band_hi(s, q)) - dmax(b, band_lo(s, q)) > 0) {
-                    if (pass == 0)
-                        bstart[q + 1]++;
-                    else
-                        blist[bfill[q]++] = (uint32_t)k;
-                }
+            /* f1 > 0 exactly in the bands mb..mt (z_{q-1} < t and
+             * z_q > b), unless the square has no height */
+            if (!(s->ts[k] > s->bs[k]))
+                continue;
+            const int qa = s->mb[k], qb = s->mt[k] < mq ? s->mt[k] : mq;
+            for (int q = qa; q <= qb; q++) {
+                if (pass == 0)
+                    bstart[q + 1]++;
+                else
+                    blist[bfill[q]++] = (uint32_t)k;
+            }
         }
         if (pass == 0) {
             for (int q = 1; q <= mq; q++)
@@ -977,7 +986,7 @@ static inline int fast_setup(bf_support *s, const double *sx,
     s->ds[k] = dmin(xi + s->hdx, p->box.bx);
     int K = k_of(p, yi);
     s->ks[k] = K;
-    s->mb[k] = k_of(p, s->bs[k]) + 1;
+    s->mb[k] = first_band(s, s->bs[k]);
     s->mt[k] = full_level(s, s->ts[k]);
     s->sl[k] = yi + s->hd > p->box.by ? INT32_MAX : s->mt[k];
     s->lower[k] = 0.0;
