@@ -90,11 +90,10 @@ typedef struct law {
     int p, beta;
 } law;
 
-/* D(r) for r^2 = r2: D (s/d)^beta for r < d, else D, as arithmetic
- * rather than a branch (the test is random, a branch would mispredict):
- * (double)(r < d) is 0 or 1, so in B + (1 - in) is exactly B or 1 (B is
- * finite).  p and beta are constants in the specialised copies of
- * law_factors. */
+/* D(r) for r^2 = r2: D (s/d)^beta for r < d, else D, written as
+ * arithmetic: (double)(r < d) is 0 or 1, so in B + (1 - in) is exactly B
+ * or 1 (B is finite), which is what the SSE2 path selects with a mask.
+ * p and beta are constants in the specialised copies of law_factors. */
 static inline double law_D(const law *L, double r2, int p, int beta)
 {
     double d = sqrt(r2);

@@ -90,7 +90,8 @@ struct bf_support {
     /* x-sorted order and geometry in that order (fast method) */
     uint32_t *ord, *binc; /* x order, bin counts */
     double *ls, *rs, *bs, *ts, *gs, *ds, *ys;
-    int32_t *ks, *mb, *mt; /* K, and the levels where H starts / stops rising */
+    int32_t *ks, *mb, *mt; /* K; the first and last band with positive
+                              height of the square (first_band, full_level) */
     int32_t *sl, *csl; /* sweep level: mt, or INT32_MAX for a square clipped
                           by the ceiling (never in the sweep); x order, cell
                           order */
@@ -188,9 +189,10 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->blist = malloc(3 * k * sizeof *s->blist);
     s->area = malloc(nb * (size_t)s->threads * sizeof *s->area);
     s->cnt = malloc(nb * (size_t)s->threads * sizeof *s->cnt);
-    if (!s->bz || !s->ord || !s->binc || !s->ls || !s->rs || !s->bs || !s->ts ||
-        !s->gs || !s->ds || !s->ys || !s->ks || !s->mb || !s->mt || !s->sl || !s->csl || !s->lower || !s->cl || !s->cr ||
-        !s->cb || !s->ct || !s->bm || !s->fgam ||
+    if (!s->bz || !s->ord || !s->binc || !s->ls || !s->rs || !s->bs ||
+        !s->ts || !s->gs || !s->ds || !s->ys || !s->ks || !s->mb || !s->mt ||
+        !s->sl || !s->csl || !s->lower || !s->cl || !s->cr || !s->cb ||
+        !s->ct || !s->bm || !s->fgam ||
         !s->lowe || !s->nxt || !s->fen || !s->bstart || !s->bfill ||
         !s->blist || !s->area || !s->cnt) {
         bf_support_free(s);
@@ -329,7 +331,7 @@ static inline int first_band(const bf_support *s, double b)
     int q = k_of(&s->p, b) + 1;
     while (q > 1 && band_hi(s, q - 1) > b)
         q--;
-    while (!(band_hi(s, q) > b))
+    while (q <= s->kmax + 1 && !(band_hi(s, q) > b)) /* bounded for NaN */
         q++;
     return q;
 }
@@ -477,32 +479,52 @@ static void slot_edges(bf_support *s, const bf_cells *c, size_t n, int masks)
     }
 }
 
-/* The constants of one particle's query in the cell method. */
-typedef struct cellq {
+/* The constants of one particle j's queries of the cell list. */
+typedef struct stripq {
     double gam, del; /* its strip */
-    double hi;       /* the top of its band K */
+    double hi, lo;   /* its band K */
     double ytop;     /* S(P_j): y_i <= ytop */
+    int K;
 #if defined(__SSE2__)
-    __m128d G, D, H, Y; /* the same in both lanes */
+    __m128d G, D, H, Y; /* gam, del, hi, ytop in both lanes */
+    __m128i KK;         /* K in every 32-bit lane */
 #endif
-} cellq;
+} stripq;
 
-/* The squares of slots [u, u1) (not j itself): the sum of f2 hh over those
- * with y <= ytop, f2 > 0 and hh > 0, and the OR of their band masks.  (The
- * height test only matters in j's row: the rows below hold only squares
- * below j, which pass it.)  Branch-free, the tests fail at random; with
- * SSE2 two squares at a time: min/max/sub/mul are the same IEEE
- * operations, the masked term is f2 hh or +0 and the sum runs in slot
- * order, so the result is the same bits as the scalar loop. */
-HOT void cell_range(const bf_support *s, const double *restrict sy,
-                    const cellq *q, uint32_t u, uint32_t u1, double *area,
-                    uint64_t *mask)
+static inline stripq stripq_of(double gam, double del, double hi, double lo,
+                               double ytop, int K)
+{
+    stripq q = {gam, del, hi, lo, ytop, K
+#if defined(__SSE2__)
+                ,
+                _mm_set1_pd(gam), _mm_set1_pd(del), _mm_set1_pd(hi),
+                _mm_set1_pd(ytop), _mm_set1_epi32(K)
+#endif
+    };
+    return q;
+}
+
+/* The squares of slots [u, u1) (not j itself) that count for particle j:
+ * y <= ytop, f2 > 0 (the strip) and hh = min(t, hi_K) - b > 0, and if
+ * `cut` only those the sweep at level K leaves out (sweep level csl > K).
+ * Adds the sum of f2 hh to *area and, if `cut`, their number to *cnt,
+ * else the OR of their band masks to *mask.  (The height test only
+ * matters in j's row: the rows below hold only squares below j.)
+ * Branch-free, the tests fail at random; with SSE2 two squares at a time:
+ * min/max/sub/mul are the same IEEE operations, the masked term is f2 hh
+ * or +0 and the sum runs in slot order, so the same bits as the scalar
+ * loop.  `cut` is a constant where this is inlined. */
+HOT void strip_range(const bf_support *s, const double *restrict sy,
+                     const stripq *q, uint32_t u, uint32_t u1, int cut,
+                     double *area, uint64_t *mask, uint32_t *cnt)
 {
     const double *restrict cl = s->cl, *restrict cr = s->cr,
                            *restrict cb = s->cb, *restrict ct = s->ct;
     const uint64_t *restrict bm = s->bm;
+    const int32_t *restrict csl = s->csl;
     double a = *area;
     uint64_t m = *mask;
+    uint32_t n = *cnt;
 #if defined(__SSE2__)
     const __m128d Z = _mm_setzero_pd();
     __m128i M = _mm_setzero_si128();
@@ -513,33 +535,52 @@ HOT void cell_range(const bf_support *s, const double *restrict sy,
                                 _mm_loadu_pd(cb + u));
         __m128d ok = _mm_and_pd(_mm_cmpgt_pd(f2, Z), _mm_cmpgt_pd(hh, Z));
         ok = _mm_and_pd(ok, _mm_cmple_pd(_mm_loadu_pd(sy + u), q->Y));
+        if (cut) {
+            /* csl > K, widened from two 32-bit lanes to two 64-bit ones */
+            __m128i o = _mm_cmpgt_epi32(
+                _mm_loadl_epi64((const void *)(csl + u)), q->KK);
+            ok = _mm_and_pd(ok, _mm_castsi128_pd(_mm_unpacklo_epi32(o, o)));
+        }
         __m128d term = _mm_and_pd(ok, _mm_mul_pd(f2, hh));
         a += _mm_cvtsd_f64(term);
         a += _mm_cvtsd_f64(_mm_unpackhi_pd(term, term));
-        /* ok is all ones or zeros in each 64-bit lane */
-        M = _mm_or_si128(M, _mm_and_si128(_mm_castpd_si128(ok),
-                                          _mm_loadu_si128((const void *)(bm + u))));
+        if (cut) {
+            const int bits = _mm_movemask_pd(ok);
+            n += (uint32_t)((bits & 1) + (bits >> 1));
+        } else {
+            /* ok is all ones or zeros in each 64-bit lane */
+            M = _mm_or_si128(
+                M, _mm_and_si128(_mm_castpd_si128(ok),
+                                 _mm_loadu_si128((const void *)(bm + u))));
+        }
     }
-    uint64_t mv[2];
-    _mm_storeu_si128((void *)mv, M);
-    m |= mv[0] | mv[1];
+    if (!cut) {
+        uint64_t mv[2];
+        _mm_storeu_si128((void *)mv, M);
+        m |= mv[0] | mv[1];
+    }
 #endif
     for (; u < u1; u++) {
         double f2 = dmin(cr[u], q->del) - dmax(cl[u], q->gam);
         double hh = dmin(ct[u], q->hi) - cb[u];
-        int ok = (f2 > 0) & (hh > 0) & (sy[u] <= q->ytop);
+        int ok = (f2 > 0) & (hh > 0) & (sy[u] <= q->ytop) &
+                 (!cut | (csl[u] > q->K));
         a += (double)ok * (f2 * hh);
-        m |= bm[u] & (0 - (uint64_t)ok);
+        if (cut)
+            n += (uint32_t)ok;
+        else
+            m |= bm[u] & (0 - (uint64_t)ok);
     }
     *area = a;
     *mask = m;
+    *cnt = n;
 }
 
-/* The cell method: for 1 <= K <= 64 the area of bands 1..K is
- * sum f2 (min(t, hi_K) - b) over the squares of S(P_j) below, and a band
- * is empty iff no counted square has its bit; the other cases (K = 0,
- * K > 64) go band by band (one_particle). */
-/* g of the particle in slot t (thread tid's scratch). */
+/* The cell method, g of the particle in slot t (thread tid's scratch): for
+ * 1 <= K <= 64 the area of bands 1..K is sum f2 (min(t, hi_K) - b) over
+ * the squares of S(P_j) below, and a band is empty iff no counted square
+ * has its bit; the other cases (K = 0, K > 64) go band by band
+ * (one_particle). */
 static inline void cell_one(bf_support *s, const double *x, const double *y,
                             size_t n, const bf_cells *c, size_t t, int tid,
                             double *g, uint8_t *kind)
@@ -557,15 +598,11 @@ static inline void cell_one(bf_support *s, const double *x, const double *y,
     } else {
         const double gam = dmax(xj - s->hdx, p->box.ax);
         const double del = dmin(xj + s->hdx, p->box.bx);
-        const double hd = s->hd, hi = band_hi(s, K);
-        const double ytop = p->tie ? yj : nextafter(yj, -INFINITY);
-        const cellq q = {gam, del, hi, ytop
-#if defined(__SSE2__)
-                         ,
-                         _mm_set1_pd(gam), _mm_set1_pd(del), _mm_set1_pd(hi),
-                         _mm_set1_pd(ytop)
-#endif
-        };
+        const double hd = s->hd;
+        const stripq q =
+            stripq_of(gam, del, band_hi(s, K), band_lo(s, K),
+                      p->tie ? yj : nextafter(yj, -INFINITY), K);
+        uint32_t cnt = 0;
         int c0 = bf_cells_col(c, gam - hd), c1 = bf_cells_col(c, del + hd);
         int r1 = bf_cells_row(c, yj);
         double area = 0.0;
@@ -575,10 +612,12 @@ static inline void cell_one(bf_support *s, const double *x, const double *y,
             uint32_t u0, u1;
             bf_cells_run(c, col, 0, r1, &u0, &u1);
             if (t >= u0 && t < u1) {
-                cell_range(s, c->sy, &q, u0, (uint32_t)t, &area, &mask);
-                cell_range(s, c->sy, &q, (uint32_t)t + 1, u1, &area, &mask);
+                strip_range(s, c->sy, &q, u0, (uint32_t)t, 0, &area, &mask,
+                            &cnt);
+                strip_range(s, c->sy, &q, (uint32_t)t + 1, u1, 0, &area,
+                            &mask, &cnt);
             } else {
-                cell_range(s, c->sy, &q, u0, u1, &area, &mask);
+                strip_range(s, c->sy, &q, u0, u1, 0, &area, &mask, &cnt);
             }
         }
         const uint64_t need = K == 64 ? ~(uint64_t)0
@@ -830,69 +869,10 @@ static void empty_bands(bf_support *s, size_t n, int mq)
     }
 }
 
-/* The constants of the cell queries of one particle j. */
-typedef struct cutq {
-    double del, gam; /* its strip */
-    double hi, lo;   /* its band K */
-    double ytop;     /* S(P_j): y_i <= ytop */
-    int K;
-#if defined(__SSE2__)
-    __m128d G, D, H, Y; /* gam, del, hi, ytop in both lanes */
-    __m128i KK;         /* K in every 32-bit lane */
-#endif
-} cutq;
-
-/* Slots [u, u1) of a cut query (see cut_band), branch-free: the tests
- * fail at random, which branches would mispredict.  With SSE2 two squares
- * at a time, the same operations and the same order of the sum (the
- * masked term is f2 hh or +0): the same bits. */
-HOT void cut_range(const bf_support *s, const double *restrict sy,
-                   const cutq *q, uint32_t u, uint32_t u1, double *acc,
-                   uint32_t *cnt)
-{
-    const double *restrict cl = s->cl, *restrict cr = s->cr,
-                           *restrict cb = s->cb, *restrict ct = s->ct;
-    const int32_t *restrict csl = s->csl;
-    const double del = q->del, gam = q->gam, hi = q->hi, ytop = q->ytop;
-    const int K = q->K;
-    double a = *acc;
-    uint32_t n = *cnt;
-#if defined(__SSE2__)
-    const __m128d Z = _mm_setzero_pd();
-    for (; u + 2 <= u1; u += 2) {
-        __m128d f2 = _mm_sub_pd(_mm_min_pd(_mm_loadu_pd(cr + u), q->D),
-                                _mm_max_pd(_mm_loadu_pd(cl + u), q->G));
-        __m128d hh = _mm_sub_pd(_mm_min_pd(_mm_loadu_pd(ct + u), q->H),
-                                _mm_loadu_pd(cb + u));
-        /* csl > K, widened from two 32-bit lanes to two 64-bit ones */
-        __m128i out = _mm_cmpgt_epi32(_mm_loadl_epi64((const void *)(csl + u)),
-                                      q->KK);
-        __m128d ok = _mm_castsi128_pd(_mm_unpacklo_epi32(out, out));
-        ok = _mm_and_pd(ok, _mm_cmple_pd(_mm_loadu_pd(sy + u), q->Y));
-        ok = _mm_and_pd(ok, _mm_and_pd(_mm_cmpgt_pd(f2, Z),
-                                       _mm_cmpgt_pd(hh, Z)));
-        __m128d term = _mm_and_pd(ok, _mm_mul_pd(f2, hh));
-        a += _mm_cvtsd_f64(term);
-        a += _mm_cvtsd_f64(_mm_unpackhi_pd(term, term));
-        const int bits = _mm_movemask_pd(ok);
-        n += (uint32_t)((bits & 1) + (bits >> 1));
-    }
-#endif
-    for (; u < u1; u++) {
-        double f2 = dmin(cr[u], del) - dmax(cl[u], gam);
-        double hh = dmin(ct[u], hi) - cb[u];
-        int ok = (csl[u] > K) & (sy[u] <= ytop) & (f2 > 0) & (hh > 0);
-        a += (double)ok * (f2 * hh);
-        n += (uint32_t)ok;
-    }
-    *acc = a;
-    *cnt = n;
-}
-
 /* Slots [u, u1): is there a square of S(P_j) with positive area in the
  * strip in band K (f2 > 0, f1 > 0 as in add_square)? */
 static inline int band_range(const bf_support *s, const double *sy,
-                             const cutq *q, uint32_t u, uint32_t u1)
+                             const stripq *q, uint32_t u, uint32_t u1)
 {
     for (; u < u1; u++) {
         double f2 = dmin(s->cr[u], q->del) - dmax(s->cl[u], q->gam);
@@ -926,7 +906,7 @@ static inline void run_without(const bf_cells *c, int col, int r0, int r1,
  * window about half as tall as band K with the squares that reach it.
  * j itself is skipped. */
 static inline double cut_band(const bf_support *s, const bf_cells *c,
-                              const cutq *q, uint32_t tj, double yj,
+                              const stripq *q, uint32_t tj, double yj,
                               uint32_t *count)
 {
     const double hd = s->hd, eps = 1e-12 * (fabs(q->hi) + hd);
@@ -934,15 +914,16 @@ static inline double cut_band(const bf_support *s, const bf_cells *c,
     int r0 = bf_cells_row(c, q->hi - hd - eps),
         r1 = bf_cells_row(c, dmin(yj, q->hi + hd + eps));
     double acc = 0.0;
+    uint64_t mask = 0; /* not used by a cut query */
     uint32_t cnt = 0;
     for (int col = c0; col <= c1; col++) {
         uint32_t u0, u1;
         bf_cells_run(c, col, r0, r1, &u0, &u1);
         if (tj >= u0 && tj < u1) {
-            cut_range(s, c->sy, q, u0, tj, &acc, &cnt);
-            cut_range(s, c->sy, q, tj + 1, u1, &acc, &cnt);
+            strip_range(s, c->sy, q, u0, tj, 1, &acc, &mask, &cnt);
+            strip_range(s, c->sy, q, tj + 1, u1, 1, &acc, &mask, &cnt);
         } else {
-            cut_range(s, c->sy, q, u0, u1, &acc, &cnt);
+            strip_range(s, c->sy, q, u0, u1, 1, &acc, &mask, &cnt);
         }
     }
     *count = cnt;
@@ -953,7 +934,7 @@ static inline double cut_band(const bf_support *s, const bf_cells *c,
  * in it (those cut by z_K are not enough when cut_band counted none: the
  * squares of sweep level K count too)?  Only asked when cut_band found
  * none, so rarely. */
-static int band_filled(const bf_support *s, const bf_cells *c, const cutq *q,
+static int band_filled(const bf_support *s, const bf_cells *c, const stripq *q,
                        uint32_t tj, double yj)
 {
     const double hd = s->hd, eps = 1e-12 * (fabs(q->lo) + hd);
@@ -1030,16 +1011,9 @@ static inline void fast_one(const bf_support *s, const bf_cells *c,
         if (K == 0) {
             column_from_cells(s, c, j, yj, gam, del, 0, 0, 0, &area, &cnt);
         } else {
-            const double hi = band_hi(s, K);
-            const double ytop = p->tie ? yj : nextafter(yj, -INFINITY);
-            const cutq q = {del, gam, hi, band_lo(s, K), ytop, K
-#if defined(__SSE2__)
-                            ,
-                            _mm_set1_pd(gam), _mm_set1_pd(del),
-                            _mm_set1_pd(hi), _mm_set1_pd(ytop),
-                            _mm_set1_epi32(K)
-#endif
-            };
+            const stripq q =
+                stripq_of(gam, del, band_hi(s, K), band_lo(s, K),
+                          p->tie ? yj : nextafter(yj, -INFINITY), K);
             area = cut_band(s, c, &q, (uint32_t)t, yj, &cnt);
             if (cnt == 0 && band_filled(s, c, &q, (uint32_t)t, yj))
                 cnt = 1;
