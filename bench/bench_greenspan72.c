@@ -94,7 +94,7 @@ static double per_step(run *r)
 }
 
 /* One support-set gravity evaluation with `method` on the model's state
- * (a fresh cell list of side 5, as the model uses). */
+ * (a fresh cell list of side 10, the cutoff, as the model uses). */
 static double time_support(run *r, bf_support_method method)
 {
     bf_err err = {0};
@@ -106,7 +106,7 @@ static double time_support(run *r, bf_support_method method)
     uint8_t *kind = malloc(p->n);
     if (!g || !kind ||
         bf_cells_init(&c, sp->box.ax, sp->box.ay, sp->box.bx - sp->box.ax,
-                      sp->box.by - sp->box.ay, 5.0, p->n, &err)) {
+                      sp->box.by - sp->box.ay, 10.0, p->n, &err)) {
         fprintf(stderr, "bench: out of memory\n");
         exit(1);
     }

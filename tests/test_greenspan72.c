@@ -293,8 +293,9 @@ START_TEST(repulsion_pair_by_hand_and_cells)
     px[1] = L;
     bf_repulsion_all_pairs(&rp, px, py, pm, n, a1, b1, &bi, &bj);
     bf_err err = {0};
-    const double hs[] = {10.0, 5.0, 3.0};
-    for (int k = 0; k < 3; k++) {
+    /* 0.5: far below cutoff/15, the all-pairs fallback */
+    const double hs[] = {10.0, 5.0, 3.0, 0.5};
+    for (int k = 0; k < 4; k++) {
         bf_cells c;
         bf_repulsion_work w;
         ck_assert(bf_cells_init(&c, 0, 0, L, L, hs[k], n, &err) == BF_OK);
@@ -603,6 +604,13 @@ START_TEST(bad_scenes_are_refused)
              base);
     ck_assert_int_eq(tu_scene_error(text, msg, sizeof msg), BF_EINPUT);
     ck_assert_msg(strstr(msg, "set_velocity"), "%s", msg);
+    /* cells so small that the search would reach more than 15 cells */
+    snprintf(text, sizeof text,
+             "%s[greenspan72]\nd = 5\nm_heavy = 1\nm_light = 1\n"
+             "[repulsion]\ncutoff = 10\ncell = 0.5\n",
+             base);
+    ck_assert_int_eq(tu_scene_error(text, msg, sizeof msg), BF_EINPUT);
+    ck_assert_msg(strstr(msg, "cell"), "%s", msg);
 }
 END_TEST
 

@@ -50,21 +50,25 @@ void bf_cells_free(bf_cells *c);
 void bf_cells_build(bf_cells *c, const double *x, const double *y,
                     const double *w, size_t n);
 
-/* Column / row of a coordinate, clamped to the grid. */
+/* Column / row of a coordinate, clamped to the grid: floor((x - x0)/h)
+ * with the reciprocal of h.  The conversion truncates, which is the floor
+ * for f >= 0 (smaller f clamp to 0 anyway) and, without SSE4.1's round
+ * instruction, far cheaper than floor(). */
+static inline int bf_cells_index(double f, int n)
+{
+    if (!(f > 0.0)) /* also NaN */
+        return 0;
+    return f >= (double)(n - 1) ? n - 1 : (int)f;
+}
+
 static inline int bf_cells_col(const bf_cells *c, double x)
 {
-    double f = floor((x - c->x0) * c->inv_h);
-    if (!(f >= 0.0))
-        return 0;
-    return f >= (double)(c->nx - 1) ? c->nx - 1 : (int)f;
+    return bf_cells_index((x - c->x0) * c->inv_h, c->nx);
 }
 
 static inline int bf_cells_row(const bf_cells *c, double y)
 {
-    double f = floor((y - c->y0) * c->inv_h);
-    if (!(f >= 0.0))
-        return 0;
-    return f >= (double)(c->ny - 1) ? c->ny - 1 : (int)f;
+    return bf_cells_index((y - c->y0) * c->inv_h, c->ny);
 }
 
 /* Slots [*u0, *u1) of the cells of column col, rows r0..r1 (r0 <= r1). */

@@ -33,7 +33,7 @@ typedef struct bf_repulsion {
     int p, beta;   /* integer exponents */
     double cutoff; /* r_c; 0: no cutoff */
     int use_cells; /* 1: cell list (needs cutoff > 0); 0: all pairs */
-    double cell;   /* requested cell side (0: half the cutoff) */
+    double cell;   /* requested cell side (0: the cutoff) */
     double inv_d;  /* 1/d */
 } bf_repulsion;
 
@@ -50,12 +50,13 @@ int bf_repulsion_all_pairs(const bf_repulsion *r, const double *x,
                            const double *y, const double *m, size_t n,
                            double *ax, double *ay, size_t *bi, size_t *bj);
 
-/* Scratch for bf_repulsion_cells: accelerations in slot order and, per
- * thread, the list of neighbours of one particle. */
+/* Scratch for bf_repulsion_cells: accelerations in slot order (x and y of
+ * slot s at sa[2s], sa[2s + 1]) and, per thread, the list of neighbours of
+ * one particle. */
 typedef struct bf_repulsion_work {
     size_t cap;
     int threads; /* OpenMP threads (1 without OpenMP) */
-    double *sax, *say, *r2;
+    double *sa, *r2;
     uint32_t *nb;
 } bf_repulsion_work;
 

@@ -29,22 +29,25 @@
  *          the empty-band test is a 64-bit mask of the bands each counted
  *          square reaches; cheapest for small boxes (Example 2: K <= 16);
  *   fast   O(N log N), needs d <= 2 dx.  For K_j >= 1 every square that
- *          reaches a band q <= K_j - 1 belongs to a particle with
- *          y_i < ay + (K_j-1) dx + d/2 <= y_j, so those bands need no
- *          support-set test.  Their total area
- *            S_j = sum_i H_i(K_j - 1) |[l_i, r_i] n [gamma_j, delta_j]|
- *          (H_i(m): height of Q_i below ay + m dx) is F(delta_j) - F(gamma_j)
- *          with F(x) = sum_{l_i<=x} H_i (x - l_i) - sum_{r_i<=x} H_i (x - r_i),
+ *          lies entirely below the line z_K = ay + K_j dx (top t_i <= z_K)
+ *          belongs to a particle with y_i <= z_K - d/2 < y_j, so those
+ *          squares need no support-set test.  Their area in the strip,
+ *            S_j = sum_i H_i(K_j) |[l_i, r_i] n [gamma_j, delta_j]|
+ *          (H_i(m): the height of Q_i if it lies below z_m, else 0), is
+ *          F(delta_j) - F(gamma_j) with
+ *          F(x) = sum_{l_i<=x} H_i (x - l_i) - sum_{r_i<=x} H_i (x - r_i),
  *          evaluated by one sweep in x over the sorted square edges with a
- *          Fenwick tree over levels (H_i is a sum of two ramps in the level,
- *          so each edge is two tree updates).  "Some band q <= K_j - 1 is
- *          empty" is decided exactly from the gaps between consecutive
- *          x-sorted squares of each band: a strip fits a gap iff no square
- *          of that band overlaps it; the strips that fit a gap are a
- *          contiguous range of the x order, and a skip list assigns each
- *          particle its lowest empty band once.  The top band K_j (where the
- *          y_i <= y_j test matters) and the K_j = 0 rectangle use the cell
- *          list.
+ *          Fenwick tree over levels (each edge is one tree update).  The
+ *          squares that line z_K cuts (and those clipped by the ceiling)
+ *          come from the cell list: a window of height d around z_K, with
+ *          the support-set test.  "Some band q <= K_j - 1 is empty" is
+ *          decided exactly from the gaps between consecutive x-sorted
+ *          squares of each band: a strip fits a gap iff no square of that
+ *          band overlaps it; the strips that fit a gap are a contiguous
+ *          range of the x order, and a skip list assigns each particle its
+ *          lowest empty band once.  Band K_j is non-empty if a cut square
+ *          of S(P_j) overlaps the strip, else the cell list is asked (rare).
+ *          The K = 0 rectangle uses the cell list.
  */
 #ifndef BALLFILM_SUPPORT_H
 #define BALLFILM_SUPPORT_H

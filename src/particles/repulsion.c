@@ -13,6 +13,17 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+/* Small kernels that must be inlined with constant arguments. */
+#define HOT static inline __attribute__((always_inline))
+
+/* At most NRUN columns in a neighbourhood: reach <= NRUN - 1, i.e. cells
+ * of at least cutoff / (NRUN - 1) (bf_repulsion_from_scene refuses smaller
+ * ones; bf_repulsion_cells falls back to all pairs). */
+enum { NRUN = 16 };
 
 static const bf_param repulsion_params[] = {
     {"alpha", BF_REAL, "1", "1", "strength alpha of eqs 2.11-2.12",
@@ -33,7 +44,7 @@ static const bf_param repulsion_params[] = {
      "there is a cutoff",
      0, 0, 0, "auto|cells|pairs"},
     {"cell", BF_REAL, "cm", "0",
-     "side of the cell-list cells (0: half the cutoff); smaller cells test "
+     "side of the cell-list cells (0: the cutoff); smaller cells test "
      "fewer pairs but visit more cells",
      BF_NONNEG | BF_HIDDEN, 0, 0, NULL},
     {0},
@@ -63,26 +74,47 @@ bf_status bf_repulsion_from_scene(bf_repulsion *r, const bf_scene *sc,
         return bf_scene_fail(sc, err, "repulsion", "cell",
                              "cell side %g is above the cutoff %g", r->cell,
                              r->cutoff);
+    if (r->cell > 0 && r->cell * (NRUN - 1) < r->cutoff)
+        return bf_scene_fail(sc, err, "repulsion", "cell",
+                             "cell side %g is below cutoff/%d (the search "
+                             "reaches at most %d cells)",
+                             r->cell, NRUN - 1, NRUN - 1);
     return BF_OK;
 }
 
-/* alpha / D(r) for r^2 = r2, or -1 if D = 0. */
-static inline double factor(const bf_repulsion *r, double r2)
+/* The force law with its constants in locals: the stores to the
+ * accelerations (double *) could otherwise alias the struct's doubles and
+ * force a reload of every constant for every pair. */
+typedef struct law {
+    double alpha, xi, d, inv_d;
+    int p, beta;
+} law;
+
+/* D(r) for r^2 = r2: D (s/d)^beta for r < d, else D, written as
+ * arithmetic: (double)(r < d) is 0 or 1, so in B + (1 - in) is exactly B
+ * or 1 (B is finite), which is what the SSE2 path selects with a mask.
+ * p and beta are constants in the specialised copies of law_factors. */
+static inline double law_D(const law *L, double r2, int p, int beta)
 {
     double d = sqrt(r2);
-    double s = d + r->xi;
-    /* D (s/d)^beta for r < d, else D; as arithmetic (exact: B is finite)
-     * because the test is random and a branch would mispredict */
-    double D = bf_ipow(s, r->p), B = bf_ipow(s * r->inv_d, r->beta);
-    double in = (double)(d < r->d);
-    D *= in * B + (1.0 - in);
-    return D > 0 ? r->alpha / D : -1.0;
+    double s = d + L->xi;
+    double D = bf_ipow(s, p), B = bf_ipow(s * L->inv_d, beta);
+    double in = (double)(d < L->d);
+    return D * (in * B + (1.0 - in));
+}
+
+/* alpha / D(r), or -1 if D = 0. */
+static inline double law_factor(const law *L, double r2)
+{
+    double D = law_D(L, r2, L->p, L->beta);
+    return D > 0 ? L->alpha / D : -1.0;
 }
 
 int bf_repulsion_all_pairs(const bf_repulsion *r, const double *x,
                            const double *y, const double *m, size_t n,
                            double *ax, double *ay, size_t *bi, size_t *bj)
 {
+    const law L = {r->alpha, r->xi, r->d, r->inv_d, r->p, r->beta};
     const double rc2 = r->cutoff > 0 ? r->cutoff * r->cutoff : INFINITY;
     memset(ax, 0, n * sizeof *ax);
     memset(ay, 0, n * sizeof *ay);
@@ -92,7 +124,7 @@ int bf_repulsion_all_pairs(const bf_repulsion *r, const double *x,
             double r2 = dx * dx + dy * dy;
             if (!(r2 < rc2))
                 continue;
-            double f = factor(r, r2);
+            double f = law_factor(&L, r2);
             if (f < 0) {
                 *bi = j;
                 *bj = i;
@@ -118,11 +150,10 @@ bf_status bf_repulsion_work_init(bf_repulsion_work *w, size_t cap, int threads,
 #endif
     size_t k = cap ? cap : 1, nt = (size_t)w->threads;
     w->cap = cap;
-    w->sax = malloc(k * sizeof *w->sax);
-    w->say = malloc(k * sizeof *w->say);
+    w->sa = malloc(2 * k * sizeof *w->sa);
     w->r2 = malloc(nt * k * sizeof *w->r2);
     w->nb = malloc(nt * k * sizeof *w->nb);
-    if (!w->sax || !w->say || !w->r2 || !w->nb) {
+    if (!w->sa || !w->r2 || !w->nb) {
         bf_repulsion_work_free(w);
         return bf_fail(err, BF_EINTERNAL, "out of memory (repulsion)");
     }
@@ -131,72 +162,268 @@ bf_status bf_repulsion_work_init(bf_repulsion_work *w, size_t cap, int threads,
 
 void bf_repulsion_work_free(bf_repulsion_work *w)
 {
-    free(w->sax);
-    free(w->say);
+    free(w->sa);
     free(w->r2);
     free(w->nb);
-    w->sax = w->say = w->r2 = NULL;
+    w->sa = w->r2 = NULL;
     w->nb = NULL;
 }
 
-/* Columns [x0, x1) of the cell list; the first coincident pair found is
- * reported through bad (slots). */
-static void cols_pairs(const bf_repulsion *r, const bf_cells *c, int reach,
-                       int x0, int x1, double *r2b, uint32_t *nb, double *sax,
-                       double *say, uint32_t bad[2], int *found)
+#if defined(__SSE2__)
+/* bf_ipow on two lanes, with the same multiplications in the same order
+ * (so the same bits); e is a constant where it is inlined. */
+HOT __m128d ipow_pd(__m128d b, int e)
 {
+    switch (e) {
+    case 0:
+        return _mm_set1_pd(1.0);
+    case 1:
+        return b;
+    case 2:
+        return _mm_mul_pd(b, b);
+    case 3:
+        return _mm_mul_pd(_mm_mul_pd(b, b), b);
+    case 4: {
+        __m128d b2 = _mm_mul_pd(b, b);
+        return _mm_mul_pd(b2, b2);
+    }
+    case 5: {
+        __m128d b2 = _mm_mul_pd(b, b);
+        return _mm_mul_pd(_mm_mul_pd(b2, b2), b);
+    }
+    default: {
+        __m128d r = _mm_set1_pd(1.0);
+        while (e) {
+            if (e & 1)
+                r = _mm_mul_pd(r, b);
+            b = _mm_mul_pd(b, b);
+            e >>= 1;
+        }
+        return r;
+    }
+    }
+}
+#endif
+
+/* law_factors with the exponents p, beta (constants where inlined).  With
+ * SSE2 two pairs at a time: sqrt, +, *, / are the same IEEE operations and
+ * the select of B or 1 gives what in B + (1 - in) gives, so the same bits
+ * as law_D. */
+HOT int law_factors_pb(const law *L, double *restrict v, size_t m, int p,
+                       int beta)
+{
+    int zero = 0;
+    size_t k = 0;
+#if defined(__SSE2__)
+    const __m128d XI = _mm_set1_pd(L->xi), ID = _mm_set1_pd(L->inv_d),
+                  DD = _mm_set1_pd(L->d), A = _mm_set1_pd(L->alpha),
+                  ONE = _mm_set1_pd(1.0), Z = _mm_setzero_pd();
+    for (; k < m; k += 2) {
+        /* a last odd one in lane 0 (lane 1 computes on 0 and is dropped):
+         * no scalar tail, whose branches would mispredict */
+        const int two = k + 2 <= m;
+        __m128d r2 = two ? _mm_loadu_pd(v + k) : _mm_load_sd(v + k);
+        __m128d d = _mm_sqrt_pd(r2);
+        __m128d s = _mm_add_pd(d, XI);
+        __m128d D = ipow_pd(s, p), B = ipow_pd(_mm_mul_pd(s, ID), beta);
+        __m128d in = _mm_cmplt_pd(d, DD);
+        D = _mm_mul_pd(D, _mm_or_pd(_mm_and_pd(in, B), _mm_andnot_pd(in, ONE)));
+        __m128d f = _mm_div_pd(A, D);
+        zero |= _mm_movemask_pd(_mm_cmpngt_pd(D, Z)) & (two ? 3 : 1);
+        if (two)
+            _mm_storeu_pd(v + k, f);
+        else
+            _mm_store_sd(v + k, f);
+    }
+#endif
+    for (; k < m; k++) {
+        double D = law_D(L, v[k], p, beta);
+        zero |= !(D > 0);
+        v[k] = L->alpha / D;
+    }
+    return zero != 0;
+}
+
+/* v[k] = alpha / D for the m squared distances v[k], in place; returns 1
+ * if some D = 0 (their v[k] are not finite).  The exponent pairs of
+ * Greenspan's examples (Example 1: p = 2, beta = 5; Example 2: p = 2,
+ * beta = 2) get copies in which the powers are a few multiplications
+ * without a switch. */
+static int law_factors(const law *L, double *restrict v, size_t m)
+{
+    if (L->p == 2 && L->beta == 2)
+        return law_factors_pb(L, v, m, 2, 2);
+    if (L->p == 2 && L->beta == 5)
+        return law_factors_pb(L, v, m, 2, 5);
+    return law_factors_pb(L, v, m, L->p, L->beta);
+}
+
+/* The particles t in the slot runs [t0[k], t1[k]) within the cutoff of the
+ * particle at (xs, ys): their slots in nb and squared distances in r2;
+ * returns their number.  Branch-free: about half of the candidates are
+ * beyond the cutoff, at random, which a branch would mispredict. */
+static size_t neighbours(const double *restrict sx, const double *restrict sy,
+                         double xs, double ys, double rc2, const uint32_t *t0,
+                         const uint32_t *t1, int nrun, uint32_t *restrict nb,
+                         double *restrict r2)
+{
+    size_t m = 0;
+#if defined(__SSE2__)
+    const __m128d XS = _mm_set1_pd(xs), YS = _mm_set1_pd(ys),
+                  RC = _mm_set1_pd(rc2);
+#endif
+    for (int k = 0; k < nrun; k++) {
+        const uint32_t e = t1[k];
+        uint32_t t = t0[k];
+#if defined(__SSE2__)
+        /* two candidates at a time (the same operations, so the same r2) */
+        for (; t + 2 <= e; t += 2) {
+            __m128d dx = _mm_sub_pd(XS, _mm_loadu_pd(sx + t)),
+                    dy = _mm_sub_pd(YS, _mm_loadu_pd(sy + t));
+            __m128d q = _mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy));
+            const int in = _mm_movemask_pd(_mm_cmplt_pd(q, RC));
+            nb[m] = t;
+            _mm_storel_pd(r2 + m, q);
+            m += (size_t)(in & 1);
+            nb[m] = t + 1;
+            _mm_storeh_pd(r2 + m, q);
+            m += (size_t)(in >> 1);
+        }
+#endif
+        for (; t < e; t++) {
+            double dx = xs - sx[t], dy = ys - sy[t];
+            double q = dx * dx + dy * dy;
+            nb[m] = t;
+            r2[m] = q;
+            m += q < rc2;
+        }
+    }
+    return m;
+}
+
+/* Particle s (at xs, ys, mass ws) and its m neighbours nb with the factors
+ * f: both accelerations of each pair, in the order of the list, into sa
+ * (x and y of slot t at 2t, 2t + 1).  With SSE2 the x and y components
+ * share one register: the same operations per component, in the same
+ * order, so the same bits. */
+static void pair_forces(const double *restrict sx, const double *restrict sy,
+                        const double *restrict sw, uint32_t s, double xs,
+                        double ys, double ws, const uint32_t *restrict nb,
+                        const double *restrict f, size_t m,
+                        double *restrict sa)
+{
+#if defined(__SSE2__)
+    const __m128d P = _mm_set_pd(ys, xs), W = _mm_set1_pd(ws);
+    __m128d acc = _mm_setzero_pd();
+    for (size_t k = 0; k < m; k++) {
+        const uint32_t t = nb[k];
+        __m128d q = _mm_loadh_pd(_mm_load_sd(sx + t), sy + t);
+        __m128d txy = _mm_mul_pd(_mm_sub_pd(P, q), _mm_set1_pd(f[k]));
+        acc = _mm_add_pd(acc, _mm_mul_pd(_mm_set1_pd(sw[t]), txy));
+        double *at = sa + 2 * (size_t)t;
+        _mm_storeu_pd(at, _mm_sub_pd(_mm_loadu_pd(at), _mm_mul_pd(W, txy)));
+    }
+    double *as = sa + 2 * (size_t)s;
+    _mm_storeu_pd(as, _mm_add_pd(_mm_loadu_pd(as), acc));
+#else
+    double axs = 0, ays = 0;
+    for (size_t k = 0; k < m; k++) {
+        const uint32_t t = nb[k];
+        double tx = (xs - sx[t]) * f[k], ty = (ys - sy[t]) * f[k];
+        axs += sw[t] * tx;
+        ays += sw[t] * ty;
+        sa[2 * (size_t)t] -= ws * tx;
+        sa[2 * (size_t)t + 1] -= ws * ty;
+    }
+    sa[2 * (size_t)s] += axs;
+    sa[2 * (size_t)s + 1] += ays;
+#endif
+}
+
+/* Columns [x0, x1) of the cell list; the first coincident pair found is
+ * reported through bad (slots).  For each particle s, in slot order: the
+ * neighbours in half of its neighbourhood (its own column: the slots after
+ * s up to row cy + reach; the columns to the right: rows cy - reach ..
+ * cy + reach), their factors in one loop (the square roots and divisions of
+ * different pairs overlap), then both accelerations of each pair.  The
+ * sums run in the order of one loop over the pairs. */
+static void cols_pairs(const bf_repulsion *r, const bf_cells *c, int reach,
+                       int x0, int x1, double *restrict f,
+                       uint32_t *restrict nb, double *restrict sa,
+                       uint32_t bad[2], int *found)
+{
+    const law L = {r->alpha, r->xi, r->d, r->inv_d, r->p, r->beta};
     const double rc2 = r->cutoff * r->cutoff;
     const int nx = c->nx, ny = c->ny;
-    const double *sx = c->sx, *sy = c->sy, *sw = c->sw;
-    for (int cx = x0; cx < x1; cx++)
+    const double *restrict sx = c->sx, *restrict sy = c->sy,
+                           *restrict sw = c->sw;
+    uint32_t t0[NRUN], t1[NRUN];
+    for (int cx = x0; cx < x1; cx++) {
+        const int nrun = cx + reach < nx ? reach + 1 : nx - cx;
         for (int cy = 0; cy < ny; cy++) {
             uint32_t a0, a1;
             bf_cells_run(c, cx, cy, cy, &a0, &a1);
+            if (a0 == a1)
+                continue;
             const int ylo = cy - reach < 0 ? 0 : cy - reach,
                       yhi = cy + reach >= ny ? ny - 1 : cy + reach;
+            /* the same runs for every particle of the cell, but for the
+             * start of the first (s + 1) */
+            for (int ox = 0; ox < nrun; ox++)
+                bf_cells_run(c, cx + ox, ox == 0 ? cy : ylo, yhi, &t0[ox],
+                             &t1[ox]);
             for (uint32_t s = a0; s < a1; s++) {
-                const double xs = sx[s], ys = sy[s], ws = sw[s];
-                /* the neighbours in half of the neighbourhood (this column:
-                 * the slots after s up to row cy + reach; the columns to
-                 * the right: rows cy - reach .. cy + reach), collected
-                 * without branches: about half of the candidates are
-                 * beyond the cutoff, at random */
-                size_t m = 0;
-                for (int ox = 0; ox <= reach && cx + ox < nx; ox++) {
-                    uint32_t b0, b1;
-                    bf_cells_run(c, cx + ox, ox == 0 ? cy : ylo, yhi, &b0, &b1);
-                    if (ox == 0)
-                        b0 = s + 1;
-                    for (uint32_t t = b0; t < b1; t++) {
+                const double xs = sx[s], ys = sy[s];
+                t0[0] = s + 1;
+                size_t m = neighbours(sx, sy, xs, ys, rc2, t0, t1, nrun, nb,
+                                      f);
+                if (law_factors(&L, f, m))
+                    /* rare (r = 0 with xi = 0): which pairs */
+                    for (size_t k = 0; k < m; k++) {
+                        const uint32_t t = nb[k];
                         double dx = xs - sx[t], dy = ys - sy[t];
-                        double q = dx * dx + dy * dy;
-                        nb[m] = t;
-                        r2b[m] = q;
-                        m += q < rc2;
-                    }
-                }
-                double axs = 0, ays = 0;
-                for (size_t k = 0; k < m; k++) {
-                    uint32_t t = nb[k];
-                    double f = factor(r, r2b[k]);
-                    if (f < 0) {
+                        if (law_D(&L, dx * dx + dy * dy, L.p, L.beta) > 0)
+                            continue;
                         if (!*found) {
                             *found = 1;
                             bad[0] = s;
                             bad[1] = t;
                         }
-                        f = 0.0;
+                        f[k] = 0.0;
                     }
-                    double tx = (xs - sx[t]) * f, ty = (ys - sy[t]) * f;
-                    axs += sw[t] * tx;
-                    ays += sw[t] * ty;
-                    sax[t] -= ws * tx;
-                    say[t] -= ws * ty;
-                }
-                sax[s] += axs;
-                say[s] += ays;
+                pair_forces(sx, sy, sw, s, xs, ys, sw[s], nb, f, m, sa);
             }
         }
+    }
+}
+
+/* OpenMP only pays from a few thousand particles on, and only with more
+ * than one thread; otherwise no parallel region is entered (libgomp
+ * allocates a team for every region, even for one with if (0)). */
+static inline int par(const bf_repulsion_work *w, size_t n)
+{
+    return w->threads > 1 && n >= 4096;
+}
+
+/* ax, ay in particle order from the sums in slot order. */
+static void to_index_order(const bf_cells *c, const bf_repulsion_work *w,
+                           double *ax, double *ay)
+{
+    const size_t n = c->n;
+    if (par(w, n)) {
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+        for (size_t s = 0; s < n; s++) {
+            ax[c->idx[s]] = w->sa[2 * s];
+            ay[c->idx[s]] = w->sa[2 * s + 1];
+        }
+#endif
+    } else {
+        for (size_t s = 0; s < n; s++) {
+            ax[c->idx[s]] = w->sa[2 * s];
+            ay[c->idx[s]] = w->sa[2 * s + 1];
+        }
+    }
 }
 
 int bf_repulsion_cells(const bf_repulsion *r, const bf_cells *c,
@@ -204,54 +431,74 @@ int bf_repulsion_cells(const bf_repulsion *r, const bf_cells *c,
                        size_t *bi, size_t *bj)
 {
     const int reach = (int)ceil(r->cutoff * c->inv_h * (1.0 - 1e-12));
+    const size_t n = c->n;
+    if (reach >= NRUN) {
+        /* cells far below the cutoff (a direct call; scenes refuse them):
+         * all pairs, in slot order */
+        double *tx = w->sa, *ty = w->sa + n;
+        if (bf_repulsion_all_pairs(r, c->sx, c->sy, c->sw, n, tx, ty, bi,
+                                   bj)) {
+            *bi = c->idx[*bi];
+            *bj = c->idx[*bj];
+            return 1;
+        }
+        for (size_t s = 0; s < n; s++) {
+            ax[c->idx[s]] = tx[s];
+            ay[c->idx[s]] = ty[s];
+        }
+        return 0;
+    }
     const int nx = c->nx, width = reach + 1;
     const int nstripes = (nx + width - 1) / width;
-    const size_t n = c->n;
-    double *sax = w->sax, *say = w->say;
-    memset(sax, 0, n * sizeof *sax);
-    memset(say, 0, n * sizeof *say);
+    memset(w->sa, 0, 2 * n * sizeof *w->sa);
     /* the first coincident pair in stripe order (thread-count independent) */
     uint32_t bad[2] = {0, 0};
     int found = 0;
-    for (int phase = 0; phase < 2; phase++) {
+    if (par(w, n)) {
+        for (int phase = 0; phase < 2; phase++) {
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(w->threads) \
-    if (n >= 4096)
-#endif
-        for (int k = phase; k < nstripes; k += 2) {
-            int tid = 0;
-#ifdef _OPENMP
-            tid = omp_get_thread_num();
-#endif
-            uint32_t b[2];
-            int f = 0;
-            int x1 = (k + 1) * width < nx ? (k + 1) * width : nx;
-            cols_pairs(r, c, reach, k * width, x1, w->r2 + (size_t)tid * n,
-                       w->nb + (size_t)tid * n, sax, say, b, &f);
-            if (f) {
-#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(w->threads)
+            for (int k = phase; k < nstripes; k += 2) {
+                int tid = omp_get_thread_num();
+                uint32_t b[2];
+                int f = 0;
+                int x1 = (k + 1) * width < nx ? (k + 1) * width : nx;
+                cols_pairs(r, c, reach, k * width, x1,
+                           w->r2 + (size_t)tid * n, w->nb + (size_t)tid * n,
+                           w->sa, b, &f);
+                if (f) {
 #pragma omp critical(bf_repulsion_bad)
+                    if (!found || b[0] < bad[0]) {
+                        found = 1;
+                        bad[0] = b[0];
+                        bad[1] = b[1];
+                    }
+                }
+            }
 #endif
-                if (!found || b[0] < bad[0]) {
+        }
+    } else {
+        /* the stripes in the same order as above: every stripe of a phase
+         * writes only to itself and the next one */
+        for (int phase = 0; phase < 2; phase++)
+            for (int k = phase; k < nstripes; k += 2) {
+                int x1 = (k + 1) * width < nx ? (k + 1) * width : nx;
+                uint32_t b[2];
+                int f = 0;
+                cols_pairs(r, c, reach, k * width, x1, w->r2, w->nb, w->sa, b,
+                           &f);
+                if (f && (!found || b[0] < bad[0])) {
                     found = 1;
                     bad[0] = b[0];
                     bad[1] = b[1];
                 }
             }
-        }
     }
     if (found) {
         *bi = c->idx[bad[0]];
         *bj = c->idx[bad[1]];
         return 1;
     }
-#ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(w->threads) \
-    if (n >= 4096)
-#endif
-    for (size_t s = 0; s < n; s++) {
-        ax[c->idx[s]] = sax[s];
-        ay[c->idx[s]] = say[s];
-    }
+    to_index_order(c, w, ax, ay);
     return 0;
 }

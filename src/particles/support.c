@@ -18,6 +18,12 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+/* Small kernels that must be inlined with constant arguments. */
+#define HOT static inline __attribute__((always_inline))
 
 static const bf_param support_params[] = {
     {"g", BF_REAL, "cm/s^2", "980",
@@ -78,13 +84,18 @@ struct bf_support {
     bf_support_params p;
     size_t cap;
     int kmax;        /* largest K of a particle in the box */
+    double *bz;      /* [kmax + 3]: the band edges z_q (line_z) */
     int threads;     /* OpenMP threads */
     double hd, hdx;  /* d/2, dx/2 */
     /* x-sorted order and geometry in that order (fast method) */
     uint32_t *ord, *binc; /* x order, bin counts */
     double *ls, *rs, *bs, *ts, *gs, *ds, *ys;
-    int32_t *ks, *mb, *mt; /* K, and the levels where H starts / stops rising */
-    double *lower; /* area of the bands below the top band */
+    int32_t *ks, *mb, *mt; /* K; the first and last band with positive
+                              height of the square (first_band, full_level) */
+    int32_t *sl, *csl; /* sweep level: mt, or INT32_MAX for a square clipped
+                          by the ceiling (never in the sweep); x order, cell
+                          order */
+    double *lower; /* area of the squares entirely below z_K (the sweep) */
     double *cl, *cr, *cb, *ct; /* square edges in cell-list order */
     uint64_t *bm;              /* bands 1..64 each square reaches */
     double *fgam;  /* F(gamma) while sweeping */
@@ -102,15 +113,18 @@ struct bf_support {
 static inline double dmax(double a, double b) { return a > b ? a : b; }
 static inline double dmin(double a, double b) { return a < b ? a : b; }
 
-static inline double band_lo(const bf_support_params *p, int q)
-{
-    return p->box.ay + (double)(q - 1) * p->dx;
-}
-
-static inline double band_hi(const bf_support_params *p, int q)
+/* The lines z_q = ay + q dx, q = 0..kmax + 2, computed once (bf_support
+ * create) with this expression: band q is [z_{q-1}, z_q].  Particles in
+ * the box never ask beyond kmax + 2 (kmax = K of the ceiling; one level of
+ * margin each for rounding in k_of and full_level). */
+static inline double line_z(const bf_support_params *p, int q)
 {
     return p->box.ay + (double)q * p->dx;
 }
+
+static inline double band_lo(const bf_support *s, int q) { return s->bz[q - 1]; }
+
+static inline double band_hi(const bf_support *s, int q) { return s->bz[q]; }
 
 /* K(y) = floor((y - ay)/dx) >= 0, with the reciprocal of dx (one
  * definition for every method; at an exact band edge it may differ from a
@@ -144,6 +158,7 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->threads = 1;
 #endif
     size_t k = cap ? cap : 1, nb = (size_t)s->kmax + 3;
+    s->bz = malloc(nb * sizeof *s->bz);
     s->ord = malloc(k * sizeof *s->ord);
     s->binc = malloc((k + 1) * sizeof *s->binc);
     s->ls = malloc(k * sizeof *s->ls);
@@ -156,6 +171,8 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->ks = malloc(k * sizeof *s->ks);
     s->mb = malloc(k * sizeof *s->mb);
     s->mt = malloc(k * sizeof *s->mt);
+    s->sl = malloc(k * sizeof *s->sl);
+    s->csl = malloc(k * sizeof *s->csl);
     s->lower = malloc(k * sizeof *s->lower);
     s->cl = malloc(k * sizeof *s->cl);
     s->cr = malloc(k * sizeof *s->cr);
@@ -172,15 +189,18 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->blist = malloc(3 * k * sizeof *s->blist);
     s->area = malloc(nb * (size_t)s->threads * sizeof *s->area);
     s->cnt = malloc(nb * (size_t)s->threads * sizeof *s->cnt);
-    if (!s->ord || !s->binc || !s->ls || !s->rs || !s->bs || !s->ts ||
-        !s->gs || !s->ds || !s->ys || !s->ks || !s->mb || !s->mt || !s->lower || !s->cl || !s->cr ||
-        !s->cb || !s->ct || !s->bm || !s->fgam ||
+    if (!s->bz || !s->ord || !s->binc || !s->ls || !s->rs || !s->bs ||
+        !s->ts || !s->gs || !s->ds || !s->ys || !s->ks || !s->mb || !s->mt ||
+        !s->sl || !s->csl || !s->lower || !s->cl || !s->cr || !s->cb ||
+        !s->ct || !s->bm || !s->fgam ||
         !s->lowe || !s->nxt || !s->fen || !s->bstart || !s->bfill ||
         !s->blist || !s->area || !s->cnt) {
         bf_support_free(s);
         return bf_fail(err, BF_EINTERNAL, "out of memory (support, %zu "
                        "particles)", cap);
     }
+    for (size_t q = 0; q < nb; q++)
+        s->bz[q] = line_z(&s->p, (int)q);
     *out = s;
     return BF_OK;
 }
@@ -194,6 +214,7 @@ void bf_support_free(bf_support *s)
 {
     if (!s)
         return;
+    free(s->bz);
     free(s->ord);
     free(s->binc);
     free(s->ls);
@@ -206,6 +227,8 @@ void bf_support_free(bf_support *s)
     free(s->ks);
     free(s->mb);
     free(s->mt);
+    free(s->sl);
+    free(s->csl);
     free(s->lower);
     free(s->cl);
     free(s->cr);
@@ -254,7 +277,7 @@ static inline void add_square(const bf_support *s, double xi, double yi,
     if (qb > K)
         qb = K;
     for (int q = qa; q <= qb; q++) {
-        double f1 = dmin(ti, band_hi(p, q)) - dmax(bi, band_lo(p, q));
+        double f1 = dmin(ti, band_hi(s, q)) - dmax(bi, band_lo(s, q));
         if (f1 > 0) {
             area[q - base] += f1 * f2;
             cnt[q - base]++;
@@ -288,16 +311,29 @@ static inline double finish(const bf_support *s, double yj, double W, int K,
 /* The lowest level m >= 1 whose line z_m = band_hi(m) is at or above t:
  * exact with respect to band_hi, so that "full below z_m" (the sweep) and
  * "cut by z_m" (t > z_m, the cell query) never disagree. */
-static inline int full_level(const bf_support_params *p, double t)
+static inline int full_level(const bf_support *s, double t)
 {
-    int m = k_of(p, t);
+    int m = k_of(&s->p, t);
     if (m < 1)
         m = 1;
-    while (m > 1 && band_hi(p, m - 1) >= t)
+    while (m > 1 && band_hi(s, m - 1) >= t)
         m--;
-    while (band_hi(p, m) < t)
+    while (band_hi(s, m) < t)
         m++;
     return m;
+}
+
+/* The lowest band q >= 1 whose top z_q is above b: with full_level, a
+ * square reaches (positive height, if t > b) exactly the bands
+ * first_band(b) .. full_level(t). */
+static inline int first_band(const bf_support *s, double b)
+{
+    int q = k_of(&s->p, b) + 1;
+    while (q > 1 && band_hi(s, q - 1) > b)
+        q--;
+    while (q <= s->kmax + 1 && !(band_hi(s, q) > b)) /* bounded for NaN */
+        q++;
+    return q;
 }
 
 /* Particle j is resting on the floor band. */
@@ -321,7 +357,7 @@ static void column_from_cells(const bf_support *s, const bf_cells *c,
 {
     const bf_support_params *p = &s->p;
     const int tie = p->tie;
-    double ylo = K == 0 ? p->box.ay : band_lo(p, q0) - s->hd;
+    double ylo = K == 0 ? p->box.ay : band_lo(s, q0) - s->hd;
     int c0 = bf_cells_col(c, gam - s->hd), c1 = bf_cells_col(c, del + s->hd);
     int r0 = bf_cells_row(c, ylo), r1 = bf_cells_row(c, yj);
     for (int col = c0; col <= c1; col++) {
@@ -385,131 +421,242 @@ static void eval_naive(bf_support *s, const double *x, const double *y,
     }
 }
 
-/* OpenMP only pays from a few thousand particles on. */
+/* OpenMP only pays from a few thousand particles on, and only with more
+ * than one thread.  Otherwise the loops run without entering a parallel
+ * region at all: libgomp allocates a team for every region, even for one
+ * with if (0). */
 #define PAR_MIN 4096
+
+static inline int par(const bf_support *s, size_t n)
+{
+    return s->threads > 1 && n >= PAR_MIN;
+}
 
 /* Square edges in cell-list order, and (masks) the bands 1..64 in which
  * each square has positive height: bit q-1 is set iff b < hi_q and
  * t > lo_q, the exact condition f1 > 0 of add_square. */
-static void slot_edges(bf_support *s, const bf_cells *c, size_t n, int masks)
+static inline void slot_edge(bf_support *s, const bf_cells *c, size_t t,
+                             int masks)
 {
     const bf_support_params *p = &s->p;
-#ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(s->threads) \
-    if (n >= PAR_MIN)
-#endif
-    for (size_t t = 0; t < n; t++) {
-        double xi = c->sx[t], yi = c->sy[t];
-        double b = dmax(yi - s->hd, p->box.ay), tp = dmin(yi + s->hd, p->box.by);
-        s->cl[t] = dmax(xi - s->hd, p->box.ax);
-        s->cr[t] = dmin(xi + s->hd, p->box.bx);
-        s->cb[t] = b;
-        s->ct[t] = tp;
-        if (masks) {
-            /* bands qa..qb, with qa, qb moved by one if rounding put them
-             * beyond the exact edges */
-            int qa = k_of(p, b) + 1, qb = k_of(p, tp) + 1;
-            if (qa > 1 && b < band_hi(p, qa - 1))
-                qa--;
-            if (!(b < band_hi(p, qa)))
-                qa++;
-            if (!(tp > band_lo(p, qb)))
-                qb--;
-            if (tp > band_lo(p, qb + 1))
-                qb++;
-            if (qb > 64)
-                qb = 64;
-            s->bm[t] = qa > qb ? 0
-                               : (((uint64_t)2 << (qb - 1)) - 1) &
-                                     ~(((uint64_t)1 << (qa - 1)) - 1);
-        }
+    double xi = c->sx[t], yi = c->sy[t];
+    double b = dmax(yi - s->hd, p->box.ay), tp = dmin(yi + s->hd, p->box.by);
+    s->cl[t] = dmax(xi - s->hd, p->box.ax);
+    s->cr[t] = dmin(xi + s->hd, p->box.bx);
+    s->cb[t] = b;
+    s->ct[t] = tp;
+    if (masks) {
+        /* bands qa..qb, with qa, qb moved by one if rounding put them
+         * beyond the exact edges */
+        int qa = k_of(p, b) + 1, qb = k_of(p, tp) + 1;
+        if (qa > 1 && b < band_hi(s, qa - 1))
+            qa--;
+        if (!(b < band_hi(s, qa)))
+            qa++;
+        if (!(tp > band_lo(s, qb)))
+            qb--;
+        if (tp > band_lo(s, qb + 1))
+            qb++;
+        if (qb > 64)
+            qb = 64;
+        s->bm[t] = qa > qb ? 0
+                           : (((uint64_t)2 << (qb - 1)) - 1) &
+                                 ~(((uint64_t)1 << (qa - 1)) - 1);
     }
 }
 
-/* The cell method: for 1 <= K <= 64 the area of bands 1..K is
- * sum f2 (min(t, hi_K) - b) over the squares of S(P_j) below, and a band
- * is empty iff no counted square has its bit; the other cases (K = 0,
- * K > 64) go band by band (one_particle). */
-static void eval_cell(bf_support *s, const double *x, const double *y,
-                      size_t n, const bf_cells *c, double *g, uint8_t *kind)
+static void slot_edges(bf_support *s, const bf_cells *c, size_t n, int masks)
+{
+    if (par(s, n)) {
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(s->threads)
+#endif
+        for (size_t t = 0; t < n; t++)
+            slot_edge(s, c, t, masks);
+    } else {
+        for (size_t t = 0; t < n; t++)
+            slot_edge(s, c, t, masks);
+    }
+}
+
+/* The constants of one particle j's queries of the cell list. */
+typedef struct stripq {
+    double gam, del; /* its strip */
+    double hi, lo;   /* its band K */
+    double ytop;     /* S(P_j): y_i <= ytop */
+    int K;
+#if defined(__SSE2__)
+    __m128d G, D, H, Y; /* gam, del, hi, ytop in both lanes */
+    __m128i KK;         /* K in every 32-bit lane */
+#endif
+} stripq;
+
+static inline stripq stripq_of(double gam, double del, double hi, double lo,
+                               double ytop, int K)
+{
+    stripq q = {gam, del, hi, lo, ytop, K
+#if defined(__SSE2__)
+                ,
+                _mm_set1_pd(gam), _mm_set1_pd(del), _mm_set1_pd(hi),
+                _mm_set1_pd(ytop), _mm_set1_epi32(K)
+#endif
+    };
+    return q;
+}
+
+/* The squares of slots [u, u1) (not j itself) that count for particle j:
+ * y <= ytop, f2 > 0 (the strip) and hh = min(t, hi_K) - b > 0, and if
+ * `cut` only those the sweep at level K leaves out (sweep level csl > K).
+ * Adds the sum of f2 hh to *area and, if `cut`, their number to *cnt,
+ * else the OR of their band masks to *mask.  (The height test only
+ * matters in j's row: the rows below hold only squares below j.)
+ * Branch-free, the tests fail at random; with SSE2 two squares at a time:
+ * min/max/sub/mul are the same IEEE operations, the masked term is f2 hh
+ * or +0 and the sum runs in slot order, so the same bits as the scalar
+ * loop.  `cut` is a constant where this is inlined. */
+HOT void strip_range(const bf_support *s, const double *restrict sy,
+                     const stripq *q, uint32_t u, uint32_t u1, int cut,
+                     double *area, uint64_t *mask, uint32_t *cnt)
+{
+    const double *restrict cl = s->cl, *restrict cr = s->cr,
+                           *restrict cb = s->cb, *restrict ct = s->ct;
+    const uint64_t *restrict bm = s->bm;
+    const int32_t *restrict csl = s->csl;
+    double a = *area;
+    uint64_t m = *mask;
+    uint32_t n = *cnt;
+#if defined(__SSE2__)
+    const __m128d Z = _mm_setzero_pd();
+    __m128i M = _mm_setzero_si128();
+    for (; u + 2 <= u1; u += 2) {
+        __m128d f2 = _mm_sub_pd(_mm_min_pd(_mm_loadu_pd(cr + u), q->D),
+                                _mm_max_pd(_mm_loadu_pd(cl + u), q->G));
+        __m128d hh = _mm_sub_pd(_mm_min_pd(_mm_loadu_pd(ct + u), q->H),
+                                _mm_loadu_pd(cb + u));
+        __m128d ok = _mm_and_pd(_mm_cmpgt_pd(f2, Z), _mm_cmpgt_pd(hh, Z));
+        ok = _mm_and_pd(ok, _mm_cmple_pd(_mm_loadu_pd(sy + u), q->Y));
+        if (cut) {
+            /* csl > K, widened from two 32-bit lanes to two 64-bit ones */
+            __m128i o = _mm_cmpgt_epi32(
+                _mm_loadl_epi64((const void *)(csl + u)), q->KK);
+            ok = _mm_and_pd(ok, _mm_castsi128_pd(_mm_unpacklo_epi32(o, o)));
+        }
+        __m128d term = _mm_and_pd(ok, _mm_mul_pd(f2, hh));
+        a += _mm_cvtsd_f64(term);
+        a += _mm_cvtsd_f64(_mm_unpackhi_pd(term, term));
+        if (cut) {
+            const int bits = _mm_movemask_pd(ok);
+            n += (uint32_t)((bits & 1) + (bits >> 1));
+        } else {
+            /* ok is all ones or zeros in each 64-bit lane */
+            M = _mm_or_si128(
+                M, _mm_and_si128(_mm_castpd_si128(ok),
+                                 _mm_loadu_si128((const void *)(bm + u))));
+        }
+    }
+    if (!cut) {
+        uint64_t mv[2];
+        _mm_storeu_si128((void *)mv, M);
+        m |= mv[0] | mv[1];
+    }
+#endif
+    for (; u < u1; u++) {
+        double f2 = dmin(cr[u], q->del) - dmax(cl[u], q->gam);
+        double hh = dmin(ct[u], q->hi) - cb[u];
+        int ok = (f2 > 0) & (hh > 0) & (sy[u] <= q->ytop) &
+                 (!cut | (csl[u] > q->K));
+        a += (double)ok * (f2 * hh);
+        if (cut)
+            n += (uint32_t)ok;
+        else
+            m |= bm[u] & (0 - (uint64_t)ok);
+    }
+    *area = a;
+    *mask = m;
+    *cnt = n;
+}
+
+/* The cell method, g of the particle in slot t (thread tid's scratch): for
+ * 1 <= K <= 64 the area of bands 1..K is sum f2 (min(t, hi_K) - b) over
+ * the squares of S(P_j) below, and a band is empty iff no counted square
+ * has its bit; the other cases (K = 0, K > 64) go band by band
+ * (one_particle). */
+static inline void cell_one(bf_support *s, const double *x, const double *y,
+                            size_t n, const bf_cells *c, size_t t, int tid,
+                            double *g, uint8_t *kind)
 {
     const bf_support_params *p = &s->p;
     const size_t nbands = (size_t)s->kmax + 3;
-    slot_edges(s, c, n, 1);
-#ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 64) num_threads(s->threads) \
-    if (n >= PAR_MIN)
-#endif
-    for (size_t t = 0; t < n; t++) {
-        int tid = 0;
-#ifdef _OPENMP
-        tid = omp_get_thread_num();
-#endif
-        const uint32_t j = c->idx[t];
-        const double xj = c->sx[t], yj = c->sy[t];
-        const int K = k_of(p, yj);
-        uint8_t kd;
-        double gj;
-        if (K == 0 || K > 64) {
-            gj = one_particle(s, c, x, y, n, j, s->area + (size_t)tid * nbands,
-                              s->cnt + (size_t)tid * nbands, &kd);
-        } else {
-            const double gam = dmax(xj - s->hdx, p->box.ax);
-            const double del = dmin(xj + s->hdx, p->box.bx);
-            const double hi = band_hi(p, K), hd = s->hd;
-            const double ytop = p->tie ? yj : nextafter(yj, -INFINITY);
-            const double *cl = s->cl, *cr = s->cr, *cb = s->cb, *ct = s->ct,
-                         *sy = c->sy;
-            const uint64_t *bm = s->bm;
-            int c0 = bf_cells_col(c, gam - hd), c1 = bf_cells_col(c, del + hd);
-            int r1 = bf_cells_row(c, yj);
-            double area = 0.0;
-            uint64_t mask = 0;
-            for (int col = c0; col <= c1; col++) {
-                /* rows below j's row: every particle is below j (no height
-                 * test, and j is not there) */
-                uint32_t u, u1, v1;
-                bf_cells_run(c, col, 0, r1, &u, &v1);
-                u1 = r1 > 0 ? c->start[(size_t)col * (size_t)c->ny + (size_t)r1]
-                            : u;
-                for (; u < u1; u++) {
-                    /* branch-free: the tests fail at random */
-                    double f2 = dmin(cr[u], del) - dmax(cl[u], gam);
-                    double hh = dmin(ct[u], hi) - cb[u];
-                    int ok = (f2 > 0) & (hh > 0);
-                    area += (double)ok * (f2 * hh);
-                    mask |= bm[u] & (0 - (uint64_t)ok);
-                }
-                /* j's row: the support-set test, j itself skipped */
-                for (; u < v1; u++) {
-                    double f2 = dmin(cr[u], del) - dmax(cl[u], gam);
-                    double hh = dmin(ct[u], hi) - cb[u];
-                    int ok = (sy[u] <= ytop) & (f2 > 0) & (hh > 0) & (u != t);
-                    area += (double)ok * (f2 * hh);
-                    mask |= bm[u] & (0 - (uint64_t)ok);
-                }
-            }
-            const uint64_t need = K == 64 ? ~(uint64_t)0
-                                          : ((uint64_t)1 << K) - 1;
-            if ((mask & need) != need) {
-                gj = -p->g0;
-                kd = BF_SUP_FREE;
+    const uint32_t j = c->idx[t];
+    const double xj = c->sx[t], yj = c->sy[t];
+    const int K = k_of(p, yj);
+    uint8_t kd;
+    double gj;
+    if (K == 0 || K > 64) {
+        gj = one_particle(s, c, x, y, n, j, s->area + (size_t)tid * nbands,
+                          s->cnt + (size_t)tid * nbands, &kd);
+    } else {
+        const double gam = dmax(xj - s->hdx, p->box.ax);
+        const double del = dmin(xj + s->hdx, p->box.bx);
+        const double hd = s->hd;
+        const stripq q =
+            stripq_of(gam, del, band_hi(s, K), band_lo(s, K),
+                      p->tie ? yj : nextafter(yj, -INFINITY), K);
+        uint32_t cnt = 0;
+        int c0 = bf_cells_col(c, gam - hd), c1 = bf_cells_col(c, del + hd);
+        int r1 = bf_cells_row(c, yj);
+        double area = 0.0;
+        uint64_t mask = 0;
+        for (int col = c0; col <= c1; col++) {
+            /* rows 0..r1 of the column, j itself skipped */
+            uint32_t u0, u1;
+            bf_cells_run(c, col, 0, r1, &u0, &u1);
+            if (t >= u0 && t < u1) {
+                strip_range(s, c->sy, &q, u0, (uint32_t)t, 0, &area, &mask,
+                            &cnt);
+                strip_range(s, c->sy, &q, (uint32_t)t + 1, u1, 0, &area,
+                            &mask, &cnt);
             } else {
-                gj = -p->g0 * (1.0 - area / ((del - gam) * ((double)K * p->dx) +
-                                             p->eps));
-                kd = gj > 0 ? BF_SUP_ANTI : BF_SUP_PARTIAL;
+                strip_range(s, c->sy, &q, u0, u1, 0, &area, &mask, &cnt);
             }
         }
-        g[j] = gj;
-        if (kind)
-            kind[j] = kd;
+        const uint64_t need = K == 64 ? ~(uint64_t)0
+                                      : ((uint64_t)1 << K) - 1;
+        if ((mask & need) != need) {
+            gj = -p->g0;
+            kd = BF_SUP_FREE;
+        } else {
+            gj = -p->g0 * (1.0 - area / ((del - gam) * ((double)K * p->dx) +
+                                         p->eps));
+            kd = gj > 0 ? BF_SUP_ANTI : BF_SUP_PARTIAL;
+        }
+    }
+    g[j] = gj;
+    if (kind)
+        kind[j] = kd;
+}
+
+static void eval_cell(bf_support *s, const double *x, const double *y,
+                      size_t n, const bf_cells *c, double *g, uint8_t *kind)
+{
+    slot_edges(s, c, n, 1);
+    if (par(s, n)) {
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 64) num_threads(s->threads)
+        for (size_t t = 0; t < n; t++)
+            cell_one(s, x, y, n, c, t, omp_get_thread_num(), g, kind);
+#endif
+    } else {
+        for (size_t t = 0; t < n; t++)
+            cell_one(s, x, y, n, c, t, 0, g, kind);
     }
 }
 
 /* ------------------------------------------------------------- fast */
 
-/* Sort the particles by x: counting sort into n bins, then insertion sort
- * inside each bin (ties keep the index order).  Expected O(n). */
+/* Sort the indices 0..n-1 of x[] by x: counting sort into n bins, then
+ * insertion sort inside each bin (ties keep the index order).  Expected
+ * O(n). */
 static void sort_by_x(bf_support *s, const double *x, size_t n)
 {
     const double ax = s->p.box.ax, w = s->p.box.bx - s->p.box.ax;
@@ -546,24 +693,32 @@ static void sort_by_x(bf_support *s, const double *x, size_t n)
     }
 }
 
-/* Fenwick tree over levels 1..m of 2 sums (A, B). */
+/* Fenwick tree over levels 1..m of 2 sums (A, B), stored side by side
+ * (with SSE2 both in one register: the same additions, the same bits). */
 static inline void fen_add(double *fen, int m, int level, double a, double b)
 {
+#if defined(__SSE2__)
+    const __m128d ab = _mm_set_pd(b, a);
+    for (int k = level; k <= m; k += k & -k)
+        _mm_storeu_pd(fen + 2 * k, _mm_add_pd(_mm_loadu_pd(fen + 2 * k), ab));
+#else
     for (int k = level; k <= m; k += k & -k) {
         fen[2 * k] += a;
         fen[2 * k + 1] += b;
     }
+#endif
 }
 
 /* The square at sorted position p, with its left (sigma = +1) or right
  * (sigma = -1) edge at local coordinate e, enters the sweep.  It counts
  * with its full height h at every level m whose line z_m = ay + m dx is at
- * or above its top (m >= mt[p]); squares cut by the line z_m are added by
- * the cell-list query of the particle asking (top_band). */
+ * or above its top (m >= sl[p]; a square clipped by the ceiling never
+ * counts); squares cut by the line z_m are added by the cell-list query of
+ * the particle asking (cut_band). */
 static inline void sweep_add(const bf_support *s, double *fen, int mq,
                              size_t p, double sigma, double e)
 {
-    const int mt = s->mt[p];
+    const int mt = s->sl[p];
     if (mt <= mq) {
         double h = sigma * (s->ts[p] - s->bs[p]);
         fen_add(fen, mq, mt, h, h * e);
@@ -573,12 +728,19 @@ static inline void sweep_add(const bf_support *s, double *fen, int mq,
 /* G(x) = x A - B at level m (local coordinates). */
 static inline double sweep_eval(const double *fen, double x, int m)
 {
+#if defined(__SSE2__)
+    __m128d ab = _mm_setzero_pd();
+    for (int k = m; k > 0; k -= k & -k)
+        ab = _mm_add_pd(ab, _mm_loadu_pd(fen + 2 * k));
+    return x * _mm_cvtsd_f64(ab) - _mm_cvtsd_f64(_mm_unpackhi_pd(ab, ab));
+#else
     double a = 0, b = 0;
     for (int k = m; k > 0; k -= k & -k) {
         a += fen[2 * k];
         b += fen[2 * k + 1];
     }
     return x * a - b;
+#endif
 }
 
 /* First sorted position p in [lo, hi) with v[p] > key (or >= if ge). */
@@ -626,12 +788,12 @@ static void sweep_chunk(bf_support *s, double *fen, size_t n, int mq,
             sweep_add(s, fen, mq, pr, -1.0, vr - X0);
             pr++;
         } else if (vg <= vd) {
-            if (s->ks[pg] >= 2)
-                s->fgam[pg] = sweep_eval(fen, vg - X0, s->ks[pg] - 1);
+            if (s->ks[pg] >= 1)
+                s->fgam[pg] = sweep_eval(fen, vg - X0, s->ks[pg]);
             pg++;
         } else {
-            if (s->ks[pd] >= 2)
-                s->lower[pd] = sweep_eval(fen, vd - X0, s->ks[pd] - 1) -
+            if (s->ks[pd] >= 1)
+                s->lower[pd] = sweep_eval(fen, vd - X0, s->ks[pd]) -
                                s->fgam[pd];
             pd++;
         }
@@ -651,28 +813,23 @@ static inline uint32_t skip_find(uint32_t *nxt, uint32_t p)
  * overlaps its strip with positive area (lowe), or a value > mq. */
 static void empty_bands(bf_support *s, size_t n, int mq)
 {
-    const bf_support_params *p = &s->p;
     uint32_t *bstart = s->bstart, *bfill = s->bfill, *blist = s->blist;
     uint32_t *nxt = s->nxt;
     memset(bstart, 0, (size_t)(mq + 2) * sizeof *bstart);
     /* squares per band, in x order */
     for (int pass = 0; pass < 2; pass++) {
         for (size_t k = 0; k < n; k++) {
-            /* f1 > 0 needs mb <= q <= mt; one band of margin each way for
-             * the rounding of mb and mt, the test itself is exact */
-            double b = s->bs[k], t = s->ts[k];
-            int qa = s->mb[k] - 1, qb = s->mt[k] + 1;
-            if (qa < 1)
-                qa = 1;
-            if (qb > mq)
-                qb = mq;
-            for (int q = qa; q <= qb; q++)
-                if (dmin(t, band_hi(p, q)) - dmax(b, band_lo(p, q)) > 0) {
-                    if (pass == 0)
-                        bstart[q + 1]++;
-                    else
-                        blist[bfill[q]++] = (uint32_t)k;
-                }
+            /* f1 > 0 exactly in the bands mb..mt (z_{q-1} < t and
+             * z_q > b), unless the square has no height */
+            if (!(s->ts[k] > s->bs[k]))
+                continue;
+            const int qa = s->mb[k], qb = s->mt[k] < mq ? s->mt[k] : mq;
+            for (int q = qa; q <= qb; q++) {
+                if (pass == 0)
+                    bstart[q + 1]++;
+                else
+                    blist[bfill[q]++] = (uint32_t)k;
+            }
         }
         if (pass == 0) {
             for (int q = 1; q <= mq; q++)
@@ -712,104 +869,200 @@ static void empty_bands(bf_support *s, size_t n, int mq)
     }
 }
 
-/* The constants of one top-band query. */
-typedef struct topq {
-    double del, gam, hi, lo, ytop;
-    double cut; /* 1 if K >= 2: add the parts of squares cut by z = lo */
-} topq;
-
-/* Slots [u, u1) of a top-band query (see top_band), branch-free: the tests
- * fail at random, which branches would mispredict. */
-static inline void top_range(const bf_support *s, const double *sy,
-                             const topq *q, uint32_t u, uint32_t u1,
-                             double *acc, uint32_t *cnt)
+/* Slots [u, u1): is there a square of S(P_j) with positive area in the
+ * strip in band K (f2 > 0, f1 > 0 as in add_square)? */
+static inline int band_range(const bf_support *s, const double *sy,
+                             const stripq *q, uint32_t u, uint32_t u1)
 {
-    const double *cl = s->cl, *cr = s->cr, *cb = s->cb, *ct = s->ct;
-    const double del = q->del, gam = q->gam, hi = q->hi, lo = q->lo,
-                 ytop = q->ytop, cutk = q->cut;
-    double a = *acc;
-    uint32_t n = *cnt;
     for (; u < u1; u++) {
-        double f2 = dmin(cr[u], del) - dmax(cl[u], gam);
-        double f1 = dmin(ct[u], hi) - dmax(cb[u], lo);
-        int ok = (sy[u] <= ytop) & (f2 > 0) & (f1 > 0);
-        int cut = (ct[u] > lo) & (cb[u] < lo);
-        a += dmax(f2, 0.0) * ((double)ok * f1 + cutk * (double)cut * (lo - cb[u]));
-        n += (uint32_t)ok;
+        double f2 = dmin(s->cr[u], q->del) - dmax(s->cl[u], q->gam);
+        double f1 = dmin(s->ct[u], q->hi) - dmax(s->cb[u], q->lo);
+        if (sy[u] <= q->ytop && f2 > 0 && f1 > 0)
+            return 1;
     }
-    *acc = a;
-    *cnt = n;
+    return 0;
 }
 
-/* Particle j (slot tj of the cell list, height yj, strip [gam, del]): the
- * area of the squares of S(P_j) in its top band K >= 1, plus (K >= 2) the
- * area below the line z = lo_K of the squares that this line cuts (the
- * part of the lower bands that the sweep leaves out).  *count is the number
- * of squares of S(P_j) overlapping the top band with positive area: f2 > 0
- * and f1 > 0 are the same expressions as in add_square, so it (the
- * free-fall decision) is exact.  Square edges come from s->cl..ct in
- * cell-list order; j itself is skipped by splitting its row at tj. */
-static inline double top_band(const bf_support *s, const bf_cells *c,
-                              uint32_t tj, double yj, double gam, double del,
-                              int K, uint32_t *count)
+/* The slots [u0, u1) of column col, rows r0..r1, without tj. */
+static inline void run_without(const bf_cells *c, int col, int r0, int r1,
+                               uint32_t tj, uint32_t u[4])
 {
-    const bf_support_params *p = &s->p;
-    const double hd = s->hd;
-    topq q = {del, gam, band_hi(p, K), band_lo(p, K),
-              p->tie ? yj : nextafter(yj, -INFINITY), K >= 2 ? 1.0 : 0.0};
-    int c0 = bf_cells_col(c, gam - hd), c1 = bf_cells_col(c, del + hd);
-    int r0 = bf_cells_row(c, q.lo - hd), r1 = bf_cells_row(c, yj);
+    bf_cells_run(c, col, r0, r1, &u[0], &u[3]);
+    if (tj >= u[0] && tj < u[3]) {
+        u[1] = tj;
+        u[2] = tj + 1;
+    } else {
+        u[1] = u[2] = u[3];
+    }
+}
+
+/* Particle j (slot tj of the cell list, height yj, strip [gam, del],
+ * K >= 1): the area in bands 1..K of the squares of S(P_j) that the sweep
+ * at level K leaves out (sweep level csl > K: the squares cut by the line
+ * z_K = hi_K, and those clipped by the ceiling), area min(t, hi_K) - b
+ * times f2.  Each of them has positive area in band K (b < hi_K <= t or
+ * the ceiling); *count is how many, with f2 > 0 as in add_square.  They
+ * lie in hi_K - d/2 < y < hi_K + d/2 (with a margin for rounding), a
+ * window about half as tall as band K with the squares that reach it.
+ * j itself is skipped. */
+static inline double cut_band(const bf_support *s, const bf_cells *c,
+                              const stripq *q, uint32_t tj, double yj,
+                              uint32_t *count)
+{
+    const double hd = s->hd, eps = 1e-12 * (fabs(q->hi) + hd);
+    int c0 = bf_cells_col(c, q->gam - hd), c1 = bf_cells_col(c, q->del + hd);
+    int r0 = bf_cells_row(c, q->hi - hd - eps),
+        r1 = bf_cells_row(c, dmin(yj, q->hi + hd + eps));
     double acc = 0.0;
+    uint64_t mask = 0; /* not used by a cut query */
     uint32_t cnt = 0;
     for (int col = c0; col <= c1; col++) {
         uint32_t u0, u1;
         bf_cells_run(c, col, r0, r1, &u0, &u1);
         if (tj >= u0 && tj < u1) {
-            top_range(s, c->sy, &q, u0, tj, &acc, &cnt);
-            top_range(s, c->sy, &q, tj + 1, u1, &acc, &cnt);
+            strip_range(s, c->sy, q, u0, tj, 1, &acc, &mask, &cnt);
+            strip_range(s, c->sy, q, tj + 1, u1, 1, &acc, &mask, &cnt);
         } else {
-            top_range(s, c->sy, &q, u0, u1, &acc, &cnt);
+            strip_range(s, c->sy, q, u0, u1, 1, &acc, &mask, &cnt);
         }
     }
     *count = cnt;
     return acc;
 }
 
-static void eval_fast(bf_support *s, const double *x, const double *y,
-                      size_t n, const bf_cells *c, double *g, uint8_t *kind)
+/* Is band K of particle j non-empty: a square of S(P_j) with positive area
+ * in it (those cut by z_K are not enough when cut_band counted none: the
+ * squares of sweep level K count too)?  Only asked when cut_band found
+ * none, so rarely. */
+static int band_filled(const bf_support *s, const bf_cells *c, const stripq *q,
+                       uint32_t tj, double yj)
+{
+    const double hd = s->hd, eps = 1e-12 * (fabs(q->lo) + hd);
+    int c0 = bf_cells_col(c, q->gam - hd), c1 = bf_cells_col(c, q->del + hd);
+    int r0 = bf_cells_row(c, q->lo - hd - eps), r1 = bf_cells_row(c, yj);
+    for (int col = c0; col <= c1; col++) {
+        uint32_t u[4];
+        run_without(c, col, r0, r1, tj, u);
+        if (band_range(s, c->sy, q, u[0], u[1]) ||
+            band_range(s, c->sy, q, u[2], u[3]))
+            return 1;
+    }
+    return 0;
+}
+
+/* The square, strip and levels of the particle at sorted position k (slot
+ * ord[k] of the cell list, positions sx, sy); returns its K. */
+static inline int fast_setup(bf_support *s, const double *sx,
+                             const double *sy, size_t k)
 {
     const bf_support_params *p = &s->p;
-    const int nt = s->threads;
+    uint32_t i = s->ord[k];
+    double xi = sx[i], yi = sy[i];
+    s->ys[k] = yi;
+    s->ls[k] = dmax(xi - s->hd, p->box.ax);
+    s->rs[k] = dmin(xi + s->hd, p->box.bx);
+    s->bs[k] = dmax(yi - s->hd, p->box.ay);
+    s->ts[k] = dmin(yi + s->hd, p->box.by);
+    s->gs[k] = dmax(xi - s->hdx, p->box.ax);
+    s->ds[k] = dmin(xi + s->hdx, p->box.bx);
+    int K = k_of(p, yi);
+    s->ks[k] = K;
+    s->mb[k] = first_band(s, s->bs[k]);
+    s->mt[k] = full_level(s, s->ts[k]);
+    s->sl[k] = yi + s->hd > p->box.by ? INT32_MAX : s->mt[k];
+    s->lower[k] = 0.0;
+    s->lowe[k] = INT32_MAX;
+    return K;
+}
+
+/* The results of sorted position k into the order of the cell list. */
+static inline void fast_to_slots(bf_support *s, size_t k)
+{
+    uint32_t t = s->ord[k];
+    s->fgam[t] = s->lower[k];
+    s->ks[t] = s->lowe[k];
+    s->csl[t] = s->sl[k];
+}
+
+/* g of the particle in slot t: lower (the sweep) and lowe (the lowest
+ * empty band) are in the order of the cell list. */
+static inline void fast_one(const bf_support *s, const bf_cells *c,
+                            const double *lower, const int32_t *lowe,
+                            size_t t, double *g, uint8_t *kind)
+{
+    const bf_support_params *p = &s->p;
+    uint32_t j = c->idx[t];
+    const double xj = c->sx[t], yj = c->sy[t];
+    const int K = k_of(p, yj);
+    uint8_t kd = BF_SUP_REST;
+    double gj;
+    if (resting(s, yj, K)) {
+        gj = 0.0;
+    } else if (K >= 2 && lowe[t] <= K - 1) {
+        gj = -p->g0;
+        kd = BF_SUP_FREE;
+    } else {
+        /* the K = 0 rectangle, or the squares that the sweep at level K
+         * leaves out and the test of band K */
+        double gam = dmax(xj - s->hdx, p->box.ax);
+        double del = dmin(xj + s->hdx, p->box.bx);
+        double area = 0.0;
+        uint32_t cnt = 0;
+        if (K == 0) {
+            column_from_cells(s, c, j, yj, gam, del, 0, 0, 0, &area, &cnt);
+        } else {
+            const stripq q =
+                stripq_of(gam, del, band_hi(s, K), band_lo(s, K),
+                          p->tie ? yj : nextafter(yj, -INFINITY), K);
+            area = cut_band(s, c, &q, (uint32_t)t, yj, &cnt);
+            if (cnt == 0 && band_filled(s, c, &q, (uint32_t)t, yj))
+                cnt = 1;
+        }
+        if (cnt == 0) {
+            gj = -p->g0;
+            kd = BF_SUP_FREE;
+        } else {
+            double tot = (K >= 1 ? lower[t] : 0.0) + area;
+            double den = K == 0 ? (del - gam) * (yj - p->box.ay)
+                                : (del - gam) * ((double)K * p->dx);
+            gj = -p->g0 * (1.0 - tot / (den + p->eps));
+            kd = gj > 0 ? BF_SUP_ANTI : BF_SUP_PARTIAL;
+        }
+    }
+    g[j] = gj;
+    if (kind)
+        kind[j] = kd;
+}
+
+/* (The positions come from the cell list, which holds them in its order.) */
+static void eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
+                      uint8_t *kind)
+{
+    const bf_support_params *p = &s->p;
+    const int nt = s->threads, pr = par(s, n);
     (void)nt;
     if (n == 0)
         return;
-    sort_by_x(s, x, n);
+    /* the slots of the cell list in x order: the cell list is already
+     * sorted by columns of cells, so the reads and writes through ord stay
+     * within a column's block of slots (in the cache) */
+    sort_by_x(s, c->sx, n);
     int kmax = 0;
+    if (pr) {
 #ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(nt) if (n >= PAR_MIN) \
-    reduction(max : kmax)
+#pragma omp parallel for schedule(static) num_threads(nt) reduction(max : kmax)
+        for (size_t k = 0; k < n; k++) {
+            int K = fast_setup(s, c->sx, c->sy, k);
+            kmax = K > kmax ? K : kmax;
+        }
 #endif
-    for (size_t k = 0; k < n; k++) {
-        uint32_t i = s->ord[k];
-        double xi = x[i], yi = y[i];
-        s->ys[k] = yi;
-        s->ls[k] = dmax(xi - s->hd, p->box.ax);
-        s->rs[k] = dmin(xi + s->hd, p->box.bx);
-        s->bs[k] = dmax(yi - s->hd, p->box.ay);
-        s->ts[k] = dmin(yi + s->hd, p->box.by);
-        s->gs[k] = dmax(xi - s->hdx, p->box.ax);
-        s->ds[k] = dmin(xi + s->hdx, p->box.bx);
-        int K = k_of(p, yi);
-        s->ks[k] = K;
-        s->mb[k] = k_of(p, s->bs[k]) + 1;
-        s->mt[k] = full_level(p, s->ts[k]);
-        s->lower[k] = 0.0;
-        s->lowe[k] = INT32_MAX;
-        if (K > kmax)
-            kmax = K;
+    } else {
+        for (size_t k = 0; k < n; k++) {
+            int K = fast_setup(s, c->sx, c->sy, k);
+            kmax = K > kmax ? K : kmax;
+        }
     }
-    int mq = kmax - 1; /* highest lower band */
-    if (mq >= 1) {
+    if (kmax >= 1) {
         /* the chunks are independent (each has its own tree), so they run
          * in parallel with results independent of the thread count */
         const double w = p->box.bx - p->box.ax, chunk = 8.0 * p->dx;
@@ -817,80 +1070,46 @@ static void eval_fast(bf_support *s, const double *x, const double *y,
         if (nch < 1)
             nch = 1;
         const size_t fsz = 2 * ((size_t)s->kmax + 3);
+        if (pr) {
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) \
-    if (n >= PAR_MIN)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+            for (long ch = 0; ch < nch; ch++)
+                sweep_chunk(s, s->fen + (size_t)omp_get_thread_num() * fsz, n,
+                            kmax, p->box.ax + (double)ch * chunk,
+                            p->box.ax + (double)(ch + 1) * chunk,
+                            ch == nch - 1);
 #endif
-        for (long ch = 0; ch < nch; ch++) {
-            int tid = 0;
-#ifdef _OPENMP
-            tid = omp_get_thread_num();
-#endif
-            sweep_chunk(s, s->fen + (size_t)tid * fsz, n, mq,
-                        p->box.ax + (double)ch * chunk,
-                        p->box.ax + (double)(ch + 1) * chunk, ch == nch - 1);
+        } else {
+            for (long ch = 0; ch < nch; ch++)
+                sweep_chunk(s, s->fen, n, kmax,
+                            p->box.ax + (double)ch * chunk,
+                            p->box.ax + (double)(ch + 1) * chunk,
+                            ch == nch - 1);
         }
-        empty_bands(s, n, mq);
+        if (kmax >= 2) /* bands 1..kmax - 1, below every top band */
+            empty_bands(s, n, kmax - 1);
     }
-    /* the lower-band results and the square edges in the order of the cell
-     * list */
-    double *lower = s->fgam;
-    int32_t *lowe = s->ks;
+    /* the sweep's results and the square edges in the order of the cell
+     * list; then g in that order (neighbouring queries read neighbouring
+     * cells) */
     slot_edges(s, c, n, 0);
+    if (pr) {
 #ifdef _OPENMP
-#pragma omp parallel num_threads(nt) if (n >= PAR_MIN)
-#endif
-    {
-#ifdef _OPENMP
+#pragma omp parallel num_threads(nt)
+        {
 #pragma omp for schedule(static)
-#endif
-        for (size_t k = 0; k < n; k++) {
-            uint32_t t = c->slot[s->ord[k]];
-            lower[t] = s->lower[k];
-            lowe[t] = s->lowe[k];
-        }
-        /* the top band, in the order of the cell list (neighbouring queries
-         * read neighbouring cells) */
-#ifdef _OPENMP
+            for (size_t k = 0; k < n; k++)
+                fast_to_slots(s, k);
 #pragma omp for schedule(dynamic, 256)
-#endif
-        for (size_t t = 0; t < n; t++) {
-            uint32_t j = c->idx[t];
-            const double xj = c->sx[t], yj = c->sy[t];
-            const int K = k_of(p, yj);
-            uint8_t kd = BF_SUP_REST;
-            double gj;
-            if (resting(s, yj, K)) {
-                gj = 0.0;
-            } else if (K >= 2 && lowe[t] <= K - 1) {
-                gj = -p->g0;
-                kd = BF_SUP_FREE;
-            } else {
-                /* the top band (K >= 1) or the K = 0 rectangle */
-                double gam = dmax(xj - s->hdx, p->box.ax);
-                double del = dmin(xj + s->hdx, p->box.bx);
-                double area = 0.0;
-                uint32_t cnt = 0;
-                if (K == 0)
-                    column_from_cells(s, c, j, yj, gam, del, 0, 0, 0, &area,
-                                      &cnt);
-                else
-                    area = top_band(s, c, (uint32_t)t, yj, gam, del, K, &cnt);
-                if (cnt == 0) {
-                    gj = -p->g0;
-                    kd = BF_SUP_FREE;
-                } else {
-                    double tot = (K >= 2 ? lower[t] : 0.0) + area;
-                    double den = K == 0 ? (del - gam) * (yj - p->box.ay)
-                                        : (del - gam) * ((double)K * p->dx);
-                    gj = -p->g0 * (1.0 - tot / (den + p->eps));
-                    kd = gj > 0 ? BF_SUP_ANTI : BF_SUP_PARTIAL;
-                }
-            }
-            g[j] = gj;
-            if (kind)
-                kind[j] = kd;
+            for (size_t t = 0; t < n; t++)
+                fast_one(s, c, s->fgam, s->ks, t, g, kind);
         }
+#endif
+    } else {
+        for (size_t k = 0; k < n; k++)
+            fast_to_slots(s, k);
+        for (size_t t = 0; t < n; t++)
+            fast_one(s, c, s->fgam, s->ks, t, g, kind);
     }
 }
 
@@ -904,7 +1123,7 @@ void bf_support_eval_with(bf_support *s, bf_support_method m, const double *x,
         m = BF_SUPPORT_CELL;
     switch (m) {
     case BF_SUPPORT_FAST:
-        eval_fast(s, x, y, n, cells, g, kind);
+        eval_fast(s, n, cells, g, kind);
         break;
     case BF_SUPPORT_CELL:
         eval_cell(s, x, y, n, cells, g, kind);
