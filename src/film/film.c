@@ -423,9 +423,13 @@ HOT void node_loop(int variant, long lo, long hi, double a, double b,
     }
 }
 
-HOT void node_pass(const step_ctx *c, int variant, long lo, long hi)
+/* the densities, or the constant 1 in the unit-density sweep (see sweep) */
+#define RHO(unit, r) ((unit) ? 1.0 : (r))
+
+HOT void node_pass(const step_ctx *c, int variant, int unit, long lo, long hi)
 {
-    node_loop(variant, lo, hi, c->a, c->b, c->gl, c->g, c->rd, c->rc, c->ad,
+    node_loop(variant, lo, hi, c->a, c->b, c->gl, c->g, RHO(unit, c->rd),
+              RHO(unit, c->rc), c->ad,
               c->ac, c->ud, c->uc, c->psi, c->mc, c->mu, c->wd, c->wc);
 }
 
@@ -475,10 +479,11 @@ HOT void face_loop(int variant, long lo, long hi, double c1, double c2,
     }
 }
 
-HOT void face_pass(const step_ctx *c, int variant, long lo, long hi)
+HOT void face_pass(const step_ctx *c, int variant, int unit, long lo, long hi)
 {
-    face_loop(variant, lo, hi, c->c1, c->c2, c->ird, c->irc, c->visc, c->g,
-              c->rd, c->rc, c->mu, c->ad, c->ac, c->ud, c->uc, c->wd, c->wc,
+    face_loop(variant, lo, hi, c->c1, c->c2, RHO(unit, c->ird),
+              RHO(unit, c->irc), c->visc, c->g, RHO(unit, c->rd),
+              RHO(unit, c->rc), c->mu, c->ad, c->ac, c->ud, c->uc, c->wd, c->wc,
               c->Fd, c->Fc, c->Gd, c->Gc);
 }
 
@@ -575,10 +580,12 @@ HOT int velocity_loop(long lo, long hi, double c1, double c2, double ird,
     return bits_bad(0, z);
 }
 
-HOT int velocity_pass(const step_ctx *c, const double *mus, long lo, long hi)
+HOT int velocity_pass(const step_ctx *c, int unit, const double *mus, long lo,
+                      long hi)
 {
-    return velocity_loop(lo, hi, c->c1, c->c2, c->ird, c->irc, c->va, c->g,
-                         c->rd, c->rc, c->ad, c->ac, mus, c->ud, c->uc, c->Gd,
+    return velocity_loop(lo, hi, c->c1, c->c2, RHO(unit, c->ird),
+                         RHO(unit, c->irc), c->va, c->g, RHO(unit, c->rd),
+                         RHO(unit, c->rc), c->ad, c->ac, mus, c->ud, c->uc, c->Gd,
                          c->Gc, c->ad1, c->ac1, c->h1, c->ud1, c->uc1);
 }
 
@@ -615,8 +622,13 @@ static bf_status report_bad(const bf_film *f, const double *ad1,
     return BF_OK;
 }
 
-/* The whole step for one variant (inlined with a constant `variant`). */
-HOT int sweep(bf_film *f, step_ctx *c, int variant)
+/* The whole step for one variant (inlined with a constant `variant`).
+ * With unit = 1 (rho_d = rho_c = 1, as in all of the paper's scenes) the
+ * densities and their inverses are the constant 1 and GCC drops the
+ * multiplications by them: x * 1.0 is x exactly, so this sweep gives the
+ * same bits as the general one with ten floating-point operations fewer
+ * per node (~8% of the step). */
+HOT int sweep(bf_film *f, step_ctx *c, int variant, int unit)
 {
     const long N = c->N;
     const int mid = variant == BF_FILM_MU_MIDPOINT;
@@ -625,18 +637,18 @@ HOT int sweep(bf_film *f, step_ctx *c, int variant)
      * vector loops start at index 0 (64-byte aligned) so that their stores
      * do not straddle cache lines: the ghost node -1 and face -1 go first
      * on their own, and the velocities of nodes 1..7 */
-    node_pass(c, variant, -1, -1);
-    node_pass(c, variant, 0, N + 1);
-    face_pass(c, variant, -1, -1);
-    face_pass(c, variant, 0, N);
+    node_pass(c, variant, unit, -1, -1);
+    node_pass(c, variant, unit, 0, N + 1);
+    face_pass(c, variant, unit, -1, -1);
+    face_pass(c, variant, unit, 0, N);
     int bad = update_pass(c, 0, N);
     if (mid) {
         ghost_even(c->psi1, N);
         midmu_pass(c, 0, N);
     }
     const long v8 = N - 1 < 7 ? N - 1 : 7;
-    int badu = velocity_pass(c, mus, 1, v8);
-    badu |= velocity_pass(c, mus, v8 + 1, N - 1);
+    int badu = velocity_pass(c, unit, mus, 1, v8);
+    badu |= velocity_pass(c, unit, mus, v8 + 1, N - 1);
     if (bad && f->p.limit_positive &&
         (any_negative(N, c->ad1) || any_negative(N, c->ac1))) {
         /* some content would go negative: limit the fluxes of that phase
@@ -653,7 +665,7 @@ HOT int sweep(bf_film *f, step_ctx *c, int variant)
             ghost_even(c->psi1, N);
             midmu_pass(c, 0, N);
         }
-        badu = velocity_pass(c, mus, 1, N - 1);
+        badu = velocity_pass(c, unit, mus, 1, N - 1);
     }
     c->ud1[0] = c->uc1[0] = c->ud1[N] = c->uc1[N] = 0.0;
     return bad | badu;
@@ -706,15 +718,19 @@ bf_status bf_film_step_invariant(bf_film *f, double dt, bf_err *err)
     ghost_even(mc, N);
 
     int bad;
+    const int unit = p->rho_d == 1.0 && p->rho_c == 1.0;
     switch (p->mu_taylor) {
     case BF_FILM_MU_MIDPOINT:
-        bad = sweep(f, &c, BF_FILM_MU_MIDPOINT);
+        bad = unit ? sweep(f, &c, BF_FILM_MU_MIDPOINT, 1)
+                   : sweep(f, &c, BF_FILM_MU_MIDPOINT, 0);
         break;
     case BF_FILM_MU_UM:
-        bad = sweep(f, &c, BF_FILM_MU_UM);
+        bad = unit ? sweep(f, &c, BF_FILM_MU_UM, 1)
+                   : sweep(f, &c, BF_FILM_MU_UM, 0);
         break;
     default:
-        bad = sweep(f, &c, BF_FILM_MU_UK);
+        bad = unit ? sweep(f, &c, BF_FILM_MU_UK, 1)
+                   : sweep(f, &c, BF_FILM_MU_UK, 0);
         break;
     }
 
