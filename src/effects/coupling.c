@@ -60,9 +60,11 @@ typedef struct cell_moments {
 
 typedef struct anchor {
     int valid;   /* set for the current film level */
+    int fresh;   /* set by prepare, not yet used (see prepare_anchors) */
     long j;
     double r;
     double L[6], R[6]; /* derivatives 0..5 of L and R at r */
+    double lq[6], rq[6]; /* L_k/k!, R_k/k!: the Taylor coefficients */
 } anchor;
 
 struct bf_coupling {
@@ -78,6 +80,9 @@ struct bf_coupling {
     cell_moments cache[NCACHE];
     int ncache;
     anchor *anc;
+    /* exp(-kappa t), exp(-kappa (1 - t)) of each ball at xe (NaN: none),
+     * from prepare, for bf_coupling_mu at the same positions */
+    double *xe, *ele, *ere;
     size_t nballs;
     unsigned long long n_exact, n_taylor;
 };
@@ -189,8 +194,11 @@ bf_status bf_coupling_create(bf_coupling **out, const bf_coupling_params *p,
     c->tmp = xcalloc(n);
     c->nballs = nballs;
     c->anc = calloc(nballs ? nballs : 1, sizeof *c->anc);
+    c->xe = xcalloc(nballs);
+    c->ele = xcalloc(nballs);
+    c->ere = xcalloc(nballs);
     if (!c->g || !c->m || !c->lc || !c->rc || !c->pw || !c->pwr || !c->tl ||
-        !c->tw || !c->tmp || !c->anc) {
+        !c->tw || !c->tmp || !c->anc || !c->xe || !c->ele || !c->ere) {
         bf_coupling_free(c);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
@@ -231,6 +239,8 @@ bf_status bf_coupling_create(bf_coupling **out, const bf_coupling_params *p,
             c->tw[i] = 1.0 / w;
         }
     }
+    for (size_t p = 0; p < nballs; p++)
+        c->xe[p] = NAN;
     bf_coupling_refresh(c);
     *out = c;
     return BF_OK;
@@ -250,6 +260,9 @@ void bf_coupling_free(bf_coupling *c)
     free(c->tw);
     free(c->tmp);
     free(c->anc);
+    free(c->xe);
+    free(c->ele);
+    free(c->ere);
     free(c);
 }
 
@@ -383,8 +396,7 @@ HOT void mu_final(long n, double psis, const double *restrict psi,
 BF_SPLINE_CLONES
 static void spline_solve(long N, const double *restrict tl,
                          const double *restrict tw, const double *restrict d,
-                         double *restrict y, double *restrict t,
-                         double *restrict M)
+                         double *restrict y, double *restrict M)
 {
     M[0] = M[N] = 0.0;
     if (N < 2)
@@ -411,11 +423,15 @@ static void spline_solve(long N, const double *restrict tl,
     y[1] = d[1];
     for (long i = 2; i <= I0 + 8; i++)
         y[i] = d[i] - tl[i] * y[i - 1];
-    for (long i = I0 + 9; i <= last; i++)
-        t[i] = ((p[0] * d[i] + p[1] * d[i - 1]) +
-                (p[2] * d[i - 2] + p[3] * d[i - 3])) +
-               ((p[4] * d[i - 4] + p[5] * d[i - 5]) +
-                (p[6] * d[i - 6] + p[7] * d[i - 7]));
+    /* t_i = sum_k<8 (-lambda)^k d_(i-k) is formed inside the loop of the
+     * recurrence: the recurrence is a chain of dependent latencies, the
+     * dot products are independent work that fills them */
+#define TFWD(i)                                                                \
+    (((p[0] * d[i] + p[1] * d[(i) - 1]) + (p[2] * d[(i) - 2] + p[3] * d[(i) - 3])) + \
+     ((p[4] * d[(i) - 4] + p[5] * d[(i) - 5]) + (p[6] * d[(i) - 6] + p[7] * d[(i) - 7])))
+#define TBWD(i)                                                                \
+    (((q[0] * y[i] + q[1] * y[(i) + 1]) + (q[2] * y[(i) + 2] + q[3] * y[(i) + 3])) + \
+     ((q[4] * y[(i) + 4] + q[5] * y[(i) + 5]) + (q[6] * y[(i) + 6] + q[7] * y[(i) + 7])))
     {
         /* blocks of eight with the recurrence in a register */
         double r[8];
@@ -424,21 +440,16 @@ static void spline_solve(long N, const double *restrict tl,
             r[l] = y[i - 8 + l];
         for (; i + 7 <= last; i += 8)
             for (int l = 0; l < 8; l++) {
-                r[l] = t[i + l] + l8 * r[l];
+                r[l] = TFWD(i + l) + l8 * r[l];
                 y[i + l] = r[l];
             }
         for (; i <= last; i++)
-            y[i] = t[i] + l8 * y[i - 8];
+            y[i] = TFWD(i) + l8 * y[i - 8];
     }
     /* backward */
     M[last] = y[last] * lam;
     for (long i = last - 1; i >= last - 7; i--)
         M[i] = (y[i] - M[i + 1]) * lam;
-    for (long i = I0 + 1; i <= last - 8; i++)
-        t[i] = ((q[0] * y[i] + q[1] * y[i + 1]) +
-                (q[2] * y[i + 2] + q[3] * y[i + 3])) +
-               ((q[4] * y[i + 4] + q[5] * y[i + 5]) +
-                (q[6] * y[i + 6] + q[7] * y[i + 7]));
     {
         double r[8];
         long i = last - 8; /* top of the next block of eight */
@@ -446,12 +457,14 @@ static void spline_solve(long N, const double *restrict tl,
             r[l] = M[i + 1 + l];
         for (; i - 7 >= I0 + 1; i -= 8)
             for (int l = 0; l < 8; l++) {
-                r[l] = t[i - 7 + l] + l8 * r[l];
+                r[l] = TBWD(i - 7 + l) + l8 * r[l];
                 M[i - 7 + l] = r[l];
             }
         for (; i >= I0 + 1; i--)
-            M[i] = t[i] + l8 * M[i + 8];
+            M[i] = TBWD(i) + l8 * M[i + 8];
     }
+#undef TFWD
+#undef TBWD
     for (long i = I0; i >= 1; i--)
         M[i] = (y[i] - M[i + 1]) * tw[i];
 }
@@ -466,7 +479,7 @@ void bf_coupling_refresh(bf_coupling *c)
         /* scratch: the right-hand side in lc, the forward sweep in rc
          * (both rebuilt by cell_pass below) */
         rhs_pass(N, 6.0 / (c->dx * c->dx), c->g, c->lc);
-        spline_solve(N, c->tl, c->tw, c->lc, c->rc, c->tmp, M);
+        spline_solve(N, c->tl, c->tw, c->lc, c->rc, M);
     } else {
         for (long i = 0; i <= N; i++)
             M[i] = 0.0;
@@ -474,7 +487,7 @@ void bf_coupling_refresh(bf_coupling *c)
     cell_pass(N, c->w_g0, c->w_g1, c->w_m0, c->w_m1, c->g, M, c->lc, c->rc);
     c->ncache = 0;
     for (size_t p = 0; p < c->nballs; p++)
-        c->anc[p].valid = 0;
+        c->anc[p].valid = c->anc[p].fresh = 0;
 }
 
 /* ML_j and MR_j+1 of cell j (0 <= j < N), from the cache or computed */
@@ -501,7 +514,9 @@ static const cell_moments *moments(bf_coupling *c, long j)
 static long locate(const bf_coupling *c, double r, double *t)
 {
     double u = (r - c->x0) / c->dx;
-    long j = (long)floor(u);
+    /* truncation instead of floor() (a library call here): the same for
+     * u >= 0, and for u < 0 both are clamped to 0 */
+    long j = (long)u;
     if (j < 0)
         j = 0;
     if (j > c->N - 1)
@@ -516,7 +531,7 @@ static long locate(const bf_coupling *c, double r, double *t)
  * E^(j-1-k) LC_k (and the mirror for MR) over the few cells between
  * neighbouring balls.  Same values as moments() up to round-off; cached
  * for the film level. */
-void bf_coupling_prepare(bf_coupling *c, size_t nb, const double *x)
+static void prepare_moments(bf_coupling *c, size_t nb, const double *x)
 {
     enum { MAXC = NCACHE };
     long cell[MAXC];
@@ -579,17 +594,58 @@ static void spline_taylor(const bf_coupling *c, long j, double t, double e[4])
     e[3] = c3;
 }
 
-/* L and R at r (exact for the interpolant); also the cell and t */
+/* An exact evaluation inside the film in three parts, shared by the
+ * single evaluation (exact_lr) and the anchors of all balls at once
+ * (prepare_anchors): lr_begin (the cell's moments and the spline's Taylor
+ * coefficients at t), the m_k series (mk2 or mk_series8), lr_end. */
+typedef struct lr_part {
+    long j;
+    double t, ml, mr, e[4];
+} lr_part;
+
+static void lr_begin(bf_coupling *c, long j, double t, lr_part *w)
+{
+    /* the values, not a pointer: a later moments() may reuse the slot */
+    const cell_moments *cm = moments(c, j);
+    w->j = j;
+    w->t = t;
+    w->ml = cm->ml;
+    w->mr = cm->mr;
+    spline_taylor(c, j, t, w->e);
+}
+
+/* L and R from the parts, m_k(kappa t) (mL), m_k(kappa (1 - t)) (mR) and
+ * el = exp(-kappa t), er = exp(-kappa (1 - t)) */
+static void lr_end(const bf_coupling *c, const lr_part *w, const double mL[4],
+                   const double mR[4], double el, double er, double *L,
+                   double *R)
+{
+    const double TL = w->t, TR = 1.0 - w->t;
+    const double *e = w->e;
+    double pl = 0.0, pr = 0.0, tl = TL, tr = TR;
+    for (int k = 0; k < 4; k++) {
+        double s = (k & 1) ? -1.0 : 1.0;
+        pl += s * e[k] * tl * mL[k];
+        pr += e[k] * tr * mR[k];
+        tl *= TL;
+        tr *= TR;
+    }
+    *L = el * w->ml + c->dx * pl;
+    *R = er * w->mr + c->dx * pr;
+}
+
+/* L and R at r (exact for the interpolant); also the cell and t, and the
+ * parts (w: set only if r is inside the film, 0 <= t <= 1) */
 static void exact_lr(bf_coupling *c, double r, long *jo, double *to, double *L,
-                     double *R)
+                     double *R, lr_part *w)
 {
     double t;
     long j = locate(c, r, &t);
     *jo = j;
     *to = t;
-    const cell_moments *cm = moments(c, j);
     if (t < 0.0 || t > 1.0) {
         /* outside the film: the whole film lies on one side */
+        const cell_moments *cm = moments(c, j);
         if (t < 0.0) {
             *L = 0.0;
             *R = exp(c->kappa * t) * (c->rc[0] + c->E * cm->mr);
@@ -599,46 +655,36 @@ static void exact_lr(bf_coupling *c, double r, long *jo, double *to, double *L,
         }
         return;
     }
-    double e[4], mL[4], mR[4];
-    spline_taylor(c, j, t, e);
+    double mL[4], mR[4];
+    lr_begin(c, j, t, w);
     const double TL = t, TR = 1.0 - t;
     mk2(c->mkc, c->nser, c->kappa * TL, c->kappa * TR, mL, mR);
     double el = exp(-c->kappa * TL), er = exp(-c->kappa * TR);
-    double pl = 0.0, pr = 0.0, tl = TL, tr = TR;
-    for (int k = 0; k < 4; k++) {
-        double s = (k & 1) ? -1.0 : 1.0;
-        pl += s * e[k] * tl * mL[k];
-        pr += e[k] * tr * mR[k];
-        tl *= TL;
-        tr *= TR;
-    }
-    *L = el * cm->ml + c->dx * pl;
-    *R = er * cm->mr + c->dx * pr;
+    lr_end(c, w, mL, mR, el, er, L, R);
 }
 
 void bf_coupling_integral(bf_coupling *c, double r, double *I, double *dI)
 {
     long j;
     double t, L, R;
-    exact_lr(c, r, &j, &t, &L, &R);
+    lr_part w;
+    exact_lr(c, r, &j, &t, &L, &R, &w);
     c->n_exact++;
     *I = L + R;
     *dI = (R - L) / c->p.r0;
 }
 
-/* anchor ball p at r: L, R and their derivatives 1..5 (x units) */
-static void set_anchor(bf_coupling *c, anchor *a, double r)
+/* the anchor at r inside the film from its exact L, R and parts: the
+ * derivatives 1..5 and the Taylor coefficients L_k/k!, R_k/k! */
+static void anchor_from(bf_coupling *c, anchor *a, double r, const lr_part *w,
+                        double L, double R)
 {
-    double t;
-    exact_lr(c, r, &a->j, &t, &a->L[0], &a->R[0]);
     a->r = r;
+    a->j = w->j;
     a->valid = 1;
-    if (t < 0.0 || t > 1.0) {
-        a->valid = 0; /* outside the film: always exact */
-        return;
-    }
-    double e[4];
-    spline_taylor(c, a->j, t, e);
+    a->L[0] = L;
+    a->R[0] = R;
+    const double *e = w->e;
     const double h = c->dx, ir = 1.0 / c->p.r0;
     /* g and its x-derivatives at r; g'''' = 0 within the cell */
     const double gd[5] = {e[0], e[1] / h, 2.0 * e[2] / (h * h),
@@ -647,6 +693,129 @@ static void set_anchor(bf_coupling *c, anchor *a, double r)
         a->L[k] = gd[k - 1] - a->L[k - 1] * ir;
         a->R[k] = -gd[k - 1] + a->R[k - 1] * ir;
     }
+    static const double f[5] = {1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0};
+    for (int k = 0; k < 5; k++) {
+        a->lq[k] = a->L[k] * f[k];
+        a->rq[k] = a->R[k] * f[k];
+    }
+    a->lq[5] = a->L[5] / 120.0;
+    a->rq[5] = a->R[5] / 120.0;
+}
+
+/* anchor ball p at r: L, R and their derivatives 1..5 (x units) */
+static void set_anchor(bf_coupling *c, anchor *a, double r)
+{
+    double t, L, R;
+    lr_part w;
+    exact_lr(c, r, &a->j, &t, &L, &R, &w);
+    a->r = r;
+    a->L[0] = L;
+    a->R[0] = R;
+    a->valid = 0; /* outside the film: always exact */
+    a->fresh = 0;
+    if (t < 0.0 || t > 1.0)
+        return;
+    anchor_from(c, a, r, &w, L, R);
+}
+
+/* Hot loop again (see refresh) */
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC push_options
+#pragma GCC optimize("vect-cost-model=cheap")
+#endif
+
+/* the series of m_k (see mk) at eight arguments z, as eight lanes: the
+ * same operations as mk's series for each lane */
+BF_SPLINE_CLONES
+static void mk_series8(const double c[NSER][4], int ns, const double z[8],
+                       double m[8][4])
+{
+    double a0[8], a1[8], a2[8], a3[8];
+    for (int q = 0; q < 8; q++) {
+        a0[q] = c[ns - 1][0];
+        a1[q] = c[ns - 1][1];
+        a2[q] = c[ns - 1][2];
+        a3[q] = c[ns - 1][3];
+    }
+    for (int n = ns - 2; n >= 0; n--) {
+        const double c0 = c[n][0], c1 = c[n][1], c2 = c[n][2], c3 = c[n][3];
+        for (int q = 0; q < 8; q++) {
+            a0[q] = a0[q] * z[q] + c0;
+            a1[q] = a1[q] * z[q] + c1;
+            a2[q] = a2[q] * z[q] + c2;
+            a3[q] = a3[q] * z[q] + c3;
+        }
+    }
+    for (int q = 0; q < 8; q++) {
+        m[q][0] = a0[q];
+        m[q][1] = a1[q];
+        m[q][2] = a2[q];
+        m[q][3] = a3[q];
+    }
+}
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC pop_options
+#endif
+
+/* Anchors of the balls at x, computed when the film level is prepared.
+ * The first force evaluation of the level comes at the same positions (the
+ * integrator starts its step at x); it then takes the anchor as it is
+ * (`fresh`) and gets the very numbers the lazy set_anchor would compute
+ * there: the same operations in the same order, also for the moments
+ * cache.  Done here for all balls at once, the balls' m_k series are the
+ * lanes of one vector and their exp() calls overlap, where one ball after
+ * the other they were a chain of dependent latencies.  A first evaluation
+ * elsewhere (another integrator) drops the fresh anchor and anchors where
+ * it is, as before.  Also kept: exp(-kappa t) and exp(-kappa (1 - t)) of
+ * each ball, for bf_coupling_mu at the next step's start (same x). */
+static void prepare_anchors(bf_coupling *c, size_t nb, const double *x)
+{
+    enum { G = 4 }; /* balls per group: 8 series */
+    if (nb > c->nballs)
+        nb = c->nballs;
+    for (size_t p0 = 0; p0 < nb; p0 += G) {
+        const size_t ng = nb - p0 < G ? nb - p0 : G;
+        lr_part w[G];
+        int in[G];
+        double z[2 * G] = {0}, m[2 * G][4];
+        for (size_t q = 0; q < ng; q++) {
+            double t;
+            long j = locate(c, x[p0 + q], &t);
+            in[q] = t >= 0.0 && t <= 1.0;
+            c->xe[p0 + q] = NAN;
+            if (!in[q])
+                continue; /* outside the film: always exact */
+            lr_begin(c, j, t, &w[q]);
+            z[2 * q] = c->kappa * t;
+            z[2 * q + 1] = c->kappa * (1.0 - t);
+        }
+        mk_series8(c->mkc, c->nser, z, m);
+        for (size_t q = 0; q < ng; q++) {
+            if (!in[q])
+                continue;
+            for (int s = 0; s < 2; s++)
+                if (!(z[2 * q + s] < 0.5)) /* the recursion, as mk */
+                    mk(c->mkc, c->nser, z[2 * q + s], m[2 * q + s]);
+            const size_t p = p0 + q;
+            double el = exp(-c->kappa * w[q].t),
+                   er = exp(-c->kappa * (1.0 - w[q].t));
+            double L, R;
+            lr_end(c, &w[q], m[2 * q], m[2 * q + 1], el, er, &L, &R);
+            anchor_from(c, &c->anc[p], x[p], &w[q], L, R);
+            c->anc[p].fresh = 1;
+            c->xe[p] = x[p];
+            c->ele[p] = el;
+            c->ere[p] = er;
+        }
+    }
+}
+
+void bf_coupling_prepare(bf_coupling *c, size_t nb, const double *x)
+{
+    prepare_moments(c, nb, x);
+    if (c->p.taylor_radius > 0)
+        prepare_anchors(c, nb, x);
 }
 
 void bf_coupling_integral_ball(bf_coupling *c, size_t p, double r, double *I,
@@ -654,6 +823,16 @@ void bf_coupling_integral_ball(bf_coupling *c, size_t p, double r, double *I,
 {
     anchor *a = &c->anc[p];
     if (c->p.taylor_radius > 0) {
+        if (a->fresh) {
+            a->fresh = 0;
+            if (r == a->r) { /* the anchor of prepare_anchors */
+                c->n_exact++;
+                *I = a->L[0] + a->R[0];
+                *dI = (a->R[0] - a->L[0]) / c->p.r0;
+                return;
+            }
+            a->valid = 0;
+        }
         if (!a->valid) {
             set_anchor(c, a, r);
             c->n_exact++;
@@ -665,11 +844,10 @@ void bf_coupling_integral_ball(bf_coupling *c, size_t p, double r, double *I,
         if (fabs(d) <= c->p.taylor_radius && locate(c, r, &t) == a->j &&
             t >= 0.0 && t <= 1.0) {
             /* Horner in d of sum_k (L_k, R_k) d^k / k! */
-            double L = a->L[5] / 120.0, R = a->R[5] / 120.0;
-            static const double f[5] = {1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0};
+            double L = a->lq[5], R = a->rq[5];
             for (int k = 4; k >= 0; k--) {
-                L = L * d + a->L[k] * f[k];
-                R = R * d + a->R[k] * f[k];
+                L = L * d + a->lq[k];
+                R = R * d + a->rq[k];
             }
             c->n_taylor++;
             *I = L + R;
@@ -698,9 +876,18 @@ void bf_coupling_mu(const bf_coupling *c, size_t nb, const double *x,
         jb[p] = locate(c, x[p], &t);
         inside = t >= 0.0 && t <= 1.0;
         double a = 8.0 * PI * R[p] * R[p] * c->p.V0;
-        /* exp(-(r - x_j)/r0) and exp(-(x_j+1 - r)/r0) */
-        cl[p] = a * exp(-c->kappa * t);
-        cr[p] = a * exp(-c->kappa * (1.0 - t));
+        /* exp(-(r - x_j)/r0) and exp(-(x_j+1 - r)/r0), from prepare if
+         * the ball is where it was then (the same numbers) */
+        double el, er;
+        if (p < c->nballs && x[p] == c->xe[p]) {
+            el = c->ele[p];
+            er = c->ere[p];
+        } else {
+            el = exp(-c->kappa * t);
+            er = exp(-c->kappa * (1.0 - t));
+        }
+        cl[p] = a * el;
+        cr[p] = a * er;
         jmin = jb[p] < jmin ? jb[p] : jmin;
         jmax = jb[p] > jmax ? jb[p] : jmax;
     }
@@ -724,7 +911,7 @@ void bf_coupling_mu(const bf_coupling *c, size_t nb, const double *x,
         return;
     }
     /* a ball outside the film (or very many balls): ball by ball */
-    double *k = c->tmp; /* scratch (used by the spline only in refresh) */
+    double *k = c->tmp; /* scratch */
     for (long i = 0; i <= N; i++)
         k[i] = 0.0;
     for (size_t p = 0; p < nb; p++) {
@@ -767,9 +954,11 @@ bf_status bf_coupling_save(const bf_coupling *c, bf_ckpt *ck, bf_err *err)
     double *a = xcalloc(len);
     if (!a)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
+    /* a fresh anchor (prepare_anchors) is saved as none: after a restart
+     * the first evaluation computes the same anchor lazily */
     for (size_t p = 0; p < n; p++) {
         a[p] = c->anc[p].r;
-        a[n + p] = c->anc[p].valid;
+        a[n + p] = c->anc[p].valid && !c->anc[p].fresh;
     }
     double *q = a + 2 * n;
     q[0] = (double)c->n_exact;
