@@ -323,20 +323,38 @@ HOT void cell_pass(long N, double a0, double a1, double b0, double b1,
     }
 }
 
-/* sum_k a[k] b[k] with eight partial sums (vectorisable; a fixed order) */
+/* two dot products sum_k a1[k] b1[k] and sum_k a2[k] b2[k], each with
+ * eight partial sums (vectorisable; a fixed order), in one loop so that
+ * their two latency chains overlap */
 BF_SPLINE_CLONES
-static double dot(long n, const double *restrict a, const double *restrict b)
+static void dot2(long n1, const double *restrict a1, const double *restrict b1,
+                 long n2, const double *restrict a2, const double *restrict b2,
+                 double *r1, double *r2)
 {
-    double s[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    double s[8] = {0, 0, 0, 0, 0, 0, 0, 0}, u[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    const long m = n1 < n2 ? n1 : n2;
     long k = 0;
-    for (; k + 8 <= n; k += 8)
+    for (; k + 8 <= m; k += 8)
+        for (int l = 0; l < 8; l++) {
+            s[l] += a1[k + l] * b1[k + l];
+            u[l] += a2[k + l] * b2[k + l];
+        }
+    long k1 = k, k2 = k;
+    for (; k1 + 8 <= n1; k1 += 8)
         for (int l = 0; l < 8; l++)
-            s[l] += a[k + l] * b[k + l];
-    double t = 0.0;
-    for (; k < n; k++)
-        t += a[k] * b[k];
-    return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7])) +
-           t;
+            s[l] += a1[k1 + l] * b1[k1 + l];
+    for (; k2 + 8 <= n2; k2 += 8)
+        for (int l = 0; l < 8; l++)
+            u[l] += a2[k2 + l] * b2[k2 + l];
+    double t1 = 0.0, t2 = 0.0;
+    for (; k1 < n1; k1++)
+        t1 += a1[k1] * b1[k1];
+    for (; k2 < n2; k2++)
+        t2 += a2[k2] * b2[k2];
+    *r1 = ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7])) +
+          t1;
+    *r2 = ((u[0] + u[1]) + (u[2] + u[3])) + ((u[4] + u[5]) + (u[6] + u[7])) +
+          t2;
 }
 
 /* kernel weights of mu_cpl added for one ball: k[i] += cl E^(j-i) for
@@ -501,10 +519,10 @@ static const cell_moments *moments(bf_coupling *c, long j)
     /* ML_j = sum_{k<j} E^(j-1-k) LC_k, E^(j-1-k) = pwr[N-j+k]; cells with
      * E^(j-1-k) < 2^-64 are left out (below the sum's round-off) */
     long k0 = j - c->K > 0 ? j - c->K : 0;
-    cm.ml = dot(j - k0, c->pwr + (c->N - j + k0), c->lc + k0);
     /* MR_j+1 = sum_{k>=j+1} E^(k-j-1) RC_k */
     long k1 = j + 1 + c->K < c->N ? j + 1 + c->K : c->N;
-    cm.mr = dot(k1 - (j + 1), c->pw, c->rc + j + 1);
+    dot2(j - k0, c->pwr + (c->N - j + k0), c->lc + k0, k1 - (j + 1), c->pw,
+         c->rc + j + 1, &cm.ml, &cm.mr);
     int q = c->ncache < NCACHE ? c->ncache++ : (int)(j % NCACHE);
     c->cache[q] = cm;
     return &c->cache[q];
@@ -553,18 +571,19 @@ static void prepare_moments(bf_coupling *c, size_t nb, const double *x)
     if (nc < 2)
         return;
     double ml[MAXC], mr[MAXC];
-    const cell_moments *first = moments(c, cell[0]);
-    ml[0] = first->ml;
+    /* ML_j of the first cell and MR_(j+1) of the last one by dot products
+     * (those of moments()), then the recurrences */
+    const long jf = cell[0], jl = cell[nc - 1];
+    const long k0 = jf - c->K > 0 ? jf - c->K : 0;
+    const long k1 = jl + 1 + c->K < c->N ? jl + 1 + c->K : c->N;
+    dot2(jf - k0, c->pwr + (c->N - jf + k0), c->lc + k0, k1 - (jl + 1), c->pw,
+         c->rc + jl + 1, &ml[0], &mr[nc - 1]);
     for (int q = 1; q < nc; q++) {
         double s = ml[q - 1];
         for (long k = cell[q - 1]; k < cell[q]; k++)
             s = c->E * s + c->lc[k];
         ml[q] = s;
     }
-    /* MR_(j+1) of the last cell by a dot product, then leftwards */
-    const long jl = cell[nc - 1];
-    long k1 = jl + 1 + c->K < c->N ? jl + 1 + c->K : c->N;
-    mr[nc - 1] = dot(k1 - (jl + 1), c->pw, c->rc + jl + 1);
     for (int q = nc - 2; q >= 0; q--) {
         double s = mr[q + 1];
         for (long k = cell[q + 1]; k > cell[q]; k--)
