@@ -100,7 +100,7 @@ enum {
 struct bf_film {
     bf_film_params p;
     long N;      /* intervals; nodes 0..N */
-    size_t len;  /* allocated length of each array (see bf_film_create) */
+    size_t len;  /* allocated length of each array (N + 3) */
     double *mem;
     double *v[V_COUNT]; /* each points at index 0 (ghost at -1) */
     double *mucpl;      /* the coupling's mu (zero without one) */
@@ -108,9 +108,6 @@ struct bf_film {
 };
 
 #define ARR(f, k) ((f)->v[k])
-
-/* doubles in front of index 0 in every node array */
-enum { FRONT = 16 };
 
 static double *alloc_block(size_t n)
 {
@@ -139,10 +136,9 @@ bf_status bf_film_create(bf_film **out, const bf_film_params *p, bf_err *err)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     f->p = *p;
     f->N = (long)nr;
-    /* 16 doubles in front (ghosts at -1, -2, and what the first chunk of
-     * eight reads, see "Speed"; index 0 64-byte aligned), N+1 nodes,
-     * ghosts and at least 16 doubles of padding behind */
-    size_t len = ((size_t)f->N + 1 + 16 + 16 + 7) & ~(size_t)7;
+    /* 8 doubles in front (ghosts at -1, -2; index 0 64-byte aligned), N+1
+     * nodes, ghosts and padding behind */
+    size_t len = ((size_t)f->N + 1 + 8 + 16) & ~(size_t)7;
     f->len = len;
     f->mem = alloc_block(len * V_COUNT);
     f->mucpl = alloc_block(len);
@@ -153,7 +149,7 @@ bf_status bf_film_create(bf_film **out, const bf_film_params *p, bf_err *err)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
     for (int k = 0; k < V_COUNT; k++)
-        f->v[k] = f->mem + (size_t)k * len + FRONT;
+        f->v[k] = f->mem + (size_t)k * len + 8;
     const long N = f->N;
     double *x = ARR(f, V_X);
     /* x_i = (i - N/2) dx: x_(N-i) = -x_i exactly, so that a symmetric
@@ -188,7 +184,7 @@ const double *bf_film_u_c(const bf_film *f) { return ARR(f, V_UC); }
 const double *bf_film_ah_d(const bf_film *f) { return ARR(f, V_AD); }
 const double *bf_film_ah_c(const bf_film *f) { return ARR(f, V_AC); }
 
-double *bf_film_mu_cpl(bf_film *f) { return f->mucpl + FRONT; }
+double *bf_film_mu_cpl(bf_film *f) { return f->mucpl + 8; }
 
 /* h, psi from A_d, A_c on nodes lo..hi (one definition: the step and
  * set_state/load must produce the same bits). */
@@ -305,28 +301,41 @@ double bf_film_stable_dt(const bf_film *f, char *why, size_t cap)
 
 /* ------------------------------------------------------------ the step */
 
-/* Speed.  The passes work on eight nodes at a time (vector types, see
- * below): branch-free (selects instead), the per-step checks as a bitwise
- * OR of the values' bit patterns (sign bit: a negative value; exponent
- * bits of x*0: a non-finite one).  bf_film_step_invariant is cloned for
- * AVX-512 and AVX2 (picked at load time by the CPU; the SSE2 version
- * elsewhere).  Element-wise vector arithmetic changes no bit of the
- * results: no reduction is reordered and nothing is contracted
- * (-ffp-contract=off), so every clone gives the same numbers as scalar
- * code (checked by comparing the outputs of AVX-512, AVX2 and SSE2
- * builds).  Each pass runs over the whole film before the next one starts;
- * the arrays start 64-byte aligned at index 0 and the chunks of eight at
- * multiples of eight, so that stores do not straddle cache lines.
- * (Measured on the 501-node film: sweeping the passes over blocks of 48
- * nodes, each pass lagging the one it depends on, to keep a block's data
- * in the L1 cache was 25-30% slower -- the per-block set-up of five loops
- * cost more than the L2 traffic it saved; stores off the 64-byte alignment
- * cost ~10%; GCC's own vectorised loops ~5% more than these, in their
- * scalar remainders.) */
+/* Speed.  The loops below are written so that GCC vectorises them:
+ * contiguous arrays, restrict pointers, no branches (selects instead), and
+ * the per-step checks as a bitwise OR of the values' bit patterns (sign
+ * bit: a negative value; exponent bits of x*0: a non-finite one), which the
+ * vectoriser accepts where it rejects a comparison reduction.  GCC 12 at
+ * -O2 uses the "very cheap" cost model, which rejects every loop that needs
+ * an epilogue; the "cheap" model is enabled for this file's hot loops, and
+ * bf_film_step_invariant is cloned for AVX2 and AVX-512 (picked at load
+ * time by the CPU; the SSE2 version elsewhere).  Vectorising element-wise
+ * arithmetic changes no bit of the results: no reduction is reordered and
+ * nothing is contracted (-ffp-contract=off), so every clone gives the same
+ * numbers.  Each pass runs over the whole film before the next one starts.
+ * The arrays start 64-byte aligned at index 0, and so do the vector loops
+ * that store into them: an AVX-512 store off that alignment straddles two
+ * cache lines (costs ~10% of the step).
+ * (An earlier version swept the passes over blocks of 48 nodes, each pass
+ * lagging the one it depends on, to keep a block's data in the L1 cache;
+ * it was 25-30% slower for the 501-node film: the per-block set-up of five
+ * vector loops cost more than the L2 traffic it saved -- this core's L2
+ * streams the ~100 kB of a step's arrays fast enough.) */
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC push_options
+#pragma GCC optimize("vect-cost-model=cheap")
+#endif
 
 #define HOT static inline __attribute__((always_inline))
 
-/* the OR of the bit patterns of values x (in s) and of x*0 (in z) is "bad"
+HOT uint64_t bits_of(double x)
+{
+    uint64_t u;
+    memcpy(&u, &x, sizeof u);
+    return u;
+}
+
+/* the OR of bits_of(x) (in s) and bits_of(x*0) (in z) over values is "bad"
  * if its sign bit is set (some value < 0 or -0) or its exponent is all
  * ones (some value inf or NaN) */
 static int bits_bad(uint64_t s, uint64_t z)
@@ -385,93 +394,31 @@ typedef struct step_ctx {
     double *kd1, *kc1;
 } step_ctx;
 
-/* Eight nodes at a time.  The passes are written with GCC's vector
- * extension (also understood by clang): `vd` holds eight doubles, one
- * AVX-512 register (two AVX2 or four SSE2 registers in the other clones),
- * and its arithmetic is the scalar arithmetic lane by lane -- the same
- * operations in the same order as the scalar formulas, so the same bits.
- * Written by hand rather than left to the auto-vectoriser because each
- * pass then runs over whole chunks of eight starting at a multiple of
- * eight (aligned stores), the chunk at either end of the range storing
- * only its lanes inside the range and counting only those in the checks:
- * no scalar remainder loops (GCC's loops spent ~10% of the step in their
- * epilogues and in the separate calls for the ghost node and face and
- * the first velocities).  The lanes outside a range read the neighbouring
- * ghosts and the zero padding of the arrays (16 doubles in front of
- * index 0, at least 16 behind N + 1: see bf_film_create), never memory
- * outside the allocation, and their results are dropped. */
-enum { VW = 8 };
-typedef double vd __attribute__((vector_size(VW * sizeof(double))));
-typedef int64_t vm __attribute__((vector_size(VW * sizeof(int64_t))));
-/* the same for loads and stores at any double's address (as GCC's own
- * __m512d_u) */
-typedef double vdu
-    __attribute__((vector_size(VW * sizeof(double)), aligned(8), may_alias));
-
-/* Macros rather than functions for everything that takes or returns a
- * vector (GCC would note that passing one by value differs between the
- * clones' ABIs). */
-#define VLD(p) (*(const vdu *)(p))
-#define VST(p, v) (*(vdu *)(p) = (v))
-/* a where m is set, else b */
-#define VSEL(m, a, b) ((vd)(((vm)(a) & (m)) | ((vm)(b) & ~(m))))
-/* store the lanes of v inside the range (all of them if `full`) */
-#define VPUT(p, v, full, in)                                                   \
-    do {                                                                       \
-        vd v_ = (v);                                                           \
-        VST((p), (full) ? v_ : VSEL((in), v_, VLD(p)));                        \
-    } while (0)
-
-static uint64_t or_lanes(const vm *v)
-{
-    uint64_t r = 0;
-    for (int l = 0; l < VW; l++)
-        r |= (uint64_t)(*v)[l];
-    return r;
-}
-
-/* The chunks of eight of a pass over lo..hi (the first starts at the
- * multiple of eight at or below lo), and in each the lanes inside lo..hi:
- * `full` if all of them are, else the mask `in`. */
-#define CHUNKS(i, lo, hi)                                                      \
-    for (long i = (lo) & -(long)VW; i <= (hi); i += VW)
-#define CHUNK_MASK(i, lo, hi, full, in)                                        \
-    const int full = i >= (lo) && i + VW - 1 <= (hi);                          \
-    vm in = {-1, -1, -1, -1, -1, -1, -1, -1};                                  \
-    if (!full)                                                                 \
-        for (int l_ = 0; l_ < VW; l_++)                                        \
-            in[l_] = i + l_ >= (lo) && i + l_ <= (hi) ? -1 : 0
-
 /* mu (3.8) on nodes lo..hi (of -1..N+1), and for the um and uk variants
- * W = (P +- mu) u; inlined with a constant `variant`.  P = g (rho_d A_d +
- * rho_c A_c) is not stored: the passes that need its differences form
- * them from A (fewer arrays to stream). */
+ * W = (P +- mu) u; inlined with a constant `variant`: one branch-free
+ * loop each.  P = g (rho_d A_d + rho_c A_c) is not stored: the passes
+ * that need its differences form them from A (fewer arrays to stream). */
 HOT void node_loop(int variant, long lo, long hi, double a, double b,
-                   double gl, double g, double rd, double rc,
-                   const double *restrict ad, const double *restrict ac,
-                   const double *restrict ud, const double *restrict uc,
-                   const double *restrict psi, const double *restrict mc,
-                   double *restrict mu, double *restrict wd,
-                   double *restrict wc)
+               double gl, double g, double rd, double rc,
+               const double *restrict ad, const double *restrict ac,
+               const double *restrict ud, const double *restrict uc,
+               const double *restrict psi, const double *restrict mc,
+               double *restrict mu, double *restrict wd, double *restrict wc)
 {
-    CHUNKS(i, lo, hi)
-    {
-        CHUNK_MASK(i, lo, hi, full, in);
-        vd ps = VLD(psi + i);
-        vd m = ps * (b * ps * ps - a) -
-               gl * ((VLD(psi + i + 1) - ps) - (ps - VLD(psi + i - 1))) +
-               VLD(mc + i);
-        VPUT(mu + i, m, full, in);
+    for (long i = lo; i <= hi; i++) {
+        double ps = psi[i];
+        double m = ps * (b * ps * ps - a) -
+                   gl * ((psi[i + 1] - ps) - (ps - psi[i - 1])) + mc[i];
+        mu[i] = m;
         if (variant == BF_FILM_MU_UM) {
-            vd md = rd * VLD(ad + i), mcc = rc * VLD(ac + i);
-            vd pp = g * (md + mcc);
-            vd um = (md * VLD(ud + i) + mcc * VLD(uc + i)) / (md + mcc);
-            VPUT(wd + i, (pp + m) * um, full, in);
-            VPUT(wc + i, (pp - m) * um, full, in);
+            double md = rd * ad[i], mcc = rc * ac[i], pp = g * (md + mcc);
+            double um = (md * ud[i] + mcc * uc[i]) / (md + mcc);
+            wd[i] = (pp + m) * um;
+            wc[i] = (pp - m) * um;
         } else if (variant == BF_FILM_MU_UK) {
-            vd pp = g * (rd * VLD(ad + i) + rc * VLD(ac + i));
-            VPUT(wd + i, (pp + m) * VLD(ud + i), full, in);
-            VPUT(wc + i, (pp - m) * VLD(uc + i), full, in);
+            double pp = g * (rd * ad[i] + rc * ac[i]);
+            wd[i] = (pp + m) * ud[i];
+            wc[i] = (pp - m) * uc[i];
         }
     }
 }
@@ -482,8 +429,8 @@ HOT void node_loop(int variant, long lo, long hi, double a, double b,
 HOT void node_pass(const step_ctx *c, int variant, int unit, long lo, long hi)
 {
     node_loop(variant, lo, hi, c->a, c->b, c->gl, c->g, RHO(unit, c->rd),
-              RHO(unit, c->rc), c->ad, c->ac, c->ud, c->uc, c->psi, c->mc,
-              c->mu, c->wd, c->wc);
+              RHO(unit, c->rc), c->ad,
+              c->ac, c->ud, c->uc, c->psi, c->mc, c->mu, c->wd, c->wc);
 }
 
 /* Face fluxes F of (3.15) and G of (3.16) at faces i+1/2, i = lo..hi (of
@@ -491,54 +438,44 @@ HOT void node_pass(const step_ctx *c, int variant, int unit, long lo, long hi)
  * for both phases, from the fluxes A u formed here; otherwise W from the
  * node pass. */
 HOT void face_loop(int variant, long lo, long hi, double c1, double c2,
-                   double ird, double irc, double visc, double g, double rd,
-                   double rc, const double *restrict mu,
-                   const double *restrict ad, const double *restrict ac,
-                   const double *restrict ud, const double *restrict uc,
-                   const double *restrict wd, const double *restrict wc,
-                   double *restrict Fd, double *restrict Fc,
-                   double *restrict Gd, double *restrict Gc)
+               double ird, double irc, double visc, double g, double rd,
+               double rc, const double *restrict mu,
+               const double *restrict ad, const double *restrict ac,
+               const double *restrict ud, const double *restrict uc,
+               const double *restrict wd, const double *restrict wc,
+               double *restrict Fd, double *restrict Fc, double *restrict Gd,
+               double *restrict Gc)
 {
-    CHUNKS(i, lo, hi)
-    {
-        CHUNK_MASK(i, lo, hi, full, in);
-        const vd ad0 = VLD(ad + i), ad1 = VLD(ad + i + 1);
-        const vd ac0 = VLD(ac + i), ac1 = VLD(ac + i + 1);
-        const vd ud0 = VLD(ud + i), ud1 = VLD(ud + i + 1);
-        const vd uc0 = VLD(uc + i), uc1 = VLD(uc + i + 1);
-        vd fd0 = ad0 * ud0, fd1 = ad1 * ud1;
-        vd fc0 = ac0 * uc0, fc1 = ac1 * uc1;
-        vd dad = ad1 - ad0, dac = ac1 - ac0;
-        vd dP = g * (rd * dad + rc * dac), dm = VLD(mu + i + 1) - VLD(mu + i);
-        vd dwd, dwc;
+    for (long i = lo; i <= hi; i++) {
+        double fd0 = ad[i] * ud[i], fd1 = ad[i + 1] * ud[i + 1];
+        double fc0 = ac[i] * uc[i], fc1 = ac[i + 1] * uc[i + 1];
+        double dad = ad[i + 1] - ad[i], dac = ac[i + 1] - ac[i];
+        double dP = g * (rd * dad + rc * dac), dm = mu[i + 1] - mu[i];
+        double dwd, dwc;
         if (variant == BF_FILM_MU_MIDPOINT) {
             dwd = g * (rd * (fd1 - fd0) + rc * (fc1 - fc0));
             dwc = dwd;
         } else {
-            dwd = VLD(wd + i + 1) - VLD(wd + i);
-            dwc = VLD(wc + i + 1) - VLD(wc + i);
+            dwd = wd[i + 1] - wd[i];
+            dwc = wc[i + 1] - wc[i];
         }
         /* phase d */
-        vd ub = 0.5 * (ud0 + ud1), u2 = ub * ub;
-        vd du = ud1 - ud0;
-        vd ab = 0.5 * (ad0 + ad1);
-        vd dq = dP + dm;
-        VPUT(Fd + i,
-             c1 * (fd0 + fd1) -
-                 c2 * (u2 * dad + 2.0 * ub * ab * du + ab * dq * ird),
-             full, in);
-        VPUT(Gd + i, (u2 + visc) * du + (ub * dq + dwd) * ird, full, in);
+        double ub = 0.5 * (ud[i] + ud[i + 1]), u2 = ub * ub;
+        double du = ud[i + 1] - ud[i];
+        double ab = 0.5 * (ad[i] + ad[i + 1]);
+        double dq = dP + dm;
+        Fd[i] = c1 * (fd0 + fd1) -
+                c2 * (u2 * dad + 2.0 * ub * ab * du + ab * dq * ird);
+        Gd[i] = (u2 + visc) * du + (ub * dq + dwd) * ird;
         /* phase c */
-        ub = 0.5 * (uc0 + uc1);
+        ub = 0.5 * (uc[i] + uc[i + 1]);
         u2 = ub * ub;
-        du = uc1 - uc0;
-        ab = 0.5 * (ac0 + ac1);
+        du = uc[i + 1] - uc[i];
+        ab = 0.5 * (ac[i] + ac[i + 1]);
         dq = dP - dm;
-        VPUT(Fc + i,
-             c1 * (fc0 + fc1) -
-                 c2 * (u2 * dac + 2.0 * ub * ab * du + ab * dq * irc),
-             full, in);
-        VPUT(Gc + i, (u2 + visc) * du + (ub * dq + dwc) * irc, full, in);
+        Fc[i] = c1 * (fc0 + fc1) -
+                c2 * (u2 * dac + 2.0 * ub * ab * du + ab * dq * irc);
+        Gc[i] = (u2 + visc) * du + (ub * dq + dwc) * irc;
     }
 }
 
@@ -546,46 +483,43 @@ HOT void face_pass(const step_ctx *c, int variant, int unit, long lo, long hi)
 {
     face_loop(variant, lo, hi, c->c1, c->c2, RHO(unit, c->ird),
               RHO(unit, c->irc), c->visc, c->g, RHO(unit, c->rd),
-              RHO(unit, c->rc), c->mu, c->ad, c->ac, c->ud, c->uc, c->wd,
-              c->wc, c->Fd, c->Fc, c->Gd, c->Gc);
+              RHO(unit, c->rc), c->mu, c->ad, c->ac, c->ud, c->uc, c->wd, c->wc,
+              c->Fd, c->Fc, c->Gd, c->Gc);
 }
 
 /* (3.15) for both phases on nodes lo..hi (of 0..N), with h and psi of the
  * new level; returns non-zero if a content may be negative or a value is
  * not finite (a quick check: -0 also counts). */
 HOT int update_loop(long lo, long hi, const double *restrict ad,
-                    const double *restrict ac, const double *restrict Fd,
-                    const double *restrict Fc, const double *restrict kd,
-                    const double *restrict kc, double *restrict ad1,
-                    double *restrict ac1, double *restrict kd1,
-                    double *restrict kc1, double *restrict h1,
-                    double *restrict psi1)
+                const double *restrict ac, const double *restrict Fd,
+                const double *restrict Fc, const double *restrict kd,
+                const double *restrict kc, double *restrict ad1,
+                double *restrict ac1, double *restrict kd1,
+                double *restrict kc1, double *restrict h1,
+                double *restrict psi1)
 {
-    vm s = {0}, z = {0};
-    CHUNKS(i, lo, hi)
-    {
-        CHUNK_MASK(i, lo, hi, full, in);
+    uint64_t s = 0, z = 0;
+    for (long i = lo; i <= hi; i++) {
         /* A + dA with the rounding error of the sum kept (Knuth's
          * TwoSum) and added to the next step's increment: an increment
          * below half an ulp of A is then not lost, and the totals cannot
          * drift by round-off (5e6 steps of the coupled run) */
-        const vd a0 = VLD(ad + i), c0 = VLD(ac + i);
-        vd ia = VLD(kd + i) - (VLD(Fd + i) - VLD(Fd + i - 1));
-        vd ic = VLD(kc + i) - (VLD(Fc + i) - VLD(Fc + i - 1));
-        vd a = a0 + ia, cc = c0 + ic;
-        vd ba = a - a0, bc = cc - c0;
-        VPUT(kd1 + i, (a0 - (a - ba)) + (ia - ba), full, in);
-        VPUT(kc1 + i, (c0 - (cc - bc)) + (ic - bc), full, in);
-        vd h = a + cc;
-        vd ps = (a - cc) / h;
-        VPUT(ad1 + i, a, full, in);
-        VPUT(ac1 + i, cc, full, in);
-        VPUT(h1 + i, h, full, in);
-        VPUT(psi1 + i, ps, full, in);
-        s |= ((vm)a | (vm)cc) & in;
-        z |= (vm)(ps * 0.0) & in;
+        double ia = kd[i] - (Fd[i] - Fd[i - 1]);
+        double ic = kc[i] - (Fc[i] - Fc[i - 1]);
+        double a = ad[i] + ia, cc = ac[i] + ic;
+        double ba = a - ad[i], bc = cc - ac[i];
+        kd1[i] = (ad[i] - (a - ba)) + (ia - ba);
+        kc1[i] = (ac[i] - (cc - bc)) + (ic - bc);
+        double h = a + cc;
+        double ps = (a - cc) / h;
+        ad1[i] = a;
+        ac1[i] = cc;
+        h1[i] = h;
+        psi1[i] = ps;
+        s |= bits_of(a) | bits_of(cc);
+        z |= bits_of(ps * 0.0);
     }
-    return bits_bad(or_lanes(&s), or_lanes(&z));
+    return bits_bad(s, z);
 }
 
 HOT int update_pass(const step_ctx *c, long lo, long hi)
@@ -597,17 +531,14 @@ HOT int update_pass(const step_ctx *c, long lo, long hi)
 /* Midpoint variant: mu* = (mu^n + mu^{n+1})/2 on nodes lo..hi (of 0..N);
  * mu^{n+1} from psi^{n+1} (its ghosts set by the caller). */
 HOT void midmu_loop(long lo, long hi, double a, double b, double gl,
-                    const double *restrict psi1, const double *restrict mc,
-                    const double *restrict mu, double *restrict mus)
+                const double *restrict psi1, const double *restrict mc,
+                const double *restrict mu, double *restrict mus)
 {
-    CHUNKS(i, lo, hi)
-    {
-        CHUNK_MASK(i, lo, hi, full, in);
-        vd ps = VLD(psi1 + i);
-        vd m1 = ps * (b * ps * ps - a) -
-                gl * ((VLD(psi1 + i + 1) - ps) - (ps - VLD(psi1 + i - 1))) +
-                VLD(mc + i);
-        VPUT(mus + i, 0.5 * (VLD(mu + i) + m1), full, in);
+    for (long i = lo; i <= hi; i++) {
+        double ps = psi1[i];
+        double m1 = ps * (b * ps * ps - a) -
+                    gl * ((psi1[i + 1] - ps) - (ps - psi1[i - 1])) + mc[i];
+        mus[i] = 0.5 * (mu[i] + m1);
     }
 }
 
@@ -620,35 +551,33 @@ HOT void midmu_pass(const step_ctx *c, long lo, long hi)
  * A vanishing phase (alpha_k < vanish) takes the other phase's velocity.
  * Returns non-zero if a velocity is not finite. */
 HOT int velocity_loop(long lo, long hi, double c1, double c2, double ird,
-                      double irc, double va, double g, double rd, double rc,
-                      const double *restrict ad, const double *restrict ac,
-                      const double *restrict mus, const double *restrict ud,
-                      const double *restrict uc, const double *restrict Gd,
-                      const double *restrict Gc, const double *restrict ad1,
-                      const double *restrict ac1, const double *restrict h1,
-                      double *restrict ud1, double *restrict uc1)
+                  double irc, double va, double g, double rd, double rc,
+                  const double *restrict ad, const double *restrict ac,
+                  const double *restrict mus, const double *restrict ud,
+                  const double *restrict uc, const double *restrict Gd,
+                  const double *restrict Gc, const double *restrict ad1,
+                  const double *restrict ac1, const double *restrict h1,
+                  double *restrict ud1, double *restrict uc1)
 {
-    vm z = {0};
-    CHUNKS(i, lo, hi)
-    {
-        CHUNK_MASK(i, lo, hi, full, in);
-        vd dP = g * (rd * (VLD(ad + i + 1) - VLD(ad + i - 1)) +
-                     rc * (VLD(ac + i + 1) - VLD(ac + i - 1)));
-        vd dm = VLD(mus + i + 1) - VLD(mus + i - 1);
-        vd v = VLD(ud + i), vp = VLD(ud + i + 1), vq = VLD(ud + i - 1);
-        vd nd = v - c1 * (0.5 * (vp + vq)) * (vp - vq) -
-                c1 * ird * (dP + dm) + c2 * (VLD(Gd + i) - VLD(Gd + i - 1));
-        v = VLD(uc + i);
-        vp = VLD(uc + i + 1);
-        vq = VLD(uc + i - 1);
-        vd nc = v - c1 * (0.5 * (vp + vq)) * (vp - vq) -
-                c1 * irc * (dP - dm) + c2 * (VLD(Gc + i) - VLD(Gc + i - 1));
-        vd vh = va * VLD(h1 + i);
-        VPUT(ud1 + i, VSEL(VLD(ad1 + i) < vh, nc, nd), full, in);
-        VPUT(uc1 + i, VSEL(VLD(ac1 + i) < vh, nd, nc), full, in);
-        z |= ((vm)(nd * 0.0) | (vm)(nc * 0.0)) & in;
+    uint64_t z = 0;
+    for (long i = lo; i <= hi; i++) {
+        double dP = g * (rd * (ad[i + 1] - ad[i - 1]) +
+                         rc * (ac[i + 1] - ac[i - 1]));
+        double dm = mus[i + 1] - mus[i - 1];
+        double v = ud[i], vp = ud[i + 1], vm = ud[i - 1];
+        double nd = v - c1 * (0.5 * (vp + vm)) * (vp - vm) -
+                    c1 * ird * (dP + dm) + c2 * (Gd[i] - Gd[i - 1]);
+        v = uc[i];
+        vp = uc[i + 1];
+        vm = uc[i - 1];
+        double nc = v - c1 * (0.5 * (vp + vm)) * (vp - vm) -
+                    c1 * irc * (dP - dm) + c2 * (Gc[i] - Gc[i - 1]);
+        double vh = va * h1[i];
+        ud1[i] = ad1[i] < vh ? nc : nd;
+        uc1[i] = ac1[i] < vh ? nd : nc;
+        z |= bits_of(nd * 0.0) | bits_of(nc * 0.0);
     }
-    return bits_bad(0, or_lanes(&z));
+    return bits_bad(0, z);
 }
 
 HOT int velocity_pass(const step_ctx *c, int unit, const double *mus, long lo,
@@ -656,16 +585,9 @@ HOT int velocity_pass(const step_ctx *c, int unit, const double *mus, long lo,
 {
     return velocity_loop(lo, hi, c->c1, c->c2, RHO(unit, c->ird),
                          RHO(unit, c->irc), c->va, c->g, RHO(unit, c->rd),
-                         RHO(unit, c->rc), c->ad, c->ac, mus, c->ud, c->uc,
-                         c->Gd, c->Gc, c->ad1, c->ac1, c->h1, c->ud1, c->uc1);
+                         RHO(unit, c->rc), c->ad, c->ac, mus, c->ud, c->uc, c->Gd,
+                         c->Gc, c->ad1, c->ac1, c->h1, c->ud1, c->uc1);
 }
-
-#undef CHUNKS
-#undef CHUNK_MASK
-#undef VPUT
-#undef VSEL
-#undef VST
-#undef VLD
 
 /* Locate the first bad value after a step whose quick check failed and
  * describe it; BF_OK if there is none (the quick check also flags -0). */
@@ -711,15 +633,22 @@ HOT int sweep(bf_film *f, step_ctx *c, int variant, int unit)
     const long N = c->N;
     const int mid = variant == BF_FILM_MU_MIDPOINT;
     const double *mus = mid ? c->mus : c->mu;
-    /* one pass after the other over the whole film (see "Speed") */
-    node_pass(c, variant, unit, -1, N + 1);
-    face_pass(c, variant, unit, -1, N);
+    /* one pass after the other over the whole film (see "Speed"); the
+     * vector loops start at index 0 (64-byte aligned) so that their stores
+     * do not straddle cache lines: the ghost node -1 and face -1 go first
+     * on their own, and the velocities of nodes 1..7 */
+    node_pass(c, variant, unit, -1, -1);
+    node_pass(c, variant, unit, 0, N + 1);
+    face_pass(c, variant, unit, -1, -1);
+    face_pass(c, variant, unit, 0, N);
     int bad = update_pass(c, 0, N);
     if (mid) {
         ghost_even(c->psi1, N);
         midmu_pass(c, 0, N);
     }
-    int badu = velocity_pass(c, unit, mus, 1, N - 1);
+    const long v8 = N - 1 < 7 ? N - 1 : 7;
+    int badu = velocity_pass(c, unit, mus, 1, v8);
+    badu |= velocity_pass(c, unit, mus, v8 + 1, N - 1);
     if (bad && f->p.limit_positive &&
         (any_negative(N, c->ad1) || any_negative(N, c->ac1))) {
         /* some content would go negative: limit the fluxes of that phase
@@ -765,7 +694,7 @@ bf_status bf_film_step_invariant(bf_film *f, double dt, bf_err *err)
         .va = p->vanish,
         .ad = ARR(f, V_AD), .ac = ARR(f, V_AC),
         .ud = ARR(f, V_UD), .uc = ARR(f, V_UC),
-        .psi = ARR(f, V_PSI), .mc = f->mucpl + FRONT,
+        .psi = ARR(f, V_PSI), .mc = f->mucpl + 8,
         .mu = ARR(f, V_MU),
         .wd = ARR(f, V_WD), .wc = ARR(f, V_WC),
         .Fd = ARR(f, V_FD), .Fc = ARR(f, V_FC),
@@ -782,7 +711,7 @@ bf_status bf_film_step_invariant(bf_film *f, double dt, bf_err *err)
     ghost_even(ARR(f, V_AC), N);
     ghost_odd(ARR(f, V_UD), N);
     ghost_odd(ARR(f, V_UC), N);
-    double *psi = ARR(f, V_PSI), *mc = f->mucpl + FRONT;
+    double *psi = ARR(f, V_PSI), *mc = f->mucpl + 8;
     ghost_even(psi, N);
     psi[-2] = psi[2];
     psi[N + 2] = psi[N - 2];
@@ -825,6 +754,9 @@ bf_status bf_film_step_invariant(bf_film *f, double dt, bf_err *err)
 }
 
 #undef HOT
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC pop_options
+#endif
 
 /* ------------------------------------------------------------ diagnostics */
 
