@@ -66,9 +66,12 @@ const bf_coupling_params *bf_coupling_params_of(const bf_coupling *c);
  * the caller, bf_ode.epoch). */
 void bf_coupling_refresh(bf_coupling *c);
 
-/* Compute the moments at the cells of balls at x (in increasing order)
- * with two full sums and short recurrences between neighbours, instead of
- * two full sums per ball (optional: an optimisation after a refresh). */
+/* After a refresh, for balls at x (in increasing order): the moments at
+ * their cells by two full sums and short recurrences between neighbours
+ * (instead of two full sums per ball), and with taylor_radius > 0 each
+ * ball's Taylor anchor at x, used by its next evaluation if that comes at
+ * the same position (the integrator's first, at the start of the step).
+ * Optional: an optimisation; the anchors give the bits of the lazy ones. */
 void bf_coupling_prepare(bf_coupling *c, size_t nb, const double *x);
 
 /* I(r) and dI/dr (see above), exact for the interpolated g. */

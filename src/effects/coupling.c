@@ -32,11 +32,24 @@
  * Taylor expansion of L and R to 5th order (L' = g - L/r0, R' = -g + R/r0,
  * higher derivatives likewise; exact within a cell since g''' is constant
  * there), used for later positions in the same cell within taylor_radius
- * (remainder (d/r0)^6/720 < 1e-19 for d <= 2e-3 r0).
+ * (remainder (d/r0)^6/720 < 1e-19 for d <= 2e-3 r0).  bf_coupling_prepare
+ * computes these anchors for all balls at once at their positions (where
+ * the integrator's first evaluation of the step comes), overlapping the
+ * latencies of their serial parts; the numbers are those of the lazy
+ * anchor (tested).
  *
  * mu_cpl (3.11): exp(-|x_i - r|/r0) = exp(-kappa t_r) E^(j-i) left of the
  * ball and exp(-kappa (1 - t_r)) E^(i-j-1) right of it, from a table of
- * powers of E (no exp per node).
+ * powers of E (no exp per node; the two exp() per ball are those of the
+ * anchors when the ball has not moved since prepare).
+ *
+ * Bits.  The anchors prepared ahead, the interleaved series (mk2,
+ * mk_series8), the paired sums (dot2) and the spline's fused loops give
+ * the numbers of the plain sequence of operations bit for bit: work is only
+ * interleaved where it is independent (never inside a sum), and values are
+ * reused only where they come from the same operands by the same
+ * operations.  (The moments prepare gets by recurrences differ from the
+ * full sums of moments() in round-off; that choice is older.)
  */
 #include "ballfilm/coupling.h"
 
@@ -445,11 +458,15 @@ static void spline_solve(long N, const double *restrict tl,
      * recurrence: the recurrence is a chain of dependent latencies, the
      * dot products are independent work that fills them */
 #define TFWD(i)                                                                \
-    (((p[0] * d[i] + p[1] * d[(i) - 1]) + (p[2] * d[(i) - 2] + p[3] * d[(i) - 3])) + \
-     ((p[4] * d[(i) - 4] + p[5] * d[(i) - 5]) + (p[6] * d[(i) - 6] + p[7] * d[(i) - 7])))
+    (((p[0] * d[i] + p[1] * d[(i) - 1]) +                                      \
+      (p[2] * d[(i) - 2] + p[3] * d[(i) - 3])) +                               \
+     ((p[4] * d[(i) - 4] + p[5] * d[(i) - 5]) +                                \
+      (p[6] * d[(i) - 6] + p[7] * d[(i) - 7])))
 #define TBWD(i)                                                                \
-    (((q[0] * y[i] + q[1] * y[(i) + 1]) + (q[2] * y[(i) + 2] + q[3] * y[(i) + 3])) + \
-     ((q[4] * y[(i) + 4] + q[5] * y[(i) + 5]) + (q[6] * y[(i) + 6] + q[7] * y[(i) + 7])))
+    (((q[0] * y[i] + q[1] * y[(i) + 1]) +                                      \
+      (q[2] * y[(i) + 2] + q[3] * y[(i) + 3])) +                               \
+     ((q[4] * y[(i) + 4] + q[5] * y[(i) + 5]) +                                \
+      (q[6] * y[(i) + 6] + q[7] * y[(i) + 7])))
     {
         /* blocks of eight with the recurrence in a register */
         double r[8];
