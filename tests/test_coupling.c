@@ -5,6 +5,9 @@
  *   gsl_interp_cspline (second derivatives to 1e-12 of their size);
  * - dI/dr against a 4th-order finite difference of I (the same code path
  *   differentiated numerically: consistent to 1e-9 relative);
+ * - I and dI/dr equal an independent quadrature of the same interpolant
+ *   (GSL's spline or linear interpolant of g, Gauss-Legendre per cell) to
+ *   1e-12, near the walls and off the film too;
  * - I and dI/dr against GSL adaptive quadrature (QAG, 1e-13) of the
  *   analytic kink h = 1, psi = tanh(x/sqrt 2), piecewise on each side of r:
  *   the spline's error falls as dx^4 (ratio > 12 for halved dx), the
@@ -282,6 +285,81 @@ START_TEST(mu_cpl_matches_direct_formula)
 }
 END_TEST
 
+/* The quadrature of the interpolant itself, against an independent
+ * computation: GSL's natural cubic spline (or linear interpolant) of the
+ * same g, times the kernel, integrated cell by cell with 20-point
+ * Gauss-Legendre (the ball's cell split at r).  Both sides integrate the
+ * same function, so they agree to round-off (1e-12 of I; dI/dr = (R - L)/r0
+ * cancels, so to 1e-12 of I/r0), also within K cells of the walls (where
+ * the moment rows are shifted) and off the film. */
+static void interpolant_lr(gsl_interp *sp, gsl_interp_accel *acc,
+                           gsl_integration_glfixed_table *gl, const double *x,
+                           const double *g, size_t n, double r, double *L,
+                           double *R)
+{
+    *L = *R = 0;
+    for (size_t j = 0; j + 1 < n; j++) {
+        double a = x[j], b = x[j + 1];
+        for (int side = 0; side < 2; side++) {
+            /* left of r: [a, min(b, r)]; right: [max(a, r), b] */
+            double lo = side ? fmax(a, r) : a, hi = side ? b : fmin(b, r);
+            if (hi <= lo)
+                continue;
+            double sum = 0;
+            for (size_t k = 0; k < gl->n; k++) {
+                double xi, wi;
+                gsl_integration_glfixed_point(lo, hi, k, &xi, &wi, gl);
+                double sv = gsl_interp_eval(sp, x, g, xi, acc);
+                sum += wi * sv * exp(-fabs(xi - r) / R0);
+            }
+            *(side ? R : L) += sum;
+        }
+    }
+}
+
+START_TEST(integral_equals_quadrature_of_the_interpolant)
+{
+    bf_film *f = kink_film(20, 0.1);
+    const double xb[4] = {-0.53, -0.21, 0.23, 0.47}, Rb[4] = {0.1, 0.1, 0.15, 0.1};
+    bf_err err = {0};
+    bf_coupling *c0 = make_cpl(f, BF_COUPLING_SPLINE, 0);
+    for (int s = 0; s < 40; s++) { /* an uneven g */
+        bf_coupling_mu(c0, 4, xb, Rb, bf_film_mu_cpl(f));
+        ck_assert(bf_film_step_invariant(f, 1e-4, &err) == BF_OK);
+    }
+    bf_coupling_free(c0);
+    const size_t n = bf_film_nodes(f);
+    const double *x = bf_film_x(f);
+    gsl_integration_glfixed_table *gl = gsl_integration_glfixed_table_alloc(20);
+    gsl_interp_accel *acc = gsl_interp_accel_alloc();
+    const double rs[] = {0.0137, 0.2,  -0.4567, 3.21, -9.87,
+                         9.95,   -9.999, 10.3,  -11.0};
+    for (int qd = 0; qd < 2; qd++) {
+        bf_coupling *c = make_cpl(f, qd ? BF_COUPLING_LINEAR : BF_COUPLING_SPLINE,
+                                  0);
+        const double *g = bf_coupling_g(c);
+        gsl_interp *sp =
+            gsl_interp_alloc(qd ? gsl_interp_linear : gsl_interp_cspline, n);
+        gsl_interp_init(sp, x, g, n);
+        for (size_t k = 0; k < sizeof rs / sizeof rs[0]; k++) {
+            double I, dI, L, R;
+            bf_coupling_integral(c, rs[k], &I, &dI);
+            interpolant_lr(sp, acc, gl, x, g, n, rs[k], &L, &R);
+            ck_assert_msg(fabs(I - (L + R)) < 1e-12 * (L + R) &&
+                              fabs(dI - (R - L) / R0) < 1e-12 * (L + R) / R0,
+                          "%s, r = %g: I %.16g vs %.16g, dI %.16g vs %.16g",
+                          qd ? "linear" : "spline", rs[k], I, L + R, dI,
+                          (R - L) / R0);
+        }
+        gsl_interp_free(sp);
+        bf_coupling_free(c);
+    }
+    gsl_interp_accel_free(acc);
+    gsl_integration_glfixed_table_free(gl);
+    bf_film_free(f);
+}
+END_TEST
+
 /* bf_coupling_prepare computes the balls' anchors and exp() values ahead
  * (all balls at once); the first evaluation at the prepared position must
  * give the very bits of the lazy anchor, and so must the later Taylor
@@ -488,6 +566,7 @@ Suite *suite_coupling(void)
     tcase_add_test(tc, taylor_path_equals_exact);
     tcase_add_test(tc, mu_cpl_matches_direct_formula);
     tcase_add_test(tc, prepared_anchors_equal_lazy_ones);
+    tcase_add_test(tc, integral_equals_quadrature_of_the_interpolant);
     suite_add_tcase(s, tc);
     tc = tu_tcase("scenes");
     tcase_add_test(tc, static_kink_energy_and_peaks);

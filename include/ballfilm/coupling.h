@@ -84,8 +84,9 @@ void bf_coupling_integral_ball(bf_coupling *c, size_t p, double r, double *I,
 void bf_coupling_mu(const bf_coupling *c, size_t nb, const double *x,
                     const double *R, double *mu);
 
-/* Natural cubic spline second derivatives of the current g (for tests). */
-const double *bf_coupling_spline_m(const bf_coupling *c);
+/* Natural cubic spline second derivatives of the current g (for tests;
+ * computed on demand). */
+const double *bf_coupling_spline_m(bf_coupling *c);
 const double *bf_coupling_g(const bf_coupling *c);
 
 /* Counters: exact evaluations and Taylor evaluations since creation. */
