@@ -10,8 +10,9 @@
  *   film      the film step (3.15-3.16),
  *   balls     the ball step: integrator, contact and the coupling force
  *             -M dF/dr (its evaluations, O(1) each),
- *   coupling  mu_cpl for the film and the coupling's tables of each film
- *             level (spline, cell moments, the balls' anchors),
+ *   coupling  mu_cpl for the film and what the coupling prepares for each
+ *             film level (g, the moments at the balls' cells, their
+ *             Taylor anchors),
  * and the rest of that run's wall time is "other" (events, output rows,
  * the core loop).  The model reads the clock five times a step; each read
  * costs ~60 ns on this VM (calibrated here, `clock`), which is 1-2 reads

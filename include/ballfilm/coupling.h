@@ -16,9 +16,11 @@
  *   L(r) = integral_{x < r} g exp(-(r - x)/r0) dx,
  *   R(r) = integral_{x > r} g exp(-(x - r)/r0) dx,
  *   dI/dr = (R - L)/r0   (exact: the kernel is continuous at x = r).
- * Per film level the spline, the exact exponential moments of every cell
- * and, lazily, the moments at the cells holding balls are computed once
- * (bf_coupling_refresh); a force evaluation then costs O(1).
+ * The moments a ball needs (the kernel's integrals of the interpolant on
+ * each side of its cell, and the spline's M there) are linear in g: dot
+ * products with rows built once per node.  Per film level g is formed
+ * (bf_coupling_refresh) and, lazily, the moments at the cells holding
+ * balls; a force evaluation then costs O(1).
  *
  * The effect "coupling" (src/effects/coupling.c) wraps this for the ball
  * system; its `self` is the bf_coupling.  The same code serves the static
