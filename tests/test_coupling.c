@@ -5,6 +5,9 @@
  *   gsl_interp_cspline (second derivatives to 1e-12 of their size);
  * - dI/dr against a 4th-order finite difference of I (the same code path
  *   differentiated numerically: consistent to 1e-9 relative);
+ * - I and dI/dr equal an independent quadrature of the same interpolant
+ *   (GSL's spline or linear interpolant of g, Gauss-Legendre per cell) to
+ *   1e-12, near the walls and off the film too;
  * - I and dI/dr against GSL adaptive quadrature (QAG, 1e-13) of the
  *   analytic kink h = 1, psi = tanh(x/sqrt 2), piecewise on each side of r:
  *   the spline's error falls as dx^4 (ratio > 12 for halved dx), the
@@ -12,6 +15,9 @@
  * - the Taylor fast path equals the exact evaluation to round-off (1e-14
  *   of I);
  * - mu_cpl (3.11) equals the formula with one exp() per node to 1e-14;
+ * - the anchors and exp() values prepared for all balls at once give the
+ *   bits of the lazy path (first evaluation, Taylor evaluations, an
+ *   evaluation elsewhere, mu_cpl);
  * - the static kink: the ball energy m v^2/2 + contact + m M F is conserved
  *   to the integrator's accuracy, and the peak deviation at dt = 1e-4 over
  *   0-10 s is within a factor 1.5 of the paper's -4.31e-5;
@@ -279,6 +285,139 @@ START_TEST(mu_cpl_matches_direct_formula)
 }
 END_TEST
 
+/* The quadrature of the interpolant itself, against an independent
+ * computation: GSL's natural cubic spline (or linear interpolant) of the
+ * same g, times the kernel, integrated cell by cell with 20-point
+ * Gauss-Legendre (the ball's cell split at r).  Both sides integrate the
+ * same function, so they agree to round-off (1e-12 of I; dI/dr = (R - L)/r0
+ * cancels, so to 1e-12 of I/r0), also within K cells of the walls (where
+ * the moment rows are shifted) and off the film. */
+static void interpolant_lr(gsl_interp *sp, gsl_interp_accel *acc,
+                           gsl_integration_glfixed_table *gl, const double *x,
+                           const double *g, size_t n, double r, double *L,
+                           double *R)
+{
+    *L = *R = 0;
+    for (size_t j = 0; j + 1 < n; j++) {
+        double a = x[j], b = x[j + 1];
+        for (int side = 0; side < 2; side++) {
+            /* left of r: [a, min(b, r)]; right: [max(a, r), b] */
+            double lo = side ? fmax(a, r) : a, hi = side ? b : fmin(b, r);
+            if (hi <= lo)
+                continue;
+            double sum = 0;
+            for (size_t k = 0; k < gl->n; k++) {
+                double xi, wi;
+                gsl_integration_glfixed_point(lo, hi, k, &xi, &wi, gl);
+                double sv = gsl_interp_eval(sp, x, g, xi, acc);
+                sum += wi * sv * exp(-fabs(xi - r) / R0);
+            }
+            *(side ? R : L) += sum;
+        }
+    }
+}
+
+START_TEST(integral_equals_quadrature_of_the_interpolant)
+{
+    bf_film *f = kink_film(20, 0.1);
+    const double xb[4] = {-0.53, -0.21, 0.23, 0.47}, Rb[4] = {0.1, 0.1, 0.15, 0.1};
+    bf_err err = {0};
+    bf_coupling *c0 = make_cpl(f, BF_COUPLING_SPLINE, 0);
+    for (int s = 0; s < 40; s++) { /* an uneven g */
+        bf_coupling_mu(c0, 4, xb, Rb, bf_film_mu_cpl(f));
+        ck_assert(bf_film_step_invariant(f, 1e-4, &err) == BF_OK);
+    }
+    bf_coupling_free(c0);
+    const size_t n = bf_film_nodes(f);
+    const double *x = bf_film_x(f);
+    gsl_integration_glfixed_table *gl = gsl_integration_glfixed_table_alloc(20);
+    gsl_interp_accel *acc = gsl_interp_accel_alloc();
+    const double rs[] = {0.0137, 0.2,  -0.4567, 3.21, -9.87,
+                         9.95,   -9.999, 10.3,  -11.0};
+    for (int qd = 0; qd < 2; qd++) {
+        bf_coupling *c = make_cpl(f, qd ? BF_COUPLING_LINEAR : BF_COUPLING_SPLINE,
+                                  0);
+        const double *g = bf_coupling_g(c);
+        gsl_interp *sp =
+            gsl_interp_alloc(qd ? gsl_interp_linear : gsl_interp_cspline, n);
+        gsl_interp_init(sp, x, g, n);
+        for (size_t k = 0; k < sizeof rs / sizeof rs[0]; k++) {
+            double I, dI, L, R;
+            bf_coupling_integral(c, rs[k], &I, &dI);
+            interpolant_lr(sp, acc, gl, x, g, n, rs[k], &L, &R);
+            ck_assert_msg(fabs(I - (L + R)) < 1e-12 * (L + R) &&
+                              fabs(dI - (R - L) / R0) < 1e-12 * (L + R) / R0,
+                          "%s, r = %g: I %.16g vs %.16g, dI %.16g vs %.16g",
+                          qd ? "linear" : "spline", rs[k], I, L + R, dI,
+                          (R - L) / R0);
+        }
+        gsl_interp_free(sp);
+        bf_coupling_free(c);
+    }
+    gsl_interp_accel_free(acc);
+    gsl_integration_glfixed_table_free(gl);
+    bf_film_free(f);
+}
+END_TEST
+
+/* bf_coupling_prepare computes the balls' anchors and exp() values ahead
+ * (all balls at once); the first evaluation at the prepared position must
+ * give the very bits of the lazy anchor, and so must the later Taylor
+ * evaluations, an evaluation elsewhere, and mu_cpl (which takes the
+ * prepared exp() values).  The lazy reference is prepared at positions
+ * 1e-4 cm off in the same cells (the same cached cell moments), so that
+ * its first evaluations at x anchor lazily.  The film is stepped first so
+ * that it is not symmetric. */
+START_TEST(prepared_anchors_equal_lazy_ones)
+{
+    bf_film *f = kink_film(20, 0.1);
+    const double x[4] = {-0.53, -0.21, 0.23, 0.47},
+                 xo[4] = {-0.5299, -0.2099, 0.2301, 0.4701},
+                 R[4] = {0.1, 0.1, 0.15, 0.1};
+    size_t n = bf_film_nodes(f);
+    bf_err err = {0};
+    bf_coupling *cp = make_cpl(f, BF_COUPLING_SPLINE, 2e-3 * R0);
+    bf_coupling *cl = make_cpl(f, BF_COUPLING_SPLINE, 2e-3 * R0);
+    double *mp = malloc(n * sizeof *mp), *ml = malloc(n * sizeof *ml);
+    for (int s = 0; s < 30; s++) {
+        bf_coupling_mu(cp, 4, x, R, bf_film_mu_cpl(f));
+        ck_assert(bf_film_step_invariant(f, 1e-4, &err) == BF_OK);
+    }
+    bf_coupling_refresh(cp);
+    bf_coupling_refresh(cl);
+    bf_coupling_prepare(cp, 4, x);
+    bf_coupling_prepare(cl, 4, xo);
+    /* the first evaluation: ball 2 elsewhere (its fresh anchor is
+     * dropped), the others at the prepared positions */
+    const double first[4] = {x[0], x[1], x[2] + 3e-5, x[3]};
+    for (int q = 0; q < 3; q++)
+        for (size_t p = 0; p < 4; p++) {
+            double r = q ? first[p] + 1e-5 * q * (p + 1.0) : first[p];
+            double a[2], b[2];
+            bf_coupling_integral_ball(cp, p, r, &a[0], &a[1]);
+            bf_coupling_integral_ball(cl, p, r, &b[0], &b[1]);
+            ck_assert_msg(memcmp(a, b, sizeof a) == 0,
+                          "ball %zu, evaluation %d: %.17g %.17g vs %.17g "
+                          "%.17g",
+                          p, q, a[0], a[1], b[0], b[1]);
+        }
+    unsigned long long ep, tp, el, tl;
+    bf_coupling_counts(cp, &ep, &tp);
+    bf_coupling_counts(cl, &el, &tl);
+    ck_assert_msg(ep == el && tp == tl, "%llu %llu, %llu %llu", ep, tp, el,
+                  tl);
+    /* mu_cpl with the prepared exp() values and without */
+    bf_coupling_mu(cp, 4, x, R, mp);
+    bf_coupling_mu(cl, 4, x, R, ml);
+    ck_assert(memcmp(mp, ml, n * sizeof *mp) == 0);
+    free(mp);
+    free(ml);
+    bf_coupling_free(cp);
+    bf_coupling_free(cl);
+    bf_film_free(f);
+}
+END_TEST
+
 /* ------------------------------------------------------------ scenes */
 
 static bf_sim *run(const char *scene, const char *const *sets, bf_scene **scp)
@@ -426,6 +565,8 @@ Suite *suite_coupling(void)
     tcase_add_test(tc, integral_against_quadrature_of_the_kink);
     tcase_add_test(tc, taylor_path_equals_exact);
     tcase_add_test(tc, mu_cpl_matches_direct_formula);
+    tcase_add_test(tc, prepared_anchors_equal_lazy_ones);
+    tcase_add_test(tc, integral_equals_quadrature_of_the_interpolant);
     suite_add_tcase(s, tc);
     tc = tu_tcase("scenes");
     tcase_add_test(tc, static_kink_energy_and_peaks);

@@ -16,9 +16,11 @@
  *   L(r) = integral_{x < r} g exp(-(r - x)/r0) dx,
  *   R(r) = integral_{x > r} g exp(-(x - r)/r0) dx,
  *   dI/dr = (R - L)/r0   (exact: the kernel is continuous at x = r).
- * Per film level the spline, the exact exponential moments of every cell
- * and, lazily, the moments at the cells holding balls are computed once
- * (bf_coupling_refresh); a force evaluation then costs O(1).
+ * The moments a ball needs (the kernel's integrals of the interpolant on
+ * each side of its cell, and the spline's M there) are linear in g: dot
+ * products with rows built once per node.  Per film level g is formed
+ * (bf_coupling_refresh) and, lazily, the moments at the cells holding
+ * balls; a force evaluation then costs O(1).
  *
  * The effect "coupling" (src/effects/coupling.c) wraps this for the ball
  * system; its `self` is the bf_coupling.  The same code serves the static
@@ -66,9 +68,12 @@ const bf_coupling_params *bf_coupling_params_of(const bf_coupling *c);
  * the caller, bf_ode.epoch). */
 void bf_coupling_refresh(bf_coupling *c);
 
-/* Compute the moments at the cells of balls at x (in increasing order)
- * with two full sums and short recurrences between neighbours, instead of
- * two full sums per ball (optional: an optimisation after a refresh). */
+/* After a refresh, for balls at x (in increasing order): the moments at
+ * their cells by two full sums and short recurrences between neighbours
+ * (instead of two full sums per ball), and with taylor_radius > 0 each
+ * ball's Taylor anchor at x, used by its next evaluation if that comes at
+ * the same position (the integrator's first, at the start of the step).
+ * Optional: an optimisation; the anchors give the bits of the lazy ones. */
 void bf_coupling_prepare(bf_coupling *c, size_t nb, const double *x);
 
 /* I(r) and dI/dr (see above), exact for the interpolated g. */
@@ -81,8 +86,9 @@ void bf_coupling_integral_ball(bf_coupling *c, size_t p, double r, double *I,
 void bf_coupling_mu(const bf_coupling *c, size_t nb, const double *x,
                     const double *R, double *mu);
 
-/* Natural cubic spline second derivatives of the current g (for tests). */
-const double *bf_coupling_spline_m(const bf_coupling *c);
+/* Natural cubic spline second derivatives of the current g (for tests;
+ * computed on demand). */
+const double *bf_coupling_spline_m(bf_coupling *c);
 const double *bf_coupling_g(const bf_coupling *c);
 
 /* Counters: exact evaluations and Taylor evaluations since creation. */

@@ -23,20 +23,39 @@
  * recursion above).  All of it is exact integration of the interpolant:
  * dI/dr = (R - L)/r0 is the derivative of I to round-off.
  *
- * Cost.  Per film level: g, the spline (one tridiagonal solve with
- * precomputed factors) and LC, RC for all cells (vectorised); lazily, for
- * each cell a ball is in, ML and MR by a dot product with the powers of E
- * (cached for the level).  A force evaluation is then O(1).  In the coupled
+ * Cost.  ML_j, MR_j+1 and the spline's M_j, M_j+1 are linear in g, so
+ * each is a dot product W.g with a row W that depends only on the grid,
+ * r0 and the quadrature: built once per node (an adjoint spline solve,
+ * see build_row) and kept.  Per film level: g (vectorised); lazily, for
+ * each cell a ball is in, its four moments as dot products of ~K + 70 and
+ * ~70 terms (cached for the level) -- the natural spline of the whole film
+ * is never formed (it was ~25% of a coupled step).  A force evaluation is
+ * then O(1).  In the coupled
  * run the film is frozen during a ball step and the balls move by ~1e-4 cm
  * per step, so each ball's first evaluation after a refresh anchors a
  * Taylor expansion of L and R to 5th order (L' = g - L/r0, R' = -g + R/r0,
  * higher derivatives likewise; exact within a cell since g''' is constant
  * there), used for later positions in the same cell within taylor_radius
- * (remainder (d/r0)^6/720 < 1e-19 for d <= 2e-3 r0).
+ * (remainder (d/r0)^6/720 < 1e-19 for d <= 2e-3 r0).  bf_coupling_prepare
+ * computes these anchors for all balls at once at their positions (where
+ * the integrator's first evaluation of the step comes), overlapping the
+ * latencies of their serial parts; the numbers are those of the lazy
+ * anchor (tested).
  *
  * mu_cpl (3.11): exp(-|x_i - r|/r0) = exp(-kappa t_r) E^(j-i) left of the
  * ball and exp(-kappa (1 - t_r)) E^(i-j-1) right of it, from a table of
- * powers of E (no exp per node).
+ * powers of E (no exp per node; the two exp() per ball are those of the
+ * anchors when the ball has not moved since prepare).
+ *
+ * Bits.  The anchors prepared ahead and the interleaved series (mk2,
+ * mk_series8) give the numbers of the plain sequence of operations bit for
+ * bit: work is only interleaved where it is independent (never inside a
+ * sum), and values are reused only where they come from the same operands
+ * by the same operations; a moment's sum does not depend on which rows are
+ * summed with it (dotg4).  The moments by rows are the quantities of the
+ * earlier spline-then-cells-then-sums in another order of summation: they
+ * differ from those in round-off only (tested against GSL's spline and a
+ * quadrature of the interpolant).
  */
 #include "ballfilm/coupling.h"
 
@@ -48,21 +67,36 @@
 
 #include "ballfilm/scene.h"
 
-enum { NCACHE = 16, NSER = 20, I0 = 16 };
+enum { NCACHE = 16, NSER = 20, NROW = 96 };
+enum { ROW_L, ROW_R, ROW_M }; /* rows of ML_n, MR_n, M_n */
+/* nodes beyond which the spline's influence lambda^d (lambda = 2 - sqrt 3)
+ * is below 2^-64 * 1e-3: 64 ln 2 / ln(1/lambda) = 33.7, plus margin */
+enum { ROW_SPREAD = 40 };
 
 static const double PI = 3.14159265358979323846;
 
 typedef struct cell_moments {
-    long j;      /* cell, -1: empty */
-    double ml;   /* ML_j */
-    double mr;   /* MR_j+1 */
+    long j;         /* cell, -1: empty */
+    double ml;      /* ML_j */
+    double mr;      /* MR_j+1 */
+    double m0, m1;  /* the spline's M_j, M_j+1 */
 } cell_moments;
+
+typedef struct row_entry {
+    int kind;       /* ROW_L, ROW_R, ROW_M; -1: empty */
+    long n;         /* node */
+    long i0, len;   /* W_i for i = i0 .. i0 + len - 1 in w */
+    double *w;
+    unsigned long long used; /* when last used (row_clock) */
+} row_entry;
 
 typedef struct anchor {
     int valid;   /* set for the current film level */
+    int fresh;   /* set by prepare, not yet used (see prepare_anchors) */
     long j;
     double r;
     double L[6], R[6]; /* derivatives 0..5 of L and R at r */
+    double lq[6], rq[6]; /* L_k/k!, R_k/k!: the Taylor coefficients */
 } anchor;
 
 struct bf_coupling {
@@ -72,12 +106,22 @@ struct bf_coupling {
     double dx, x0, kappa, E; /* E = exp(-kappa), kappa = dx/r0 */
     double w_g0, w_g1, w_m0, w_m1; /* LC weights (times dx) */
     double *g, *m, *lc, *rc, *pw, *pwr, *tl, *tw, *tmp;
+    row_entry rows[NROW];     /* the rows built (a pool) */
+    double *rowmem;           /* their storage, NROW x n8 */
+    long n8;                  /* N + 1 rounded up to a multiple of 8 */
+    long len_lr, len_m;       /* the rows' windows (see build_row) */
+    double *zrow;             /* n8 zeros */
+    int *row_of;              /* [kind][node] -> pool entry or -1 */
+    unsigned long long row_clock;
     long K;                   /* E^K < 2^-64: farther cells are dropped */
     double mkc[NSER][4];      /* series coefficients of m_k(z), z < 0.5 */
     int nser;                 /* terms needed for z <= min(kappa, 0.5) */
     cell_moments cache[NCACHE];
     int ncache;
     anchor *anc;
+    /* exp(-kappa t), exp(-kappa (1 - t)) of each ball at xe (NaN: none),
+     * from prepare, for bf_coupling_mu at the same positions */
+    double *xe, *ele, *ere;
     size_t nballs;
     unsigned long long n_exact, n_taylor;
 };
@@ -121,11 +165,56 @@ static void mk(const double c[NSER][4], int ns, double z, double m[4])
         m[k] = ((double)k * m[k - 1] - e) / z;
 }
 
+/* m_k at two arguments (the two sides of a ball): the same operations as
+ * two calls of mk, with the series' eight Horner chains interleaved so that
+ * their latencies overlap (the chains are ~17 dependent steps long). */
+static void mk2(const double c[NSER][4], int ns, double zl, double zr,
+                double ml[4], double mr[4])
+{
+    if (!(zl < 0.5 && zr < 0.5)) {
+        mk(c, ns, zl, ml);
+        mk(c, ns, zr, mr);
+        return;
+    }
+    const double *e = c[ns - 1];
+    double a0 = e[0], a1 = e[1], a2 = e[2], a3 = e[3];
+    double b0 = e[0], b1 = e[1], b2 = e[2], b3 = e[3];
+    for (int n = ns - 2; n >= 0; n--) {
+        e = c[n];
+        a0 = a0 * zl + e[0];
+        a1 = a1 * zl + e[1];
+        a2 = a2 * zl + e[2];
+        a3 = a3 * zl + e[3];
+        b0 = b0 * zr + e[0];
+        b1 = b1 * zr + e[1];
+        b2 = b2 * zr + e[2];
+        b3 = b3 * zr + e[3];
+    }
+    ml[0] = a0;
+    ml[1] = a1;
+    ml[2] = a2;
+    ml[3] = a3;
+    mr[0] = b0;
+    mr[1] = b1;
+    mr[2] = b2;
+    mr[3] = b3;
+}
+
 /* ---------------------------------------------------------------- set-up */
 
 static void *xcalloc(size_t n)
 {
     return calloc(n ? n : 1, sizeof(double));
+}
+
+/* n doubles, zero, 64-byte aligned */
+static double *alloc64(size_t n)
+{
+    void *p = NULL;
+    if (posix_memalign(&p, 64, (n ? n : 1) * sizeof(double)))
+        return NULL;
+    memset(p, 0, (n ? n : 1) * sizeof(double));
+    return p;
 }
 
 bf_status bf_coupling_create(bf_coupling **out, const bf_coupling_params *p,
@@ -143,7 +232,10 @@ bf_status bf_coupling_create(bf_coupling **out, const bf_coupling_params *p,
     c->kappa = c->dx / p->r0;
     c->E = exp(-c->kappa);
     const size_t n = (size_t)c->N + 1;
-    c->g = xcalloc(n);
+    /* g and the rows: 64-byte aligned, zero up to a multiple of 8 (the
+     * row sums run over whole blocks of eight, see dotg4) */
+    c->n8 = ((long)n + 7) & ~7L;
+    c->g = alloc64((size_t)c->n8);
     c->m = xcalloc(n);
     c->lc = xcalloc(n);
     c->rc = xcalloc(n);
@@ -154,8 +246,15 @@ bf_status bf_coupling_create(bf_coupling **out, const bf_coupling_params *p,
     c->tmp = xcalloc(n);
     c->nballs = nballs;
     c->anc = calloc(nballs ? nballs : 1, sizeof *c->anc);
+    c->xe = xcalloc(nballs);
+    c->ele = xcalloc(nballs);
+    c->ere = xcalloc(nballs);
+    c->rowmem = alloc64((size_t)NROW * (size_t)c->n8);
+    c->row_of = malloc(3 * n * sizeof *c->row_of);
+    c->zrow = alloc64((size_t)c->n8);
     if (!c->g || !c->m || !c->lc || !c->rc || !c->pw || !c->pwr || !c->tl ||
-        !c->tw || !c->tmp || !c->anc) {
+        !c->tw || !c->tmp || !c->anc || !c->xe || !c->ele || !c->ere ||
+        !c->rowmem || !c->row_of || !c->zrow) {
         bf_coupling_free(c);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
@@ -196,6 +295,22 @@ bf_status bf_coupling_create(bf_coupling **out, const bf_coupling_params *p,
             c->tw[i] = 1.0 / w;
         }
     }
+    for (size_t p = 0; p < nballs; p++)
+        c->xe[p] = NAN;
+    /* rows: the kernel's K cells (ML, MR) and ROW_SPREAD nodes on each side
+     * for the spline's reach (see build_row); M alone: the spread */
+    c->len_lr = c->K + 2 * ROW_SPREAD + 1;
+    c->len_m = 2 * ROW_SPREAD + 3;
+    if (c->len_lr > c->N + 1)
+        c->len_lr = c->N + 1;
+    if (c->len_m > c->N + 1)
+        c->len_m = c->N + 1;
+    for (size_t i = 0; i < 3 * n; i++)
+        c->row_of[i] = -1;
+    for (int q = 0; q < NROW; q++) {
+        c->rows[q].kind = -1;
+        c->rows[q].w = c->rowmem + (size_t)q * (size_t)c->n8;
+    }
     bf_coupling_refresh(c);
     *out = c;
     return BF_OK;
@@ -215,6 +330,12 @@ void bf_coupling_free(bf_coupling *c)
     free(c->tw);
     free(c->tmp);
     free(c->anc);
+    free(c->xe);
+    free(c->ele);
+    free(c->ere);
+    free(c->rowmem);
+    free(c->row_of);
+    free(c->zrow);
     free(c);
 }
 
@@ -222,7 +343,6 @@ const bf_coupling_params *bf_coupling_params_of(const bf_coupling *c)
 {
     return &c->p;
 }
-const double *bf_coupling_spline_m(const bf_coupling *c) { return c->m; }
 const double *bf_coupling_g(const bf_coupling *c) { return c->g; }
 
 void bf_coupling_counts(const bf_coupling *c, unsigned long long *exact,
@@ -258,37 +378,33 @@ HOT void g_pass(long n, double psis, const double *restrict h,
     }
 }
 
-HOT void rhs_pass(long N, double s, const double *restrict g,
-                     double *restrict d)
-{
-    for (long i = 1; i < N; i++)
-        d[i] = s * ((g[i + 1] - g[i]) - (g[i] - g[i - 1]));
-}
-
-HOT void cell_pass(long N, double a0, double a1, double b0, double b1,
-                      const double *restrict g, const double *restrict m,
-                      double *restrict lc, double *restrict rc)
-{
-    for (long j = 0; j < N; j++) {
-        lc[j] = (a0 * g[j] + a1 * g[j + 1]) + (b0 * m[j] + b1 * m[j + 1]);
-        rc[j] = (a1 * g[j] + a0 * g[j + 1]) + (b1 * m[j] + b0 * m[j + 1]);
-    }
-}
-
-/* sum_k a[k] b[k] with eight partial sums (vectorisable; a fixed order) */
+/* Four sums r_q = sum_i w_q[i] g[i] over the blocks of eight from lo (a
+ * multiple of 8) to hi, each with eight partial sums by i mod 8 (from +0,
+ * in increasing i) combined pairwise.  Rows are zero outside their
+ * windows, so a range that covers a row's window gives the row's sum bit
+ * for bit whatever the range (adding +0 changes no partial sum): the
+ * moments do not depend on which rows are summed together.  g is loaded
+ * once for the four rows, every load is aligned. */
 BF_SPLINE_CLONES
-static double dot(long n, const double *restrict a, const double *restrict b)
+static void dotg4(long lo, long hi, const double *const w[4],
+                  const double *restrict g, double r[4])
 {
-    double s[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-    long k = 0;
-    for (; k + 8 <= n; k += 8)
-        for (int l = 0; l < 8; l++)
-            s[l] += a[k + l] * b[k + l];
-    double t = 0.0;
-    for (; k < n; k++)
-        t += a[k] * b[k];
-    return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7])) +
-           t;
+    const double *restrict w0 = w[0], *restrict w1 = w[1], *restrict w2 = w[2],
+                           *restrict w3 = w[3];
+    double s0[8] = {0}, s1[8] = {0}, s2[8] = {0}, s3[8] = {0};
+    for (long k = lo; k <= hi; k += 8)
+        for (int l = 0; l < 8; l++) {
+            const double gk = g[k + l];
+            s0[l] += w0[k + l] * gk;
+            s1[l] += w1[k + l] * gk;
+            s2[l] += w2[k + l] * gk;
+            s3[l] += w3[k + l] * gk;
+        }
+    const double *sq[4] = {s0, s1, s2, s3};
+    for (int q = 0; q < 4; q++) {
+        const double *u = sq[q];
+        r[q] = ((u[0] + u[1]) + (u[2] + u[3])) + ((u[4] + u[5]) + (u[6] + u[7]));
+    }
 }
 
 /* kernel weights of mu_cpl added for one ball: k[i] += cl E^(j-i) for
@@ -337,136 +453,201 @@ HOT void mu_final(long n, double psis, const double *restrict psi,
         mu[i] = k[i] * (psi[i] - psis);
 }
 
-/* The natural spline's second derivatives: rows 1..N-1 of
- * M_(i-1) + 4 M_i + M_(i+1) = d_i, M_0 = M_N = 0, by the LU factors of
- * create.  Beyond row I0 the factors equal their limit (l = 1/w =
- * lambda = 2 - sqrt 3 to the last bit), and both sweeps are recurrences
- * with a constant coefficient, unrolled by eight so that they vectorise:
- *   y_i = sum_{k<8} (-lambda)^k d_(i-k) + lambda^8 y_(i-8),
- *   M_i = sum_{k<8} (-1)^k lambda^(k+1) y_(i+k) + lambda^8 M_(i+8).
- * The same numbers as the plain sweeps up to round-off. */
-BF_SPLINE_CLONES
-static void spline_solve(long N, const double *restrict tl,
-                         const double *restrict tw, const double *restrict d,
-                         double *restrict y, double *restrict t,
-                         double *restrict M)
-{
-    M[0] = M[N] = 0.0;
-    if (N < 2)
-        return;
-    const long last = N - 1;
-    if (last <= 2 * I0 + 16) {
-        y[1] = d[1];
-        for (long i = 2; i <= last; i++)
-            y[i] = d[i] - tl[i] * y[i - 1];
-        M[last] = y[last] * tw[last];
-        for (long i = last - 1; i >= 1; i--)
-            M[i] = (y[i] - M[i + 1]) * tw[i];
-        return;
-    }
-    const double lam = tl[I0];
-    double p[8], q[8];
-    p[0] = 1.0;
-    for (int k = 1; k < 8; k++)
-        p[k] = -lam * p[k - 1];
-    for (int k = 0; k < 8; k++)
-        q[k] = lam * p[k];
-    const double l8 = p[7] * -lam;
-    /* forward */
-    y[1] = d[1];
-    for (long i = 2; i <= I0 + 8; i++)
-        y[i] = d[i] - tl[i] * y[i - 1];
-    for (long i = I0 + 9; i <= last; i++)
-        t[i] = ((p[0] * d[i] + p[1] * d[i - 1]) +
-                (p[2] * d[i - 2] + p[3] * d[i - 3])) +
-               ((p[4] * d[i - 4] + p[5] * d[i - 5]) +
-                (p[6] * d[i - 6] + p[7] * d[i - 7]));
-    {
-        /* blocks of eight with the recurrence in a register */
-        double r[8];
-        long i = I0 + 9;
-        for (int l = 0; l < 8; l++)
-            r[l] = y[i - 8 + l];
-        for (; i + 7 <= last; i += 8)
-            for (int l = 0; l < 8; l++) {
-                r[l] = t[i + l] + l8 * r[l];
-                y[i + l] = r[l];
-            }
-        for (; i <= last; i++)
-            y[i] = t[i] + l8 * y[i - 8];
-    }
-    /* backward */
-    M[last] = y[last] * lam;
-    for (long i = last - 1; i >= last - 7; i--)
-        M[i] = (y[i] - M[i + 1]) * lam;
-    for (long i = I0 + 1; i <= last - 8; i++)
-        t[i] = ((q[0] * y[i] + q[1] * y[i + 1]) +
-                (q[2] * y[i + 2] + q[3] * y[i + 3])) +
-               ((q[4] * y[i + 4] + q[5] * y[i + 5]) +
-                (q[6] * y[i + 6] + q[7] * y[i + 7]));
-    {
-        double r[8];
-        long i = last - 8; /* top of the next block of eight */
-        for (int l = 0; l < 8; l++)
-            r[l] = M[i + 1 + l];
-        for (; i - 7 >= I0 + 1; i -= 8)
-            for (int l = 0; l < 8; l++) {
-                r[l] = t[i - 7 + l] + l8 * r[l];
-                M[i - 7 + l] = r[l];
-            }
-        for (; i >= I0 + 1; i--)
-            M[i] = t[i] + l8 * M[i + 8];
-    }
-    for (long i = I0; i >= 1; i--)
-        M[i] = (y[i] - M[i + 1]) * tw[i];
-}
-
 BF_SPLINE_CLONES
 void bf_coupling_refresh(bf_coupling *c)
 {
     const long N = c->N;
     g_pass(N + 1, c->p.psi_s, bf_film_h(c->film), bf_film_psi(c->film), c->g);
-    double *M = c->m;
-    if (c->p.quad == BF_COUPLING_SPLINE) {
-        /* scratch: the right-hand side in lc, the forward sweep in rc
-         * (both rebuilt by cell_pass below) */
-        rhs_pass(N, 6.0 / (c->dx * c->dx), c->g, c->lc);
-        spline_solve(N, c->tl, c->tw, c->lc, c->rc, c->tmp, M);
-    } else {
-        for (long i = 0; i <= N; i++)
-            M[i] = 0.0;
-    }
-    cell_pass(N, c->w_g0, c->w_g1, c->w_m0, c->w_m1, c->g, M, c->lc, c->rc);
     c->ncache = 0;
     for (size_t p = 0; p < c->nballs; p++)
-        c->anc[p].valid = 0;
+        c->anc[p].valid = c->anc[p].fresh = 0;
 }
 
-/* ML_j and MR_j+1 of cell j (0 <= j < N), from the cache or computed */
-static const cell_moments *moments(bf_coupling *c, long j)
+/* ---------------------------------------------------------------- rows */
+
+/* The moments a ball needs are linear in g: ML_n = W.g with a row W that
+ * depends only on the grid, r0 and the quadrature (see the file comment).
+ * Row of F = sum_k (cL_k LC_k + cR_k RC_k):
+ *   alpha_i = w_g0 cL_i + w_g1 cL_(i-1) + w_g1 cR_i + w_g0 cR_(i-1)
+ *   beta_i  = w_m0 cL_i + w_m1 cL_(i-1) + w_m1 cR_i + w_m0 cR_(i-1)
+ *   F = alpha.g + beta.M, M = A^-1 d (rows 1..N-1 of the natural spline,
+ *   d_i = s (g_(i+1) - 2 g_i + g_(i-1)), s = 6/dx^2), so
+ *   beta.M = y.d with A y = beta (A symmetric), and
+ *   W_k = alpha_k + s (y_(k-1) - 2 y_k + y_(k+1))   (y_0 = y_N = 0).
+ * The row of M_n itself has alpha = 0, beta = e_n.  A row is kept on a
+ * window of fixed length (len_lr, len_m): alpha's K + 1 nodes (ML, MR) or
+ * node n (M) and ROW_SPREAD nodes on each side, shifted inside 0..N at
+ * the ends.  Outside it, W is y's tail: |(A^-1)_ik| < lambda^|i-k|, so
+ * there W is below 2^-64 of the row's largest (the kernel's cells beyond
+ * E^K < 2^-64 are dropped likewise; g is bounded: below the sums'
+ * round-off).  The row is stored over all nodes with zeros outside its
+ * window (see dotg4). */
+
+/* the row of kind `kind` at node n into the pool entry `e` */
+static void build_row(bf_coupling *c, int kind, long n, row_entry *e)
+{
+    const long N = c->N, K = c->K;
+    double *al = c->lc, *be = c->rc, *y = c->tmp; /* scratch, N + 1 each */
+    for (long i = 0; i <= N; i++)
+        al[i] = be[i] = 0.0;
+    if (kind == ROW_M) {
+        if (n > 0 && n < N)
+            be[n] = 1.0;
+    } else {
+        /* cell weights: ML_n = sum_(max(0,n-K) <= k < n) E^(n-1-k) LC_k,
+         * MR_n = sum_(n <= k < min(n+K,N)) E^(k-n) RC_k */
+        const int left = kind == ROW_L;
+        const long k0 = left ? (n - K > 0 ? n - K : 0) : n;
+        const long k1 = left ? n : (n + K < N ? n + K : N);
+        const double g0 = left ? c->w_g0 : c->w_g1, g1 = left ? c->w_g1 : c->w_g0;
+        const double m0 = left ? c->w_m0 : c->w_m1, m1 = left ? c->w_m1 : c->w_m0;
+        for (long k = k0; k < k1; k++) {
+            const double ck = c->pw[left ? n - 1 - k : k - n];
+            al[k] += g0 * ck;
+            al[k + 1] += g1 * ck;
+            be[k] += m0 * ck;
+            be[k + 1] += m1 * ck;
+        }
+    }
+    if (c->p.quad == BF_COUPLING_SPLINE && N >= 2) {
+        /* A y = beta on rows 1..N-1 by the factors of create */
+        const long last = N - 1;
+        y[0] = y[N] = 0.0;
+        y[1] = be[1];
+        for (long i = 2; i <= last; i++)
+            y[i] = be[i] - c->tl[i] * y[i - 1];
+        y[last] *= c->tw[last];
+        for (long i = last - 1; i >= 1; i--)
+            y[i] = (y[i] - y[i + 1]) * c->tw[i];
+        const double s = 6.0 / (c->dx * c->dx);
+        for (long k = 0; k <= N; k++) {
+            double ym = k > 0 ? y[k - 1] : 0.0, yp = k < N ? y[k + 1] : 0.0;
+            al[k] += s * ((ym - 2.0 * y[k]) + yp);
+        }
+    }
+    const long len = kind == ROW_M ? c->len_m : c->len_lr;
+    long i0 = kind == ROW_L   ? n - K - ROW_SPREAD
+              : kind == ROW_R ? n - ROW_SPREAD
+                              : n - ROW_SPREAD - 1;
+    if (i0 > N + 1 - len)
+        i0 = N + 1 - len;
+    if (i0 < 0)
+        i0 = 0;
+    e->kind = kind;
+    e->n = n;
+    e->i0 = i0;
+    e->len = len;
+    memset(e->w, 0, (size_t)c->n8 * sizeof(double));
+    memcpy(e->w + i0, al + i0, (size_t)len * sizeof(double));
+}
+
+/* the row of kind at node n, from the pool or built in place of the one
+ * used longest ago (so the rows of one evaluation never evict each
+ * other) */
+static const row_entry *row(bf_coupling *c, int kind, long n)
+{
+    int *slot = &c->row_of[kind * (c->N + 1) + n];
+    if (*slot >= 0) {
+        c->rows[*slot].used = ++c->row_clock;
+        return &c->rows[*slot];
+    }
+    int q = 0;
+    for (int k = 1; k < NROW; k++)
+        if (c->rows[k].used < c->rows[q].used)
+            q = k;
+    row_entry *e = &c->rows[q];
+    if (e->kind >= 0)
+        c->row_of[e->kind * (c->N + 1) + e->n] = -1;
+    build_row(c, kind, n, e);
+    e->used = ++c->row_clock;
+    *slot = q;
+    return e;
+}
+
+/* W.g for a row */
+static double row_dot(const bf_coupling *c, const row_entry *e)
+{
+    const double *w[4] = {e->w, c->zrow, c->zrow, c->zrow};
+    double r[4];
+    dotg4(e->i0 & ~7L, e->i0 + e->len - 1, w, c->g, r);
+    return r[0];
+}
+
+/* the spline's M on all nodes (for tests: N + 1 rows) */
+const double *bf_coupling_spline_m(bf_coupling *c)
+{
+    for (long n = 0; n <= c->N; n++)
+        c->m[n] = row_dot(c, row(c, ROW_M, n));
+    return c->m;
+}
+
+/* The moments ML_j, MR_j+1, M_j and M_j+1 of the cells j[0..nc-1] (each
+ * 0 <= j < N) into the cache, four cells at a time: each of the four
+ * kinds of row of the four cells in one dotg4 over the blocks covering
+ * their windows. */
+static void moments_batch(bf_coupling *c, const long *j, int nc)
+{
+    for (int c0 = 0; c0 < nc; c0 += 4) {
+        const int m = nc - c0 < 4 ? nc - c0 : 4;
+        const double *w[4][4];
+        long lo[4], hi[4];
+        for (int k = 0; k < 4; k++) {
+            lo[k] = c->N;
+            hi[k] = 0;
+        }
+        for (int q = 0; q < 4; q++) {
+            if (q >= m) {
+                for (int k = 0; k < 4; k++)
+                    w[k][q] = c->zrow;
+                continue;
+            }
+            const long jj = j[c0 + q];
+            const row_entry *r[4] = {row(c, ROW_L, jj), row(c, ROW_R, jj + 1),
+                                     row(c, ROW_M, jj), row(c, ROW_M, jj + 1)};
+            for (int k = 0; k < 4; k++) {
+                w[k][q] = r[k]->w;
+                lo[k] = r[k]->i0 < lo[k] ? r[k]->i0 : lo[k];
+                const long e = r[k]->i0 + r[k]->len - 1;
+                hi[k] = e > hi[k] ? e : hi[k];
+            }
+        }
+        double v[4][4];
+        for (int k = 0; k < 4; k++)
+            dotg4(lo[k] & ~7L, hi[k], w[k], c->g, v[k]);
+        for (int q = 0; q < m; q++) {
+            const long jj = j[c0 + q];
+            int k = c->ncache < NCACHE ? c->ncache++ : (int)(jj % NCACHE);
+            c->cache[k] = (cell_moments){jj, v[0][q], v[1][q], v[2][q], v[3][q]};
+        }
+    }
+}
+
+static const cell_moments *cached(const bf_coupling *c, long j)
 {
     for (int q = 0; q < c->ncache; q++)
         if (c->cache[q].j == j)
             return &c->cache[q];
-    cell_moments cm;
-    cm.j = j;
-    /* ML_j = sum_{k<j} E^(j-1-k) LC_k, E^(j-1-k) = pwr[N-j+k]; cells with
-     * E^(j-1-k) < 2^-64 are left out (below the sum's round-off) */
-    long k0 = j - c->K > 0 ? j - c->K : 0;
-    cm.ml = dot(j - k0, c->pwr + (c->N - j + k0), c->lc + k0);
-    /* MR_j+1 = sum_{k>=j+1} E^(k-j-1) RC_k */
-    long k1 = j + 1 + c->K < c->N ? j + 1 + c->K : c->N;
-    cm.mr = dot(k1 - (j + 1), c->pw, c->rc + j + 1);
-    int q = c->ncache < NCACHE ? c->ncache++ : (int)(j % NCACHE);
-    c->cache[q] = cm;
-    return &c->cache[q];
+    return NULL;
+}
+
+/* the moments of cell j (0 <= j < N), from the cache or computed */
+static const cell_moments *moments(bf_coupling *c, long j)
+{
+    const cell_moments *cm = cached(c, j);
+    if (!cm) {
+        moments_batch(c, &j, 1);
+        cm = cached(c, j);
+    }
+    return cm;
 }
 
 /* cell of r and its local coordinate t in [0, 1] (clamped to the film) */
 static long locate(const bf_coupling *c, double r, double *t)
 {
     double u = (r - c->x0) / c->dx;
-    long j = (long)floor(u);
+    /* truncation instead of floor() (a library call here): the same for
+     * u >= 0, and for u < 0 both are clamped to 0 */
+    long j = (long)u;
     if (j < 0)
         j = 0;
     if (j > c->N - 1)
@@ -475,66 +656,12 @@ static long locate(const bf_coupling *c, double r, double *t)
     return j;
 }
 
-/* Moments at the cells of balls at x (sorted by position, as the balls
- * are): one full dot product for the leftmost ML and one for the rightmost
- * MR, the others by the recurrences ML_j = E^(j-j') ML_j' + sum_{j'<=k<j}
- * E^(j-1-k) LC_k (and the mirror for MR) over the few cells between
- * neighbouring balls.  Same values as moments() up to round-off; cached
- * for the film level. */
-void bf_coupling_prepare(bf_coupling *c, size_t nb, const double *x)
-{
-    enum { MAXC = NCACHE };
-    long cell[MAXC];
-    int nc = 0;
-    for (size_t p = 0; p < nb; p++) {
-        double t;
-        long j = locate(c, x[p], &t);
-        if (t < 0.0 || t > 1.0)
-            return; /* outside the film: leave it to moments() */
-        if (nc && j <= cell[nc - 1]) {
-            if (j < cell[nc - 1])
-                return; /* not sorted: leave it to moments() */
-            continue;
-        }
-        if (nc == MAXC)
-            return;
-        cell[nc++] = j;
-    }
-    if (nc < 2)
-        return;
-    double ml[MAXC], mr[MAXC];
-    const cell_moments *first = moments(c, cell[0]);
-    ml[0] = first->ml;
-    for (int q = 1; q < nc; q++) {
-        double s = ml[q - 1];
-        for (long k = cell[q - 1]; k < cell[q]; k++)
-            s = c->E * s + c->lc[k];
-        ml[q] = s;
-    }
-    /* MR_(j+1) of the last cell by a dot product, then leftwards */
-    const long jl = cell[nc - 1];
-    long k1 = jl + 1 + c->K < c->N ? jl + 1 + c->K : c->N;
-    mr[nc - 1] = dot(k1 - (jl + 1), c->pw, c->rc + jl + 1);
-    for (int q = nc - 2; q >= 0; q--) {
-        double s = mr[q + 1];
-        for (long k = cell[q + 1]; k > cell[q]; k--)
-            s = c->E * s + c->rc[k];
-        mr[q] = s;
-    }
-    c->ncache = 0;
-    for (int q = 0; q < nc; q++) {
-        c->cache[q].j = cell[q];
-        c->cache[q].ml = ml[q];
-        c->cache[q].mr = mr[q];
-    }
-    c->ncache = nc;
-}
-
 /* spline Taylor coefficients e_k = S^(k)(t)/k! (t in cell units) */
-static void spline_taylor(const bf_coupling *c, long j, double t, double e[4])
+static void spline_taylor(const bf_coupling *c, long j, double M0, double M1,
+                          double t, double e[4])
 {
     const double h26 = c->dx * c->dx / 6.0;
-    const double g0 = c->g[j], g1 = c->g[j + 1], M0 = c->m[j], M1 = c->m[j + 1];
+    const double g0 = c->g[j], g1 = c->g[j + 1];
     const double c1 = (g1 - g0) - h26 * (2.0 * M0 + M1);
     const double c2 = 3.0 * h26 * M0;
     const double c3 = h26 * (M1 - M0);
@@ -544,32 +671,34 @@ static void spline_taylor(const bf_coupling *c, long j, double t, double e[4])
     e[3] = c3;
 }
 
-/* L and R at r (exact for the interpolant); also the cell and t */
-static void exact_lr(bf_coupling *c, double r, long *jo, double *to, double *L,
-                     double *R)
+/* An exact evaluation inside the film in three parts, shared by the
+ * single evaluation (exact_lr) and the anchors of all balls at once
+ * (prepare_anchors): lr_begin (the cell's moments and the spline's Taylor
+ * coefficients at t), the m_k series (mk2 or mk_series8), lr_end. */
+typedef struct lr_part {
+    long j;
+    double t, ml, mr, e[4];
+} lr_part;
+
+static void lr_begin(bf_coupling *c, long j, double t, lr_part *w)
 {
-    double t;
-    long j = locate(c, r, &t);
-    *jo = j;
-    *to = t;
+    /* the values, not a pointer: a later moments() may reuse the slot */
     const cell_moments *cm = moments(c, j);
-    if (t < 0.0 || t > 1.0) {
-        /* outside the film: the whole film lies on one side */
-        if (t < 0.0) {
-            *L = 0.0;
-            *R = exp(c->kappa * t) * (c->rc[0] + c->E * cm->mr);
-        } else {
-            *L = exp(-c->kappa * (t - 1.0)) * (c->E * cm->ml + c->lc[j]);
-            *R = 0.0;
-        }
-        return;
-    }
-    double e[4], mL[4], mR[4];
-    spline_taylor(c, j, t, e);
-    const double TL = t, TR = 1.0 - t;
-    mk(c->mkc, c->nser, c->kappa * TL, mL);
-    mk(c->mkc, c->nser, c->kappa * TR, mR);
-    double el = exp(-c->kappa * TL), er = exp(-c->kappa * TR);
+    w->j = j;
+    w->t = t;
+    w->ml = cm->ml;
+    w->mr = cm->mr;
+    spline_taylor(c, j, cm->m0, cm->m1, t, w->e);
+}
+
+/* L and R from the parts, m_k(kappa t) (mL), m_k(kappa (1 - t)) (mR) and
+ * el = exp(-kappa t), er = exp(-kappa (1 - t)) */
+static void lr_end(const bf_coupling *c, const lr_part *w, const double mL[4],
+                   const double mR[4], double el, double er, double *L,
+                   double *R)
+{
+    const double TL = w->t, TR = 1.0 - w->t;
+    const double *e = w->e;
     double pl = 0.0, pr = 0.0, tl = TL, tr = TR;
     for (int k = 0; k < 4; k++) {
         double s = (k & 1) ? -1.0 : 1.0;
@@ -578,33 +707,61 @@ static void exact_lr(bf_coupling *c, double r, long *jo, double *to, double *L,
         tl *= TL;
         tr *= TR;
     }
-    *L = el * cm->ml + c->dx * pl;
-    *R = er * cm->mr + c->dx * pr;
+    *L = el * w->ml + c->dx * pl;
+    *R = er * w->mr + c->dx * pr;
+}
+
+/* L and R at r (exact for the interpolant); also the cell and t, and the
+ * parts (w: set only if r is inside the film, 0 <= t <= 1) */
+static void exact_lr(bf_coupling *c, double r, long *jo, double *to, double *L,
+                     double *R, lr_part *w)
+{
+    double t;
+    long j = locate(c, r, &t);
+    *jo = j;
+    *to = t;
+    if (t < 0.0 || t > 1.0) {
+        /* outside the film: the whole film lies on one side, MR_0 or ML_N
+         * seen from the film's end */
+        if (t < 0.0) {
+            *L = 0.0;
+            *R = exp(c->kappa * t) * row_dot(c, row(c, ROW_R, 0));
+        } else {
+            *L = exp(-c->kappa * (t - 1.0)) * row_dot(c, row(c, ROW_L, c->N));
+            *R = 0.0;
+        }
+        return;
+    }
+    double mL[4], mR[4];
+    lr_begin(c, j, t, w);
+    const double TL = t, TR = 1.0 - t;
+    mk2(c->mkc, c->nser, c->kappa * TL, c->kappa * TR, mL, mR);
+    double el = exp(-c->kappa * TL), er = exp(-c->kappa * TR);
+    lr_end(c, w, mL, mR, el, er, L, R);
 }
 
 void bf_coupling_integral(bf_coupling *c, double r, double *I, double *dI)
 {
     long j;
     double t, L, R;
-    exact_lr(c, r, &j, &t, &L, &R);
+    lr_part w;
+    exact_lr(c, r, &j, &t, &L, &R, &w);
     c->n_exact++;
     *I = L + R;
     *dI = (R - L) / c->p.r0;
 }
 
-/* anchor ball p at r: L, R and their derivatives 1..5 (x units) */
-static void set_anchor(bf_coupling *c, anchor *a, double r)
+/* the anchor at r inside the film from its exact L, R and parts: the
+ * derivatives 1..5 and the Taylor coefficients L_k/k!, R_k/k! */
+static void anchor_from(bf_coupling *c, anchor *a, double r, const lr_part *w,
+                        double L, double R)
 {
-    double t;
-    exact_lr(c, r, &a->j, &t, &a->L[0], &a->R[0]);
     a->r = r;
+    a->j = w->j;
     a->valid = 1;
-    if (t < 0.0 || t > 1.0) {
-        a->valid = 0; /* outside the film: always exact */
-        return;
-    }
-    double e[4];
-    spline_taylor(c, a->j, t, e);
+    a->L[0] = L;
+    a->R[0] = R;
+    const double *e = w->e;
     const double h = c->dx, ir = 1.0 / c->p.r0;
     /* g and its x-derivatives at r; g'''' = 0 within the cell */
     const double gd[5] = {e[0], e[1] / h, 2.0 * e[2] / (h * h),
@@ -613,6 +770,141 @@ static void set_anchor(bf_coupling *c, anchor *a, double r)
         a->L[k] = gd[k - 1] - a->L[k - 1] * ir;
         a->R[k] = -gd[k - 1] + a->R[k - 1] * ir;
     }
+    static const double f[5] = {1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0};
+    for (int k = 0; k < 5; k++) {
+        a->lq[k] = a->L[k] * f[k];
+        a->rq[k] = a->R[k] * f[k];
+    }
+    a->lq[5] = a->L[5] / 120.0;
+    a->rq[5] = a->R[5] / 120.0;
+}
+
+/* anchor ball p at r: L, R and their derivatives 1..5 (x units) */
+static void set_anchor(bf_coupling *c, anchor *a, double r)
+{
+    double t, L, R;
+    lr_part w;
+    exact_lr(c, r, &a->j, &t, &L, &R, &w);
+    a->r = r;
+    a->L[0] = L;
+    a->R[0] = R;
+    a->valid = 0; /* outside the film: always exact */
+    a->fresh = 0;
+    if (t < 0.0 || t > 1.0)
+        return;
+    anchor_from(c, a, r, &w, L, R);
+}
+
+/* Hot loop again (see refresh) */
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC push_options
+#pragma GCC optimize("vect-cost-model=cheap")
+#endif
+
+/* the series of m_k (see mk) at eight arguments z, as eight lanes: the
+ * same operations as mk's series for each lane */
+BF_SPLINE_CLONES
+static void mk_series8(const double c[NSER][4], int ns, const double z[8],
+                       double m[8][4])
+{
+    double a0[8], a1[8], a2[8], a3[8];
+    for (int q = 0; q < 8; q++) {
+        a0[q] = c[ns - 1][0];
+        a1[q] = c[ns - 1][1];
+        a2[q] = c[ns - 1][2];
+        a3[q] = c[ns - 1][3];
+    }
+    for (int n = ns - 2; n >= 0; n--) {
+        const double c0 = c[n][0], c1 = c[n][1], c2 = c[n][2], c3 = c[n][3];
+        for (int q = 0; q < 8; q++) {
+            a0[q] = a0[q] * z[q] + c0;
+            a1[q] = a1[q] * z[q] + c1;
+            a2[q] = a2[q] * z[q] + c2;
+            a3[q] = a3[q] * z[q] + c3;
+        }
+    }
+    for (int q = 0; q < 8; q++) {
+        m[q][0] = a0[q];
+        m[q][1] = a1[q];
+        m[q][2] = a2[q];
+        m[q][3] = a3[q];
+    }
+}
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC pop_options
+#endif
+
+/* Anchors of the balls at x, computed when the film level is prepared.
+ * The first force evaluation of the level comes at the same positions (the
+ * integrator starts its step at x); it then takes the anchor as it is
+ * (`fresh`) and gets the very numbers the lazy set_anchor would compute
+ * there: the same operations in the same order, also for the moments
+ * cache.  Done here for all balls at once, the balls' m_k series are the
+ * lanes of one vector and their exp() calls overlap, where one ball after
+ * the other they were a chain of dependent latencies.  A first evaluation
+ * elsewhere (another integrator) drops the fresh anchor and anchors where
+ * it is, as before.  Also kept: exp(-kappa t) and exp(-kappa (1 - t)) of
+ * each ball, for bf_coupling_mu at the next step's start (same x). */
+static void prepare_anchors(bf_coupling *c, size_t nb, const double *x)
+{
+    enum { G = 4 }; /* balls per group: 8 series */
+    if (nb > c->nballs)
+        nb = c->nballs;
+    for (size_t p0 = 0; p0 < nb; p0 += G) {
+        const size_t ng = nb - p0 < G ? nb - p0 : G;
+        lr_part w[G];
+        int in[G];
+        double z[2 * G] = {0}, m[2 * G][4];
+        /* the moments of the group's cells at once (moments_batch) */
+        long cells[G];
+        int nc = 0;
+        for (size_t q = 0; q < ng; q++) {
+            double t;
+            long j = locate(c, x[p0 + q], &t);
+            int seen = !(t >= 0.0 && t <= 1.0) || cached(c, j);
+            for (int k = 0; k < nc && !seen; k++)
+                seen = cells[k] == j;
+            if (!seen)
+                cells[nc++] = j;
+        }
+        moments_batch(c, cells, nc);
+        for (size_t q = 0; q < ng; q++) {
+            double t;
+            long j = locate(c, x[p0 + q], &t);
+            in[q] = t >= 0.0 && t <= 1.0;
+            c->xe[p0 + q] = NAN;
+            if (!in[q])
+                continue; /* outside the film: always exact */
+            lr_begin(c, j, t, &w[q]);
+            z[2 * q] = c->kappa * t;
+            z[2 * q + 1] = c->kappa * (1.0 - t);
+        }
+        mk_series8(c->mkc, c->nser, z, m);
+        for (size_t q = 0; q < ng; q++) {
+            if (!in[q])
+                continue;
+            for (int s = 0; s < 2; s++)
+                if (!(z[2 * q + s] < 0.5)) /* the recursion, as mk */
+                    mk(c->mkc, c->nser, z[2 * q + s], m[2 * q + s]);
+            const size_t p = p0 + q;
+            double el = exp(-c->kappa * w[q].t),
+                   er = exp(-c->kappa * (1.0 - w[q].t));
+            double L, R;
+            lr_end(c, &w[q], m[2 * q], m[2 * q + 1], el, er, &L, &R);
+            anchor_from(c, &c->anc[p], x[p], &w[q], L, R);
+            c->anc[p].fresh = 1;
+            c->xe[p] = x[p];
+            c->ele[p] = el;
+            c->ere[p] = er;
+        }
+    }
+}
+
+void bf_coupling_prepare(bf_coupling *c, size_t nb, const double *x)
+{
+    if (c->p.taylor_radius > 0)
+        prepare_anchors(c, nb, x);
 }
 
 void bf_coupling_integral_ball(bf_coupling *c, size_t p, double r, double *I,
@@ -620,6 +912,16 @@ void bf_coupling_integral_ball(bf_coupling *c, size_t p, double r, double *I,
 {
     anchor *a = &c->anc[p];
     if (c->p.taylor_radius > 0) {
+        if (a->fresh) {
+            a->fresh = 0;
+            if (r == a->r) { /* the anchor of prepare_anchors */
+                c->n_exact++;
+                *I = a->L[0] + a->R[0];
+                *dI = (a->R[0] - a->L[0]) / c->p.r0;
+                return;
+            }
+            a->valid = 0;
+        }
         if (!a->valid) {
             set_anchor(c, a, r);
             c->n_exact++;
@@ -631,11 +933,10 @@ void bf_coupling_integral_ball(bf_coupling *c, size_t p, double r, double *I,
         if (fabs(d) <= c->p.taylor_radius && locate(c, r, &t) == a->j &&
             t >= 0.0 && t <= 1.0) {
             /* Horner in d of sum_k (L_k, R_k) d^k / k! */
-            double L = a->L[5] / 120.0, R = a->R[5] / 120.0;
-            static const double f[5] = {1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0};
+            double L = a->lq[5], R = a->rq[5];
             for (int k = 4; k >= 0; k--) {
-                L = L * d + a->L[k] * f[k];
-                R = R * d + a->R[k] * f[k];
+                L = L * d + a->lq[k];
+                R = R * d + a->rq[k];
             }
             c->n_taylor++;
             *I = L + R;
@@ -664,9 +965,18 @@ void bf_coupling_mu(const bf_coupling *c, size_t nb, const double *x,
         jb[p] = locate(c, x[p], &t);
         inside = t >= 0.0 && t <= 1.0;
         double a = 8.0 * PI * R[p] * R[p] * c->p.V0;
-        /* exp(-(r - x_j)/r0) and exp(-(x_j+1 - r)/r0) */
-        cl[p] = a * exp(-c->kappa * t);
-        cr[p] = a * exp(-c->kappa * (1.0 - t));
+        /* exp(-(r - x_j)/r0) and exp(-(x_j+1 - r)/r0), from prepare if
+         * the ball is where it was then (the same numbers) */
+        double el, er;
+        if (p < c->nballs && x[p] == c->xe[p]) {
+            el = c->ele[p];
+            er = c->ere[p];
+        } else {
+            el = exp(-c->kappa * t);
+            er = exp(-c->kappa * (1.0 - t));
+        }
+        cl[p] = a * el;
+        cr[p] = a * er;
         jmin = jb[p] < jmin ? jb[p] : jmin;
         jmax = jb[p] > jmax ? jb[p] : jmax;
     }
@@ -690,7 +1000,7 @@ void bf_coupling_mu(const bf_coupling *c, size_t nb, const double *x,
         return;
     }
     /* a ball outside the film (or very many balls): ball by ball */
-    double *k = c->tmp; /* scratch (used by the spline only in refresh) */
+    double *k = c->tmp; /* scratch */
     for (long i = 0; i <= N; i++)
         k[i] = 0.0;
     for (size_t p = 0; p < nb; p++) {
@@ -723,29 +1033,25 @@ void bf_coupling_mu(const bf_coupling *c, size_t nb, const double *x,
 /* ---------------------------------------------------------------- checkpoint */
 
 /* One array: the anchor positions, 1/0 for valid, the two evaluation
- * counters, the number of cached cells and the cache (cell, ML, MR) --
- * restored as saved, so that a run continued from a checkpoint evaluates
- * with the same cached moments (bit for bit) even between film steps
- * (multirate).  Counts and cell numbers are exact in a double. */
+ * counters, and room for cached moments (none are saved: a moment is a
+ * function of g, which the film's state gives, so a continued run computes
+ * the same bits again).  Counts are exact in a double. */
 bf_status bf_coupling_save(const bf_coupling *c, bf_ckpt *ck, bf_err *err)
 {
     const size_t n = c->nballs, len = 2 * n + 3 + 3 * NCACHE;
     double *a = xcalloc(len);
     if (!a)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
+    /* a fresh anchor (prepare_anchors) is saved as none: after a restart
+     * the first evaluation computes the same anchor lazily */
     for (size_t p = 0; p < n; p++) {
         a[p] = c->anc[p].r;
-        a[n + p] = c->anc[p].valid;
+        a[n + p] = c->anc[p].valid && !c->anc[p].fresh;
     }
     double *q = a + 2 * n;
     q[0] = (double)c->n_exact;
     q[1] = (double)c->n_taylor;
-    q[2] = c->ncache;
-    for (int k = 0; k < c->ncache; k++) {
-        q[3 + 3 * k] = (double)c->cache[k].j;
-        q[4 + 3 * k] = c->cache[k].ml;
-        q[5 + 3 * k] = c->cache[k].mr;
-    }
+    q[2] = 0; /* no cached moments: see above */
     bf_status st = bf_ckpt_put(ck, "coupling.state", a, len, err);
     free(a);
     return st;
@@ -759,18 +1065,9 @@ bf_status bf_coupling_load(bf_coupling *c, const bf_ckpt *ck, bf_err *err)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     bf_status st = bf_ckpt_get(ck, "coupling.state", a, len, err);
     if (!st) {
-        /* the film is loaded: rebuild its tables, restore the cached
-         * moments, then the anchors */
+        /* the film is loaded: g, then the anchors */
         bf_coupling_refresh(c);
         const double *q = a + 2 * n;
-        c->n_exact = (unsigned long long)q[0];
-        c->n_taylor = (unsigned long long)q[1];
-        c->ncache = (int)q[2];
-        for (int k = 0; k < c->ncache; k++) {
-            c->cache[k].j = (long)q[3 + 3 * k];
-            c->cache[k].ml = q[4 + 3 * k];
-            c->cache[k].mr = q[5 + 3 * k];
-        }
         for (size_t p = 0; p < n; p++)
             if (a[n + p] != 0.0)
                 set_anchor(c, &c->anc[p], a[p]);
