@@ -812,6 +812,55 @@ void bf_film_limiter_counts(const bf_film *f, unsigned long long *steps,
     *faces = f->lim_faces;
 }
 
+/* ------------------------------------------------------------ symmetry */
+
+/* The mean of a and b as 0.5 fl(a + b), exact but for the rounding error
+ * of the sum, returned in *e (Knuth's TwoSum: a + b = s + e exactly). */
+static double mean2(double a, double b, double *e)
+{
+    double s = a + b, bb = s - a;
+    *e = (a - (s - bb)) + (b - bb);
+    return 0.5 * s;
+}
+
+void bf_film_mirror(bf_film *f, int apply, double corr[2])
+{
+    const long N = f->N;
+    double *ad = ARR(f, V_AD), *ac = ARR(f, V_AC);
+    double *ud = ARR(f, V_UD), *uc = ARR(f, V_UC);
+    double *kd = ARR(f, V_KD), *kc = ARR(f, V_KC);
+    double da = 0.0, du = 0.0, hmax = 0.0, umax = 0.0;
+    for (long i = 0; i <= N; i++) {
+        long j = N - i;
+        da = fmax(da, 0.5 * fabs(ad[i] - ac[j]));
+        du = fmax(du, 0.5 * fabs(ud[i] + uc[j]));
+        hmax = fmax(hmax, ad[i] + ac[i]);
+        umax = fmax(umax, fmax(fabs(ud[i]), fabs(uc[i])));
+    }
+    corr[0] = hmax > 0 ? da / hmax : da;
+    corr[1] = umax > 0 ? du / umax : du;
+    if (!apply)
+        return;
+    for (long i = 0; i <= N - i; i++) {
+        long j = N - i;
+        double e1, e2;
+        /* phase d at i with phase c at j, and phase c at i with phase d
+         * at j (the same pair when i = j) */
+        double a1 = mean2(ad[i], ac[j], &e1), k1 = 0.5 * ((kd[i] + kc[j]) + e1);
+        double a2 = mean2(ac[i], ad[j], &e2), k2 = 0.5 * ((kc[i] + kd[j]) + e2);
+        double u1 = 0.5 * (ud[i] - uc[j]), u2 = 0.5 * (uc[i] - ud[j]);
+        ad[i] = ac[j] = a1;
+        kd[i] = kc[j] = k1;
+        ac[i] = ad[j] = a2;
+        kc[i] = kd[j] = k2;
+        ud[i] = u1;
+        uc[j] = -u1;
+        uc[i] = u2;
+        ud[j] = -u2;
+    }
+    derive(0, N, ad, ac, ARR(f, V_H), ARR(f, V_PSI));
+}
+
 /* ------------------------------------------------------------ checkpoint */
 
 static const int ckpt_vars[] = {V_AD, V_AC, V_UD, V_UC, V_KD, V_KC};
