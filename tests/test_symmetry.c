@@ -77,6 +77,9 @@ START_TEST(film_mirror_projects)
         ck_assert(H[i] == H[N - i]);
         ck_assert(Psi[i] == -Psi[N - i]);
         ck_assert(H[i] == Ad[i] + Ac[i]);
+        /* the bits the step's own derivation gives (also the sign of 0) */
+        double ps = (Ad[i] - Ac[i]) / H[i];
+        ck_assert(memcmp(&ps, &Psi[i], sizeof ps) == 0);
     }
     ck_assert(Ud[0] == 0 && Uc[0] == 0 && Ud[N] == 0 && Uc[N] == 0);
     bf_film_totals(f, &md, &mc);
