@@ -55,7 +55,8 @@ RUNNER    := $(BUILD)/tests/runner
 .PHONY: all run test check figures bench clean deps deps-plot test-run \
         build-tests fig1 fuzz valgrind mpi stratres mac-checks fig2 fig3 \
         fig4 converge-figures survey-mass survey-length fig5 kink-dx2 \
-        film-orders fig6 fig8 fig9 multirate fig-g72-ex1 \
+        film-orders fig6 fig8 fig9 fig8-sym fig9-sym sym-divergence \
+        multirate fig-g72-ex1 \
         fig-g72-ex1-ensemble fig-g72-ex2 fig-g72-large fig-g73-hex \
         fig-g73-wall
 
@@ -314,6 +315,32 @@ fig9: $(PROG)
 	$(PROG) run runs/coupled_fig9.ini -q -o out/coupled_fig9.h5
 	$(PY) plots/fig8_coupled.py out/coupled_fig9.h5 -o out/fig9_coupled.png
 
+# The same with [coupled] symmetrize = yes (forced mirror symmetry), the
+# test of the README's explanation of the scattered maps (~1.6x the cost).
+fig8-sym: $(PROG)
+	@mkdir -p out
+	$(PROG) run runs/coupled_fig8_sym.ini -q -o out/coupled_fig8_sym.h5
+	$(PY) plots/fig8_coupled.py out/coupled_fig8_sym.h5 -o out/fig8_coupled_sym.png
+
+fig9-sym: $(PROG)
+	@mkdir -p out
+	$(PROG) run runs/coupled_fig9_sym.ini -q -o out/coupled_fig9_sym.h5
+	$(PY) plots/fig8_coupled.py out/coupled_fig9_sym.h5 -o out/fig9_coupled_sym.png
+
+# Sensitivity inside the symmetric subspace: the symmetrized runs again
+# for 20 s with the outer balls moved out by 1e-10 cm (symmetrically).
+sym-divergence: $(PROG)
+	@mkdir -p out
+	@test -f out/coupled_fig8_sym.h5 || $(MAKE) --no-print-directory fig8-sym
+	@test -f out/coupled_fig9_sym.h5 || $(MAKE) --no-print-directory fig9-sym
+	for L in 8 9; do $(PROG) run runs/coupled_fig$${L}_sym.ini -q \
+	    -o out/coupled_fig$${L}_sym_pert.h5 --set scene.t_end=20 \
+	    --set ball.1.position=-0.5000000001 \
+	    --set ball.4.position=0.5000000001 || exit 1; done
+	$(PY) plots/sym_divergence.py out/coupled_fig8_sym.h5 \
+	    out/coupled_fig8_sym_pert.h5 out/coupled_fig9_sym.h5 \
+	    out/coupled_fig9_sym_pert.h5 -o out/sym_divergence.png
+
 # Multirate option against the single-rate run (Fig. 8 scene, 0-1 s).
 MR_K := 3 10 30 100 300
 multirate: $(PROG)
@@ -440,6 +467,9 @@ figures:
 	@$(MAKE) --no-print-directory multirate
 	@$(MAKE) --no-print-directory fig8
 	@$(MAKE) --no-print-directory fig9
+	@$(MAKE) --no-print-directory fig8-sym
+	@$(MAKE) --no-print-directory fig9-sym
+	@$(MAKE) --no-print-directory sym-divergence
 	@$(MAKE) --no-print-directory fig-g72-ex1 fig-g72-ex1-ensemble \
 	    fig-g72-ex2 fig-g72-large fig-g73-hex fig-g73-wall
 	@echo "figures are in out/"

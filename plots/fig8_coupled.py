@@ -4,15 +4,21 @@
 closest to the origin while touching the second); (B) positions of the
 third and fourth balls over 40-50 s; (C) psi(0.3, t) - psi(0.3, 0) over
 40-50 s; (D) left/right symmetry error of balls and film, and the relative
-change of the film's phase totals, against time.  Prints the statistics
-compared with the paper in the README.
+change of the film's phase totals, against time (and, for a run with
+[coupled] symmetrize = yes, the largest relative change of the symmetry
+projection per output interval).  Prints the statistics compared with the
+paper in the README, among them the return map's fill fraction (the share
+of its bounding box visited on a grid of about four points per bin, the
+definition of bf_sweep_map_fill in src/sweep/sweep.c).
 
 usage: fig8_coupled.py RUN.h5 -o fig8.png [--window 40 50]"""
 import argparse
 
 import numpy as np
 
-from bfplot import load, plt, save
+import h5py
+
+from bfplot import attr_str, load, plt, save
 
 ap = argparse.ArgumentParser()
 ap.add_argument("run")
@@ -25,6 +31,24 @@ a = ap.parse_args()
     "/coupled/psi_probe", "/coupled/sym_balls", "/coupled/sym_film",
     "/film/mass_d", "/film/mass_c", "/energy/total")
 L = attrs["film.length"]
+sym = attr_str(attrs, "coupled.symmetrize").lower() in ("yes", "true", "on",
+                                                         "1")
+if sym:
+    with h5py.File(a.run, "r") as f:
+        corr = f["/coupled/sym_correction"][()]
+        corr_max = f["/coupled/sym_correction_max"][()]
+
+
+def map_fill(z, v):
+    """bf_sweep_map_fill: visited share of a B x B grid over the box,
+    B = floor(sqrt(n/4)) clipped to [5, 64]."""
+    n = len(z)
+    B = int(min(max(np.floor(np.sqrt(n / 4.0)), 5), 64))
+    dz = (z.max() - z.min()) / B if z.max() > z.min() else 1.0
+    dv = (v.max() - v.min()) / B if v.max() > v.min() else 1.0
+    i = np.clip(((z - z.min()) / dz).astype(int), 0, B - 1)
+    j = np.clip(((v - v.min()) / dv).astype(int), 0, B - 1)
+    return len(set(zip(i, j))) / float(B * B), B
 t0, t1 = a.window
 w = (t >= t0) & (t <= t1)
 fig, ax = plt.subplots(2, 2, figsize=(11, 9))
@@ -52,18 +76,26 @@ p.semilogy(t, np.maximum(sb, 1e-18), lw=0.7, label="balls max|x_i + x_(5-i)| [cm
 p.semilogy(t, np.maximum(sf, 1e-18), lw=0.7, label="film max|psi_i + psi_(N-i)|")
 drift = np.maximum(np.abs(md - md[0]) / md[0], np.abs(mc - mc[0]) / mc[0])
 p.semilogy(t, np.maximum(drift, 1e-18), lw=0.7, label="phase totals, relative")
+if sym:
+    for k, lab in enumerate(("film alpha h", "film u", "ball x", "ball v")):
+        p.semilogy(t, np.maximum(corr[:, k], 1e-18), lw=0.5, alpha=0.7,
+                   label="projection change, %s (rel.)" % lab)
 p.set_xlabel("t [s]")
 p.set_title("(D) symmetry error, conservation")
 p.legend(fontsize=8)
 fig.suptitle("Four balls in the film, L = %g cm (Yasuda 2010, Fig. %s), "
-             "dt = %g s, film_every = %d"
+             "dt = %g s, film_every = %d%s"
              % (L, "8" if abs(L - 50) < 1e-9 else "9", attrs["scene.dt"],
-                attrs["coupled.film_every"]))
+                attrs["coupled.film_every"],
+                ", forced mirror symmetry" if sym else ""))
 save(fig, a.output)
-print("%s: L = %g cm, %g s" % (a.run, L, t[-1]))
+print("%s: L = %g cm, %g s%s" % (a.run, L, t[-1],
+                                ", symmetrize = yes" if sym else ""))
 print("  return map: %d points, x4 in [%.4f, %.4f] cm, v4 in [%.3f, %.3f] cm/s"
       % (len(rm), rm[:, 1].min(), rm[:, 1].max(), rm[:, 2].min(),
          rm[:, 2].max()))
+fill, B = map_fill(rm[:, 1], rm[:, 2])
+print("  return map fill fraction %.2f (%d x %d grid)" % (fill, B, B))
 print("  balls 3, 4 over %g-%g s: x3 in [%.4f, %.4f], x4 in [%.4f, %.4f] cm"
       % (t0, t1, x[w, 2].min(), x[w, 2].max(), x[w, 3].min(), x[w, 3].max()))
 print("  psi(%g) - psi(%g, 0) over %g-%g s: [%.3e, %.3e]"
@@ -74,3 +106,7 @@ for lev in (1e-12, 1e-9, 1e-6, 1e-3):
     above = np.nonzero(sb > lev)[0]
     print("  ball symmetry error first above %g cm at t = %s s"
           % (lev, "%.3f" % t[above[0]] if len(above) else "never"))
+if sym:
+    print("  symmetrize: largest relative change of one projection: film "
+          "alpha h %.2e, film u %.2e, ball x %.2e, ball v %.2e"
+          % tuple(corr_max))

@@ -115,6 +115,23 @@ double bf_film_min_alpha(const bf_film *f);
 void bf_film_limiter_counts(const bf_film *f, unsigned long long *steps,
                             unsigned long long *faces);
 
+/* Mirror symmetry x -> -x, psi -> -psi (node i <-> N - i; the nodes are
+ * x_i = (i - N/2) dx, so x_(N-i) = -x_i exactly).  With rho_d = rho_c and
+ * an odd mu_cpl the equations map a state onto its mirror image
+ *   A_d(i) <-> A_c(N-i),  u_d(i) <-> -u_c(N-i)
+ * (h even, psi odd, mu odd, the mixture velocity odd).  bf_film_mirror
+ * measures the distance of the state from its mirror image and, with
+ * apply, replaces the state by the mean of the two (the projection onto
+ * the symmetric subspace), also the rounding carries of A; h and psi are
+ * derived again.  The sum of the two phase totals is kept to round-off of
+ * the carries (the rounding error of each mean goes into the carry); the
+ * projection sets each phase total to their mean, which is its own value
+ * in a symmetric state.  corr[0]: max |A_d(i) - A_c(N-i)|/2 over nodes
+ * divided by max h (1); corr[1]: max |u_d(i) + u_c(N-i)|/2 divided by
+ * max |u_k| (1; 0 for a film at rest): the largest change the projection
+ * makes, relative. */
+void bf_film_mirror(bf_film *f, int apply, double corr[2]);
+
 /* The Ginzburg-Landau kink (3.17) with the corrected width:
  * psi = sqrt(a/b) tanh((x - x0) / (sqrt(2) xi)), xi = sqrt(gamma/a). */
 double bf_film_kink(const bf_film_params *p, double x0, double x);

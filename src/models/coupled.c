@@ -36,9 +36,28 @@
  * Events are located inside the step: the time by linear interpolation of
  * the velocity's zero, the state there by the cubic Hermite interpolant of
  * the step's end states (and linear for v).
+ *
+ * Forced mirror symmetry (symmetrize = yes, a test of the README's
+ * explanation of Figs 8-9, not part of the paper's scheme).  The set-up
+ * is symmetric under x -> -x, psi -> -psi: ball i <-> ball n+1-i with
+ * x -> -x, v -> -v, and the film map of bf_film_mirror (A_d(i) <->
+ * A_c(N-i), u_d(i) <-> -u_c(N-i)).  The equations map this subspace
+ * into itself; only round-off leaves it.  After each step the state is
+ * projected back: x_i <- (x_i - x_(n+1-i))/2, x_(n+1-i) <- -x_i, v alike
+ * (a middle ball, n odd, gets x = v = 0), and the film by bf_film_mirror
+ * after each film step, before the coupling reads it.  The set-up must be
+ * symmetric to start with (checked at creation, naming the key), else the
+ * projection would change the problem.  The largest relative change the
+ * projection makes is stored:
+ *   /coupled/sym_correction [rows x 4]  since the previous row: film
+ *                           alpha_k h (rel. to max h), film u (rel. to
+ *                           max |u_k|), ball x (rel. to max |x|), ball v
+ *                           (rel. to max |v|)
+ *   /coupled/sym_correction_max [4]     the same over the whole run
  */
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -73,6 +92,13 @@ static const bf_param coupled_params[] = {
      "ball whose position maxima are recorded in /coupled/peaks (0: the "
      "last)",
      BF_NONNEG, 0, 0, NULL},
+    {"symmetrize", BF_BOOL, "", "no",
+     "yes: after each step project balls and film onto the mirror-symmetric "
+     "states (x -> -x, psi -> -psi; ball i <-> ball n+1-i), removing the "
+     "round-off that breaks the symmetry (needs a symmetric set-up); "
+     "/coupled/sym_correction records the largest change. no: the paper's "
+     "scheme",
+     0, 0, 0, NULL},
     {"timing", BF_BOOL, "", "false",
      "measure the wall time of balls, film and coupling separately (bench)",
      BF_HIDDEN, 0, 0, NULL},
@@ -87,7 +113,7 @@ typedef struct coupled_model {
     bf_filmsys *fs;
     bf_ballsys *sys;
     bf_coupling *cpl;
-    int dynamic, timing;
+    int dynamic, timing, sym;
     long every;
     size_t nb, map_ball, map_pivot, peak_ball;
     double probe;
@@ -95,8 +121,11 @@ typedef struct coupled_model {
     double *x0, *v0;        /* ball state at the start of the step */
     double sym_t[NSYM];     /* first time the ball symmetry error exceeded */
     double cpu[3];          /* wall s: balls, film, coupling (timing) */
+    /* symmetrize: largest relative corrections (film A, film u, ball x,
+     * ball v) since the last row [0..3] and over the run [4..7] */
+    double symc[8];
     long nmap, npeak;
-    bf_series *pos, *vel, *probe_s, *symb, *symf, *map, *peaks;
+    bf_series *pos, *vel, *probe_s, *symb, *symf, *map, *peaks, *symc_s;
 } coupled_model;
 
 static double wall_now(void)
@@ -116,6 +145,105 @@ static void coupled_destroy(void *self)
     free(m->x0);
     free(m->v0);
     free(m);
+}
+
+/* ------------------------------------------------------------ symmetry */
+
+/* Relative tolerance of the symmetry check of the set-up: the projection
+ * may remove round-off of the input (a file, a computed position), not a
+ * real asymmetry. */
+static const double sym_tol = 1e-12;
+
+static int differ(double a, double b)
+{
+    return fabs(a - b) > sym_tol * fmax(fabs(a), fabs(b));
+}
+
+/* Refuse symmetrize = yes unless the set-up is mirror symmetric (see the
+ * file comment), naming the key that breaks it. */
+static bf_status check_symmetric(const coupled_model *m, const bf_scene *sc,
+                                 bf_err *err)
+{
+    const bf_ballsys *s = m->sys;
+    for (size_t k = 0; k < s->neff; k++)
+        if (s->eff[k].type != &bf_effect_coupling &&
+            strcmp(s->eff[k].type->name, "contact") != 0)
+            return bf_scene_fail(sc, err, "scene", "effects",
+                                 "[coupled] symmetrize = yes: effect '%s' is "
+                                 "not known to be mirror symmetric (only "
+                                 "coupling and contact are)",
+                                 s->eff[k].type->name);
+    if (bf_coupling_params_of(m->cpl)->psi_s != 0)
+        return bf_scene_fail(sc, err, "coupling", "psi_s",
+                             "[coupled] symmetrize = yes needs psi_s = 0 "
+                             "(psi -> -psi maps psi_s to -psi_s)");
+    const bf_film *f = bf_filmsys_film(m->fs);
+    const bf_film_params *fp = bf_film_params_of(f);
+    if (fp->rho_d != fp->rho_c)
+        return bf_scene_fail(sc, err, "film", "rho_c",
+                             "[coupled] symmetrize = yes needs rho_d = rho_c "
+                             "(the mirror image exchanges the phases)");
+    const bf_balls *b = &s->b;
+    size_t n = b->n;
+    for (size_t i = 0; i < (n + 1) / 2; i++) {
+        size_t j = n - 1 - i;
+        char sec[32];
+        snprintf(sec, sizeof sec, "ball.%zu", j + 1);
+        const char *key = differ(b->x[j], -b->x[i])   ? "position"
+                          : differ(b->v[j], -b->v[i]) ? "velocity"
+                          : differ(b->m[j], b->m[i])  ? "mass"
+                          : differ(b->R[j], b->R[i])  ? "radius"
+                                                      : NULL;
+        if (key)
+            return bf_scene_fail(sc, err, sec, key,
+                                 "[coupled] symmetrize = yes: ball %zu is not "
+                                 "the mirror image of ball %zu (needs x_%zu "
+                                 "= -x_%zu, v_%zu = -v_%zu, equal masses and "
+                                 "radii)",
+                                 j + 1, i + 1, j + 1, i + 1, j + 1, i + 1);
+    }
+    double c[2];
+    bf_film_mirror(bf_filmsys_film(m->fs), 0, c);
+    if (c[0] > sym_tol || c[1] > sym_tol) {
+        double x0;
+        const char *key = bf_scene_real(sc, "film", "perturbation") > 0
+                              ? "perturbation"
+                          : bf_filmsys_has_kink(m->fs, &x0) && x0 != 0
+                              ? "center"
+                              : "initial";
+        return bf_scene_fail(sc, err, "film", key,
+                             "[coupled] symmetrize = yes: the initial film is "
+                             "not mirror symmetric (psi odd, h even, u odd "
+                             "needed): relative distance %.3g in alpha h, "
+                             "%.3g in u",
+                             c[0], c[1]);
+    }
+    return BF_OK;
+}
+
+/* Project n positions (or velocities) onto the odd states, a_(n-1-i) =
+ * -a_i; returns the largest change relative to max |a| (0 if all vanish). */
+static double mirror_odd(double *a, size_t n)
+{
+    double d = 0, amax = 0;
+    for (size_t i = 0; i < n; i++)
+        amax = fmax(amax, fabs(a[i]));
+    for (size_t i = 0; i < (n + 1) / 2; i++) {
+        size_t j = n - 1 - i;
+        double o = 0.5 * (a[i] - a[j]);
+        d = fmax(d, 0.5 * fabs(a[i] + a[j]));
+        a[i] = o;
+        a[j] = -o;
+    }
+    return amax > 0 ? d / amax : d;
+}
+
+static void keep_max(double *acc, const double *c, int k)
+{
+    for (int q = 0; q < k; q++) {
+        acc[q] = fmax(acc[q], c[q]);
+        acc[q + 4] = fmax(acc[q + 4], c[q]);
+    }
 }
 
 /* a 1-based ball index key (0: default) */
@@ -142,6 +270,7 @@ static bf_status coupled_create(void **self, const bf_scene *sc, bf_err *err)
     m->dynamic = bf_scene_enum(sc, "coupled", "film") == 0;
     m->every = bf_scene_int(sc, "coupled", "film_every");
     m->timing = bf_scene_bool(sc, "coupled", "timing");
+    m->sym = bf_scene_bool(sc, "coupled", "symmetrize");
     m->probe = bf_scene_real(sc, "coupled", "probe");
     bf_status st = bf_filmsys_create(&m->fs, sc, m->dynamic ? m->every : 0,
                                      err);
@@ -178,6 +307,10 @@ static bf_status coupled_create(void **self, const bf_scene *sc, bf_err *err)
                        err)) ||
         (st = ball_key(sc, "peak_ball", m->nb, m->nb - 1, &m->peak_ball,
                        err))) {
+        coupled_destroy(m);
+        return st;
+    }
+    if (m->sym && (st = check_symmetric(m, sc, err))) {
         coupled_destroy(m);
         return st;
     }
@@ -279,11 +412,22 @@ static bf_status coupled_step(void *self, long n, double t, double dt,
     bf_status st = bf_ballsys_step(s, t, dt, err);
     if (st)
         return st;
+    if (m->sym) {
+        /* before the coupling's prepare reads the positions */
+        double c[2] = {mirror_odd(s->b.x, m->nb), mirror_odd(s->b.v, m->nb)};
+        keep_max(m->symc + 2, c, 2);
+    }
     if (m->timing)
         c2 = wall_now();
     if (m->dynamic && (n + 1) % m->every == 0) {
         if ((st = bf_filmsys_step(m->fs, (double)m->every * dt, err)))
             return st;
+        if (m->sym) {
+            /* before the coupling's refresh reads the film */
+            double c[2];
+            bf_film_mirror(bf_filmsys_film(m->fs), 1, c);
+            keep_max(m->symc, c, 2);
+        }
         if (m->timing)
             c3 = wall_now();
         bf_coupling_refresh(m->cpl);
@@ -337,6 +481,11 @@ static bf_status coupled_output_open(void *self, bf_out *out, bf_err *err)
         "touching its inner neighbour (Fig. 8A)");
     SER(peaks, "/coupled/peaks", 2, "s, cm",
         "t, x of the maxima of peak_ball's position (Fig. 6C)");
+    if (m->sym)
+        SER(symc_s, "/coupled/sym_correction", 4, "1",
+            "symmetrize: largest relative change of the projection since the "
+            "previous row: film alpha_k h (/ max h), film u (/ max |u_k|), "
+            "ball x (/ max |x|), ball v (/ max |v|)");
 #undef SER
     const bf_balls *b = &m->sys->b;
     if ((st = bf_out_array(out, "/balls/mass", b->m, b->n, 0, "g",
@@ -375,8 +524,11 @@ static bf_status coupled_output_row(void *self, long n, double t, bf_err *err)
     if (bf_series_append(m->pos, m->sys->b.x) ||
         bf_series_append(m->vel, m->sys->b.v) ||
         bf_series_append(m->probe_s, &pr) || bf_series_append(m->symb, &sb) ||
-        bf_series_append(m->symf, &sf))
+        bf_series_append(m->symf, &sf) ||
+        (m->sym && bf_series_append(m->symc_s, m->symc)))
         return bf_fail(err, BF_EINTERNAL, "out of memory");
+    for (int q = 0; q < 4; q++)
+        m->symc[q] = 0;
     return BF_OK;
 }
 
@@ -388,10 +540,19 @@ static bf_status coupled_output_close(void *self, bf_out *out, bf_err *err)
         rows[2 * k] = sym_levels[k];
         rows[2 * k + 1] = m->sym_t[k];
     }
-    return bf_out_array(out, "/coupled/symmetry_break", rows, NSYM, 2, "cm, s",
-                        "first time the ball symmetry error exceeded each "
-                        "level (NaN: never)",
-                        err);
+    bf_status st = bf_out_array(out, "/coupled/symmetry_break", rows, NSYM, 2,
+                                "cm, s",
+                                "first time the ball symmetry error exceeded "
+                                "each level (NaN: never)",
+                                err);
+    if (!st && m->sym)
+        st = bf_out_array(out, "/coupled/sym_correction_max", m->symc + 4, 4,
+                          0, "1",
+                          "symmetrize: largest relative change of the "
+                          "projection over the run (columns as "
+                          "/coupled/sym_correction)",
+                          err);
+    return st;
 }
 
 static void coupled_counters(const void *self, bf_counters *c)
@@ -413,6 +574,11 @@ static void coupled_report(const void *self, FILE *f)
     for (int k = 0; k < NSYM; k++)
         fprintf(f, " %g cm at t = %.4g s%s", sym_levels[k], m->sym_t[k],
                 k + 1 < NSYM ? "," : "\n");
+    if (m->sym)
+        fprintf(f, "symmetrize: largest relative change of one projection: "
+                   "film alpha h %.3g, film u %.3g, ball x %.3g, ball v "
+                   "%.3g\n",
+                m->symc[4], m->symc[5], m->symc[6], m->symc[7]);
     if (m->timing)
         fprintf(f, "time: balls %.3f s, film %.3f s, coupling (mu_cpl, "
                    "refresh) %.3f s\n",
@@ -437,6 +603,8 @@ static bf_status coupled_save(const void *self, bf_ckpt *ck, bf_err *err)
                          bf_film_nodes(bf_filmsys_film(m->fs)), err);
     if (!st)
         st = bf_coupling_save(m->cpl, ck, err);
+    if (!st && m->sym)
+        st = bf_ckpt_put(ck, "coupled.sym_correction", m->symc, 8, err);
     return st;
 }
 
@@ -456,6 +624,8 @@ static bf_status coupled_load(void *self, const bf_ckpt *ck, bf_err *err)
                          bf_film_nodes(bf_filmsys_film(m->fs)), err);
     if (!st)
         st = bf_coupling_load(m->cpl, ck, err); /* after the film */
+    if (!st && m->sym)
+        st = bf_ckpt_get(ck, "coupled.sym_correction", m->symc, 8, err);
     if (!st) {
         m->sys->ode.epoch = (unsigned long)meta[0];
         m->nmap = (long)meta[1];
