@@ -156,7 +156,7 @@ run:
 	@echo "figure:   out/fig1_phase.png"
 
 # Yasuda Fig. 1: the bouncing ball, Verlet beside MV2M (dt = 3e-4 s, 100 s).
-fig1: $(PROG)
+fig1: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) run runs/bouncing_ball.ini -q -o out/bouncing_ball_verlet.h5 \
 	    --set scene.integrator=verlet
@@ -169,7 +169,7 @@ fig1: $(PROG)
 # Thesis (MAC) Fig. 5: the stratified reservoir with a point sink to t = 10,
 # and the same at 2x and 4x the grid (4x traps empty cells inside the fluid;
 # void_fix fills them, see README).
-stratres: $(PROG)
+stratres: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) run runs/stratres.ini -q -o out/stratres.h5
 	$(PY) plots/fig_stratres.py out/stratres.h5 -o out/stratres.png
@@ -184,7 +184,7 @@ stratres: $(PROG)
 # The thesis's two checks (tank at rest, uniform stream) for every velocity
 # update, with the exact pressure solve and with the listing's relaxation.
 MAC_VARIANTS := printed consistent original
-mac-checks: $(PROG)
+mac-checks: $(PROG) | deps deps-plot
 	@mkdir -p out
 	@set -e; for u in $(MAC_VARIANTS); do for s in direct relax; do \
 	  $(PROG) run runs/mac_rest.ini -q -o out/mac_rest_$${u}_$$s.h5 \
@@ -205,7 +205,7 @@ mac-checks: $(PROG)
 # MV2M for 1000 s with the Lyapunov estimate; first at the paper's
 # dt = 1e-4 s, then at 1e-5 s (see README for why both).  About 1 min.
 FIG2_SET := --set lyapunov.enabled=yes
-fig2: $(PROG)
+fig2: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) run runs/two_balls_A.ini -q -o out/fig2_A.h5 $(FIG2_SET)
 	$(PROG) run runs/two_balls_B.ini -q -o out/fig2_B.h5 $(FIG2_SET)
@@ -220,7 +220,7 @@ fig2: $(PROG)
 # (C) RK4, (D) RK3, (E) implicit mid-point at 1e-4 s, 1000 s each.  RK3
 # loses about 40% of the energy over the run; its energy bound is lifted
 # so that the figure shows all of it.  About 1 min.
-fig3: $(PROG)
+fig3: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) run runs/two_balls_B.ini -q -o out/fig3_A.h5 $(FIG2_SET) \
 	    --set scene.integrator=verlet
@@ -241,7 +241,7 @@ fig3: $(PROG)
 # step ([scene] output_every = 1) to 501 s.  The MV2M run also records the
 # one-step difference Verlet - second-order mid-point ([compare]).
 FIG4_SET := --set scene.t_end=501 --set compare.a=verlet
-fig4: $(PROG)
+fig4: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) run runs/two_balls_B.ini -q -o out/fig4_mv2m.h5 $(FIG4_SET) \
 	    --stop-after 5000000 || test $$? -eq 6
@@ -254,7 +254,7 @@ fig4: $(PROG)
 
 # Work-precision diagrams of `ballfilm converge` (acceptance runs of the
 # integrator issue): the harmonic oscillator and the bouncing ball.
-converge-figures: $(PROG)
+converge-figures: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) converge runs/harmonic.ini --methods verlet,mv2m,rk3,rk4,arkode \
 	    -q -o out/converge_harmonic.h5
@@ -273,7 +273,7 @@ converge-figures: $(PROG)
 	    -o out/work_precision_bouncing_ball_1s.png
 # Yasuda Fig. 5: the perturbed kink, 1000 s at dt = 1e-3 s (10^6 steps),
 # and the space-time picture of psi.
-fig5: $(PROG)
+fig5: $(PROG) | deps deps-plot
 	$(PROG) run runs/kink_steady.ini -q -o out/kink_steady.h5
 	$(PY) plots/fig5_kink.py out/kink_steady.h5 -o out/fig5_kink.png
 	$(PY) plots/film_spacetime.py out/kink_steady.h5 -o out/film_spacetime.png
@@ -289,7 +289,7 @@ kink-dx2: $(PROG)
 # 8e-4 s, C: peaks for 1e-4, 5.5e-4, 8e-4 s with an ensemble of shifted
 # starts, D: one ball, 500 s).
 KINK_ENS := 1e-12 1e-10 1e-8 1e-6 -1e-8
-fig6: $(PROG)
+fig6: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) run runs/kink_balls_A.ini -q -o out/fig6_A.h5
 	$(PROG) run runs/kink_balls_A.ini -q -o out/fig6_B.h5 --set scene.dt=8e-4
@@ -305,31 +305,31 @@ fig6: $(PROG)
 
 # Yasuda Figs 8 and 9: four balls in the film, 50 s at dt = 1e-5 s
 # (5e6 coupled steps each; the wall time is printed).
-fig8: $(PROG)
+fig8: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) run runs/coupled_fig8.ini -q -o out/coupled_fig8.h5
 	$(PY) plots/fig8_coupled.py out/coupled_fig8.h5 -o out/fig8_coupled.png
 
-fig9: $(PROG)
+fig9: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) run runs/coupled_fig9.ini -q -o out/coupled_fig9.h5
 	$(PY) plots/fig8_coupled.py out/coupled_fig9.h5 -o out/fig9_coupled.png
 
 # The same with [coupled] symmetrize = yes (forced mirror symmetry), the
 # test of the README's explanation of the scattered maps (~1.6x the cost).
-fig8-sym: $(PROG)
+fig8-sym: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) run runs/coupled_fig8_sym.ini -q -o out/coupled_fig8_sym.h5
 	$(PY) plots/fig8_coupled.py out/coupled_fig8_sym.h5 -o out/fig8_coupled_sym.png
 
-fig9-sym: $(PROG)
+fig9-sym: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) run runs/coupled_fig9_sym.ini -q -o out/coupled_fig9_sym.h5
 	$(PY) plots/fig8_coupled.py out/coupled_fig9_sym.h5 -o out/fig9_coupled_sym.png
 
 # Sensitivity inside the symmetric subspace: the symmetrized runs again
 # for 20 s with the outer balls moved out by 1e-10 cm (symmetrically).
-sym-divergence: $(PROG)
+sym-divergence: $(PROG) | deps deps-plot
 	@mkdir -p out
 	@test -f out/coupled_fig8_sym.h5 || $(MAKE) --no-print-directory fig8-sym
 	@test -f out/coupled_fig9_sym.h5 || $(MAKE) --no-print-directory fig9-sym
@@ -343,7 +343,7 @@ sym-divergence: $(PROG)
 
 # Multirate option against the single-rate run (Fig. 8 scene, 0-1 s).
 MR_K := 3 10 30 100 300
-multirate: $(PROG)
+multirate: $(PROG) | deps deps-plot
 	@mkdir -p out
 	@rm -f out/multirate_times.txt
 	@w=$$($(PROG) run runs/coupled_fig8.ini -q -o out/mr_ref.h5 --set scene.t_end=1 \
@@ -364,7 +364,7 @@ film-orders: $(BUILD)/bench/film_orders
 	$(BUILD)/bench/film_orders
 # Greenspan 1972, Example 1 (Figs 3.1-3.9) and the heights of the heavy
 # particles.
-fig-g72-ex1: $(PROG)
+fig-g72-ex1: $(PROG) | deps deps-plot
 	$(PROG) run runs/greenspan72_ex1.ini -q -o out/g72_ex1.h5
 	$(PY) plots/fig_g72_ex1.py out/g72_ex1.h5 -o out/fig_g72_ex1.png \
 	    --heights out/fig_g72_ex1_heights.png
@@ -373,7 +373,7 @@ fig-g72-ex1: $(PROG)
 # printed initial velocities are perturbed within their rounding (+-0.005),
 # for the text's reading and for the listing's (cutoff 2d, WALCOL, EPS).
 G72_ENS := $(shell seq 1 100)
-fig-g72-ex1-ensemble: $(PROG)
+fig-g72-ex1-ensemble: $(PROG) | deps deps-plot
 	@mkdir -p out/g72_ens
 	@for k in $(G72_ENS); do \
 	  $(PROG) run runs/greenspan72_ex1.ini -q -o out/g72_ens/text_$$k.h5 \
@@ -395,7 +395,7 @@ fig-g72-ex1-ensemble: $(PROG)
 
 # Example 2: Figs 3.10-3.14 in both readings of t_k, and the diagnostics
 # over 30000 steps.
-fig-g72-ex2: $(PROG)
+fig-g72-ex2: $(PROG) | deps deps-plot
 	$(PROG) run runs/greenspan72_ex2.ini -q -o out/g72_ex2_short.h5 \
 	    --set scene.t_end=3 --set scene.output_every=1
 	$(PROG) run runs/greenspan72_ex2.ini -q -o out/g72_ex2.h5
@@ -404,14 +404,14 @@ fig-g72-ex2: $(PROG)
 	    --diag out/fig_g72_ex2_diag.png
 
 # 200704 particles for 3000 steps (several minutes).
-fig-g72-large: $(PROG)
+fig-g72-large: $(PROG) | deps deps-plot
 	$(PROG) run runs/greenspan72_large.ini -q -o out/g72_large.h5
 	$(PY) plots/fig_g72_large.py out/g72_large.h5 -o out/fig_g72_large.png
 
 # Greenspan 1973, Figs 3.2-3.5: the hexagonal flows at V = 50, 300, 1000;
 # V = 1000 also at dt = 0.01 (omega = 1 converges only for dt <= 0.01) and
 # with step halving from dt = 0.1.
-fig-g73-hex: $(PROG)
+fig-g73-hex: $(PROG) | deps deps-plot
 	$(PROG) run runs/greenspan73_hex_v50.ini -q -o out/g73_hex_v50.h5
 	$(PROG) run runs/greenspan73_hex_v300.ini -q -o out/g73_hex_v300.h5
 	$(PROG) run runs/greenspan73_hex_v1000.ini -q -o out/g73_hex_v1000.h5
@@ -429,7 +429,7 @@ fig-g73-hex: $(PROG)
 # Greenspan 1973, Figs 3.7-3.8 (friction) and 3.10 (penetration), in the
 # readings of the text and of the listing; prints P1 at step 25.
 G73_PEN = $(PROG) run runs/greenspan73_penetration.ini -q
-fig-g73-wall: $(PROG)
+fig-g73-wall: $(PROG) | deps deps-plot
 	$(PROG) run runs/greenspan73_wall_friction.ini -q -o out/g73_friction_listing.h5
 	$(PROG) run runs/greenspan73_wall_friction.ini -q -o out/g73_friction_text.h5 \
 	    --set greenspan73.mass=paper --set greenspan73.wall_mass=10
@@ -478,7 +478,7 @@ figures:
 # ball 1 g, lower ball 0.5..2 g in 64 steps, MV2M at dt = 1e-4 s over 200 s
 # each, with the Lyapunov exponent and the return map's fill fraction.
 # Runs on both cores (--jobs 2); rerunning skips finished cases.
-survey-mass: $(PROG)
+survey-mass: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) sweep runs/two_balls_A.ini --vary ball.1.mass=0.5:2.0:64 \
 	    --set scene.t_end=200 --set lyapunov.enabled=yes \
@@ -489,7 +489,7 @@ survey-mass: $(PROG)
 # Survey of the coupled film: the fourth ball's return map over film lengths
 # 49.5..50.5 cm (11 points), 50 s each with the multirate option (film step
 # every 30 ball steps, which passed its accuracy check: README, multirate).
-survey-length: $(PROG)
+survey-length: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) sweep runs/coupled_fig8.ini --vary film.length=49.5:50.5:11 \
 	    --set coupled.film_every=30 --set scene.output_every=1000 \
