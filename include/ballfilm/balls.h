@@ -22,8 +22,8 @@ typedef struct bf_balls_analysis {
     double lyapunov_time;           /* s, time the estimate refers to */
 } bf_balls_analysis;
 
-/* For a sim whose model is "balls": fill *a and return BF_OK; otherwise
- * BF_EINPUT. */
+/* For a sim whose model is "balls" or "coupled" (bf_coupled_sim_analysis):
+ * fill *a and return BF_OK; otherwise BF_EINPUT. */
 bf_status bf_balls_sim_analysis(bf_sim *sim, bf_balls_analysis *a);
 
 /* The same from the model instance (bf_sim_model), and its return map

@@ -96,8 +96,11 @@ void bf_coupling_counts(const bf_coupling *c, unsigned long long *exact,
                         unsigned long long *taylor);
 
 /* Checkpoint: the per-ball Taylor anchors (everything else is rebuilt from
- * the film by bf_coupling_refresh). */
-bf_status bf_coupling_save(const bf_coupling *c, bf_ckpt *ck, bf_err *err);
-bf_status bf_coupling_load(bf_coupling *c, const bf_ckpt *ck, bf_err *err);
+ * the film by bf_coupling_refresh), under the name prefix +
+ * "coupling.state". */
+bf_status bf_coupling_save(const bf_coupling *c, bf_ckpt *ck,
+                           const char *prefix, bf_err *err);
+bf_status bf_coupling_load(bf_coupling *c, const bf_ckpt *ck,
+                           const char *prefix, bf_err *err);
 
 #endif

@@ -136,6 +136,16 @@ void bf_film_mirror(bf_film *f, int apply, double corr[2]);
  * psi = sqrt(a/b) tanh((x - x0) / (sqrt(2) xi)), xi = sqrt(gamma/a). */
 double bf_film_kink(const bf_film_params *p, double x0, double x);
 
+/* The arrays that make up the film's state, each on the nodes 0..N (what
+ * a checkpoint saves): alpha_d h, alpha_c h (cm), u_d, u_c (cm/s) and the
+ * rounding carries of alpha_d h and alpha_c h (cm).  Fills arr and
+ * returns the number of nodes.  A caller that writes them (the Lyapunov
+ * shadow's renormalisation, coupled.c) calls bf_film_state_changed, which
+ * derives h and psi again as a checkpoint load does. */
+enum { BF_FILM_NSTATE = 6 };
+size_t bf_film_state(bf_film *f, double *arr[BF_FILM_NSTATE]);
+void bf_film_state_changed(bf_film *f);
+
 /* Checkpoint: state and counters under names starting with `prefix`. */
 bf_status bf_film_save(const bf_film *f, bf_ckpt *ck, const char *prefix,
                        bf_err *err);

@@ -50,7 +50,11 @@ bf_status bf_filmsys_output_open(bf_filmsys *fs, bf_out *out, bf_err *err);
 bf_status bf_filmsys_output_row(bf_filmsys *fs, long n, double t, bf_err *err);
 void bf_filmsys_report(const bf_filmsys *fs, FILE *f);
 
-bf_status bf_filmsys_save(const bf_filmsys *fs, bf_ckpt *ck, bf_err *err);
-bf_status bf_filmsys_load(bf_filmsys *fs, const bf_ckpt *ck, bf_err *err);
+/* Checkpoint under names starting with prefix + "film" (prefix "" for the
+ * run's film, "lyapunov." for the coupled model's shadow film). */
+bf_status bf_filmsys_save(const bf_filmsys *fs, bf_ckpt *ck,
+                          const char *prefix, bf_err *err);
+bf_status bf_filmsys_load(bf_filmsys *fs, const bf_ckpt *ck,
+                          const char *prefix, bf_err *err);
 
 #endif

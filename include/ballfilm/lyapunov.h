@@ -5,11 +5,19 @@
  * the scaled phase space (x, tau v), along the fixed direction with equal
  * components; it is advanced by its own instance of the same integrator
  * (same [integrator] parameters) through the same forces.  Every
- * [lyapunov] renormalise_every the distance d is measured, log(d/d0) is
- * accumulated and the shadow is pulled back to distance d0 along the
- * current separation.  The estimate after K renormalisations at time t_K is
+ * [lyapunov] renormalise_every the distance d_k is measured and
+ * log(d_k/s_k) is accumulated, s_k being the distance the shadow started
+ * that interval at; if d_k > d0 the shadow is pulled back to distance d0
+ * along the current separation (s_(k+1) = d0), otherwise it is left alone
+ * (s_(k+1) = d_k).  The sum telescopes to log(total growth of the
+ * separation), so the estimate after K renormalisations at time t_K is
  *
- *   lambda = (1/t_K) sum_k log(d_k/d0)   (1/s).
+ *   lambda = (1/t_K) sum_k log(d_k/s_k)   (1/s),
+ *
+ * the same in the linear regime as pulling back every time; not pulling a
+ * shrunken separation back out means the shadow is only ever moved
+ * towards the run (a factor d0/d < 1), never extrapolated away from it,
+ * which keeps a shadow film physical (coupled.c).
  *
  * It converges like 1/t: a quasi-periodic orbit gives a small positive
  * value that keeps falling (~ log(t)/t), a chaotic orbit a value that
@@ -19,17 +27,77 @@
  *
  * The choice of tau (a time scale turning velocities into lengths) changes
  * the transient, not the limit.
+ *
+ * Two layers: bf_lyap_sum is the bookkeeping every model shares ([lyapunov]
+ * keys, initial displacement, distance, running sum, output, checkpoint);
+ * bf_lyap is the shadow of a plain ball system (the "balls" model).  The
+ * coupled model keeps a shadow film as well and uses bf_lyap_sum directly.
  */
 #ifndef BALLFILM_LYAPUNOV_H
 #define BALLFILM_LYAPUNOV_H
+
+#include <stdio.h>
 
 #include "ballfilm/ballsys.h"
 #include "ballfilm/checkpoint.h"
 #include "ballfilm/h5out.h"
 
-typedef struct bf_lyap bf_lyap;
-
 extern const bf_section_spec bf_lyap_spec; /* [lyapunov] */
+
+/* ------------------------------------------------ shared bookkeeping */
+
+typedef struct bf_lyap_sum {
+    size_t n;       /* balls */
+    double d0;      /* cm, distance of the shadow after a renormalisation */
+    double tau;     /* s, turns velocity differences into lengths */
+    long every;     /* steps between renormalisations */
+    double d_start; /* cm, distance at the start of the current interval */
+    double logsum;  /* sum of log(d_k/s_k) */
+    long nrenorm;
+    double t_last; /* s, time of the last renormalisation */
+    bf_series *s_t, *s_l;
+} bf_lyap_sum;
+
+/* 1 if the scene has [lyapunov] enabled = yes. */
+int bf_lyap_enabled(const bf_scene *sc);
+/* Read [lyapunov] for n balls advanced by `it` (refused if adaptive),
+ * naming the key on bad input. */
+bf_status bf_lyap_sum_init(bf_lyap_sum *ls, const bf_scene *sc, size_t n,
+                           const bf_integrator *it, bf_err *err);
+/* The shadow's initial state: (xs, vs) = (x, v) + the displacement of
+ * length d0 along equal components in (x, tau v). */
+void bf_lyap_displace(const bf_lyap_sum *ls, const double *x, const double *v,
+                      double *xs, double *vs);
+/* Whether the step that made n_done steps ends an interval. */
+static inline int bf_lyap_due(const bf_lyap_sum *ls, long n_done)
+{
+    return n_done % ls->every == 0;
+}
+/* At the end of an interval (time t_end): measure the distance of the
+ * shadow (xs, vs) from (x, v), accumulate, record, and return in *factor
+ * the factor d0/d (< 1) the caller must apply to the whole difference
+ * shadow - run (bf_lyap_pull), or 1 when d <= d0 (leave the shadow).
+ * Fails with BF_EUNSTABLE if d is 0 or not finite. */
+bf_status bf_lyap_measure(bf_lyap_sum *ls, const double *x, const double *v,
+                          const double *xs, const double *vs, double t_end,
+                          double *factor, bf_err *err);
+/* shadow[i] = run[i] + factor (shadow[i] - run[i]), i < n */
+void bf_lyap_pull(size_t n, double factor, const double *run, double *shadow);
+/* Current estimate (1/s) and the time it refers to (last
+ * renormalisation); NAN before the first renormalisation. */
+double bf_lyap_sum_estimate(const bf_lyap_sum *ls, double *t_ref);
+/* The summary line, with the shadow's force evaluations. */
+void bf_lyap_sum_report(const bf_lyap_sum *ls, const bf_counters *shadow,
+                        FILE *f);
+bf_status bf_lyap_sum_output_open(bf_lyap_sum *ls, bf_out *out, bf_err *err);
+bf_status bf_lyap_sum_output_close(const bf_lyap_sum *ls, bf_out *out,
+                                   bf_err *err);
+bf_status bf_lyap_sum_save(const bf_lyap_sum *ls, bf_ckpt *ck, bf_err *err);
+bf_status bf_lyap_sum_load(bf_lyap_sum *ls, const bf_ckpt *ck, bf_err *err);
+
+/* ------------------------------------------------ a ball system's shadow */
+
+typedef struct bf_lyap bf_lyap;
 
 /* Create from [lyapunov]; *out is NULL when it is not enabled. */
 bf_status bf_lyap_create(bf_lyap **out, const bf_scene *sc,
@@ -42,9 +110,8 @@ void bf_lyap_free(bf_lyap *ly);
 bf_status bf_lyap_after_step(bf_lyap *ly, const bf_ballsys *sys, long n_done,
                              double t, double dt, bf_err *err);
 
-/* Current estimate (1/s) and the time it refers to (last
- * renormalisation); NAN before the first renormalisation. */
 double bf_lyap_estimate(const bf_lyap *ly, double *t_ref);
+void bf_lyap_report(const bf_lyap *ly, FILE *f);
 
 bf_status bf_lyap_output_open(bf_lyap *ly, bf_out *out, bf_err *err);
 bf_status bf_lyap_output_close(const bf_lyap *ly, bf_out *out, bf_err *err);

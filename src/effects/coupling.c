@@ -62,6 +62,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -1036,8 +1037,11 @@ void bf_coupling_mu(const bf_coupling *c, size_t nb, const double *x,
  * counters, and room for cached moments (none are saved: a moment is a
  * function of g, which the film's state gives, so a continued run computes
  * the same bits again).  Counts are exact in a double. */
-bf_status bf_coupling_save(const bf_coupling *c, bf_ckpt *ck, bf_err *err)
+bf_status bf_coupling_save(const bf_coupling *c, bf_ckpt *ck,
+                           const char *prefix, bf_err *err)
 {
+    char name[128];
+    snprintf(name, sizeof name, "%scoupling.state", prefix);
     const size_t n = c->nballs, len = 2 * n + 3 + 3 * NCACHE;
     double *a = xcalloc(len);
     if (!a)
@@ -1052,18 +1056,21 @@ bf_status bf_coupling_save(const bf_coupling *c, bf_ckpt *ck, bf_err *err)
     q[0] = (double)c->n_exact;
     q[1] = (double)c->n_taylor;
     q[2] = 0; /* no cached moments: see above */
-    bf_status st = bf_ckpt_put(ck, "coupling.state", a, len, err);
+    bf_status st = bf_ckpt_put(ck, name, a, len, err);
     free(a);
     return st;
 }
 
-bf_status bf_coupling_load(bf_coupling *c, const bf_ckpt *ck, bf_err *err)
+bf_status bf_coupling_load(bf_coupling *c, const bf_ckpt *ck,
+                           const char *prefix, bf_err *err)
 {
+    char name[128];
+    snprintf(name, sizeof name, "%scoupling.state", prefix);
     const size_t n = c->nballs, len = 2 * n + 3 + 3 * NCACHE;
     double *a = xcalloc(len);
     if (!a)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    bf_status st = bf_ckpt_get(ck, "coupling.state", a, len, err);
+    bf_status st = bf_ckpt_get(ck, name, a, len, err);
     if (!st) {
         /* the film is loaded: g, then the anchors */
         bf_coupling_refresh(c);

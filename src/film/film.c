@@ -883,6 +883,19 @@ static const int ckpt_vars[] = {V_AD, V_AC, V_UD, V_UC, V_KD, V_KC};
 static const char *const ckpt_names[] = {"ah_d", "ah_c", "u_d", "u_c",
                                          "ah_d_rounding", "ah_c_rounding"};
 enum { NCKPT = sizeof ckpt_vars / sizeof ckpt_vars[0] };
+_Static_assert((int)NCKPT == (int)BF_FILM_NSTATE, "film state arrays");
+
+size_t bf_film_state(bf_film *f, double *arr[BF_FILM_NSTATE])
+{
+    for (int k = 0; k < NCKPT; k++)
+        arr[k] = ARR(f, ckpt_vars[k]);
+    return (size_t)f->N + 1;
+}
+
+void bf_film_state_changed(bf_film *f)
+{
+    derive(0, f->N, ARR(f, V_AD), ARR(f, V_AC), ARR(f, V_H), ARR(f, V_PSI));
+}
 
 bf_status bf_film_save(const bf_film *f, bf_ckpt *ck, const char *prefix,
                        bf_err *err)
@@ -917,6 +930,6 @@ bf_status bf_film_load(bf_film *f, const bf_ckpt *ck, const char *prefix,
         return st;
     f->lim_steps = (unsigned long long)c[0];
     f->lim_faces = (unsigned long long)c[1];
-    derive(0, f->N, ARR(f, V_AD), ARR(f, V_AC), ARR(f, V_H), ARR(f, V_PSI));
+    bf_film_state_changed(f);
     return BF_OK;
 }

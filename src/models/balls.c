@@ -15,6 +15,7 @@
 
 #include "ballfilm/balls.h"
 #include "ballfilm/compare.h"
+#include "ballfilm/coupled.h"
 #include "ballfilm/lyapunov.h"
 #include "ballfilm/model.h"
 
@@ -54,7 +55,7 @@ void bf_balls_model_analysis(const void *self, bf_balls_analysis *a)
 bf_status bf_balls_sim_analysis(bf_sim *sim, bf_balls_analysis *a)
 {
     if (bf_sim_model_type(sim) != &bf_model_balls)
-        return BF_EINPUT;
+        return bf_coupled_sim_analysis(sim, a); /* or BF_EINPUT */
     bf_balls_model_analysis(bf_sim_model(sim), a);
     return BF_OK;
 }
@@ -198,12 +199,8 @@ static void balls_report(const void *self, FILE *f)
         fprintf(f, "return map:        %zu points (%zu contacts with more "
                    "than one minimum)\n",
                 a.return_map_points, a.return_map_multi_minima);
-    if (a.has_lyapunov) {
-        const bf_counters *c = bf_lyap_counters(m->ly);
-        fprintf(f, "lyapunov exponent: %.6g 1/s (at t = %g s; shadow "
-                   "trajectory: %llu force evaluations)\n",
-                a.lyapunov_exponent, a.lyapunov_time, c->evals);
-    }
+    if (a.has_lyapunov)
+        bf_lyap_report(m->ly, f);
 }
 
 static bf_status balls_save(const void *self, bf_ckpt *ck, bf_err *err)

@@ -54,6 +54,41 @@
  *                           max |u_k|), ball x (rel. to max |x|), ball v
  *                           (rel. to max |v|)
  *   /coupled/sym_correction_max [4]     the same over the whole run
+ *
+ * Largest Lyapunov exponent ([lyapunov] enabled = yes, lyapunov.h).  The
+ * model keeps a shadow coupled system: a second instance of this model
+ * built from the same scene (its own film, balls, coupling and
+ * integrator, the same film_every and symmetrize), whose balls start
+ * displaced by d0 in the scaled ball phase space (x, tau v) as in the balls
+ * model, and whose film starts identical.  With symmetrize = yes the
+ * displacement is the mirror-odd one (+ on ball i, - on ball n+1-i, 0 on a
+ * middle ball, scaled to length d0): the equal-component direction would be
+ * projected away.  The shadow takes the same steps right after the run.
+ * Every renormalise_every the distance d is measured on the balls only,
+ * and if d > d0 the WHOLE difference is pulled back,
+ *   shadow = run + (d0/d) (shadow - run),
+ * for every component of the state: ball x and v, the film's alpha_k h,
+ * u_k and the rounding carries of alpha_k h (bf_film_state), and mu_cpl,
+ * which in multirate holds the balls of the start of the film step until
+ * the film takes it.  Caches that are functions of this state (the
+ * coupling's g and anchors, the integrator's force) are rebuilt: refresh,
+ * prepare, epoch++.  Why a ball norm suffices: the separation vector
+ * delta(t) of the full system (balls and film) grows like exp(lambda t)
+ * along the most unstable direction, and in a finite dimension all norms
+ * are equivalent, c |delta| <= |delta|_balls <= C |delta|, so
+ * (1/t) log |delta(t)|_balls has the same limit as with any other norm, as
+ * long as the pull-back keeps delta's direction, i.e. scales the full
+ * vector; pulling back only the balls would change the direction each time
+ * and measure something else.  (A direction with no ball component is
+ * invisible to the ball norm, but the film alone has no such growing
+ * direction that the balls do not feel through the coupling.)
+ * Physical film: the factor d0/d is < 1, so each alpha_k h of the shadow
+ * becomes the convex combination (1 - f) A_run + f A_shadow of two
+ * non-negative values: non-negative (also in floating point: |fl(s - r)|
+ * <= r for 0 <= s < r, and f <= 1), so h = A_d + A_c > 0 and alpha_k in
+ * [0, 1].  A separation that has shrunk (d <= d0) is left alone (no
+ * factor > 1, which could push a small alpha below 0), and the sum
+ * accounts for it (lyapunov.h).
  */
 #include <math.h>
 #include <stdint.h>
@@ -63,8 +98,10 @@
 #include <time.h>
 
 #include "ballfilm/ballsys.h"
+#include "ballfilm/coupled.h"
 #include "ballfilm/coupling.h"
 #include "ballfilm/filmsys.h"
+#include "ballfilm/lyapunov.h"
 #include "ballfilm/model.h"
 
 enum { NSYM = 4 };
@@ -111,6 +148,9 @@ static const bf_section_spec coupled_spec = {
 
 typedef struct coupled_model {
     bf_filmsys *fs;
+    /* [lyapunov]: the running sum and the shadow system (NULL: off) */
+    bf_lyap_sum *ly;
+    struct coupled_model *shadow;
     bf_ballsys *sys;
     bf_coupling *cpl;
     int dynamic, timing, sym;
@@ -140,6 +180,8 @@ static void coupled_destroy(void *self)
     coupled_model *m = self;
     if (!m)
         return;
+    coupled_destroy(m->shadow);
+    free(m->ly);
     bf_ballsys_free(m->sys);
     bf_filmsys_free(m->fs);
     free(m->x0);
@@ -262,7 +304,65 @@ static bf_status ball_key(const bf_scene *sc, const char *key, size_t nb,
     return BF_OK;
 }
 
+static bf_status coupled_build(coupled_model **self, const bf_scene *sc,
+                               int with_shadow, bf_err *err);
+
+/* The shadow's caches after its state was changed from outside: g and the
+ * anchors of the coupling, the integrator's force (epoch). */
+static void state_changed(coupled_model *m)
+{
+    bf_coupling_refresh(m->cpl);
+    if (m->dynamic)
+        bf_coupling_prepare(m->cpl, m->nb, m->sys->b.x);
+    m->sys->ode.epoch++;
+}
+
+/* [lyapunov]: the running sum and the shadow, its balls displaced (see the
+ * file comment). */
+static bf_status shadow_create(coupled_model *m, const bf_scene *sc,
+                               bf_err *err)
+{
+    m->ly = malloc(sizeof *m->ly);
+    if (!m->ly)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    bf_status st = bf_lyap_sum_init(m->ly, sc, m->nb, m->sys->it, err);
+    if (!st)
+        st = coupled_build(&m->shadow, sc, 0, err);
+    if (st)
+        return st;
+    coupled_model *sh = m->shadow;
+    const double *x = m->sys->b.x, *v = m->sys->b.v;
+    double *xs = sh->sys->b.x, *vs = sh->sys->b.v;
+    bf_lyap_displace(m->ly, x, v, xs, vs);
+    if (m->sym) {
+        size_t nb = m->nb, half = nb / 2;
+        for (size_t i = 0; i < half; i++) {
+            size_t j = nb - 1 - i;
+            xs[j] = x[j] - (xs[i] - x[i]);
+            vs[j] = v[j] - (vs[i] - v[i]);
+        }
+        if (nb % 2) {
+            xs[half] = x[half];
+            vs[half] = v[half];
+            double back = sqrt((double)nb / (double)(2 * half));
+            bf_lyap_pull(nb, back, x, xs);
+            bf_lyap_pull(nb, back, v, vs);
+        }
+    }
+    state_changed(sh);
+    return BF_OK;
+}
+
 static bf_status coupled_create(void **self, const bf_scene *sc, bf_err *err)
+{
+    coupled_model *m = NULL;
+    bf_status st = coupled_build(&m, sc, 1, err);
+    *self = m;
+    return st;
+}
+
+static bf_status coupled_build(coupled_model **self, const bf_scene *sc,
+                               int with_shadow, bf_err *err)
 {
     coupled_model *m = calloc(1, sizeof *m);
     if (!m)
@@ -325,6 +425,11 @@ static bf_status coupled_create(void **self, const bf_scene *sc, bf_err *err)
     }
     for (int k = 0; k < NSYM; k++)
         m->sym_t[k] = NAN;
+    if (with_shadow && bf_lyap_enabled(sc) &&
+        (st = shadow_create(m, sc, err))) {
+        coupled_destroy(m);
+        return st;
+    }
     *self = m;
     return BF_OK;
 }
@@ -394,6 +499,50 @@ static bf_status events(coupled_model *m, double t, double dt, bf_err *err)
 /* ------------------------------------------------------------ step */
 
 static bf_status coupled_step(void *self, long n, double t, double dt,
+                              bf_err *err);
+
+/* shadow = run + factor (shadow - run) for the whole state (file
+ * comment) */
+static void pull_shadow(coupled_model *m, double factor)
+{
+    coupled_model *sh = m->shadow;
+    const size_t nb = m->nb;
+    bf_lyap_pull(nb, factor, m->sys->b.x, sh->sys->b.x);
+    bf_lyap_pull(nb, factor, m->sys->b.v, sh->sys->b.v);
+    bf_film *f = bf_filmsys_film(m->fs), *fsh = bf_filmsys_film(sh->fs);
+    double *run[BF_FILM_NSTATE], *shadow[BF_FILM_NSTATE];
+    size_t nodes = bf_film_state(f, run);
+    bf_film_state(fsh, shadow);
+    for (int k = 0; k < BF_FILM_NSTATE; k++)
+        bf_lyap_pull(nodes, factor, run[k], shadow[k]);
+    bf_film_state_changed(fsh);
+    if (m->dynamic)
+        bf_lyap_pull(nodes, factor, m->mucpl, sh->mucpl);
+    state_changed(sh);
+}
+
+/* The shadow's step t -> t + dt (the run has just taken it; n_done = n +
+ * 1 steps are done) and, when due, the renormalisation. */
+static bf_status shadow_step(coupled_model *m, long n, double t, double dt,
+                             bf_err *err)
+{
+    coupled_model *sh = m->shadow;
+    bf_status st = coupled_step(sh, n, t, dt, err);
+    if (st) {
+        bf_err_prefix(err, "Lyapunov shadow system");
+        return st;
+    }
+    if (!bf_lyap_due(m->ly, n + 1))
+        return BF_OK;
+    double factor;
+    st = bf_lyap_measure(m->ly, m->sys->b.x, m->sys->b.v, sh->sys->b.x,
+                         sh->sys->b.v, t + dt, &factor, err);
+    if (!st && factor != 1.0)
+        pull_shadow(m, factor);
+    return st;
+}
+
+static bf_status coupled_step(void *self, long n, double t, double dt,
                               bf_err *err)
 {
     coupled_model *m = self;
@@ -442,7 +591,10 @@ static bf_status coupled_step(void *self, long n, double t, double dt,
         m->cpu[1] += c3 - c2;
         m->cpu[2] += (c1 - c0) + (c4 - c3);
     }
-    return events(m, t, dt, err);
+    st = events(m, t, dt, err);
+    if (!st && m->ly)
+        st = shadow_step(m, n, t, dt, err);
+    return st;
 }
 
 static void coupled_energy(const void *self, double t, double *kin,
@@ -487,6 +639,8 @@ static bf_status coupled_output_open(void *self, bf_out *out, bf_err *err)
             "previous row: film alpha_k h (/ max h), film u (/ max |u_k|), "
             "ball x (/ max |x|), ball v (/ max |v|)");
 #undef SER
+    if (m->ly && (st = bf_lyap_sum_output_open(m->ly, out, err)))
+        return st;
     const bf_balls *b = &m->sys->b;
     if ((st = bf_out_array(out, "/balls/mass", b->m, b->n, 0, "g",
                            "ball masses", err)))
@@ -552,6 +706,8 @@ static bf_status coupled_output_close(void *self, bf_out *out, bf_err *err)
                           "projection over the run (columns as "
                           "/coupled/sym_correction)",
                           err);
+    if (!st && m->ly)
+        st = bf_lyap_sum_output_close(m->ly, out, err);
     return st;
 }
 
@@ -583,49 +739,69 @@ static void coupled_report(const void *self, FILE *f)
         fprintf(f, "time: balls %.3f s, film %.3f s, coupling (mu_cpl, "
                    "refresh) %.3f s\n",
                 m->cpu[0], m->cpu[1], m->cpu[2]);
+    if (m->ly)
+        bf_lyap_sum_report(m->ly, &m->shadow->sys->it->count, f);
 }
 
 /* ------------------------------------------------------------ checkpoint */
 
-static bf_status coupled_save(const void *self, bf_ckpt *ck, bf_err *err)
+/* prefix + name, for the run (prefix "") and its shadow ("lyapunov.") */
+static const char *pname(char *buf, size_t cap, const char *prefix,
+                         const char *name)
 {
-    const coupled_model *m = self;
-    bf_status st = bf_filmsys_save(m->fs, ck, err);
+    snprintf(buf, cap, "%s%s", prefix, name);
+    return buf;
+}
+
+static bf_status save_state(const coupled_model *m, bf_ckpt *ck,
+                            const char *prefix, bf_err *err)
+{
+    char nm[128];
+    const size_t cap = sizeof nm;
+    bf_status st = bf_filmsys_save(m->fs, ck, prefix, err);
     if (!st)
-        st = bf_ballsys_save(m->sys, ck, "balls", err);
+        st = bf_ballsys_save(m->sys, ck, pname(nm, cap, prefix, "balls"), err);
     int64_t meta[3] = {(int64_t)m->sys->ode.epoch, m->nmap, m->npeak};
     if (!st)
-        st = bf_ckpt_put_i64(ck, "coupled.meta", meta, 3, err);
+        st = bf_ckpt_put_i64(ck, pname(nm, cap, prefix, "coupled.meta"), meta,
+                             3, err);
     if (!st)
-        st = bf_ckpt_put(ck, "coupled.sym_t", m->sym_t, NSYM, err);
+        st = bf_ckpt_put(ck, pname(nm, cap, prefix, "coupled.sym_t"), m->sym_t,
+                         NSYM, err);
     if (!st)
-        st = bf_ckpt_put(ck, "coupled.mucpl", m->mucpl,
+        st = bf_ckpt_put(ck, pname(nm, cap, prefix, "coupled.mucpl"), m->mucpl,
                          bf_film_nodes(bf_filmsys_film(m->fs)), err);
     if (!st)
-        st = bf_coupling_save(m->cpl, ck, err);
+        st = bf_coupling_save(m->cpl, ck, prefix, err);
     if (!st && m->sym)
-        st = bf_ckpt_put(ck, "coupled.sym_correction", m->symc, 8, err);
+        st = bf_ckpt_put(ck, pname(nm, cap, prefix, "coupled.sym_correction"),
+                         m->symc, 8, err);
     return st;
 }
 
-static bf_status coupled_load(void *self, const bf_ckpt *ck, bf_err *err)
+static bf_status load_state(coupled_model *m, const bf_ckpt *ck,
+                            const char *prefix, bf_err *err)
 {
-    coupled_model *m = self;
+    char nm[128];
+    const size_t cap = sizeof nm;
     int64_t meta[3];
-    bf_status st = bf_filmsys_load(m->fs, ck, err);
+    bf_status st = bf_filmsys_load(m->fs, ck, prefix, err);
     if (!st)
-        st = bf_ballsys_load(m->sys, ck, "balls", err);
+        st = bf_ballsys_load(m->sys, ck, pname(nm, cap, prefix, "balls"), err);
     if (!st)
-        st = bf_ckpt_get_i64(ck, "coupled.meta", meta, 3, err);
+        st = bf_ckpt_get_i64(ck, pname(nm, cap, prefix, "coupled.meta"), meta,
+                             3, err);
     if (!st)
-        st = bf_ckpt_get(ck, "coupled.sym_t", m->sym_t, NSYM, err);
+        st = bf_ckpt_get(ck, pname(nm, cap, prefix, "coupled.sym_t"), m->sym_t,
+                         NSYM, err);
     if (!st)
-        st = bf_ckpt_get(ck, "coupled.mucpl", m->mucpl,
+        st = bf_ckpt_get(ck, pname(nm, cap, prefix, "coupled.mucpl"), m->mucpl,
                          bf_film_nodes(bf_filmsys_film(m->fs)), err);
-    if (!st)
-        st = bf_coupling_load(m->cpl, ck, err); /* after the film */
+    if (!st) /* after the film */
+        st = bf_coupling_load(m->cpl, ck, prefix, err);
     if (!st && m->sym)
-        st = bf_ckpt_get(ck, "coupled.sym_correction", m->symc, 8, err);
+        st = bf_ckpt_get(ck, pname(nm, cap, prefix, "coupled.sym_correction"),
+                         m->symc, 8, err);
     if (!st) {
         m->sys->ode.epoch = (unsigned long)meta[0];
         m->nmap = (long)meta[1];
@@ -634,8 +810,31 @@ static bf_status coupled_load(void *self, const bf_ckpt *ck, bf_err *err)
     return st;
 }
 
+static bf_status coupled_save(const void *self, bf_ckpt *ck, bf_err *err)
+{
+    const coupled_model *m = self;
+    bf_status st = save_state(m, ck, "", err);
+    if (!st && m->ly)
+        st = save_state(m->shadow, ck, "lyapunov.", err);
+    if (!st && m->ly)
+        st = bf_lyap_sum_save(m->ly, ck, err);
+    return st;
+}
+
+static bf_status coupled_load(void *self, const bf_ckpt *ck, bf_err *err)
+{
+    coupled_model *m = self;
+    bf_status st = load_state(m, ck, "", err);
+    if (!st && m->ly)
+        st = load_state(m->shadow, ck, "lyapunov.", err);
+    if (!st && m->ly)
+        st = bf_lyap_sum_load(m->ly, ck, err);
+    return st;
+}
+
 static const bf_section_spec *const coupled_specs[] = {
-    &coupled_spec, &bf_filmsys_spec, &bf_ballsys_ball_spec, NULL};
+    &coupled_spec, &bf_filmsys_spec, &bf_ballsys_ball_spec, &bf_lyap_spec,
+    NULL};
 
 const bf_model_type bf_model_coupled = {
     .name = "coupled",
@@ -655,3 +854,38 @@ const bf_model_type bf_model_coupled = {
     .checkpoint_save = coupled_save,
     .checkpoint_load = coupled_load,
 };
+
+/* ------------------------------------------------------------ drivers */
+
+bf_status bf_coupled_sim_analysis(bf_sim *sim, bf_balls_analysis *a)
+{
+    if (bf_sim_model_type(sim) != &bf_model_coupled)
+        return BF_EINPUT;
+    const coupled_model *m = bf_sim_model(sim);
+    a->has_return_map = 1;
+    a->return_map_points = (size_t)m->nmap;
+    a->return_map_multi_minima = 0;
+    a->has_lyapunov = m->ly != NULL;
+    a->lyapunov_time = 0;
+    a->lyapunov_exponent =
+        m->ly ? bf_lyap_sum_estimate(m->ly, &a->lyapunov_time) : NAN;
+    return BF_OK;
+}
+
+static void parts_of(coupled_model *m, bf_coupled_parts *p)
+{
+    p->sys = m ? m->sys : NULL;
+    p->film = m ? bf_filmsys_film(m->fs) : NULL;
+    p->mu_cpl = m ? m->mucpl : NULL;
+}
+
+bf_status bf_coupled_sim_parts(bf_sim *sim, bf_coupled_parts *run,
+                               bf_coupled_parts *shadow)
+{
+    if (bf_sim_model_type(sim) != &bf_model_coupled)
+        return BF_EINPUT;
+    coupled_model *m = bf_sim_model(sim);
+    parts_of(m, run);
+    parts_of(m->shadow, shadow);
+    return BF_OK;
+}

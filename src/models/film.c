@@ -53,12 +53,12 @@ static void film_report(const void *self, FILE *f)
 
 static bf_status film_save(const void *self, bf_ckpt *ck, bf_err *err)
 {
-    return bf_filmsys_save(self, ck, err);
+    return bf_filmsys_save(self, ck, "", err);
 }
 
 static bf_status film_load(void *self, const bf_ckpt *ck, bf_err *err)
 {
-    return bf_filmsys_load(self, ck, err);
+    return bf_filmsys_load(self, ck, "", err);
 }
 
 static const bf_section_spec *const film_specs[] = {&bf_filmsys_spec, NULL};

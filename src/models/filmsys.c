@@ -436,22 +436,35 @@ void bf_filmsys_report(const bf_filmsys *fs, FILE *out)
                 bf_filmsys_kink_error(fs));
 }
 
-bf_status bf_filmsys_save(const bf_filmsys *fs, bf_ckpt *ck, bf_err *err)
+/* names: prefix + "film", prefix + "film.m0", prefix + "film.drift" */
+bf_status bf_filmsys_save(const bf_filmsys *fs, bf_ckpt *ck,
+                          const char *prefix, bf_err *err)
 {
-    bf_status st = bf_film_save(fs->film, ck, "film", err);
+    char name[128];
+    snprintf(name, sizeof name, "%sfilm", prefix);
+    size_t len = strlen(name);
+    bf_status st = bf_film_save(fs->film, ck, name, err);
+    snprintf(name + len, sizeof name - len, ".m0");
     if (!st)
-        st = bf_ckpt_put(ck, "film.m0", fs->m0, 2, err);
+        st = bf_ckpt_put(ck, name, fs->m0, 2, err);
+    snprintf(name + len, sizeof name - len, ".drift");
     if (!st)
-        st = bf_ckpt_put_real(ck, "film.drift", fs->drift, err);
+        st = bf_ckpt_put_real(ck, name, fs->drift, err);
     return st;
 }
 
-bf_status bf_filmsys_load(bf_filmsys *fs, const bf_ckpt *ck, bf_err *err)
+bf_status bf_filmsys_load(bf_filmsys *fs, const bf_ckpt *ck,
+                          const char *prefix, bf_err *err)
 {
-    bf_status st = bf_film_load(fs->film, ck, "film", err);
+    char name[128];
+    snprintf(name, sizeof name, "%sfilm", prefix);
+    size_t len = strlen(name);
+    bf_status st = bf_film_load(fs->film, ck, name, err);
+    snprintf(name + len, sizeof name - len, ".m0");
     if (!st)
-        st = bf_ckpt_get(ck, "film.m0", fs->m0, 2, err);
+        st = bf_ckpt_get(ck, name, fs->m0, 2, err);
+    snprintf(name + len, sizeof name - len, ".drift");
     if (!st)
-        st = bf_ckpt_get_real(ck, "film.drift", &fs->drift, err);
+        st = bf_ckpt_get_real(ck, name, &fs->drift, err);
     return st;
 }
