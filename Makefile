@@ -486,14 +486,16 @@ survey-mass: $(PROG) | deps deps-plot
 	$(PY) plots/survey.py out/survey_mass -o out/survey_mass.png \
 	    --label "lower/upper mass ratio"
 
-# Survey of the coupled film: the fourth ball's return map over film lengths
+# Survey of the coupled film: the fourth ball's return map and the largest
+# Lyapunov exponent (shadow coupled system, README) over film lengths
 # 49.5..50.5 cm (11 points), 50 s each with the multirate option (film step
 # every 30 ball steps, which passed its accuracy check: README, multirate).
 survey-length: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) sweep runs/coupled_fig8.ini --vary film.length=49.5:50.5:11 \
 	    --set coupled.film_every=30 --set scene.output_every=1000 \
-	    --set "film.profile_every=10 s" --jobs 2 -q -o out/survey_length
+	    --set "film.profile_every=10 s" --set lyapunov.enabled=yes \
+	    --jobs 2 -q -o out/survey_length
 	$(PY) plots/survey.py out/survey_length -o out/survey_length.png \
 	    --label "film length [cm]" --maps 11
 

@@ -49,7 +49,7 @@ if (~ok).any():
     ax.legend()
 ax.set_xlabel(label)
 ax.set_ylabel("largest Lyapunov exponent [1/s]")
-if has_lyap:
+if has_lyap and (lyap[ok] > 0).all():
     ax.set_yscale("log")
 ax.grid(True, which="both", alpha=0.3)
 ax2 = fig.add_subplot(gs[0, cols // 2:])

@@ -146,8 +146,21 @@ void bf_registry_print_help(FILE *f)
         }                                                                      \
     } while (0)
     for (size_t k = 0; k < nm; k++)
-        for (const bf_section_spec *const *s = models[k]->specs; s && *s; s++)
-            SHOW(*s, models[k]->name);
+        for (const bf_section_spec *const *s = models[k]->specs; s && *s;
+             s++) {
+            /* a section shared by models ([ball.N], [lyapunov]) names
+             * them all */
+            char owners[256] = "";
+            for (size_t j = 0; j < nm; j++)
+                for (const bf_section_spec *const *t = models[j]->specs;
+                     t && *t; t++)
+                    if (*t == *s) {
+                        size_t len = strlen(owners);
+                        snprintf(owners + len, sizeof owners - len, "%s%s",
+                                 len ? ", " : "", models[j]->name);
+                    }
+            SHOW(*s, owners);
+        }
     for (size_t k = 0; k < ni; k++)
         SHOW(ints[k]->spec, ints[k]->name);
     for (size_t k = 0; k < ne; k++)
