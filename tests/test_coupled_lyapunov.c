@@ -220,14 +220,8 @@ static void restart_case(const char *tag, const char *sym)
                     every, "--set", sym, NULL);
     ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
     free(err);
-    rc = tu_run(NULL, &err, "run", scene, "-o", part, "-q", "--set", every,
-                "--set", sym, "--stop-after", "1237", NULL);
-    ck_assert_msg(rc == 6, "exit %d: %s", rc, err);
-    free(err);
-    rc = tu_run(NULL, &err, "run", "--restart", part, "-q", NULL);
-    ck_assert_msg(rc == 0, "exit %d: %s", rc, err);
-    free(err);
-    tu_same_datasets(full, part);
+    const char *args[] = {"--set", every, "--set", sym, NULL};
+    tu_stop_restart_same(scene, full, part, "1237", args);
     double lf, lp;
     bf_err e = {0};
     ck_assert(bf_h5_read_attr_real(full, "/", "lyapunov_exponent", &lf, &e) ==

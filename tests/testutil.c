@@ -369,3 +369,27 @@ bf_integrator *tu_integrator(const char *name, const char *keys, size_t n)
     bf_scene_free(sc);
     return it;
 }
+
+void tu_stop_restart_same(const char *scene, const char *full,
+                          const char *part, const char *stop,
+                          const char *const *args)
+{
+    const char *argv[32] = {"run", scene, "-o", part, "-q"};
+    size_t n = 5;
+    for (; *args && n < 5 + 16; args++)
+        argv[n++] = *args;
+    argv[n++] = "--stop-after";
+    argv[n++] = stop;
+    argv[n] = NULL;
+    char *err = NULL;
+    int rc = tu_runv(NULL, &err, argv);
+    ck_assert_msg(rc == 6, "%s stopped at %s: exit %d\n%s", scene, stop, rc,
+                  err ? err : "");
+    free(err);
+    const char *again[] = {"run", "--restart", part, "-q", NULL};
+    rc = tu_runv(NULL, &err, again);
+    ck_assert_msg(rc == 0, "restart of %s: exit %d\n%s", part, rc,
+                  err ? err : "");
+    free(err);
+    tu_same_datasets(full, part);
+}

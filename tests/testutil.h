@@ -47,6 +47,14 @@ void tu_free_list(char **list);
 /* Assert that two files hold the same datasets with the same bits. */
 void tu_same_datasets(const char *a, const char *b);
 
+/* Run `run SCENE -o PART -q ARGS... --stop-after STOP` (it must stop:
+ * exit 6), continue it with `run --restart PART -q` (it must finish), and
+ * assert that PART holds FULL's datasets bit for bit.  args is
+ * NULL-terminated (at most 16). */
+void tu_stop_restart_same(const char *scene, const char *full,
+                          const char *part, const char *stop,
+                          const char *const *args);
+
 double tu_max(const double *v, size_t n);
 double tu_absmax(const double *v, size_t n);
 

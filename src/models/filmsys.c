@@ -436,35 +436,37 @@ void bf_filmsys_report(const bf_filmsys *fs, FILE *out)
                 bf_filmsys_kink_error(fs));
 }
 
-/* names: prefix + "film", prefix + "film.m0", prefix + "film.drift" */
+/* checkpoint names: prefix + "film" (the film's arrays), + ".m0", +
+ * ".drift" */
+typedef struct filmsys_names {
+    char film[96], m0[104], drift[104];
+} filmsys_names;
+
+static filmsys_names names_of(const char *prefix)
+{
+    filmsys_names n;
+    snprintf(n.film, sizeof n.film, "%sfilm", prefix);
+    snprintf(n.m0, sizeof n.m0, "%s.m0", n.film);
+    snprintf(n.drift, sizeof n.drift, "%s.drift", n.film);
+    return n;
+}
+
 bf_status bf_filmsys_save(const bf_filmsys *fs, bf_ckpt *ck,
                           const char *prefix, bf_err *err)
 {
-    char name[128];
-    snprintf(name, sizeof name, "%sfilm", prefix);
-    size_t len = strlen(name);
-    bf_status st = bf_film_save(fs->film, ck, name, err);
-    snprintf(name + len, sizeof name - len, ".m0");
+    filmsys_names n = names_of(prefix);
+    bf_status st = bf_film_save(fs->film, ck, n.film, err);
     if (!st)
-        st = bf_ckpt_put(ck, name, fs->m0, 2, err);
-    snprintf(name + len, sizeof name - len, ".drift");
-    if (!st)
-        st = bf_ckpt_put_real(ck, name, fs->drift, err);
-    return st;
+        st = bf_ckpt_put(ck, n.m0, fs->m0, 2, err);
+    return st ? st : bf_ckpt_put_real(ck, n.drift, fs->drift, err);
 }
 
 bf_status bf_filmsys_load(bf_filmsys *fs, const bf_ckpt *ck,
                           const char *prefix, bf_err *err)
 {
-    char name[128];
-    snprintf(name, sizeof name, "%sfilm", prefix);
-    size_t len = strlen(name);
-    bf_status st = bf_film_load(fs->film, ck, name, err);
-    snprintf(name + len, sizeof name - len, ".m0");
+    filmsys_names n = names_of(prefix);
+    bf_status st = bf_film_load(fs->film, ck, n.film, err);
     if (!st)
-        st = bf_ckpt_get(ck, name, fs->m0, 2, err);
-    snprintf(name + len, sizeof name - len, ".drift");
-    if (!st)
-        st = bf_ckpt_get_real(ck, name, &fs->drift, err);
-    return st;
+        st = bf_ckpt_get(ck, n.m0, fs->m0, 2, err);
+    return st ? st : bf_ckpt_get_real(ck, n.drift, &fs->drift, err);
 }
