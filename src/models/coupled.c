@@ -79,9 +79,11 @@
  * (1/t) log |delta(t)|_balls has the same limit as with any other norm, as
  * long as the pull-back keeps delta's direction, i.e. scales the full
  * vector; pulling back only the balls would change the direction each time
- * and measure something else.  (A direction with no ball component is
- * invisible to the ball norm, but the film alone has no such growing
- * direction that the balls do not feel through the coupling.)
+ * and measure something else.  (Caveat: the equivalence needs a norm of
+ * the whole vector; the ball norm is only a semi-norm.  It still gives the
+ * largest exponent unless the most unstable direction never reaches the
+ * balls, i.e. a film mode the balls do not feel; the estimate is then the
+ * largest exponent the balls feel, which is what the survey asks.)
  * Physical film: the factor d0/d is < 1, so each alpha_k h of the shadow
  * becomes the convex combination (1 - f) A_run + f A_shadow of two
  * non-negative values: non-negative (also in floating point: |fl(s - r)|
