@@ -490,13 +490,17 @@ survey-mass: $(PROG) | deps deps-plot
 # Lyapunov exponent (shadow coupled system, README) over film lengths
 # 49.5..50.5 cm (11 points), 50 s each with the multirate option (film step
 # every 30 ball steps, which passed its accuracy check: README, multirate).
+# SURVEY_T: simulated seconds per length (50 s is the paper's Figs 8-9;
+# the Lyapunov estimates need longer to settle).
+SURVEY_T ?= 200
 survey-length: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) sweep runs/coupled_fig8.ini --vary film.length=49.5:50.5:11 \
+	    --set scene.t_end=$(SURVEY_T) \
 	    --set coupled.film_every=30 --set scene.output_every=1000 \
 	    --set "film.profile_every=10 s" --set lyapunov.enabled=yes \
-	    --jobs 2 -q -o out/survey_length
-	$(PY) plots/survey.py out/survey_length -o out/survey_length.png \
+	    --jobs 2 -q -o out/survey_length_$(SURVEY_T)s
+	$(PY) plots/survey.py out/survey_length_$(SURVEY_T)s -o out/survey_length.png \
 	    --label "film length [cm]" --maps 11
 
 # ---------------------------------------------------------------- tests
