@@ -182,7 +182,8 @@ START_TEST(pull_back_scales_whole_state_and_keeps_film_physical)
 END_TEST
 
 /* A separation that shrank is left alone and the sum telescopes: d = d0/2
- * then d = 2 d0 gives log 2 in total and one pull-back by 1/2. */
+ * then d = 2 d0 gives log 2 in total and one pull-back by 1/2; one that
+ * shrank below BF_LYAP_RESEED_BELOW d0 is re-seeded. */
 START_TEST(shrunken_separation_is_not_pushed_out)
 {
     bf_lyap_sum ls = {.n = 1, .d0 = 1, .tau = 1, .every = 1, .d_start = 1};
@@ -198,8 +199,21 @@ START_TEST(shrunken_separation_is_not_pushed_out)
     double t;
     ck_assert(fabs(bf_lyap_sum_estimate(&ls, &t) - log(2.0) / 2) < 1e-15);
     ck_assert(t == 2.0);
+    /* shrunk below BF_LYAP_RESEED_BELOW d0: re-seed (factor 0), the next
+     * interval starts at d0 again, and the shrink is still counted */
+    xs = 0.5 * BF_LYAP_RESEED_BELOW;
+    ck_assert(bf_lyap_measure(&ls, &x, &v, &xs, &vs, 3.0, &f, &err) == BF_OK);
+    ck_assert(f == 0.0);
+    ck_assert(ls.d_start == 1);
+    ck_assert(fabs(bf_lyap_sum_estimate(&ls, &t) -
+                   log(BF_LYAP_RESEED_BELOW) / 3) < 1e-15);
+    /* just above the threshold: left alone */
+    xs = 2 * BF_LYAP_RESEED_BELOW;
+    ck_assert(bf_lyap_measure(&ls, &x, &v, &xs, &vs, 4.0, &f, &err) == BF_OK);
+    ck_assert(f == 1.0);
+    ck_assert(ls.d_start == xs);
     xs = 0;
-    ck_assert(bf_lyap_measure(&ls, &x, &v, &xs, &vs, 3.0, &f, &err) ==
+    ck_assert(bf_lyap_measure(&ls, &x, &v, &xs, &vs, 5.0, &f, &err) ==
               BF_EUNSTABLE);
 }
 END_TEST

@@ -9,7 +9,11 @@
  * log(d_k/s_k) is accumulated, s_k being the distance the shadow started
  * that interval at; if d_k > d0 the shadow is pulled back to distance d0
  * along the current separation (s_(k+1) = d0), otherwise it is left alone
- * (s_(k+1) = d_k).  The sum telescopes to log(total growth of the
+ * (s_(k+1) = d_k), unless it has shrunk below BF_LYAP_RESEED_BELOW d0:
+ * then the shadow is re-seeded, run + the initial displacement
+ * (s_(k+1) = d0), before the difference sinks into the state's round-off
+ * (positions ~1 cm carry ~1e-16 cm of it) and the two merge, as they would
+ * in a contracting (dissipative) motion.  The sum telescopes to log(total growth of the
  * separation), so the estimate after K renormalisations at time t_K is
  *
  *   lambda = (1/t_K) sum_k log(d_k/s_k)   (1/s),
@@ -58,6 +62,11 @@ typedef struct bf_lyap_sum {
     bf_series *s_t, *s_l;
 } bf_lyap_sum;
 
+/* Re-seed the shadow when the separation shrinks below this fraction of
+ * d0 (1e-4: with the default d0 = 1e-8 cm, 1e-12 cm, four orders above
+ * the round-off of cm-sized positions). */
+#define BF_LYAP_RESEED_BELOW 1e-4
+
 /* 1 if the scene has [lyapunov] enabled = yes. */
 int bf_lyap_enabled(const bf_scene *sc);
 /* Read [lyapunov] for n balls advanced by `it` (refused if adaptive),
@@ -76,7 +85,10 @@ static inline int bf_lyap_due(const bf_lyap_sum *ls, long n_done)
 /* At the end of an interval (time t_end): measure the distance of the
  * shadow (xs, vs) from (x, v), accumulate, record, and return in *factor
  * the factor d0/d (< 1) the caller must apply to the whole difference
- * shadow - run (bf_lyap_pull), or 1 when d <= d0 (leave the shadow).
+ * shadow - run (bf_lyap_pull), 1 when BF_LYAP_RESEED_BELOW d0 <= d <= d0
+ * (leave the shadow), or 0 below that: re-seed, i.e. make the whole
+ * shadow state equal to the run's and displace its balls again as at the
+ * start (bf_lyap_displace).
  * Fails with BF_EUNSTABLE if d is 0 or not finite. */
 bf_status bf_lyap_measure(bf_lyap_sum *ls, const double *x, const double *v,
                           const double *xs, const double *vs, double t_end,

@@ -24,7 +24,8 @@ static const bf_param lyap_params[] = {
      NULL},
     {"renormalise_every", BF_INTERVAL, "steps | s", "0.1 s",
      "interval between renormalisations ('N' steps or 'T s'); the shadow "
-     "is pulled back to d0 only if it has moved further away",
+     "is pulled back to d0 only if it has moved further away, and "
+     "re-seeded at d0 if it has come closer than 1e-4 d0",
      0, 0, 0, NULL},
     {0},
 };
@@ -97,6 +98,9 @@ bf_status bf_lyap_measure(bf_lyap_sum *ls, const double *x, const double *v,
     ls->t_last = t_end;
     if (d > ls->d0) {
         *factor = ls->d0 / d;
+        ls->d_start = ls->d0;
+    } else if (d < BF_LYAP_RESEED_BELOW * ls->d0) {
+        *factor = 0.0; /* the caller re-seeds: shadow = run + displacement */
         ls->d_start = ls->d0;
     } else {
         *factor = 1.0;
@@ -245,11 +249,15 @@ bf_status bf_lyap_after_step(bf_lyap *ly, const bf_ballsys *sys, long n_done,
     double factor;
     st = bf_lyap_measure(&ly->sum, sys->b.x, sys->b.v, ly->x, ly->v, t + dt,
                          &factor, err);
-    if (!st && factor != 1.0) {
-        bf_lyap_pull(ly->sum.n, factor, sys->b.x, ly->x);
-        bf_lyap_pull(ly->sum.n, factor, sys->b.v, ly->v);
+    if (st || factor == 1.0)
+        return st;
+    if (factor == 0.0) {
+        bf_lyap_displace(&ly->sum, sys->b.x, sys->b.v, ly->x, ly->v);
+        return BF_OK;
     }
-    return st;
+    bf_lyap_pull(ly->sum.n, factor, sys->b.x, ly->x);
+    bf_lyap_pull(ly->sum.n, factor, sys->b.v, ly->v);
+    return BF_OK;
 }
 
 double bf_lyap_estimate(const bf_lyap *ly, double *t_ref)

@@ -90,7 +90,9 @@
  * <= r for 0 <= s < r, and f <= 1), so h = A_d + A_c > 0 and alpha_k in
  * [0, 1].  A separation that has shrunk (d <= d0) is left alone (no
  * factor > 1, which could push a small alpha below 0), and the sum
- * accounts for it (lyapunov.h).
+ * accounts for it (lyapunov.h); one that has shrunk below
+ * BF_LYAP_RESEED_BELOW d0 is re-seeded (factor 0: the film becomes the
+ * run's exactly, the balls are displaced again) before the two merge.
  */
 #include <math.h>
 #include <stdint.h>
@@ -319,19 +321,10 @@ static void state_changed(coupled_model *m)
     m->sys->ode.epoch++;
 }
 
-/* [lyapunov]: the running sum and the shadow, its balls displaced (see the
- * file comment). */
-static bf_status shadow_create(coupled_model *m, const bf_scene *sc,
-                               bf_err *err)
+/* The shadow's balls = the run's + the initial displacement of length d0
+ * (mirror-odd with symmetrize; file comment).  Its film is not touched. */
+static void displace_shadow_balls(coupled_model *m)
 {
-    m->ly = malloc(sizeof *m->ly);
-    if (!m->ly)
-        return bf_fail(err, BF_EINTERNAL, "out of memory");
-    bf_status st = bf_lyap_sum_init(m->ly, sc, m->nb, m->sys->it, err);
-    if (!st)
-        st = coupled_build(&m->shadow, sc, 0, err);
-    if (st)
-        return st;
     coupled_model *sh = m->shadow;
     const double *x = m->sys->b.x, *v = m->sys->b.v;
     double *xs = sh->sys->b.x, *vs = sh->sys->b.v;
@@ -351,7 +344,23 @@ static bf_status shadow_create(coupled_model *m, const bf_scene *sc,
             bf_lyap_pull(nb, back, v, vs);
         }
     }
-    state_changed(sh);
+}
+
+/* [lyapunov]: the running sum and the shadow, its balls displaced (see the
+ * file comment). */
+static bf_status shadow_create(coupled_model *m, const bf_scene *sc,
+                               bf_err *err)
+{
+    m->ly = malloc(sizeof *m->ly);
+    if (!m->ly)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    bf_status st = bf_lyap_sum_init(m->ly, sc, m->nb, m->sys->it, err);
+    if (!st)
+        st = coupled_build(&m->shadow, sc, 0, err);
+    if (st)
+        return st;
+    displace_shadow_balls(m);
+    state_changed(m->shadow);
     return BF_OK;
 }
 
@@ -504,7 +513,8 @@ static bf_status coupled_step(void *self, long n, double t, double dt,
                               bf_err *err);
 
 /* shadow = run + factor (shadow - run) for the whole state (file
- * comment) */
+ * comment); factor 0 re-seeds: the shadow becomes the run, its balls
+ * displaced again as at the start. */
 static void pull_shadow(coupled_model *m, double factor)
 {
     coupled_model *sh = m->shadow;
@@ -520,6 +530,8 @@ static void pull_shadow(coupled_model *m, double factor)
     bf_film_state_changed(fsh);
     if (m->dynamic)
         bf_lyap_pull(nodes, factor, m->mucpl, sh->mucpl);
+    if (factor == 0.0)
+        displace_shadow_balls(m);
     state_changed(sh);
 }
 
