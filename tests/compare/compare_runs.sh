@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# compare_runs.sh BIN_A BIN_B [WORKDIR] [NAME-REGEX]
+#
+# Runs every case of tests/compare/cases.txt with two ballfilm binaries and
+# compares, case by case, the exit statuses and every dataset (and root
+# attribute) of the files written, bit for bit (tests/compare/h5same.py).
+# This is how a refactor proves that it changed no result: build the
+# commit before it somewhere else, e.g.
+#   git worktree add /tmp/before HEAD~1 && make -C /tmp/before
+#   tests/compare/compare_runs.sh /tmp/before/bin/ballfilm bin/ballfilm
+# Run from the repository root.  Exit 0 when every case is the same.
+set -u
+if [ $# -lt 2 ]; then
+    echo "usage: $0 BIN_A BIN_B [WORKDIR] [NAME-REGEX]" >&2
+    exit 2
+fi
+A=$(readlink -f "$1")
+B=$(readlink -f "$2")
+W=${3:-build/compare}
+FILTER=${4:-.}
+HERE=$(dirname "$0")
+PY=/usr/bin/python3
+rm -rf "$W/a" "$W/b"
+mkdir -p "$W/a" "$W/b"
+
+# run_side BIN DIR: every case into DIR (exit statuses in DIR/NAME.rc)
+run_side() {
+    local bin=$1 dir=$2 name cmds cmd rc
+    while IFS= read -r line; do
+        case "$line" in ''|'#'*) continue ;; esac
+        name=${line%%:*}
+        [[ $name =~ $FILTER ]] || continue
+        cmds=${line#*: }
+        rc=""
+        while [ -n "$cmds" ]; do
+            cmd=${cmds%% ;; *}
+            if [ "$cmd" = "$cmds" ]; then cmds=""; else cmds=${cmds#* ;; }; fi
+            cmd=${cmd//@OUT/$dir/$name}
+            eval "\"$bin\" $cmd" > "$dir/$name.log" 2>&1
+            rc="$rc $?"
+        done
+        echo "$rc" > "$dir/$name.rc"
+    done < "$HERE/cases.txt"
+}
+
+run_side "$A" "$W/a" &
+pid=$!
+run_side "$B" "$W/b"
+wait $pid
+
+ncase=0
+ndiff=0
+for rcfile in "$W"/a/*.rc; do
+    name=$(basename "$rcfile" .rc)
+    ncase=$((ncase + 1))
+    msg=""
+    if ! cmp -s "$rcfile" "$W/b/$name.rc"; then
+        msg="exit status $(cat "$rcfile") vs $(cat "$W/b/$name.rc" 2>/dev/null)"
+    fi
+    files=()
+    [ -f "$W/a/$name.h5" ] && files+=("$name.h5")
+    if [ -d "$W/a/$name.d" ]; then
+        for f in "$W/a/$name.d"/*.h5; do files+=("$name.d/$(basename "$f")"); done
+    fi
+    for f in "${files[@]}"; do
+        if [ ! -f "$W/b/$f" ]; then
+            msg="$msg; $f missing"
+        elif ! out=$($PY "$HERE/h5same.py" "$W/a/$f" "$W/b/$f"); then
+            msg="$msg; $f:"$'\n'"$out"
+        fi
+    done
+    if [ -n "$msg" ]; then
+        ndiff=$((ndiff + 1))
+        echo "DIFFERS  $name: $msg"
+    else
+        echo "same     $name (${#files[@]} files, exit$(cat "$rcfile"))"
+    fi
+done
+echo "compare_runs: $ncase cases, $((ncase - ndiff)) the same, $ndiff differ"
+[ $ndiff -eq 0 ]
