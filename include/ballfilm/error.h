@@ -25,9 +25,17 @@ typedef enum bf_status {
 
 #define BF_ERR_MSG 1024
 
+/* section, key: the scene key a failure is about ("film", "dx";
+ * "ball.2", "position"; key "" for the section as a whole), or "" when it
+ * is about none.  A module that validates its parameters names the key
+ * this way (bf_fail_key) without knowing the scene; the layer that built
+ * the parameters from a scene turns it into "FILE:LINE: error: [film] dx:
+ * ..." (bf_scene_locate). */
 typedef struct bf_err {
     bf_status status;
     char msg[BF_ERR_MSG];
+    char section[64];
+    char key[64];
 } bf_err;
 
 /* Record a failure; returns `status` so callers can write
@@ -35,6 +43,13 @@ typedef struct bf_err {
 bf_status bf_fail(bf_err *err, bf_status status, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 bf_status bf_vfail(bf_err *err, bf_status status, const char *fmt, va_list ap);
+
+/* The same, naming the scene key the failure is about. */
+bf_status bf_fail_key(bf_err *err, bf_status status, const char *section,
+                      const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+/* Name the key of a failure already recorded (section NULL: none). */
+void bf_err_set_key(bf_err *err, const char *section, const char *key);
 
 /* Prefix an existing message: "context: old message". */
 void bf_err_prefix(bf_err *err, const char *fmt, ...)

@@ -25,49 +25,7 @@
 #include <stdio.h>
 
 #include "ballfilm/error.h"
-
-typedef enum bf_ptype {
-    BF_REAL,     /* a finite real number */
-    BF_INT,      /* an integer (long) */
-    BF_BOOL,     /* true/false, yes/no, on/off, 1/0 */
-    BF_STR,      /* free text (file names) */
-    BF_ENUM,     /* one word from `choices` ("a|b|c") */
-    BF_NAMES,    /* a list of words from `choices`, comma or space separated */
-    BF_REALS,    /* a list of real numbers, comma or space separated */
-    BF_INTERVAL  /* "N" steps, or "T s" simulated seconds */
-} bf_ptype;
-
-/* Constraint flags for BF_REAL / BF_INT / BF_REALS (each element). */
-enum {
-    BF_POS = 1u << 0,     /* value > 0 */
-    BF_NONNEG = 1u << 1,  /* value >= 0 */
-    BF_MIN = 1u << 2,     /* value >= lo */
-    BF_MAX = 1u << 3,     /* value <= hi */
-    BF_HIDDEN = 1u << 4   /* not listed by --help (internal/test keys) */
-};
-
-typedef struct bf_param {
-    const char *key;
-    bf_ptype type;
-    const char *unit;    /* CGS unit ("cm", "g", "s", "1" = dimensionless) */
-    const char *def;     /* default as text; NULL: the key is required */
-    const char *doc;     /* one line, shown by --help */
-    unsigned flags;
-    double lo, hi;
-    const char *choices; /* BF_ENUM, BF_NAMES: "a|b|c" */
-} bf_param;
-
-typedef struct bf_section_spec {
-    const char *name;      /* "scene", "film", "ball.N" */
-    const char *doc;
-    const bf_param *params; /* terminated by an entry with key == NULL */
-} bf_section_spec;
-
-typedef struct bf_interval {
-    int in_time;   /* 0: `steps` is set; 1: `time` is set (seconds) */
-    long steps;
-    double time;
-} bf_interval;
+#include "ballfilm/params.h"
 
 typedef struct bf_scene bf_scene;
 
@@ -136,6 +94,18 @@ int bf_scene_has_key(const bf_scene *sc, const char *section, const char *key);
 /* Number of consecutive indexed sections NAME.1 .. NAME.n ("ball" -> n). */
 int bf_scene_count(const bf_scene *sc, const char *base);
 
+/* Write the resolved values of one section ("film", "ball.2") into the
+ * struct of its spec (zeroed first; params.h).  The section must be one
+ * the scene resolved with that spec; strings and lists in the struct
+ * point into the scene. */
+void bf_scene_fill(const bf_scene *sc, const char *section,
+                   const bf_section_spec *spec, void *dst);
+
+/* A failure that names a key (bf_fail_key) becomes a message located in
+ * the scene: "FILE:LINE: error: [section] key: ...", as bf_scene_fail
+ * writes it; other failures are left alone. */
+void bf_scene_locate(const bf_scene *sc, bf_err *err);
+
 /* Report a semantic error about a key ("balls overlap", "dt above the stable
  * limit"): the message is prefixed with the key's file and line. */
 bf_status bf_scene_fail(const bf_scene *sc, bf_err *err, const char *section,
@@ -149,12 +119,5 @@ typedef int (*bf_scene_visit_fn)(void *ctx, const char *name, const char *value,
                                  const char *unit, int is_default);
 int bf_scene_visit(const bf_scene *sc, bf_scene_visit_fn fn, void *ctx);
 
-/* Print the documentation of a list of section specs (for --help). */
-void bf_scene_print_specs(FILE *f, const bf_section_spec *const *specs,
-                          size_t n);
-
-/* Parse helpers shared with the command line. */
-int bf_parse_real(const char *text, double *out);
-int bf_parse_long(const char *text, long *out);
 
 #endif

@@ -6,11 +6,11 @@
 #include <string.h>
 
 static const bf_param compare_params[] = {
-    {"a", BF_STR, "", "",
+    {"a", BF_STR, 0, "", "",
      "integrator a (empty: no comparison); /compare/dv = v after one step of "
      "a - v after one step of b, from the state of every output row",
      0, 0, 0, NULL},
-    {"b", BF_STR, "", "alpha",
+    {"b", BF_STR, 0, "", "alpha",
      "integrator b (default parameters; alpha = 1/8 is the second-order "
      "mid-point rule)",
      0, 0, 0, NULL},
@@ -19,7 +19,7 @@ static const bf_param compare_params[] = {
 
 const bf_section_spec bf_compare_spec = {
     "compare", "one-step difference of two integrators along the run (Fig. 4)",
-    compare_params};
+    compare_params, 0};
 
 struct bf_compare {
     size_t n;

@@ -9,20 +9,20 @@
 #include <string.h>
 
 static const bf_param lyap_params[] = {
-    {"enabled", BF_BOOL, "", "no",
+    {"enabled", BF_BOOL, 0, "", "no",
      "estimate the largest Lyapunov exponent (integrates a second, shadow "
      "trajectory: doubles the cost; in the coupled model the shadow has its "
      "own film, and the whole difference, balls and film, is pulled back "
      "while the distance is measured on the balls)",
      0, 0, 0, NULL},
-    {"d0", BF_REAL, "cm", "1e-8",
+    {"d0", BF_REAL, 0, "cm", "1e-8",
      "distance of the shadow trajectory in the scaled phase space (x, tau v) "
      "of the balls",
      BF_POS, 0, 0, NULL},
-    {"tau", BF_REAL, "s", "0.01",
+    {"tau", BF_REAL, 0, "s", "0.01",
      "time scale that turns velocity differences into lengths", BF_POS, 0, 0,
      NULL},
-    {"renormalise_every", BF_INTERVAL, "steps | s", "0.1 s",
+    {"renormalise_every", BF_INTERVAL, 0, "steps | s", "0.1 s",
      "interval between renormalisations ('N' steps or 'T s'); the shadow "
      "is pulled back to d0 only if it has moved further away, and "
      "re-seeded at d0 if it has come closer than 1e-4 d0",
@@ -32,7 +32,7 @@ static const bf_param lyap_params[] = {
 
 const bf_section_spec bf_lyap_spec = {
     "lyapunov", "largest Lyapunov exponent by two nearby trajectories",
-    lyap_params};
+    lyap_params, 0};
 
 /* ------------------------------------------------ shared bookkeeping */
 

@@ -18,21 +18,21 @@
 #include <string.h>
 
 static const bf_param retmap_params[] = {
-    {"enabled", BF_BOOL, "", "no",
+    {"enabled", BF_BOOL, 0, "", "no",
      "record the first-return map (see README): the recorded ball's (z, v) "
      "at each lowest point of the trigger ball on the floor",
      0, 0, 0, NULL},
-    {"trigger", BF_INT, "1", "1",
+    {"trigger", BF_INT, 0, "1", "1",
      "ball whose lowest points on the floor define the map (1 = lowest)",
      BF_MIN, 1, 0, NULL},
-    {"record", BF_INT, "1", "2", "ball whose (z, v) is recorded", BF_MIN, 1, 0,
+    {"record", BF_INT, 0, "1", "2", "ball whose (z, v) is recorded", BF_MIN, 1, 0,
      NULL},
     {0},
 };
 
 const bf_section_spec bf_retmap_spec = {
     "return_map", "first-return map of falling balls (Yasuda Figs 2-3)",
-    retmap_params};
+    retmap_params, 0};
 
 /* columns of a point */
 enum { P_T, P_Z, P_V, P_ZT, P_MIN, NCOL };

@@ -112,7 +112,7 @@ void bf_registry_print_help(FILE *f)
     fprintf(f, "Scene files are INI files.  Every key, with its unit and "
                "default:\n");
     one[0] = &bf_sim_scene_spec;
-    bf_scene_print_specs(f, one, 1);
+    bf_params_print(f, one, 1);
 
     size_t nm, ni, ne;
     const bf_model_type *const *models = bf_model_types(&nm);
@@ -142,7 +142,7 @@ void bf_registry_print_help(FILE *f)
             seen[nseen++] = s_;                                                \
             fprintf(f, "\n-- used by %s --", owner);                           \
             one[0] = s_;                                                       \
-            bf_scene_print_specs(f, one, 1);                                   \
+            bf_params_print(f, one, 1);                                   \
         }                                                                      \
     } while (0)
     for (size_t k = 0; k < nm; k++)

@@ -20,33 +20,33 @@
 #include "ballfilm/version.h"
 
 static const bf_param scene_params[] = {
-    {"title", BF_STR, "", "", "free text describing the scene", 0, 0, 0, NULL},
-    {"model", BF_STR, "", "balls",
+    {"title", BF_STR, 0, "", "", "free text describing the scene", 0, 0, 0, NULL},
+    {"model", BF_STR, 0, "", "balls",
      "what is simulated (see Models below)", 0, 0, 0, NULL},
-    {"integrator", BF_STR, "", "mv2m",
+    {"integrator", BF_STR, 0, "", "mv2m",
      "time integrator for ball models (see Integrators below)", 0, 0, 0, NULL},
-    {"effects", BF_NAMES, "", "",
+    {"effects", BF_NAMES, 0, "", "",
      "ball effects to switch on, e.g. 'gravity floor contact' (see Effects "
      "below); nothing else is computed",
      0, 0, 0, NULL},
-    {"dt", BF_REAL, "s", NULL, "time step", BF_POS, 0, 0, NULL},
-    {"t_end", BF_REAL, "s", NULL,
+    {"dt", BF_REAL, 0, "s", NULL, "time step", BF_POS, 0, 0, NULL},
+    {"t_end", BF_REAL, 0, "s", NULL,
      "final time; the run takes ceil(t_end/dt) steps", BF_POS, 0, 0, NULL},
-    {"output_every", BF_INTERVAL, "steps | s", "1",
+    {"output_every", BF_INTERVAL, 0, "steps | s", "1",
      "output interval: 'N' steps or 'T s' of simulated time (rounded to "
      "whole steps); the final state is always written",
      0, 0, 0, NULL},
-    {"energy_every", BF_INT, "steps", "1",
+    {"energy_every", BF_INT, 0, "steps", "1",
      "check the energy every N steps (0: only at output rows)", BF_NONNEG, 0,
      0, NULL},
-    {"max_energy_error", BF_REAL, "1", "0",
+    {"max_energy_error", BF_REAL, 0, "1", "0",
      "stop the run when the relative energy error exceeds this (0: no "
      "bound)",
      BF_NONNEG, 0, 0, NULL},
-    {"flush_seconds", BF_REAL, "s (wall)", "5",
+    {"flush_seconds", BF_REAL, 0, "s (wall)", "5",
      "wall-clock interval between HDF5 flushes (what a killed run keeps)",
      BF_POS, 0, 0, NULL},
-    {"checkpoint_every", BF_INTERVAL, "steps | s", "0",
+    {"checkpoint_every", BF_INTERVAL, 0, "steps | s", "0",
      "write a checkpoint (OUT.ckpt) every 'N' steps or 'T s' (0: only when "
      "interrupted); continue with ballfilm run --restart OUT",
      0, 0, 0, NULL},
@@ -55,7 +55,7 @@ static const bf_param scene_params[] = {
 
 const bf_section_spec bf_sim_scene_spec = {
     "scene", "what to simulate and how long (every scene has it)",
-    scene_params};
+    scene_params, 0};
 
 struct bf_sim {
     const bf_scene *sc;

@@ -11,14 +11,14 @@
 typedef bf_contact contact;
 
 static const bf_param contact_params[] = {
-    {"k", BF_REAL, "g cm^-1/2 s^-2", "1e7",
+    {"k", BF_REAL, 0, "g cm^-1/2 s^-2", "1e7",
      "Hertz constant of the ball-ball contact", BF_POS, 0, 0, NULL},
     {0},
 };
 
 static const bf_section_spec contact_spec = {
     "contact", "Hertz contact between neighbouring balls (Yasuda eq. 2.6)",
-    contact_params};
+    contact_params, 0};
 
 static bf_status contact_create(void **self, const bf_scene *sc,
                                 const bf_balls *b, const bf_effect_env *env,

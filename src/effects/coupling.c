@@ -1087,19 +1087,19 @@ bf_status bf_coupling_load(bf_coupling *c, const bf_ckpt *ck,
 /* ---------------------------------------------------------------- effect */
 
 static const bf_param coupling_params[] = {
-    {"V0", BF_REAL, "g/(cm^3 s^2)", "0.01",
+    {"V0", BF_REAL, 0, "g/(cm^3 s^2)", "0.01",
      "strength V0 of V(s) = V0 exp(-|s|/r0) (eq. 3.10)", BF_NONNEG, 0, 0,
      NULL},
-    {"r0", BF_REAL, "cm", "0.5", "range r0 of V(s)", BF_POS, 0, 0, NULL},
-    {"mobility", BF_REAL, "1/g", "1e5", "ball mobility M (eq. 3.12)",
+    {"r0", BF_REAL, 0, "cm", "0.5", "range r0 of V(s)", BF_POS, 0, 0, NULL},
+    {"mobility", BF_REAL, 0, "1/g", "1e5", "ball mobility M (eq. 3.12)",
      BF_NONNEG, 0, 0, NULL},
-    {"psi_s", BF_REAL, "1", "0", "order parameter of the ball surface",
+    {"psi_s", BF_REAL, 0, "1", "0", "order parameter of the ball surface",
      BF_MIN | BF_MAX, -1, 1, NULL},
-    {"quadrature", BF_ENUM, "", "spline",
+    {"quadrature", BF_ENUM, 0, "", "spline",
      "interpolation of g = h (psi - psi_s)^2 for the integral (3.10): "
      "spline (natural cubic, the paper's) or linear",
      0, 0, 0, "spline|linear"},
-    {"taylor", BF_BOOL, "", "true",
+    {"taylor", BF_BOOL, 0, "", "true",
      "reuse a 5th-order expansion of the integral around each ball's first "
      "position per film level (exact to 1e-17 within 2e-3 r0)",
      0, 0, 0, NULL},
@@ -1109,7 +1109,7 @@ static const bf_param coupling_params[] = {
 static const bf_section_spec coupling_spec = {
     "coupling",
     "balls coupled to the film by the free energy F (Yasuda eqs 3.10-3.12)",
-    coupling_params};
+    coupling_params, 0};
 
 static bf_status coupling_effect_create(void **self, const bf_scene *sc,
                                         const bf_balls *b,

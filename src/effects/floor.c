@@ -10,14 +10,14 @@
 typedef bf_floor floor_;
 
 static const bf_param floor_params[] = {
-    {"k", BF_REAL, "g cm^-1/2 s^-2", "1e7",
+    {"k", BF_REAL, 0, "g cm^-1/2 s^-2", "1e7",
      "Hertz constant of the ball-floor contact", BF_POS, 0, 0, NULL},
     {0},
 };
 
 static const bf_section_spec floor_spec = {
     "floor", "rigid floor at x = 0 with Hertz contact (Yasuda eq. 2.5)",
-    floor_params};
+    floor_params, 0};
 
 static bf_status floor_create(void **self, const bf_scene *sc, const bf_balls *b,
                               const bf_effect_env *env, bf_err *err)

@@ -8,14 +8,14 @@
 typedef bf_gravity gravity;
 
 static const bf_param gravity_params[] = {
-    {"g", BF_REAL, "cm/s^2", "980", "gravitational acceleration (downward)",
+    {"g", BF_REAL, 0, "cm/s^2", "980", "gravitational acceleration (downward)",
      BF_NONNEG, 0, 0, NULL},
     {0},
 };
 
 static const bf_section_spec gravity_spec = {
     "gravity", "uniform gravity pulling balls towards the floor (x decreasing)",
-    gravity_params};
+    gravity_params, 0};
 
 static bf_status gravity_create(void **self, const bf_scene *sc,
                                 const bf_balls *b, const bf_effect_env *env,

@@ -8,15 +8,15 @@
 typedef bf_spring spring;
 
 static const bf_param spring_params[] = {
-    {"stiffness", BF_REAL, "g/s^2", "1",
+    {"stiffness", BF_REAL, 0, "g/s^2", "1",
      "spring constant s (dyn/cm); omega = sqrt(s/m)", BF_POS, 0, 0, NULL},
-    {"rest", BF_REAL, "cm", "0", "rest position x_rest", 0, 0, 0, NULL},
+    {"rest", BF_REAL, 0, "cm", "0", "rest position x_rest", 0, 0, 0, NULL},
     {0},
 };
 
 static const bf_section_spec spring_spec = {
     "spring", "linear restoring force towards x_rest (harmonic oscillator)",
-    spring_params};
+    spring_params, 0};
 
 static bf_status spring_create(void **self, const bf_scene *sc,
                                const bf_balls *b, const bf_effect_env *env,

@@ -45,11 +45,11 @@ typedef struct alpha_priv {
 } alpha_priv;
 
 static const bf_param alpha_params[] = {
-    {"alpha", BF_REAL, "1", "0.125",
+    {"alpha", BF_REAL, 0, "1", "0.125",
      "alpha of eq. 2.16: 0 improved Euler, 0.125 second-order mid-point, "
      "0.25 mid-point",
      BF_MIN | BF_MAX, 0, 1, NULL},
-    {"position", BF_ENUM, "", "verlet",
+    {"position", BF_ENUM, 0, "", "verlet",
      "position update: verlet (x += dt v + dt^2/2 a(x^n)) or trapezoid "
      "(x += dt (v^n + v^{n+1})/2); see README for their stability",
      0, 0, 0, "verlet|trapezoid"},
@@ -58,7 +58,7 @@ static const bf_param alpha_params[] = {
 
 static const bf_section_spec alpha_spec = {
     "integrator", "parameters of the alpha-family (Yasuda eqs 2.16-2.17)",
-    alpha_params};
+    alpha_params, 0};
 
 static bf_status alpha_init(bf_integrator *it, const bf_scene *sc, bf_err *err)
 {

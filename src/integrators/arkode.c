@@ -206,46 +206,46 @@ const char *bf_arkode_table_name(int index)
 size_t bf_arkode_ntables(void) { return NTABLES; }
 
 static const bf_param adaptive_params[] = {
-    {"table", BF_ENUM, "", "ARKODE_DORMAND_PRINCE_7_4_5",
+    {"table", BF_ENUM, 0, "", "ARKODE_DORMAND_PRINCE_7_4_5",
      "ERK Butcher table with an embedding (ARKODE name; KNOTH_WOLKE_3_3 has "
      "none and is refused; FEHLBERG_13_7_8's error estimate does not see "
      "contacts, README)",
      0, 0, 0, TABLE_CHOICES},
-    {"rtol", BF_REAL, "1", "1e-8", "relative tolerance of the local error",
+    {"rtol", BF_REAL, 0, "1", "1e-8", "relative tolerance of the local error",
      BF_POS, 0, 0, NULL},
-    {"atol", BF_REAL, "cm, cm/s", "1e-11",
+    {"atol", BF_REAL, 0, "cm, cm/s", "1e-11",
      "absolute tolerance of the local error (positions and velocities)",
      BF_POS, 0, 0, NULL},
-    {"max_steps", BF_INT, "1", "1000000",
+    {"max_steps", BF_INT, 0, "1", "1000000",
      "internal steps allowed per [scene] dt before the run fails", BF_MIN, 1,
      0, NULL},
-    {"max_step", BF_REAL, "s", "0",
+    {"max_step", BF_REAL, 0, "s", "0",
      "largest internal step (0: no limit besides [scene] dt); free flight "
      "under gravity has a zero error estimate, so without a limit steps grow "
      "until they jump deep into a contact",
      BF_NONNEG, 0, 0, NULL},
-    {"work_around_311", BF_BOOL, "", "yes",
+    {"work_around_311", BF_BOOL, 0, "", "yes",
      "pad tables hit by ARKODE issue 311 (tests only)", BF_HIDDEN, 0, 0, NULL},
     {0},
 };
 
 static const bf_param fixed_params[] = {
-    {"table", BF_ENUM, "", "ARKODE_ZONNEVELD_5_3_4",
+    {"table", BF_ENUM, 0, "", "ARKODE_ZONNEVELD_5_3_4",
      "ERK Butcher table (ARKODE name)", 0, 0, 0, TABLE_CHOICES},
-    {"substeps", BF_INT, "1", "1",
+    {"substeps", BF_INT, 0, "1", "1",
      "fixed internal steps of size dt/substeps per [scene] dt", BF_MIN, 1, 0,
      NULL},
-    {"work_around_311", BF_BOOL, "", "yes",
+    {"work_around_311", BF_BOOL, 0, "", "yes",
      "pad tables hit by ARKODE issue 311 (tests only)", BF_HIDDEN, 0, 0, NULL},
     {0},
 };
 
 static const bf_section_spec adaptive_spec = {
     "integrator", "parameters of the ARKODE adaptive ERK integrator",
-    adaptive_params};
+    adaptive_params, 0};
 static const bf_section_spec fixed_spec = {
     "integrator", "parameters of the ARKODE fixed-step ERK integrator",
-    fixed_params};
+    fixed_params, 0};
 
 static void ark_free(bf_integrator *it)
 {

@@ -32,18 +32,18 @@ typedef struct impmid_priv {
 } impmid_priv;
 
 static const bf_param impmid_params[] = {
-    {"tol", BF_REAL, "1", "1e-14",
+    {"tol", BF_REAL, 0, "1", "1e-14",
      "relative tolerance of the fixed-point iteration (max norm of the "
      "mid-point velocity update over the velocity scale)",
      BF_POS, 0, 0, NULL},
-    {"max_iter", BF_INT, "1", "50",
+    {"max_iter", BF_INT, 0, "1", "50",
      "iterations allowed per step before the step fails (exit 4)", BF_MIN, 1,
      0, NULL},
     {0},
 };
 
 static const bf_section_spec impmid_spec = {
-    "integrator", "parameters of the implicit mid-point rule", impmid_params};
+    "integrator", "parameters of the implicit mid-point rule", impmid_params, 0};
 
 static bf_status impmid_init(bf_integrator *it, const bf_scene *sc, bf_err *err)
 {

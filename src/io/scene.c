@@ -26,14 +26,7 @@ typedef struct entry {
     int line;     /* 0: no line (default or command line) */
     int given;    /* 1: from the file or an override, 0: default */
     const bf_param *param;
-    double r;
-    long i;
-    int b, e;
-    double *reals;
-    size_t nreals;
-    char **names;
-    size_t nnames;
-    bf_interval iv;
+    bf_value v; /* parsed (resolved entries) */
 } entry;
 
 typedef struct sect {
@@ -79,25 +72,13 @@ static void *xrealloc(void *p, size_t n)
     return q;
 }
 
-static void entry_clear_values(entry *e)
-{
-    free(e->reals);
-    e->reals = NULL;
-    e->nreals = 0;
-    for (size_t k = 0; k < e->nnames; k++)
-        free(e->names[k]);
-    free(e->names);
-    e->names = NULL;
-    e->nnames = 0;
-}
-
 static void entry_free(entry *e)
 {
     free(e->section);
     free(e->key);
     free(e->text);
     free(e->origin);
-    entry_clear_values(e);
+    bf_value_free(&e->v);
 }
 
 static entry *push_entry(entry **arr, size_t *n, size_t *cap)
@@ -469,158 +450,6 @@ bf_status bf_scene_set(bf_scene *sc, const char *assignment, const char *origin,
     return BF_OK;
 }
 
-/* -------------------------------------------------------- value parsing */
-
-int bf_parse_real(const char *text, double *out)
-{
-    if (!text || !*text)
-        return 0;
-    char *end;
-    errno = 0;
-    double v = strtod(text, &end);
-    if (end == text)
-        return 0;
-    while (*end == ' ' || *end == '\t')
-        end++;
-    if (*end || !isfinite(v) || errno == ERANGE) {
-        /* ERANGE on underflow of a tiny number is fine (v is 0 or tiny) */
-        if (*end || !isfinite(v) || fabs(v) > 1.0)
-            return 0;
-    }
-    *out = v;
-    return 1;
-}
-
-int bf_parse_long(const char *text, long *out)
-{
-    if (!text || !*text)
-        return 0;
-    char *end;
-    errno = 0;
-    long v = strtol(text, &end, 10);
-    while (*end == ' ' || *end == '\t')
-        end++;
-    if (!*end && end != text && errno == 0) {
-        *out = v;
-        return 1;
-    }
-    /* accept integral reals such as 1e5 */
-    double d;
-    if (bf_parse_real(text, &d) && d == floor(d) && fabs(d) < 9e15) {
-        *out = (long)d;
-        return 1;
-    }
-    return 0;
-}
-
-static int parse_bool(const char *t, int *out)
-{
-    static const char *yes[] = {"true", "yes", "on", "1"};
-    static const char *no[] = {"false", "no", "off", "0"};
-    for (int k = 0; k < 4; k++) {
-        if (!strcasecmp(t, yes[k])) {
-            *out = 1;
-            return 1;
-        }
-        if (!strcasecmp(t, no[k])) {
-            *out = 0;
-            return 1;
-        }
-    }
-    return 0;
-}
-
-/* Index of `word` in "a|b|c", or -1. */
-static int choice_index(const char *choices, const char *word)
-{
-    int idx = 0;
-    const char *p = choices;
-    size_t wl = strlen(word);
-    while (p && *p) {
-        const char *bar = strchr(p, '|');
-        size_t len = bar ? (size_t)(bar - p) : strlen(p);
-        if (len == wl && !strncmp(p, word, len))
-            return idx;
-        idx++;
-        p = bar ? bar + 1 : NULL;
-    }
-    return -1;
-}
-
-/* Split on commas and blanks. Returns the number of tokens; *toks is a
- * malloc'd array of malloc'd strings. */
-static size_t split_list(const char *text, char ***toks)
-{
-    size_t n = 0, cap = 8;
-    char **t = xrealloc(NULL, cap * sizeof *t);
-    const char *p = text;
-    for (;;) {
-        while (*p == ',' || *p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')
-            p++;
-        if (!*p)
-            break;
-        const char *q = p;
-        while (*q && *q != ',' && *q != ' ' && *q != '\t' && *q != '\n' &&
-               *q != '\r')
-            q++;
-        if (n == cap) {
-            cap *= 2;
-            t = xrealloc(t, cap * sizeof *t);
-        }
-        t[n] = xrealloc(NULL, (size_t)(q - p) + 1);
-        memcpy(t[n], p, (size_t)(q - p));
-        t[n][q - p] = '\0';
-        n++;
-        p = q;
-    }
-    *toks = t;
-    return n;
-}
-
-static void free_toks(char **t, size_t n)
-{
-    for (size_t k = 0; k < n; k++)
-        free(t[k]);
-    free(t);
-}
-
-static const char *type_name(bf_ptype t)
-{
-    switch (t) {
-    case BF_REAL: return "real";
-    case BF_INT: return "integer";
-    case BF_BOOL: return "bool";
-    case BF_STR: return "text";
-    case BF_ENUM: return "choice";
-    case BF_NAMES: return "list of names";
-    case BF_REALS: return "list of reals";
-    case BF_INTERVAL: return "interval";
-    }
-    return "?";
-}
-
-/* Range check of one number; writes the violated condition into `why`. */
-static int in_range(const bf_param *p, double v, char *why, size_t n)
-{
-    if ((p->flags & BF_POS) && !(v > 0)) {
-        snprintf(why, n, "must be > 0");
-        return 0;
-    }
-    if ((p->flags & BF_NONNEG) && !(v >= 0)) {
-        snprintf(why, n, "must be >= 0");
-        return 0;
-    }
-    if ((p->flags & BF_MIN) && !(v >= p->lo)) {
-        snprintf(why, n, "must be >= %g", p->lo);
-        return 0;
-    }
-    if ((p->flags & BF_MAX) && !(v <= p->hi)) {
-        snprintf(why, n, "must be <= %g", p->hi);
-        return 0;
-    }
-    return 1;
-}
-
 static bf_status where_fail(bf_err *err, const entry *e, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 static bf_status where_fail(bf_err *err, const entry *e, const char *fmt, ...)
@@ -640,98 +469,11 @@ static bf_status where_fail(bf_err *err, const entry *e, const char *fmt, ...)
 
 static bf_status parse_value(entry *e, bf_err *err)
 {
-    const bf_param *p = e->param;
-    char why[128];
-    entry_clear_values(e);
-    switch (p->type) {
-    case BF_REAL:
-        if (!bf_parse_real(e->text, &e->r))
-            return where_fail(err, e, "is not a finite real number");
-        if (!in_range(p, e->r, why, sizeof why))
-            return where_fail(err, e, "%s", why);
-        return BF_OK;
-    case BF_INT:
-        if (!bf_parse_long(e->text, &e->i))
-            return where_fail(err, e, "is not an integer");
-        if (!in_range(p, (double)e->i, why, sizeof why))
-            return where_fail(err, e, "%s", why);
-        return BF_OK;
-    case BF_BOOL:
-        if (!parse_bool(e->text, &e->b))
-            return where_fail(err, e, "is not true/false (yes/no, on/off, 1/0)");
-        return BF_OK;
-    case BF_STR:
-        return BF_OK;
-    case BF_ENUM:
-        e->e = choice_index(p->choices, e->text);
-        if (e->e < 0)
-            return where_fail(err, e, "is not one of %s", p->choices);
-        return BF_OK;
-    case BF_NAMES: {
-        char **t;
-        size_t n = split_list(e->text, &t);
-        for (size_t k = 0; k < n; k++) {
-            if (p->choices && choice_index(p->choices, t[k]) < 0) {
-                bf_status st = where_fail(err, e, "contains '%s', not one of %s",
-                                          t[k], p->choices);
-                free_toks(t, n);
-                return st;
-            }
-            for (size_t j = 0; j < k; j++)
-                if (!strcmp(t[j], t[k])) {
-                    bf_status st =
-                        where_fail(err, e, "names '%s' twice", t[k]);
-                    free_toks(t, n);
-                    return st;
-                }
-        }
-        e->names = t;
-        e->nnames = n;
-        return BF_OK;
-    }
-    case BF_REALS: {
-        char **t;
-        size_t n = split_list(e->text, &t);
-        e->reals = xrealloc(NULL, (n ? n : 1) * sizeof *e->reals);
-        e->nreals = n;
-        for (size_t k = 0; k < n; k++) {
-            if (!bf_parse_real(t[k], &e->reals[k])) {
-                bf_status st = where_fail(err, e, "element %zu '%s' is not a "
-                                          "finite real number", k + 1, t[k]);
-                free_toks(t, n);
-                return st;
-            }
-            if (!in_range(p, e->reals[k], why, sizeof why)) {
-                bf_status st = where_fail(err, e, "element %zu %s", k + 1, why);
-                free_toks(t, n);
-                return st;
-            }
-        }
-        free_toks(t, n);
-        return BF_OK;
-    }
-    case BF_INTERVAL: {
-        char **t;
-        size_t n = split_list(e->text, &t);
-        bf_status st = BF_OK;
-        memset(&e->iv, 0, sizeof e->iv);
-        if (n == 1 || (n == 2 && !strcmp(t[1], "steps"))) {
-            if (!bf_parse_long(t[0], &e->iv.steps) || e->iv.steps < 0)
-                st = where_fail(err, e, "is not a number of steps >= 0 "
-                                "(write 'T s' for simulated seconds)");
-        } else if (n == 2 && !strcmp(t[1], "s")) {
-            e->iv.in_time = 1;
-            if (!bf_parse_real(t[0], &e->iv.time) || !(e->iv.time >= 0))
-                st = where_fail(err, e, "is not a time >= 0 in seconds");
-        } else {
-            st = where_fail(err, e, "expected 'N' (steps), 'N steps' or "
-                            "'T s' (simulated seconds)");
-        }
-        free_toks(t, n);
-        return st;
-    }
-    }
-    return where_fail(err, e, "has an unknown type");
+    char why[256];
+    bf_value_free(&e->v);
+    if (!bf_param_parse(e->param, e->text, &e->v, why, sizeof why))
+        return where_fail(err, e, "%s", why);
+    return BF_OK;
 }
 
 /* ----------------------------------------------------------- resolution */
@@ -767,20 +509,6 @@ static const bf_param *spec_param(const bf_section_spec *s, const char *key)
     return NULL;
 }
 
-static void list_keys(const bf_section_spec *s, char *buf, size_t n)
-{
-    size_t used = 0;
-    buf[0] = '\0';
-    for (const bf_param *p = s->params; p && p->key; p++) {
-        if (p->flags & BF_HIDDEN)
-            continue;
-        int w = snprintf(buf + used, n - used, "%s%s", used ? ", " : "", p->key);
-        if (w < 0 || (size_t)w >= n - used)
-            break;
-        used += (size_t)w;
-    }
-}
-
 static bf_status resolve_sections(bf_scene *sc, const bf_section_spec *const *specs,
                                   size_t nspecs, bf_err *err)
 {
@@ -796,7 +524,7 @@ static bf_status resolve_sections(bf_scene *sc, const bf_section_spec *const *sp
             continue; /* checked by the caller once all specs are known */
         if (!spec_param(s, r->key)) {
             char keys[768];
-            list_keys(s, keys, sizeof keys);
+            bf_params_list_keys(s, keys, sizeof keys);
             return fail_at(err, r->origin, r->line,
                            "[%s] %s: unknown key (keys of [%s]: %s)", r->section,
                            r->key, s->name, keys);
@@ -935,7 +663,7 @@ static const entry *get(const bf_scene *sc, const char *section, const char *key
                 fprintf(stderr,
                         "ballfilm: internal error: [%s] %s read as %s, declared "
                         "%s\n",
-                        section, key, type_name(want), type_name(e->param->type));
+                        section, key, bf_ptype_name(want), bf_ptype_name(e->param->type));
                 abort();
             }
             return e;
@@ -948,17 +676,17 @@ static const entry *get(const bf_scene *sc, const char *section, const char *key
 
 double bf_scene_real(const bf_scene *sc, const char *s, const char *k)
 {
-    return get(sc, s, k, BF_REAL)->r;
+    return get(sc, s, k, BF_REAL)->v.r;
 }
 
 long bf_scene_int(const bf_scene *sc, const char *s, const char *k)
 {
-    return get(sc, s, k, BF_INT)->i;
+    return get(sc, s, k, BF_INT)->v.i;
 }
 
 int bf_scene_bool(const bf_scene *sc, const char *s, const char *k)
 {
-    return get(sc, s, k, BF_BOOL)->b;
+    return get(sc, s, k, BF_BOOL)->v.b;
 }
 
 const char *bf_scene_str(const bf_scene *sc, const char *s, const char *k)
@@ -974,23 +702,23 @@ const char *bf_scene_str(const bf_scene *sc, const char *s, const char *k)
 
 int bf_scene_enum(const bf_scene *sc, const char *s, const char *k)
 {
-    return get(sc, s, k, BF_ENUM)->e;
+    return get(sc, s, k, BF_ENUM)->v.e;
 }
 
 const double *bf_scene_reals(const bf_scene *sc, const char *s, const char *k,
                              size_t *n)
 {
     const entry *e = get(sc, s, k, BF_REALS);
-    *n = e->nreals;
-    return e->reals;
+    *n = e->v.nreals;
+    return e->v.reals;
 }
 
 const char *const *bf_scene_names(const bf_scene *sc, const char *s,
                                   const char *k, size_t *n)
 {
     const entry *e = get(sc, s, k, BF_NAMES);
-    *n = e->nnames;
-    return (const char *const *)e->names;
+    *n = e->v.nnames;
+    return (const char *const *)e->v.names;
 }
 
 int bf_scene_has_name(const bf_scene *sc, const char *s, const char *k,
@@ -1006,7 +734,7 @@ int bf_scene_has_name(const bf_scene *sc, const char *s, const char *k,
 
 bf_interval bf_scene_interval(const bf_scene *sc, const char *s, const char *k)
 {
-    return get(sc, s, k, BF_INTERVAL)->iv;
+    return get(sc, s, k, BF_INTERVAL)->v.iv;
 }
 
 int bf_scene_has_section(const bf_scene *sc, const char *section)
@@ -1061,6 +789,30 @@ bf_status bf_scene_fail(const bf_scene *sc, bf_err *err, const char *section,
     return fail_at(err, sc->path, se ? se->line : 0, "[%s]: %s", section, body);
 }
 
+void bf_scene_fill(const bf_scene *sc, const char *section,
+                   const bf_section_spec *spec, void *dst)
+{
+    memset(dst, 0, spec->size);
+    for (const bf_param *p = spec->params; p && p->key; p++) {
+        const entry *e = get(sc, section, p->key, p->type);
+        bf_param_store(p, &e->v, e->text, dst);
+    }
+}
+
+void bf_scene_locate(const bf_scene *sc, bf_err *err)
+{
+    if (!err || !err->section[0])
+        return;
+    char section[sizeof err->section], key[sizeof err->key];
+    char msg[BF_ERR_MSG];
+    memcpy(section, err->section, sizeof section);
+    memcpy(key, err->key, sizeof key);
+    memcpy(msg, err->msg, sizeof msg);
+    bf_status st = err->status;
+    bf_scene_fail(sc, err, section, key[0] ? key : NULL, "%s", msg);
+    err->status = st;
+}
+
 int bf_scene_visit(const bf_scene *sc, bf_scene_visit_fn fn, void *ctx)
 {
     char name[512];
@@ -1075,33 +827,3 @@ int bf_scene_visit(const bf_scene *sc, bf_scene_visit_fn fn, void *ctx)
     return 0;
 }
 
-/* ------------------------------------------------------------------ help */
-
-void bf_scene_print_specs(FILE *f, const bf_section_spec *const *specs, size_t n)
-{
-    for (size_t j = 0; j < n; j++) {
-        const bf_section_spec *s = specs[j];
-        fprintf(f, "\n[%s]  %s\n", s->name, s->doc ? s->doc : "");
-        for (const bf_param *p = s->params; p && p->key; p++) {
-            if (p->flags & BF_HIDDEN)
-                continue;
-            char range[96] = "";
-            if (p->flags & BF_POS)
-                snprintf(range, sizeof range, ", > 0");
-            else if (p->flags & BF_NONNEG)
-                snprintf(range, sizeof range, ", >= 0");
-            if ((p->flags & BF_MIN) && (p->flags & BF_MAX))
-                snprintf(range, sizeof range, ", in [%g, %g]", p->lo, p->hi);
-            else if (p->flags & BF_MIN)
-                snprintf(range, sizeof range, ", >= %g", p->lo);
-            else if (p->flags & BF_MAX)
-                snprintf(range, sizeof range, ", <= %g", p->hi);
-            fprintf(f, "  %-16s %s\n", p->key, p->doc ? p->doc : "");
-            fprintf(f, "  %-16s   [%s%s%s%s; unit %s; default %s]\n", "",
-                    type_name(p->type), p->choices ? ": " : "",
-                    p->choices ? p->choices : "", range,
-                    p->unit && *p->unit ? p->unit : "-",
-                    p->def ? (*p->def ? p->def : "\"\"") : "required");
-        }
-    }
-}

@@ -28,18 +28,18 @@
 #include <stdlib.h>
 
 static const bf_param ball_params[] = {
-    {"position", BF_REAL, "cm", NULL,
+    {"position", BF_REAL, 0, "cm", NULL,
      "centre position at t = 0 (height above the floor, or x in the film)", 0,
      0, 0, NULL},
-    {"velocity", BF_REAL, "cm/s", "0", "velocity at t = 0", 0, 0, 0, NULL},
-    {"mass", BF_REAL, "g", "1", "mass", BF_POS, 0, 0, NULL},
-    {"radius", BF_REAL, "cm", "0.1", "radius", BF_POS, 0, 0, NULL},
+    {"velocity", BF_REAL, 0, "cm/s", "0", "velocity at t = 0", 0, 0, 0, NULL},
+    {"mass", BF_REAL, 0, "g", "1", "mass", BF_POS, 0, 0, NULL},
+    {"radius", BF_REAL, 0, "cm", "0.1", "radius", BF_POS, 0, 0, NULL},
     {0},
 };
 
 const bf_section_spec bf_ballsys_ball_spec = {
     "ball.N", "one section per ball, N = 1, 2, ... in increasing position",
-    ball_params};
+    ball_params, 0};
 
 /* The acceleration callback handed to the integrator: the effects' dispatch
  * point, inlined here (see effect_kernels.h for why).  The attribute keeps

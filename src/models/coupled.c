@@ -112,35 +112,35 @@ enum { NSYM = 4 };
 static const double sym_levels[NSYM] = {1e-12, 1e-9, 1e-6, 1e-3};
 
 static const bf_param coupled_params[] = {
-    {"film", BF_ENUM, "", "dynamic",
+    {"film", BF_ENUM, 0, "", "dynamic",
      "dynamic: the film is solved and feels the balls (sec. 3.5); static: "
      "the balls move in the potential of the initial film (sec. 3.4)",
      0, 0, 0, "dynamic|static"},
-    {"film_every", BF_INT, "steps", "1",
+    {"film_every", BF_INT, 0, "steps", "1",
      "multirate: the film takes one step of film_every x dt every "
      "film_every ball steps (1: the paper's single rate)",
      BF_MIN, 1, 0, NULL},
-    {"probe", BF_REAL, "cm", "0.3",
+    {"probe", BF_REAL, 0, "cm", "0.3",
      "position of the psi probe /coupled/psi_probe (Fig. 8C)", 0, 0, 0,
      NULL},
-    {"map_ball", BF_INT, "", "0",
+    {"map_ball", BF_INT, 0, "", "0",
      "ball recorded in the return map (0: the last)", BF_NONNEG, 0, 0, NULL},
-    {"map_pivot", BF_INT, "", "0",
+    {"map_pivot", BF_INT, 0, "", "0",
      "ball whose closest approach to the origin, while touching its inner "
      "neighbour, triggers the return map (0: ball n/2 + 1)",
      BF_NONNEG, 0, 0, NULL},
-    {"peak_ball", BF_INT, "", "0",
+    {"peak_ball", BF_INT, 0, "", "0",
      "ball whose position maxima are recorded in /coupled/peaks (0: the "
      "last)",
      BF_NONNEG, 0, 0, NULL},
-    {"symmetrize", BF_BOOL, "", "no",
+    {"symmetrize", BF_BOOL, 0, "", "no",
      "yes: after each step project balls and film onto the mirror-symmetric "
      "states (x -> -x, psi -> -psi; ball i <-> ball n+1-i), removing the "
      "round-off that breaks the symmetry (needs a symmetric set-up); "
      "/coupled/sym_correction records the largest change. no: the paper's "
      "scheme",
      0, 0, 0, NULL},
-    {"timing", BF_BOOL, "", "false",
+    {"timing", BF_BOOL, 0, "", "false",
      "measure the wall time of balls, film and coupling separately (bench)",
      BF_HIDDEN, 0, 0, NULL},
     {0},
@@ -148,7 +148,7 @@ static const bf_param coupled_params[] = {
 
 static const bf_section_spec coupled_spec = {
     "coupled", "balls coupled to the film (Yasuda sec. 3.4-3.5)",
-    coupled_params};
+    coupled_params, 0};
 
 typedef struct coupled_model {
     bf_filmsys *fs;

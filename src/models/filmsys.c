@@ -31,62 +31,62 @@ enum { INIT_KINK, INIT_UNIFORM, INIT_FILE };
 enum { PERT_POSITIVE, PERT_SIGNED };
 
 static const bf_param film_params[] = {
-    {"length", BF_REAL, "cm", "50", "film length L (walls at -L/2 and L/2)",
+    {"length", BF_REAL, 0, "cm", "50", "film length L (walls at -L/2 and L/2)",
      BF_POS, 0, 0, NULL},
-    {"dx", BF_REAL, "cm", "0.1", "node spacing; L/dx must be a whole number",
+    {"dx", BF_REAL, 0, "cm", "0.1", "node spacing; L/dx must be a whole number",
      BF_POS, 0, 0, NULL},
-    {"h0", BF_REAL, "cm", "1", "initial height (kink and uniform)", BF_POS, 0,
+    {"h0", BF_REAL, 0, "cm", "1", "initial height (kink and uniform)", BF_POS, 0,
      0, NULL},
-    {"rho_d", BF_REAL, "g/cm^3", "1", "density of the minor phase d", BF_POS,
+    {"rho_d", BF_REAL, 0, "g/cm^3", "1", "density of the minor phase d", BF_POS,
      0, 0, NULL},
-    {"rho_c", BF_REAL, "g/cm^3", "1", "density of the major phase c", BF_POS,
+    {"rho_c", BF_REAL, 0, "g/cm^3", "1", "density of the major phase c", BF_POS,
      0, 0, NULL},
-    {"nu", BF_REAL, "cm^2/s", "0.01", "lateral viscosity (sec. 3.4)",
+    {"nu", BF_REAL, 0, "cm^2/s", "0.01", "lateral viscosity (sec. 3.4)",
      BF_NONNEG, 0, 0, NULL},
-    {"g", BF_REAL, "cm/s^2", "980", "gravitational acceleration", BF_NONNEG,
+    {"g", BF_REAL, 0, "cm/s^2", "980", "gravitational acceleration", BF_NONNEG,
      0, 0, NULL},
-    {"a", BF_REAL, "g/(cm s^2)", "1", "Ginzburg-Landau constant a", BF_POS, 0,
+    {"a", BF_REAL, 0, "g/(cm s^2)", "1", "Ginzburg-Landau constant a", BF_POS, 0,
      0, NULL},
-    {"b", BF_REAL, "g/(cm s^2)", "1",
+    {"b", BF_REAL, 0, "g/(cm s^2)", "1",
      "Ginzburg-Landau constant b (b >= a keeps |psi_e| <= 1)", BF_POS, 0, 0,
      NULL},
-    {"gamma", BF_REAL, "g cm/s^2", "1", "Ginzburg-Landau gradient constant",
+    {"gamma", BF_REAL, 0, "g cm/s^2", "1", "Ginzburg-Landau gradient constant",
      BF_POS, 0, 0, NULL},
-    {"initial", BF_ENUM, "", "kink",
+    {"initial", BF_ENUM, 0, "", "kink",
      "initial psi: kink (eq. 3.17), uniform (psi0), or file (last profile "
      "of an earlier run's output)",
      0, 0, 0, "kink|uniform|file"},
-    {"center", BF_REAL, "cm", "0", "kink centre x0", 0, 0, 0, NULL},
-    {"psi0", BF_REAL, "1", "0", "order parameter of the uniform film",
+    {"center", BF_REAL, 0, "cm", "0", "kink centre x0", 0, 0, 0, NULL},
+    {"psi0", BF_REAL, 0, "1", "0", "order parameter of the uniform film",
      BF_MIN | BF_MAX, -1, 1, NULL},
-    {"file", BF_STR, "", "", "HDF5 output of an earlier run (initial = file)",
+    {"file", BF_STR, 0, "", "", "HDF5 output of an earlier run (initial = file)",
      0, 0, 0, NULL},
-    {"perturbation", BF_REAL, "1", "0",
+    {"perturbation", BF_REAL, 0, "1", "0",
      "amplitude of the random perturbation of the volume fractions",
      BF_MIN | BF_MAX, 0, 0.5, NULL},
-    {"perturbation_mode", BF_ENUM, "", "positive",
+    {"perturbation_mode", BF_ENUM, 0, "", "positive",
      "positive: alpha_k += [0, amp) then renormalised; signed: alpha_d += "
      "[-amp, amp), clipped to [0, 1]",
      0, 0, 0, "positive|signed"},
-    {"seed", BF_INT, "", "1", "seed of the GSL mt19937 generator", BF_NONNEG,
+    {"seed", BF_INT, 0, "", "1", "seed of the GSL mt19937 generator", BF_NONNEG,
      0, 0, NULL},
-    {"mu_taylor", BF_ENUM, "", "midpoint",
+    {"mu_taylor", BF_ENUM, 0, "", "midpoint",
      "how mu enters the dt^2/2 term of (3.16): midpoint (consistent, "
      "2nd order), um (as printed: W = (P +- mu) u_m), uk (W = (P +- mu) u_k)",
      0, 0, 0, "midpoint|um|uk"},
-    {"positivity", BF_ENUM, "", "limit",
+    {"positivity", BF_ENUM, 0, "", "limit",
      "negative volume fractions: limit (flux limiter keeps alpha >= 0, "
      "conservative) or stop (the run stops at the first one)",
      0, 0, 0, "limit|stop"},
-    {"vanish", BF_REAL, "1", "1e-8",
+    {"vanish", BF_REAL, 0, "1", "1e-8",
      "where a volume fraction is below this, that phase's velocity is set to "
      "the mixture velocity after each step (0: never)",
      BF_MIN | BF_MAX, 0, 0.5, NULL},
-    {"force_dt", BF_BOOL, "", "false",
+    {"force_dt", BF_BOOL, 0, "", "false",
      "run even if [scene] dt exceeds the stable limit (stops at the first "
      "bad value)",
      0, 0, 0, NULL},
-    {"profile_every", BF_INTERVAL, "steps | s", "0",
+    {"profile_every", BF_INTERVAL, 0, "steps | s", "0",
      "interval of the profile output /film/h, /film/psi, ... ('N' steps or "
      "'T s'; 0: at every [scene] output_every row); the first and last "
      "states are always written",
@@ -98,7 +98,7 @@ const bf_section_spec bf_filmsys_spec = {
     "film",
     "two-phase shallow-water film with Ginzburg-Landau phase separation "
     "(Yasuda sec. 3.1-3.4)",
-    film_params};
+    film_params, 0};
 
 struct bf_filmsys {
     bf_film *film;

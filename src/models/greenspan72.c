@@ -51,62 +51,62 @@ enum { OUT_ALL = 0, OUT_POSITIONS = 1, OUT_DIAG = 2 };
 enum { NSETTLE = 4 };
 
 static const bf_param g72_params[] = {
-    {"width", BF_REAL, "cm", "100", "box width |AB| (x from 0)", BF_POS, 0, 0,
+    {"width", BF_REAL, 0, "cm", "100", "box width |AB| (x from 0)", BF_POS, 0, 0,
      NULL},
-    {"height", BF_REAL, "cm", "100", "box height (y from 0)", BF_POS, 0, 0,
+    {"height", BF_REAL, 0, "cm", "100", "box height (y from 0)", BF_POS, 0, 0,
      NULL},
-    {"interface", BF_REAL, "cm", "75",
+    {"interface", BF_REAL, 0, "cm", "75",
      "b: particles starting above y = b are the heavy fluid L1 (tag 1), the "
      "others L2 (tag 2)",
      0, 0, 0, NULL},
-    {"d", BF_REAL, "cm", NULL,
+    {"d", BF_REAL, 0, "cm", NULL,
      "particle width d: side of its square in the support-set gravity and "
      "the distance below which beta acts",
      BF_POS, 0, 0, NULL},
-    {"m_heavy", BF_REAL, "g", NULL, "mass m(L1) of a heavy particle", BF_POS,
+    {"m_heavy", BF_REAL, 0, "g", NULL, "mass m(L1) of a heavy particle", BF_POS,
      0, 0, NULL},
-    {"m_light", BF_REAL, "g", NULL, "mass m(L2) of a light particle", BF_POS,
+    {"m_light", BF_REAL, 0, "g", NULL, "mass m(L2) of a light particle", BF_POS,
      0, 0, NULL},
-    {"layout", BF_ENUM, "", "grid",
+    {"layout", BF_ENUM, 0, "", "grid",
      "grid: grid_nx x grid_ny cell centres in the listing's order (top row "
      "first, left to right); list: the positions key",
      0, 0, 0, "grid|list"},
-    {"grid_nx", BF_INT, "1", "16", "grid columns", BF_MIN, 1, 0, NULL},
-    {"grid_ny", BF_INT, "1", "16", "grid rows", BF_MIN, 1, 0, NULL},
-    {"positions", BF_REALS, "cm", "",
+    {"grid_nx", BF_INT, 0, "1", "16", "grid columns", BF_MIN, 1, 0, NULL},
+    {"grid_ny", BF_INT, 0, "1", "16", "grid rows", BF_MIN, 1, 0, NULL},
+    {"positions", BF_REALS, 0, "cm", "",
      "layout = list: x1 y1 x2 y2 ... (particle k is pair k)", 0, 0, 0, NULL},
-    {"velocities", BF_REALS, "cm/s", "",
+    {"velocities", BF_REALS, 0, "cm/s", "",
      "vx1 vy1 vx2 vy2 ... at t = 0 (default: random in [-V, V])", 0, 0, 0,
      NULL},
-    {"v_random", BF_REAL, "cm/s", "0",
+    {"v_random", BF_REAL, 0, "cm/s", "0",
      "V: random initial velocity components uniform in [-V, V] (when no "
      "velocities are given)",
      BF_NONNEG, 0, 0, NULL},
-    {"seed", BF_INT, "1", "1972", "seed of the random velocities (GSL mt19937)",
+    {"seed", BF_INT, 0, "1", "1972", "seed of the random velocities (GSL mt19937)",
      BF_MIN, 0, 0, NULL},
-    {"set_velocity", BF_REALS, "1, cm/s", "",
+    {"set_velocity", BF_REALS, 0, "1, cm/s", "",
      "triples k vx vy: particle k (1-based) starts with (vx, vy) after the "
      "random draw",
      0, 0, 0, NULL},
-    {"perturb", BF_REAL, "cm/s", "0",
+    {"perturb", BF_REAL, 0, "cm/s", "0",
      "add a uniform perturbation in [-perturb, perturb] to every initial "
      "velocity component (ensembles)",
      BF_NONNEG, 0, 0, NULL},
-    {"perturb_seed", BF_INT, "1", "1", "seed of the perturbation", BF_MIN, 0,
+    {"perturb_seed", BF_INT, 0, "1", "1", "seed of the perturbation", BF_MIN, 0,
      0, NULL},
-    {"bottom", BF_REAL, "cm", "0",
+    {"bottom", BF_REAL, 0, "cm", "0",
      "height of 'the bottom' in the settling diagnostics (0: the support "
      "band height dx)",
      BF_NONNEG, 0, 0, NULL},
-    {"threads", BF_INT, "1", "0",
+    {"threads", BF_INT, 0, "1", "0",
      "OpenMP threads for the forces (0: OMP_NUM_THREADS if set, else 1); "
      "the results do not depend on it",
      BF_NONNEG, 0, 0, NULL},
-    {"particles_every", BF_INT, "1", "1",
+    {"particles_every", BF_INT, 0, "1", "1",
      "write the per-particle rows (/particles/x ...) at every N-th output "
      "row only; their steps are in /particles/step",
      BF_MIN, 1, 0, NULL},
-    {"output", BF_ENUM, "", "all",
+    {"output", BF_ENUM, 0, "", "all",
      "per-row datasets: all (positions, velocities, diagnostics), positions "
      "(no velocities), diagnostics (none per particle)",
      0, 0, 0, "all|positions|diagnostics"},
@@ -116,7 +116,7 @@ static const bf_param g72_params[] = {
 static const bf_section_spec g72_spec = {
     "greenspan72",
     "two fluids mixing, Greenspan 1972: box, particles, initial data",
-    g72_params};
+    g72_params, 0};
 
 typedef struct g72 {
     bf_particles p;

@@ -26,100 +26,100 @@
 #include "ballfilm/model.h"
 
 static const bf_param mac_params[] = {
-    {"problem", BF_ENUM, "", "reservoir",
+    {"problem", BF_ENUM, 0, "", "reservoir",
      "reservoir: PROGRAM STRATRES (IN left, point sink in the bottom); rest: "
      "the same fluid in a closed tank; uniform: a uniform stream (IN left, "
      "OUT right, slip bottom)",
      0, 0, 0, "reservoir|rest|uniform"},
-    {"refine", BF_INT, "1", "1",
+    {"refine", BF_INT, 0, "1", "1",
      "grid refinement r: (14 r + 2)^2 cells, dx = dy = 0.1/r, same physical "
      "set-up (scale [scene] dt by 1/r too)",
      BF_MIN | BF_MAX, 1, 8, NULL},
-    {"update", BF_ENUM, "", "printed",
+    {"update", BF_ENUM, 0, "", "printed",
      "printed: (3.11)/(3.12) with (3.10) as printed (thesis, listing); "
      "consistent: (3.11)/(3.12) with the pressure equation derived from them; "
      "original: (3.6)-(3.9) with (3.10)",
      0, 0, 0, "printed|consistent|original"},
-    {"pressure_solver", BF_ENUM, "", "relax",
+    {"pressure_solver", BF_ENUM, 0, "", "relax",
      "relax: the listing's Gauss-Seidel with crude/fine tests; direct: band "
      "Cholesky checked to direct_tol",
      0, 0, 0, "relax|direct"},
-    {"compare", BF_BOOL, "", "false",
+    {"compare", BF_BOOL, 0, "", "false",
      "with relax: also solve the final pass exactly and record the largest "
      "pressure and velocity differences",
      0, 0, 0, NULL},
-    {"crude_tol", BF_REAL, "1", "3e-4",
+    {"crude_tol", BF_REAL, 0, "1", "3e-4",
      "crude test: |dP| per sweep / |rho g DEPTH| (listing .0003)", BF_POS, 0,
      0, NULL},
-    {"fine_tol", BF_REAL, "1", "2e-4",
+    {"fine_tol", BF_REAL, 0, "1", "2e-4",
      "fine test of the last pass (listing .0002)", BF_POS, 0, 0, NULL},
-    {"max_sweeps", BF_INT, "1", "500",
+    {"max_sweeps", BF_INT, 0, "1", "500",
      "sweeps per relaxation before 'too many iterations' (listing 500)",
      BF_MIN, 1, 0, NULL},
-    {"omega", BF_REAL, "1", "1",
+    {"omega", BF_REAL, 0, "1", "1",
      "over-relaxation factor (the listing has none: 1)", BF_POS | BF_MAX, 0,
      1.99, NULL},
-    {"direct_tol", BF_REAL, "1", "1e-10",
+    {"direct_tol", BF_REAL, 0, "1", "1e-10",
      "largest relative residual accepted from the direct solve", BF_POS, 0, 0,
      NULL},
-    {"max_passes", BF_INT, "1", "10",
+    {"max_passes", BF_INT, 0, "1", "10",
      "corrector passes before the fine pass is forced (listing ITNUM 10)",
      BF_MIN, 1, 0, NULL},
-    {"oscillation", BF_ENUM, "", "continue",
+    {"oscillation", BF_ENUM, 0, "", "continue",
      "when the density still changes after max_passes: continue with the "
      "fine pass (listing, counted in /mac/diag) or stop (exit 4)",
      0, 0, 0, "continue|stop"},
-    {"predict", BF_BOOL, "", "true",
+    {"predict", BF_BOOL, 0, "", "true",
      "use the predicted density (3.13) in the first pass (thesis); false: "
      "the OCR'd listing, which never copies RN into R",
      0, 0, 0, NULL},
-    {"mu", BF_REAL, "1 (scaled)", "1.14e-4", "viscosity mu' (listing MU)",
+    {"mu", BF_REAL, 0, "1 (scaled)", "1.14e-4", "viscosity mu' (listing MU)",
      BF_NONNEG, 0, 0, NULL},
-    {"alpha", BF_REAL, "1 (scaled)", "1.41e-5",
+    {"alpha", BF_REAL, 0, "1 (scaled)", "1.41e-5",
      "conductivity alpha' = k/(R L W C_v) (listing ALPHA)", BF_NONNEG, 0, 0,
      NULL},
-    {"g", BF_REAL, "W^2/L", "-0.98", "body force per unit mass, y component "
+    {"g", BF_REAL, 0, "W^2/L", "-0.98", "body force per unit mass, y component "
      "(listing G)", 0, 0, 0, NULL},
-    {"rho_mean", BF_REAL, "R", "0.9985",
+    {"rho_mean", BF_REAL, 0, "R", "0.9985",
      "density profile rho = rho_mean - rho_amp tanh(y - D/2)/tanh(D/2)",
      BF_POS, 0, 0, NULL},
-    {"rho_amp", BF_REAL, "R", "0.0015",
+    {"rho_amp", BF_REAL, 0, "R", "0.0015",
      "density amplitude (0: homogeneous fluid)", BF_NONNEG, 0, 0, NULL},
-    {"t_mean", BF_REAL, "dT", "15", "temperature T = t_mean + t_amp tanh(...)",
+    {"t_mean", BF_REAL, 0, "dT", "15", "temperature T = t_mean + t_amp tanh(...)",
      0, 0, 0, NULL},
-    {"t_amp", BF_REAL, "dT", "10", "temperature amplitude", 0, 0, 0, NULL},
-    {"conduction", BF_ENUM, "", "thesis",
+    {"t_amp", BF_REAL, 0, "dT", "10", "temperature amplitude", 0, 0, 0, NULL},
+    {"conduction", BF_ENUM, 0, "", "thesis",
      "heat conduction coefficient in (3.14): alpha/rho (thesis) or "
      "ALPHA*MU/R (listing line 3304)",
      0, 0, 0, "thesis|listing"},
-    {"out_first", BF_INT, "1", "13",
+    {"out_first", BF_INT, 0, "1", "13",
      "I of the first of the two OUT cells on the 16 x 16 grid: 13 (IC flags, "
      "velocity and pressure blocks) or 14 (the particle test NI-1, NI-2)",
      BF_MIN | BF_MAX, 2, 14, NULL},
-    {"out_gravity", BF_BOOL, "", "false",
+    {"out_gravity", BF_BOOL, 0, "", "false",
      "add the hydrostatic rho |g| dy to the OUT ghost pressure (not in the "
      "listing; the sink then barely draws)",
      0, 0, 0, NULL},
-    {"inflow", BF_ENUM, "", "copy",
+    {"inflow", BF_ENUM, 0, "", "copy",
      "reservoir IN boundary: copy U(2,J) = U(3,J) with P = P0 (thesis) or "
      "prescribed u0 with P from momentum",
      0, 0, 0, "copy|prescribed"},
-    {"u0", BF_REAL, "W", "0.1",
+    {"u0", BF_REAL, 0, "W", "0.1",
      "stream speed of the uniform problem (and of a prescribed inflow)", 0, 0,
      0, NULL},
-    {"void_fix", BF_BOOL, "", "false",
+    {"void_fix", BF_BOOL, 0, "", "false",
      "fill empty cells enclosed by the fluid (no chain of empty cells to an "
      "EMP cell): FULL with the neighbours' density (not in the listing, "
      "which makes them SUR cells with a frozen pressure)",
      0, 0, 0, NULL},
-    {"wall_markers", BF_ENUM, "", "hold",
+    {"wall_markers", BF_ENUM, 0, "", "hold",
      "a fluid marker whose move would cross a wall: hold it on the wall, or "
      "remove it and count it lost (the listing)",
      0, 0, 0, "hold|remove"},
-    {"slots", BF_INT, "1", "0",
+    {"slots", BF_INT, 0, "1", "0",
      "particle slots (listing NK = 800); 0: 800 refine^2",
      BF_NONNEG | BF_MAX, 0, 1e7, NULL},
-    {"max_cfl", BF_REAL, "1", "1",
+    {"max_cfl", BF_REAL, 0, "1", "1",
      "stop (exit 3) when |u| dt/dx or |v| dt/dy exceeds this", BF_POS, 0, 0,
      NULL},
     {0},
@@ -127,7 +127,7 @@ static const bf_param mac_params[] = {
 
 static const bf_section_spec mac_spec = {
     "mac", "the thesis's predictor-corrector MAC solver (seed 004)",
-    mac_params};
+    mac_params, 0};
 
 typedef struct mac_model {
     bf_mac *mac;

@@ -26,24 +26,24 @@
 enum { NRUN = 16 };
 
 static const bf_param repulsion_params[] = {
-    {"alpha", BF_REAL, "1", "1", "strength alpha of eqs 2.11-2.12",
+    {"alpha", BF_REAL, 0, "1", "1", "strength alpha of eqs 2.11-2.12",
      BF_NONNEG, 0, 0, NULL},
-    {"xi", BF_REAL, "cm", "0",
+    {"xi", BF_REAL, 0, "cm", "0",
      "xi: added to the distance (how close centres may come)", BF_NONNEG, 0,
      0, NULL},
-    {"p", BF_INT, "1", "2", "exponent p of (r + xi)^p", BF_MIN | BF_MAX, 0, 30,
+    {"p", BF_INT, 0, "1", "2", "exponent p of (r + xi)^p", BF_MIN | BF_MAX, 0, 30,
      NULL},
-    {"beta", BF_INT, "1", "5",
+    {"beta", BF_INT, 0, "1", "5",
      "exponent beta of ((r + xi)/d)^beta, applied only for r < d",
      BF_MIN | BF_MAX, 0, 30, NULL},
-    {"cutoff", BF_REAL, "cm", "0",
+    {"cutoff", BF_REAL, 0, "cm", "0",
      "only pairs with r < cutoff interact (Example 2: 2d = 10); 0: all pairs",
      BF_NONNEG, 0, 0, NULL},
-    {"method", BF_ENUM, "", "auto",
+    {"method", BF_ENUM, 0, "", "auto",
      "cells: cell list (needs a cutoff); pairs: all pairs; auto: cells when "
      "there is a cutoff",
      0, 0, 0, "auto|cells|pairs"},
-    {"cell", BF_REAL, "cm", "0",
+    {"cell", BF_REAL, 0, "cm", "0",
      "side of the cell-list cells (0: the cutoff); smaller cells test "
      "fewer pairs but visit more cells",
      BF_NONNEG | BF_HIDDEN, 0, 0, NULL},
@@ -52,7 +52,7 @@ static const bf_param repulsion_params[] = {
 
 const bf_section_spec bf_repulsion_spec = {
     "repulsion", "repulsion between particles (Greenspan 1972 eqs 2.10-2.12)",
-    repulsion_params};
+    repulsion_params, 0};
 
 bf_status bf_repulsion_from_scene(bf_repulsion *r, const bf_scene *sc,
                                   double d, bf_err *err)

@@ -26,24 +26,24 @@
 #define HOT static inline __attribute__((always_inline))
 
 static const bf_param support_params[] = {
-    {"g", BF_REAL, "cm/s^2", "980",
+    {"g", BF_REAL, 0, "cm/s^2", "980",
      "gravitational acceleration g0 of a particle with nothing below it",
      BF_NONNEG, 0, 0, NULL},
-    {"dx", BF_REAL, "cm", NULL,
+    {"dx", BF_REAL, 0, "cm", NULL,
      "Delta x: height of the bands below a particle and width of its strip "
      "(eqs 2.8-2.9)",
      BF_POS, 0, 0, NULL},
-    {"method", BF_ENUM, "", "auto",
+    {"method", BF_ENUM, 0, "", "auto",
      "fast: exact O(N log N) sweep (needs d <= 2 dx); cell: cell list, "
      "O(N * column); naive: all pairs O(N^2); auto: cell for boxes of at "
      "most 64 bands, else fast.  All give the same free-fall decisions and "
      "the same g to round-off",
      0, 0, 0, "fast|cell|naive|auto"},
-    {"tie", BF_ENUM, "", "le",
+    {"tie", BF_ENUM, 0, "", "le",
      "support set S(P_j): le counts particles with y_i <= y_j (the listing), "
      "lt only y_i < y_j (the text)",
      0, 0, 0, "le|lt"},
-    {"eps", BF_REAL, "cm^2", "0",
+    {"eps", BF_REAL, 0, "cm^2", "0",
      "added to the denominators of 2.8 and 2.9 (0: the text; 1e-3: the "
      "listing)",
      BF_NONNEG, 0, 0, NULL},
@@ -52,7 +52,7 @@ static const bf_param support_params[] = {
 
 const bf_section_spec bf_support_spec = {
     "support", "support-set gravity (Greenspan 1972 eqs 2.8-2.9)",
-    support_params};
+    support_params, 0};
 
 bf_status bf_support_params_from_scene(bf_support_params *p,
                                        const bf_scene *sc, bf_box box,

@@ -5,22 +5,22 @@
 #include <math.h>
 
 static const bf_param walls_params[] = {
-    {"omega", BF_REAL, "1", "1",
+    {"omega", BF_REAL, 0, "1", "1",
      "reflected speed / incident speed at a wall, eq. 2.13 (0 < omega <= 1)",
      BF_POS | BF_MAX, 0, 1, NULL},
-    {"rule", BF_ENUM, "", "clean",
+    {"rule", BF_ENUM, 0, "", "clean",
      "clean: specular reflection of the rest of the step, speed times omega "
      "(the text); fortran: Schubert's WALCOL literally (EPS damping, omega^2 "
      "tangential artefact)",
      0, 0, 0, "clean|fortran"},
-    {"eps", BF_REAL, "cm", "1e-3",
+    {"eps", BF_REAL, 0, "cm", "1e-3",
      "the listing's EPS in WALCOL (rule = fortran only)", BF_POS, 0, 0, NULL},
     {0},
 };
 
 const bf_section_spec bf_walls_spec = {
     "walls", "container walls that reflect particles (Greenspan 1972 eq. 2.13)",
-    walls_params};
+    walls_params, 0};
 
 bf_status bf_walls_from_scene(bf_walls *w, const bf_scene *sc, bf_box box,
                               bf_err *err)

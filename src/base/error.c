@@ -9,6 +9,7 @@ bf_status bf_vfail(bf_err *err, bf_status status, const char *fmt, va_list ap)
     if (err) {
         err->status = status;
         vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+        err->section[0] = err->key[0] = '\0';
     }
     return status;
 }
@@ -19,6 +20,25 @@ bf_status bf_fail(bf_err *err, bf_status status, const char *fmt, ...)
     va_start(ap, fmt);
     bf_vfail(err, status, fmt, ap);
     va_end(ap);
+    return status;
+}
+
+void bf_err_set_key(bf_err *err, const char *section, const char *key)
+{
+    if (!err)
+        return;
+    snprintf(err->section, sizeof err->section, "%s", section ? section : "");
+    snprintf(err->key, sizeof err->key, "%s", section && key ? key : "");
+}
+
+bf_status bf_fail_key(bf_err *err, bf_status status, const char *section,
+                      const char *key, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    bf_vfail(err, status, fmt, ap);
+    va_end(ap);
+    bf_err_set_key(err, section, key);
     return status;
 }
 
@@ -41,7 +61,7 @@ void bf_err_clear(bf_err *err)
 {
     if (err) {
         err->status = BF_OK;
-        err->msg[0] = '\0';
+        err->msg[0] = err->section[0] = err->key[0] = '\0';
     }
 }
 
