@@ -27,7 +27,7 @@ GIT     := $(shell git rev-parse --short HEAD 2>/dev/null || echo unknown)
 
 CC       = gcc
 CSTD     = -std=c11 -O2 -Wall -Wextra -Werror -ffp-contract=off
-CPPFLAGS = -Iinclude -Isrc/cli -D_POSIX_C_SOURCE=200809L -DBF_GIT='"$(GIT)"' \
+CPPFLAGS = -Iinclude -Isrc -D_POSIX_C_SOURCE=200809L -DBF_GIT='"$(GIT)"' \
            $(shell pkg-config --cflags hdf5-serial gsl 2>/dev/null)
 CFLAGS   = $(CSTD) $(SANITIZE) -MMD -MP
 LDLIBS   = $(shell pkg-config --libs hdf5-serial 2>/dev/null) -lhdf5_hl \

@@ -42,7 +42,8 @@
 #include <time.h>
 
 #include "ballfilm/ballsys.h"
-#include "ballfilm/contact.h"
+#include "ballfilm/run.h"
+#include "contact/hertz.h"
 #include "ballfilm/registry.h"
 #include "ballfilm/scene.h"
 #include "ballfilm/sim.h"
@@ -155,8 +156,7 @@ static bf_ballsys *make(const char *method, bf_scene **sc)
     load(method, sc);
     bf_err err = {0};
     bf_ballsys *sys;
-    bf_effect_env env = {0};
-    if (bf_ballsys_create(&sys, *sc, &env, &err)) {
+    if (bf_ballsys_from_scene(&sys, bf_catalog_builtin(), *sc, &err)) {
         fprintf(stderr, "%s\n", err.msg);
         exit(1);
     }

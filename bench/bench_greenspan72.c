@@ -26,6 +26,7 @@
 #include "ballfilm/registry.h"
 #include "ballfilm/scene.h"
 #include "ballfilm/model.h"
+#include "ballfilm/run.h"
 
 static double now(void)
 {
@@ -51,6 +52,7 @@ static bf_scene *load(const char *path, const char *text, bf_err *err)
 /* A model driven step by step, without the time loop's output. */
 typedef struct run {
     const bf_model_type *mt;
+    bf_setup *setup;
     void *m;
     long n;
     double dt;
@@ -59,9 +61,9 @@ typedef struct run {
 static run start(const bf_scene *sc)
 {
     bf_err err = {0};
-    run r = {bf_model_find("greenspan72"), NULL, 0,
-             bf_scene_real(sc, "scene", "dt")};
-    if (r.mt->create(&r.m, sc, &err)) {
+    run r = {bf_catalog_model(bf_catalog_builtin(), "greenspan72"), NULL,
+             NULL, 0, bf_scene_real(sc, "scene", "dt")};
+    if (bf_model_from_scene(bf_catalog_builtin(), sc, &r.setup, &r.m, &err)) {
         fprintf(stderr, "bench: %s\n", err.msg);
         exit(1);
     }
@@ -152,6 +154,7 @@ int main(void)
         if (t < best)
             best = t;
         r.mt->destroy(r.m);
+        bf_setup_free(r.setup);
         bf_scene_free(sc);
     }
     printf("Example 2 (N = 256, 30000 steps, no output): %.3f s  "
@@ -186,6 +189,7 @@ int main(void)
                c / ref, tf, tc);
         fflush(stdout);
         r.mt->destroy(r.m);
+        bf_setup_free(r.setup);
         bf_scene_free(sc);
     }
     printf("(goal: N = 65536 at >= 3e6 particle-steps/s; cost/(N log2 N) "
@@ -201,6 +205,7 @@ int main(void)
         printf("\nN = 65536 with 2 threads: %.4g s/step, %.3g particle-steps/s"
                "\n", per, 65536.0 / per);
         r.mt->destroy(r.m);
+        bf_setup_free(r.setup);
         bf_scene_free(sc);
     }
     return 0;

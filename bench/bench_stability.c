@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "ballfilm/ballsys.h"
+#include "ballfilm/run.h"
 #include "ballfilm/registry.h"
 
 static const char *base =
@@ -34,10 +35,9 @@ static double run(const char *name, const char *keys, double dt, char *why,
     bf_scene *sc;
     bf_err err = {0};
     bf_ballsys *sys;
-    bf_effect_env env = {0};
     if (bf_scene_load_string(&sc, "stability", text, &err) ||
         bf_registry_resolve(sc, &err) ||
-        bf_ballsys_create(&sys, sc, &env, &err)) {
+        bf_ballsys_from_scene(&sys, bf_catalog_builtin(), sc, &err)) {
         fprintf(stderr, "%s\n", err.msg);
         exit(1);
     }

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "ballfilm/ballsys.h"
+#include "ballfilm/run.h"
 #include "ballfilm/registry.h"
 #include "testutil.h"
 
@@ -30,8 +31,7 @@ static void energy_halves(const char *method, double *first, double *second)
     ck_assert(bf_registry_resolve(sc, &err) == BF_OK);
     /* drive the ball system directly to see every step's energy */
     bf_ballsys *sys;
-    bf_effect_env env = {0};
-    ck_assert_msg(bf_ballsys_create(&sys, sc, &env, &err) == BF_OK, "%s", err.msg);
+    ck_assert_msg(bf_ballsys_from_scene(&sys, bf_catalog_builtin(), sc, &err) == BF_OK, "%s", err.msg);
     const double dt = 3e-4;
     const long n = lround(40.0 / dt);
     double k, p;

@@ -5,7 +5,7 @@
 #include <math.h>
 
 #include "ballfilm/ballsys.h"
-#include "ballfilm/contact.h"
+#include "contact/hertz.h"
 #include "testutil.h"
 
 static const double K = 1e7;

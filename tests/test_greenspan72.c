@@ -33,6 +33,7 @@
 #include "ballfilm/greenspan.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/model.h"
+#include "ballfilm/run.h"
 #include "ballfilm/registry.h"
 #include "ballfilm/repulsion.h"
 #include "ballfilm/support.h"
@@ -417,9 +418,12 @@ static void never_leave(const char *rule, const char *omega, long steps)
     ck_assert(bf_scene_set(sc, s1, "test", &err) == BF_OK);
     ck_assert(bf_scene_set(sc, s2, "test", &err) == BF_OK);
     ck_assert(bf_registry_resolve(sc, &err) == BF_OK);
-    const bf_model_type *mt = bf_model_find("greenspan72");
+    const bf_model_type *mt = bf_catalog_model(bf_catalog_builtin(), "greenspan72");
     void *m;
-    ck_assert_msg(mt->create(&m, sc, &err) == BF_OK, "%s", err.msg);
+    bf_setup *setup;
+    ck_assert_msg(bf_model_from_scene(bf_catalog_builtin(), sc, &setup, &m,
+                                      &err) == BF_OK,
+                  "%s", err.msg);
     bf_particles *p = bf_greenspan72_particles(m);
     unsigned long long outside = 0;
     for (long k = 0; k < steps; k++) {
@@ -434,6 +438,7 @@ static void never_leave(const char *rule, const char *omega, long steps)
     mt->counters(m, &c);
     ck_assert_int_eq(c.steps, steps);
     mt->destroy(m);
+    bf_setup_free(setup);
     bf_scene_free(sc);
 }
 

@@ -28,6 +28,7 @@
 #include "ballfilm/greenspan.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/model.h"
+#include "ballfilm/run.h"
 #include "ballfilm/pdiag.h"
 #include "ballfilm/registry.h"
 #include "testutil.h"
@@ -125,9 +126,12 @@ static drift run_drift(const char *path, const char *const *sets)
         ck_assert_msg(bf_scene_set(sc, *sets, "test", &err) == BF_OK, "%s",
                       err.msg);
     ck_assert_msg(bf_registry_resolve(sc, &err) == BF_OK, "%s", err.msg);
-    const bf_model_type *mt = bf_model_find("greenspan73");
+    const bf_model_type *mt = bf_catalog_model(bf_catalog_builtin(), "greenspan73");
     void *m;
-    ck_assert_msg(mt->create(&m, sc, &err) == BF_OK, "%s", err.msg);
+    bf_setup *setup;
+    ck_assert_msg(bf_model_from_scene(bf_catalog_builtin(), sc, &setup, &m,
+                                      &err) == BF_OK,
+                  "%s", err.msg);
     bf_particles *p = bf_greenspan73_particles(m);
     const double dt = bf_scene_real(sc, "scene", "dt");
     const long steps = lround(bf_scene_real(sc, "scene", "t_end") / dt);
@@ -157,6 +161,7 @@ static drift run_drift(const char *path, const char *const *sets)
         d.mom = fmax(d.mom, hypot(px - px0, py - py0));
     }
     mt->destroy(m);
+    bf_setup_free(setup);
     bf_scene_free(sc);
     return d;
 }

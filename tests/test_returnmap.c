@@ -25,6 +25,7 @@
 #include "ballfilm/h5out.h"
 #include "ballfilm/lyapunov.h"
 #include "ballfilm/registry.h"
+#include "ballfilm/run.h"
 #include "testutil.h"
 
 static const double G = 980, K = 1e7, R = 0.1, Z0 = 0.2, M1 = 1.0,
@@ -177,9 +178,8 @@ static double lyapunov_of(bf_accel_fn f, double T)
                             "renormalise_every = 0.1 s\n"
                             "[ball.1]\nposition = 1e-3\nvelocity = 2e-3\n");
     bf_ballsys *sys;
-    bf_effect_env env = {0};
     bf_err err = {0};
-    ck_assert(bf_ballsys_create(&sys, sc, &env, &err) == BF_OK);
+    ck_assert(bf_ballsys_from_scene(&sys, bf_catalog_builtin(), sc, &err) == BF_OK);
     sys->ode.accel = f;
     bf_lyap *ly;
     ck_assert(bf_lyap_create(&ly, sc, sys, &err) == BF_OK && ly);

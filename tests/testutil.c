@@ -16,6 +16,7 @@
 
 #include "ballfilm/h5out.h"
 #include "ballfilm/registry.h"
+#include "ballfilm/run.h"
 
 static char tmpdir[256];
 
@@ -337,10 +338,10 @@ bf_ballsys *tu_ballsys(const char *text)
 {
     bf_scene *sc = tu_scene(text);
     bf_ballsys *sys;
-    bf_effect_env env = {0};
     bf_err err = {0};
-    ck_assert_msg(bf_ballsys_create(&sys, sc, &env, &err) == BF_OK, "%s",
-                  err.msg);
+    ck_assert_msg(bf_ballsys_from_scene(&sys, bf_catalog_builtin(), sc, &err) ==
+                      BF_OK,
+                  "%s", err.msg);
     bf_scene_free(sc); /* the system copies what it needs */
     return sys;
 }
@@ -364,8 +365,15 @@ bf_integrator *tu_integrator(const char *name, const char *keys, size_t n)
     bf_scene *sc = tu_scene(text);
     bf_integrator *it;
     bf_err err = {0};
-    ck_assert_msg(bf_integrator_create(&it, name, n, sc, &err) == BF_OK, "%s",
-                  err.msg);
+    bf_setup *setup;
+    bf_run_ctx run = {1, 1, 1, 1};
+    ck_assert(bf_setup_create(&setup, bf_catalog_builtin(), sc, &run, &err) ==
+              BF_OK);
+    const bf_model_setup *ms = bf_setup_model(setup);
+    ck_assert_msg(bf_integrator_create(&it, ms->integrator, n,
+                                       ms->integrator_params, &err) == BF_OK,
+                  "%s", err.msg);
+    bf_setup_free(setup);
     bf_scene_free(sc);
     return it;
 }

@@ -2,46 +2,75 @@
  * integrator.  This is the component shared by the "balls" model (balls in
  * space, Yasuda sec. 2) and the coupled ball-film model (sec. 3).
  *
- * Scene keys: one [ball.N] section per ball (N = 1, 2, ... in increasing
- * position), [scene] effects and [scene] integrator.
+ * Its parameters: one [ball.N] section per ball (N = 1, 2, ... in
+ * increasing position), the effects and the integrator of the setup
+ * (model.h).
  */
 #ifndef BALLFILM_BALLSYS_H
 #define BALLFILM_BALLSYS_H
 
-#include "ballfilm/effects.h"
+#include "ballfilm/effect.h"
 #include "ballfilm/integrator.h"
-#include "ballfilm/scene.h"
+#include "ballfilm/model.h"
+
+/* The keys of [ball.N]. */
+typedef struct bf_ball_keys {
+    double position; /* cm */
+    double velocity; /* cm/s */
+    double mass;     /* g */
+    double radius;   /* cm */
+} bf_ball_keys;
+
+extern const bf_section_spec bf_ballsys_ball_spec; /* [ball.N] */
 
 typedef struct bf_ballsys {
     bf_balls b;
     bf_effect *eff;
     size_t neff;
     bf_integrator *it;
+    void *it_params; /* a copy of the integrator's [integrator] struct */
+    const bf_effect_type **effect_types; /* the effects' types (owned) */
     bf_ode ode;
-    /* one step: the integrator's generic step, or for Verlet and MV2M the
-     * bit-identical specialised one (ballsys.c) */
-    bf_status (*step)(struct bf_ballsys *s, double t, double dt, bf_err *err);
-    /* k steps (bf_ballsys_advance), chosen with step */
-    bf_status (*advance)(struct bf_ballsys *s, long n0, long k, double dt,
-                         long *done, bf_err *err);
+    /* what the integrator's specialised steps see (b, eff, neff) */
+    bf_ball_forces forces;
+    /* the integrator's specialised steps for these effects (NULL: the
+     * integrator has none; then its generic step) */
+    bf_ball_step_fn fast_step;
+    bf_ball_advance_fn fast_advance;
 } bf_ballsys;
 
-extern const bf_section_spec bf_ballsys_ball_spec; /* [ball.N] */
-
-/* Read balls, create effects (env is passed to them) and the integrator.
- * Refuses overlapping or unordered balls, naming the key. */
-bf_status bf_ballsys_create(bf_ballsys **out, const bf_scene *sc,
+/* Read the balls of the setup, create its effects (env is passed to them)
+ * and its integrator.  Refuses overlapping or unordered balls, naming the
+ * key.  The system keeps what it needs of the setup (the setup may be
+ * freed after; strings in the integrator's struct point into the scene). */
+bf_status bf_ballsys_create(bf_ballsys **out, const bf_model_setup *setup,
                             const bf_effect_env *env, bf_err *err);
 void bf_ballsys_free(bf_ballsys *s);
 
+/* The force callback the ball system installs in ode: the sum of its
+ * effects (ctx: the bf_ballsys). */
+int bf_ballsys_accel(void *ctx, double t, const double *x, const double *v,
+                     double *acc);
+
+/* Through the integrator's generic step (what bf_ballsys_step does when
+ * there is no specialised one). */
+bf_status bf_ballsys_step_generic(bf_ballsys *s, double t, double dt,
+                                  bf_err *err);
+bf_status bf_ballsys_advance_generic(bf_ballsys *s, long n0, long k,
+                                     double dt, long *done, bf_err *err);
+
 /* One integrator step; fails with BF_EUNSTABLE, naming the ball, if a
  * position or velocity is not finite afterwards (the state is then that of
- * the failed step; the caller stops).  Inline: it is the body of every
- * long run's loop (s->step is chosen in ballsys.c). */
+ * the failed step; the caller stops).  Through the integrator's
+ * specialised step when it has one and nobody replaced ode.accel (tests
+ * plug their own force in this way), else its generic step.  Inline: it
+ * is the body of every long run's loop. */
 static inline bf_status bf_ballsys_step(bf_ballsys *s, double t, double dt,
                                         bf_err *err)
 {
-    return s->step(s, t, dt, err);
+    if (s->fast_step && s->ode.accel == bf_ballsys_accel)
+        return s->fast_step(s->it, &s->ode, &s->forces, t, dt, err);
+    return bf_ballsys_step_generic(s, t, dt, err);
 }
 
 /* k >= 0 steps, step j from t = (n0 + j) dt to (n0 + j + 1) dt: the same
@@ -52,7 +81,10 @@ static inline bf_status bf_ballsys_step(bf_ballsys *s, double t, double dt,
 static inline bf_status bf_ballsys_advance(bf_ballsys *s, long n0, long k,
                                            double dt, long *done, bf_err *err)
 {
-    return s->advance(s, n0, k, dt, done, err);
+    if (s->fast_advance && s->ode.accel == bf_ballsys_accel)
+        return s->fast_advance(s->it, &s->ode, &s->forces, n0, k, dt, done,
+                               err);
+    return bf_ballsys_advance_generic(s, n0, k, dt, done, err);
 }
 
 /* Checkpoint: positions, velocities and integrator state under names
@@ -65,6 +97,9 @@ bf_status bf_ballsys_load(bf_ballsys *s, const bf_ckpt *ck, const char *prefix,
 /* Kinetic and potential energy (erg). */
 void bf_ballsys_energy(const bf_ballsys *s, double t, double *kin,
                        double *pot);
+
+/* The ball view of analyses (model.h). */
+void bf_ballsys_view(bf_ballsys *s, bf_ball_view *v);
 
 /* The ball system inside a "balls" model instance (for drivers and
  * tests that need the state: convergence studies, return maps). */

@@ -32,7 +32,7 @@
 #include <stddef.h>
 
 #include "ballfilm/checkpoint.h"
-#include "ballfilm/effects.h"
+#include "ballfilm/effect.h"
 #include "ballfilm/error.h"
 #include "ballfilm/film.h"
 
@@ -53,9 +53,19 @@ typedef struct bf_coupling_params {
     double taylor_radius; /* cm */
 } bf_coupling_params;
 
+/* The keys of [coupling] (the coupling effect's section). */
+typedef struct bf_coupling_keys {
+    double V0, r0, mobility, psi_s;
+    int quadrature; /* 0 spline, 1 linear */
+    int taylor;
+} bf_coupling_keys;
+extern const bf_section_spec bf_coupling_spec;
+bf_coupling_params bf_coupling_params_from_keys(const bf_coupling_keys *k);
+
 typedef struct bf_coupling bf_coupling;
 
-/* The effect type (to find the coupling among a ball system's effects). */
+/* The effect applying -M dF/dr to the balls; its env hands over the
+ * coupling (effect.h). */
 extern const bf_effect_type bf_effect_coupling;
 
 bf_status bf_coupling_create(bf_coupling **c, const bf_coupling_params *p,

@@ -3,8 +3,15 @@
  * The system is second order in form: dx/dt = v, dv/dt = a(t, x, v), with n
  * degrees of freedom.  Integrators know nothing of the physics: they ask the
  * bf_ode for accelerations.  Each integrator lives in its own file and
- * exports one constant descriptor (bf_integrator_type); registry.c lists
- * them.  Adding an integrator touches one new file and one registry line.
+ * exports one constant descriptor (bf_integrator_type); the catalog
+ * (src/compose/catalog.c) lists them.  Adding an integrator touches one
+ * new file and one catalog line.
+ *
+ * Fast path: an integrator may also carry specialised steps for balls
+ * under effects (bf_ball_stepper), with the effects' force kernels
+ * inlined; the ball system takes them through that slot.  They must give
+ * the bits of the generic step (Verlet and MV2M do, see
+ * src/integrators/ball_steps.h).
  *
  * Methods that, like Verlet, evaluate a at the step's end point keep that
  * value for the next step (first same as last).  The cache is keyed by the
@@ -18,7 +25,8 @@
 
 #include "ballfilm/checkpoint.h"
 #include "ballfilm/error.h"
-#include "ballfilm/scene.h"
+#include "ballfilm/effect.h"
+#include "ballfilm/params.h"
 
 /* a(t, x, v) -> acc[n].  Returns 0, or non-zero if the force cannot be
  * evaluated (the integrator then fails the step with BF_EUNSTABLE). */
@@ -75,6 +83,34 @@ enum {
     BF_INT_ROOTS = 1u << 4 /* locates the events of bf_ode inside its steps */
 };
 
+/* Balls under effects as a specialised ball step sees them: the balls
+ * (their state x, v is advanced in place) and the effects whose forces
+ * it sums. */
+typedef struct bf_ball_forces {
+    const bf_balls *b;
+    const bf_effect *eff;
+    size_t neff;
+} bf_ball_forces;
+
+/* One step t -> t + dt, or k steps from t = n0 dt (as bf_model_type's
+ * advance), of the balls of f under the sum of their effects' forces:
+ * the bits, counters and force cache of the generic step with ode (whose
+ * callback computes the same sum).  On a non-finite state the step fails
+ * with BF_EUNSTABLE naming the ball. */
+typedef bf_status (*bf_ball_step_fn)(bf_integrator *it, const bf_ode *ode,
+                                     const bf_ball_forces *f, double t,
+                                     double dt, bf_err *err);
+typedef bf_status (*bf_ball_advance_fn)(bf_integrator *it, const bf_ode *ode,
+                                        const bf_ball_forces *f, long n0,
+                                        long k, double dt, long *done,
+                                        bf_err *err);
+typedef struct bf_ball_stepper {
+    /* the specialised step and run for these effects and this many balls
+     * (fixed shapes where the stepper has them) */
+    void (*pick)(const bf_ball_forces *f, bf_ball_step_fn *step,
+                 bf_ball_advance_fn *advance);
+} bf_ball_stepper;
+
 typedef struct bf_integrator_type {
     const char *name;
     const char *doc;
@@ -82,9 +118,10 @@ typedef struct bf_integrator_type {
     int evals_per_step; /* nominal; 0 if variable */
     unsigned flags;
     const bf_section_spec *spec; /* keys of [integrator], or NULL */
-    /* Allocate it->work etc. for it->n unknowns and read [integrator] keys
-     * (sc may be NULL: use defaults). */
-    bf_status (*init)(bf_integrator *it, const bf_scene *sc, bf_err *err);
+    /* Allocate it->work etc. for it->n unknowns from the filled struct of
+     * `spec` (NULL when there is no spec); a failure that is about a key
+     * names it (bf_fail_key). */
+    bf_status (*init)(bf_integrator *it, const void *params, bf_err *err);
     /* Advance (x, v) from t to t + dt in place.  On failure x, v are left
      * at their values at t.  Adaptive integrators (BF_INT_ADAPTIVE) take
      * their own internal steps inside [t, t + dt] and end exactly at
@@ -103,6 +140,8 @@ typedef struct bf_integrator_type {
     int (*order_of)(const bf_integrator *it);
     /* One-line description with the parameters in use; optional. */
     void (*describe)(const bf_integrator *it, char *buf, size_t cap);
+    /* Specialised steps for balls under effects; optional. */
+    const bf_ball_stepper *balls;
 } bf_integrator_type;
 
 struct bf_integrator {
@@ -120,12 +159,11 @@ struct bf_integrator {
     void *monitor_ctx;
 };
 
-const bf_integrator_type *bf_integrator_find(const char *name);
-/* All registered types, for --help and the convergence driver. */
-const bf_integrator_type *const *bf_integrator_types(size_t *n);
-
-bf_status bf_integrator_create(bf_integrator **it, const char *name, size_t n,
-                               const bf_scene *sc, bf_err *err);
+/* An integrator of type t for n unknowns with the [integrator] struct
+ * `params` (NULL: the defaults of t's spec). */
+bf_status bf_integrator_create(bf_integrator **it,
+                               const bf_integrator_type *t, size_t n,
+                               const void *params, bf_err *err);
 void bf_integrator_free(bf_integrator *it);
 /* Nominal global order of an instance, and a one-line description of it
  * ("arkode DORMAND_PRINCE_7_4_5 rtol=1e-08 atol=1e-11", or the name). */

@@ -1,11 +1,14 @@
 /* model.h: a model is a solver for one kind of scene (balls on a line, the
  * two-phase film, balls in the film, particle fluids, the MAC tank).
  *
- * Solver versus problem (Basilisk): a model owns its state, its parameters
- * (declared in its section specs) and a function that advances one step.
- * The core time loop (sim.h) owns time, output schedule, energy bookkeeping
- * and stopping; it calls the model through this table.  Models are listed in
- * registry.c.
+ * Solver versus problem (Basilisk): a model owns its state, declares its
+ * parameters (section specs, params.h) and advances one step.  It never
+ * sees a scene: the composition layer fills the model's sections into
+ * typed structs and hands them over in a bf_model_setup, with the run's
+ * time step and length.  The time loop (sim.h) owns time, the output
+ * schedule, energy bookkeeping, observers and stopping; it calls the model
+ * through this table.  The built-in models are listed in the catalog
+ * (src/compose/catalog.c).
  */
 #ifndef BALLFILM_MODEL_H
 #define BALLFILM_MODEL_H
@@ -13,15 +16,80 @@
 #include <stdio.h>
 
 #include "ballfilm/checkpoint.h"
+#include "ballfilm/effect.h"
 #include "ballfilm/error.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/integrator.h"
+#include "ballfilm/params.h"
 #include "ballfilm/scene.h"
 
 enum {
     BF_MODEL_INTEGRATOR = 1u << 0, /* uses [scene] integrator */
     BF_MODEL_EFFECTS = 1u << 1     /* uses [scene] effects */
 };
+
+/* The run a model is built for. */
+typedef struct bf_run_ctx {
+    double dt;         /* [scene] dt, s */
+    double t_end;      /* [scene] t_end, s */
+    long nsteps;       /* steps of the run, ceil(t_end/dt) */
+    long output_every; /* steps between output rows ([scene] output_every) */
+} bf_run_ctx;
+
+/* One of the model's sections, filled: `values` points to `count` structs
+ * of spec->size bytes (count > 1 only for indexed sections such as
+ * [ball.N]; count 0: an indexed section of which the scene has none). */
+typedef struct bf_setup_section {
+    const bf_section_spec *spec;
+    const void *values;
+    size_t count;
+} bf_setup_section;
+
+typedef struct bf_model_setup {
+    bf_run_ctx run;
+    const bf_setup_section *sections; /* the model's specs, in its order */
+    size_t nsections;
+    /* models with BF_MODEL_INTEGRATOR: the integrator and its [integrator]
+     * struct (NULL when the type has no spec) */
+    const bf_integrator_type *integrator;
+    const void *integrator_params;
+    /* models with BF_MODEL_EFFECTS: the effects in the scene's order and
+     * their structs (NULL for an effect without a spec) */
+    const bf_effect_type *const *effects;
+    const void *const *effect_params;
+    size_t neffects;
+} bf_model_setup;
+
+/* The values of a section of the setup (*count: how many; may be NULL),
+ * or NULL if the model did not declare it. */
+const void *bf_setup_get(const bf_model_setup *s, const bf_section_spec *spec,
+                         size_t *count);
+
+/* What analyses of balls on a line see of a model (returnmap.h,
+ * lyapunov.h, compare.h): the state, read-only, the forces and the
+ * integrator that advances it. */
+typedef struct bf_ball_view {
+    size_t n;
+    const double *x, *v;        /* positions (cm), velocities (cm/s) */
+    const double *m, *R;        /* masses (g), radii (cm) */
+    const bf_ode *ode;          /* a(t, x, v) of the model's forces */
+    bf_integrator *it;          /* its integrator (type, counters, events) */
+    const void *it_params;      /* that integrator's [integrator] struct */
+    const bf_effect_type *const *effects;
+    size_t neffects;
+} bf_ball_view;
+
+/* Results of the analyses of a run, for sweeps and drivers (NAN / 0 when
+ * the analysis is not on). */
+typedef struct bf_results {
+    int has_lyapunov;
+    double lyapunov_exponent; /* 1/s; NAN before the first renormalisation */
+    double lyapunov_time;     /* s, the time the estimate refers to */
+    int has_return_map;
+    size_t map_points;
+    size_t map_multi_minima;  /* contacts with more than one minimum */
+    const double *map_z, *map_v; /* the map's points (NULL: not kept) */
+} bf_results;
 
 typedef struct bf_model_type {
     const char *name;
@@ -30,9 +98,14 @@ typedef struct bf_model_type {
     /* sections owned by the model, NULL-terminated (may be NULL) */
     const bf_section_spec *const *specs;
 
-    /* Build from a resolved scene; validate physics (overlaps, stability)
-     * with messages naming the key (bf_scene_fail).  dt is [scene] dt. */
-    bf_status (*create)(void **self, const bf_scene *sc, bf_err *err);
+    /* Build from the filled sections; validate the physics (overlaps,
+     * ranges) with failures that name the key (bf_fail_key). */
+    bf_status (*create)(void **self, const bf_model_setup *setup,
+                        bf_err *err);
+    /* Transitional (until every model takes a setup): build from the
+     * resolved scene and the setup. */
+    bf_status (*create_scene)(void **self, const bf_scene *sc,
+                              const bf_model_setup *setup, bf_err *err);
     void (*destroy)(void *self);
     /* Largest stable time step for the current state (s), or 0 if the
      * model has no such limit.  Optional. */
@@ -70,9 +143,12 @@ typedef struct bf_model_type {
      * does not pay for a call and the loop's bookkeeping. */
     bf_status (*advance)(void *self, long n, long k, double dt, long *done,
                          bf_err *err);
+    /* Optional: models whose state is balls on a line fill *v (analyses
+     * observe them through it) and return 1. */
+    int (*ball_view)(void *self, bf_ball_view *v);
+    /* Optional: the model's own analysis results (the coupled model's
+     * return map and Lyapunov shadow). */
+    void (*results)(const void *self, bf_results *r);
 } bf_model_type;
-
-const bf_model_type *bf_model_find(const char *name);
-const bf_model_type *const *bf_model_types(size_t *n);
 
 #endif

@@ -51,11 +51,12 @@ size_t bf_scene_overrides(const bf_scene *sc, const char *const **list);
 /* Which sections a scene may contain is decided in two stages: the root
  * section ([scene]) is resolved first; then `select` looks at it (model,
  * effects, integrator) and lists the further sections that are allowed.
- * The registry (registry.h) provides the provider used by the program. */
+ * The catalog (run.h) provides the provider used by the program. */
 typedef struct bf_spec_provider {
     const bf_section_spec *root;
     bf_status (*select)(const bf_scene *sc, const bf_section_spec **specs,
-                        size_t cap, size_t *n, bf_err *err);
+                        size_t cap, size_t *n, const void *ctx, bf_err *err);
+    const void *ctx; /* handed to select (the catalog) */
 } bf_spec_provider;
 
 /* Validate and fill defaults. */

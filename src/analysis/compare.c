@@ -3,6 +3,8 @@
 #include "ballfilm/compare.h"
 
 #include <stdlib.h>
+
+#include "ballfilm/run.h"
 #include <string.h>
 
 static const bf_param compare_params[] = {
@@ -37,8 +39,11 @@ bf_status bf_compare_create(bf_compare **out, const bf_scene *sc,
     if (!*na)
         return BF_OK;
     const char *names[2] = {na, nb}, *keys[2] = {"a", "b"};
+    const bf_integrator_type *types[2];
     for (int k = 0; k < 2; k++) {
-        const bf_integrator_type *t = bf_integrator_find(names[k]);
+        const bf_integrator_type *t =
+            bf_catalog_integrator(bf_catalog_builtin(), names[k]);
+        types[k] = t;
         if (!t)
             return bf_scene_fail(sc, err, "compare", keys[k],
                                  "unknown integrator '%s'", names[k]);
@@ -60,9 +65,9 @@ bf_status bf_compare_create(bf_compare **out, const bf_scene *sc,
     c->dv = c->xa + 4 * n;
     /* default parameters: their [integrator] keys belong to the run's
      * own integrator */
-    bf_status st = bf_integrator_create(&c->a, na, n, NULL, err);
+    bf_status st = bf_integrator_create(&c->a, types[0], n, NULL, err);
     if (!st)
-        st = bf_integrator_create(&c->b, nb, n, NULL, err);
+        st = bf_integrator_create(&c->b, types[1], n, NULL, err);
     if (st) {
         bf_compare_free(c);
         return st;

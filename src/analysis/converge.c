@@ -11,6 +11,7 @@
 #include "ballfilm/ballsys.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/registry.h"
+#include "ballfilm/run.h"
 
 static double wall_now(void)
 {
@@ -102,8 +103,7 @@ static bf_status run_once(const bf_scene *sc, long nsteps, double h,
                           int measure, run_out *o, bf_err *err)
 {
     bf_ballsys *sys;
-    bf_effect_env env = {0};
-    bf_status st = bf_ballsys_create(&sys, sc, &env, err);
+    bf_status st = bf_ballsys_from_scene(&sys, bf_catalog_builtin(), sc, err);
     if (st)
         return st;
     bf_integrator_describe(sys->it, o->label, sizeof o->label);
@@ -359,7 +359,8 @@ bf_status bf_converge_run(const bf_scene *base_in, const bf_converge_opts *opts,
                                sizeof name, err)))
             break;
         bf_scene_free(probe);
-        const bf_integrator_type *type = bf_integrator_find(name);
+        const bf_integrator_type *type =
+            bf_catalog_integrator(bf_catalog_builtin(), name);
         const int adaptive = (type->flags & BF_INT_ADAPTIVE) != 0;
         const int has_atol = strstr(o.methods[m], "atol=") != NULL;
         const size_t nruns = adaptive ? o.ntols : o.ndts;

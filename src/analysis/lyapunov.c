@@ -216,7 +216,7 @@ bf_status bf_lyap_create(bf_lyap **out, const bf_scene *sc,
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
     ly->v = ly->x + n;
-    st = bf_integrator_create(&ly->it, sys->it->type->name, n, sc, err);
+    st = bf_integrator_create(&ly->it, sys->it->type, n, sys->it_params, err);
     if (st) {
         bf_lyap_free(ly);
         return st;

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "ballfilm/registry.h"
+#include "ballfilm/run.h"
 #include "ballfilm/version.h"
 
 static const bf_param scene_params[] = {
@@ -59,6 +60,7 @@ const bf_section_spec bf_sim_scene_spec = {
 
 struct bf_sim {
     const bf_scene *sc;
+    bf_setup *setup;
     const bf_model_type *mt;
     void *model;
     bf_sim_opts opts;
@@ -76,17 +78,6 @@ struct bf_sim {
     double wall;
     double prog_last;
 };
-
-/* An interval in whole steps (times rounded to the nearest step). */
-static long interval_steps(bf_interval iv, double dt)
-{
-    if (!iv.in_time)
-        return iv.steps;
-    double k = floor(iv.time / dt + 0.5);
-    if (!(k < 9e15)) /* longer than any run: never (the final row is kept) */
-        return (long)9e15;
-    return iv.time > 0 && k < 1 ? 1 : (long)k;
-}
 
 bf_status bf_sim_create(bf_sim **out, const bf_scene *sc,
                         const bf_sim_opts *opts, bf_err *err)
@@ -107,28 +98,31 @@ bf_status bf_sim_create(bf_sim **out, const bf_scene *sc,
                              "t_end/dt = %g steps is too many", steps);
     }
     s->nsteps = (long)steps;
-    s->out_every = interval_steps(bf_scene_interval(sc, "scene", "output_every"),
+    s->out_every = bf_interval_steps(bf_scene_interval(sc, "scene", "output_every"),
                                   s->dt);
     if (s->out_every < 1)
         s->out_every = 1;
-    s->ckpt_every = interval_steps(bf_scene_interval(sc, "scene",
+    s->ckpt_every = bf_interval_steps(bf_scene_interval(sc, "scene",
                                                      "checkpoint_every"),
                                    s->dt);
     s->energy_every = bf_scene_int(sc, "scene", "energy_every");
     s->energy_bound = bf_scene_real(sc, "scene", "max_energy_error");
     s->flush_seconds = bf_scene_real(sc, "scene", "flush_seconds");
-    s->mt = bf_model_find(bf_scene_str(sc, "scene", "model"));
-    if (!s->mt) {
-        free(s);
-        return bf_fail(err, BF_EINTERNAL, "model vanished from the registry");
+    bf_run_ctx run = {s->dt, s->t_end, s->nsteps, s->out_every};
+    bf_status st = bf_setup_create(&s->setup, bf_catalog_builtin(), sc, &run,
+                                   err);
+    if (!st) {
+        s->mt = bf_setup_model_type(s->setup);
+        st = bf_setup_build_model(s->setup, sc, &s->model, err);
     }
-    bf_status st = s->mt->create(&s->model, sc, err);
     if (st) {
+        bf_setup_free(s->setup);
         free(s);
         return st;
     }
     if (s->ckpt_every && !bf_sim_can_checkpoint(s)) {
         s->mt->destroy(s->model);
+        bf_setup_free(s->setup);
         free(s);
         return bf_scene_fail(sc, err, "scene", "checkpoint_every",
                              "model '%s' cannot write checkpoints yet",
@@ -154,6 +148,7 @@ void bf_sim_free(bf_sim *s)
         bf_out_close(s->out, NULL);
     if (s->mt && s->mt->destroy)
         s->mt->destroy(s->model);
+    bf_setup_free(s->setup);
     free(s->ckpt_path);
     free(s);
 }

@@ -66,7 +66,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/scene.h"
 
 enum { NCACHE = 16, NSER = 20, NROW = 96 };
 enum { ROW_L, ROW_R, ROW_M }; /* rows of ML_n, MR_n, M_n */
@@ -1087,52 +1086,59 @@ bf_status bf_coupling_load(bf_coupling *c, const bf_ckpt *ck,
 /* ---------------------------------------------------------------- effect */
 
 static const bf_param coupling_params[] = {
-    {"V0", BF_REAL, 0, "g/(cm^3 s^2)", "0.01",
+    {"V0", BF_AT(bf_coupling_keys, V0, BF_REAL), "g/(cm^3 s^2)", "0.01",
      "strength V0 of V(s) = V0 exp(-|s|/r0) (eq. 3.10)", BF_NONNEG, 0, 0,
      NULL},
-    {"r0", BF_REAL, 0, "cm", "0.5", "range r0 of V(s)", BF_POS, 0, 0, NULL},
-    {"mobility", BF_REAL, 0, "1/g", "1e5", "ball mobility M (eq. 3.12)",
-     BF_NONNEG, 0, 0, NULL},
-    {"psi_s", BF_REAL, 0, "1", "0", "order parameter of the ball surface",
-     BF_MIN | BF_MAX, -1, 1, NULL},
-    {"quadrature", BF_ENUM, 0, "", "spline",
+    {"r0", BF_AT(bf_coupling_keys, r0, BF_REAL), "cm", "0.5",
+     "range r0 of V(s)", BF_POS, 0, 0, NULL},
+    {"mobility", BF_AT(bf_coupling_keys, mobility, BF_REAL), "1/g", "1e5",
+     "ball mobility M (eq. 3.12)", BF_NONNEG, 0, 0, NULL},
+    {"psi_s", BF_AT(bf_coupling_keys, psi_s, BF_REAL), "1", "0",
+     "order parameter of the ball surface", BF_MIN | BF_MAX, -1, 1, NULL},
+    {"quadrature", BF_AT(bf_coupling_keys, quadrature, BF_ENUM), "", "spline",
      "interpolation of g = h (psi - psi_s)^2 for the integral (3.10): "
      "spline (natural cubic, the paper's) or linear",
      0, 0, 0, "spline|linear"},
-    {"taylor", BF_BOOL, 0, "", "true",
+    {"taylor", BF_AT(bf_coupling_keys, taylor, BF_BOOL), "", "true",
      "reuse a 5th-order expansion of the integral around each ball's first "
      "position per film level (exact to 1e-17 within 2e-3 r0)",
      0, 0, 0, NULL},
     {0},
 };
 
-static const bf_section_spec coupling_spec = {
+const bf_section_spec bf_coupling_spec = BF_SECTION(
     "coupling",
     "balls coupled to the film by the free energy F (Yasuda eqs 3.10-3.12)",
-    coupling_params, 0};
+    coupling_params, bf_coupling_keys);
 
-static bf_status coupling_effect_create(void **self, const bf_scene *sc,
+bf_coupling_params bf_coupling_params_from_keys(const bf_coupling_keys *k)
+{
+    bf_coupling_params p = {
+        .V0 = k->V0,
+        .r0 = k->r0,
+        .M = k->mobility,
+        .psi_s = k->psi_s,
+        .quad = (bf_coupling_quad)k->quadrature,
+    };
+    p.taylor_radius = k->taylor ? 2e-3 * p.r0 : 0.0;
+    return p;
+}
+
+/* The coupling itself belongs to the model that couples balls and film
+ * (it creates it from this effect's keys and the film); the effect only
+ * applies its force. */
+static bf_status coupling_effect_create(void **self, const void *params,
                                         const bf_balls *b,
                                         const bf_effect_env *env, bf_err *err)
 {
-    if (!env || !env->film)
-        return bf_scene_fail(sc, err, "scene", "effects",
-                             "the coupling effect needs a film: use model = "
-                             "coupled (with film = static for a fixed kink)");
-    bf_coupling_params p = {
-        .V0 = bf_scene_real(sc, "coupling", "V0"),
-        .r0 = bf_scene_real(sc, "coupling", "r0"),
-        .M = bf_scene_real(sc, "coupling", "mobility"),
-        .psi_s = bf_scene_real(sc, "coupling", "psi_s"),
-        .quad = (bf_coupling_quad)bf_scene_enum(sc, "coupling", "quadrature"),
-    };
-    p.taylor_radius = bf_scene_bool(sc, "coupling", "taylor") ? 2e-3 * p.r0
-                                                               : 0.0;
-    bf_coupling *c;
-    bf_status st = bf_coupling_create(&c, &p, env->film, b->n, err);
-    if (!st)
-        *self = c;
-    return st;
+    (void)params;
+    (void)b;
+    if (!env || !env->coupling)
+        return bf_fail_key(err, BF_EINPUT, "scene", "effects",
+                           "the coupling effect needs a film: use model = "
+                           "coupled (with film = static for a fixed kink)");
+    *self = env->coupling;
+    return BF_OK;
 }
 
 static int coupling_accel(const void *self, const bf_balls *b, double t,
@@ -1164,15 +1170,12 @@ static double coupling_potential(const void *self, const bf_balls *b,
     return u;
 }
 
-static void coupling_destroy(void *self) { bf_coupling_free(self); }
-
 const bf_effect_type bf_effect_coupling = {
     .name = "coupling",
-    .kind = BF_EFFECT_OTHER,
     .doc = "ball-film coupling: -M dF/dr with F of eq. 3.10 (model coupled)",
-    .spec = &coupling_spec,
+    .spec = &bf_coupling_spec,
+    .flags = BF_EFFECT_MIRROR_ODD,
     .create = coupling_effect_create,
     .accel = coupling_accel,
     .potential = coupling_potential,
-    .destroy = coupling_destroy,
 };

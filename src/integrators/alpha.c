@@ -39,35 +39,36 @@
 enum { A0, AH, XH, NVEC };
 enum { POS_VERLET, POS_TRAPEZOID };
 
+/* the keys of [integrator], also the integrator's private state */
 typedef struct alpha_priv {
     double alpha;
-    int position;
+    int position; /* POS_VERLET, POS_TRAPEZOID */
 } alpha_priv;
 
 static const bf_param alpha_params[] = {
-    {"alpha", BF_REAL, 0, "1", "0.125",
+    {"alpha", BF_AT(alpha_priv, alpha, BF_REAL), "1", "0.125",
      "alpha of eq. 2.16: 0 improved Euler, 0.125 second-order mid-point, "
      "0.25 mid-point",
      BF_MIN | BF_MAX, 0, 1, NULL},
-    {"position", BF_ENUM, 0, "", "verlet",
+    {"position", BF_AT(alpha_priv, position, BF_ENUM), "", "verlet",
      "position update: verlet (x += dt v + dt^2/2 a(x^n)) or trapezoid "
      "(x += dt (v^n + v^{n+1})/2); see README for their stability",
      0, 0, 0, "verlet|trapezoid"},
     {0},
 };
 
-static const bf_section_spec alpha_spec = {
+static const bf_section_spec alpha_spec = BF_SECTION(
     "integrator", "parameters of the alpha-family (Yasuda eqs 2.16-2.17)",
-    alpha_params, 0};
+    alpha_params, alpha_priv);
 
-static bf_status alpha_init(bf_integrator *it, const bf_scene *sc, bf_err *err)
+static bf_status alpha_init(bf_integrator *it, const void *params,
+                            bf_err *err)
 {
-    alpha_priv *p = calloc(1, sizeof *p);
+    alpha_priv *p = malloc(sizeof *p);
     if (!p)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
+    *p = *(const alpha_priv *)params;
     it->priv = p;
-    p->alpha = sc ? bf_scene_real(sc, "integrator", "alpha") : 0.125;
-    p->position = sc ? bf_scene_enum(sc, "integrator", "position") : POS_VERLET;
     return bf_integrator_alloc_work(it, NVEC, err);
 }
 

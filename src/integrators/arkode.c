@@ -205,47 +205,57 @@ const char *bf_arkode_table_name(int index)
 
 size_t bf_arkode_ntables(void) { return NTABLES; }
 
+/* The keys of [integrator] of both ARKODE integrators (each spec lists
+ * its own). */
+typedef struct ark_keys {
+    int table; /* index into tables[] (the order of TABLE_CHOICES) */
+    double rtol, atol, max_step;
+    long max_steps, substeps;
+    int work_around_311;
+} ark_keys;
+
 static const bf_param adaptive_params[] = {
-    {"table", BF_ENUM, 0, "", "ARKODE_DORMAND_PRINCE_7_4_5",
+    {"table", BF_AT(ark_keys, table, BF_ENUM), "",
+     "ARKODE_DORMAND_PRINCE_7_4_5",
      "ERK Butcher table with an embedding (ARKODE name; KNOTH_WOLKE_3_3 has "
      "none and is refused; FEHLBERG_13_7_8's error estimate does not see "
      "contacts, README)",
      0, 0, 0, TABLE_CHOICES},
-    {"rtol", BF_REAL, 0, "1", "1e-8", "relative tolerance of the local error",
+    {"rtol", BF_AT(ark_keys, rtol, BF_REAL), "1", "1e-8", "relative tolerance of the local error",
      BF_POS, 0, 0, NULL},
-    {"atol", BF_REAL, 0, "cm, cm/s", "1e-11",
+    {"atol", BF_AT(ark_keys, atol, BF_REAL), "cm, cm/s", "1e-11",
      "absolute tolerance of the local error (positions and velocities)",
      BF_POS, 0, 0, NULL},
-    {"max_steps", BF_INT, 0, "1", "1000000",
+    {"max_steps", BF_AT(ark_keys, max_steps, BF_INT), "1", "1000000",
      "internal steps allowed per [scene] dt before the run fails", BF_MIN, 1,
      0, NULL},
-    {"max_step", BF_REAL, 0, "s", "0",
+    {"max_step", BF_AT(ark_keys, max_step, BF_REAL), "s", "0",
      "largest internal step (0: no limit besides [scene] dt); free flight "
      "under gravity has a zero error estimate, so without a limit steps grow "
      "until they jump deep into a contact",
      BF_NONNEG, 0, 0, NULL},
-    {"work_around_311", BF_BOOL, 0, "", "yes",
+    {"work_around_311", BF_AT(ark_keys, work_around_311, BF_BOOL), "", "yes",
      "pad tables hit by ARKODE issue 311 (tests only)", BF_HIDDEN, 0, 0, NULL},
     {0},
 };
 
 static const bf_param fixed_params[] = {
-    {"table", BF_ENUM, 0, "", "ARKODE_ZONNEVELD_5_3_4",
+    {"table", BF_AT(ark_keys, table, BF_ENUM), "", "ARKODE_ZONNEVELD_5_3_4",
      "ERK Butcher table (ARKODE name)", 0, 0, 0, TABLE_CHOICES},
-    {"substeps", BF_INT, 0, "1", "1",
+    {"substeps", BF_AT(ark_keys, substeps, BF_INT), "1", "1",
      "fixed internal steps of size dt/substeps per [scene] dt", BF_MIN, 1, 0,
      NULL},
-    {"work_around_311", BF_BOOL, 0, "", "yes",
+    {"work_around_311", BF_AT(ark_keys, work_around_311, BF_BOOL), "", "yes",
      "pad tables hit by ARKODE issue 311 (tests only)", BF_HIDDEN, 0, 0, NULL},
     {0},
 };
 
-static const bf_section_spec adaptive_spec = {
-    "integrator", "parameters of the ARKODE adaptive ERK integrator",
-    adaptive_params, 0};
-static const bf_section_spec fixed_spec = {
+static const bf_section_spec adaptive_spec =
+    BF_SECTION("integrator", "parameters of the ARKODE adaptive ERK integrator",
+               adaptive_params, ark_keys);
+static const bf_section_spec fixed_spec = BF_SECTION(
     "integrator", "parameters of the ARKODE fixed-step ERK integrator",
-    fixed_params, 0};
+    fixed_params, ark_keys);
 
 static void ark_free(bf_integrator *it)
 {
@@ -272,27 +282,22 @@ static bf_status ark_check(ark *p, int flag, const char *what, bf_err *err)
 }
 
 static bf_status ark_init_common(bf_integrator *it, int fixed,
-                                 const bf_scene *sc, bf_err *err)
+                                 const ark_keys *k, bf_err *err)
 {
     ark *p = calloc(1, sizeof *p);
     if (!p)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     it->priv = p;
     p->fixed = fixed;
-    const char *tname = sc ? bf_scene_str(sc, "integrator", "table")
-                           : (fixed ? "ARKODE_ZONNEVELD_5_3_4"
-                                    : "ARKODE_DORMAND_PRINCE_7_4_5");
-    p->table = bf_arkode_table_index(tname);
-    if (p->table < 0)
-        return bf_fail(err, BF_EINPUT, "unknown ARKODE table %s", tname);
+    p->table = k->table;
+    const char *tname = tables[p->table].name;
     if (!fixed) {
-        p->rtol = sc ? bf_scene_real(sc, "integrator", "rtol") : 1e-8;
-        p->atol = sc ? bf_scene_real(sc, "integrator", "atol") : 1e-11;
-        p->max_steps = sc ? bf_scene_int(sc, "integrator", "max_steps")
-                          : 1000000;
-        p->max_step = sc ? bf_scene_real(sc, "integrator", "max_step") : 0.0;
+        p->rtol = k->rtol;
+        p->atol = k->atol;
+        p->max_steps = k->max_steps;
+        p->max_step = k->max_step;
     } else {
-        p->substeps = sc ? bf_scene_int(sc, "integrator", "substeps") : 1;
+        p->substeps = k->substeps;
         p->max_steps = p->substeps + 10;
     }
     const ARKODE_ERKTableID id = tables[p->table].id;
@@ -301,15 +306,13 @@ static bf_status ark_init_common(bf_integrator *it, int fixed,
         return bf_fail(err, BF_EINTERNAL, "cannot load %s", tname);
     if (!fixed && !B->d) {
         ARKodeButcherTable_Free(B);
-        return sc ? bf_scene_fail(sc, err, "integrator", "table",
-                                  "%s has no embedded method, so it cannot "
-                                  "adapt its step; use it with arkode-fixed",
-                                  tname)
-                  : bf_fail(err, BF_EINPUT, "%s has no embedding", tname);
+        return bf_fail_key(err, BF_EINPUT, "integrator", "table",
+                           "%s has no embedded method, so it cannot adapt "
+                           "its step; use it with arkode-fixed",
+                           tname);
     }
     p->order = B->q;
-    p->padded = bf_arkode_table_needs_padding(id) &&
-                (!sc || bf_scene_bool(sc, "integrator", "work_around_311"));
+    p->padded = bf_arkode_table_needs_padding(id) && k->work_around_311;
     if (p->padded) {
         ARKodeButcherTable P = pad_table(B);
         ARKodeButcherTable_Free(B);
@@ -349,16 +352,16 @@ static bf_status ark_init_common(bf_integrator *it, int fixed,
     return ark_check(p, flag, "setup", err);
 }
 
-static bf_status ark_init_adaptive(bf_integrator *it, const bf_scene *sc,
+static bf_status ark_init_adaptive(bf_integrator *it, const void *params,
                                    bf_err *err)
 {
-    return ark_init_common(it, 0, sc, err);
+    return ark_init_common(it, 0, params, err);
 }
 
-static bf_status ark_init_fixed(bf_integrator *it, const bf_scene *sc,
+static bf_status ark_init_fixed(bf_integrator *it, const void *params,
                                 bf_err *err)
 {
-    return ark_init_common(it, 1, sc, err);
+    return ark_init_common(it, 1, params, err);
 }
 
 /* (Re)register the events with ERKStep when they changed. */

@@ -26,33 +26,35 @@
 
 enum { A, XM, VM, VN, NVEC };
 
+/* the keys of [integrator], also the integrator's private state */
 typedef struct impmid_priv {
     double tol;
     long max_iter;
 } impmid_priv;
 
 static const bf_param impmid_params[] = {
-    {"tol", BF_REAL, 0, "1", "1e-14",
+    {"tol", BF_AT(impmid_priv, tol, BF_REAL), "1", "1e-14",
      "relative tolerance of the fixed-point iteration (max norm of the "
      "mid-point velocity update over the velocity scale)",
      BF_POS, 0, 0, NULL},
-    {"max_iter", BF_INT, 0, "1", "50",
+    {"max_iter", BF_AT(impmid_priv, max_iter, BF_INT), "1", "50",
      "iterations allowed per step before the step fails (exit 4)", BF_MIN, 1,
      0, NULL},
     {0},
 };
 
-static const bf_section_spec impmid_spec = {
-    "integrator", "parameters of the implicit mid-point rule", impmid_params, 0};
+static const bf_section_spec impmid_spec =
+    BF_SECTION("integrator", "parameters of the implicit mid-point rule",
+               impmid_params, impmid_priv);
 
-static bf_status impmid_init(bf_integrator *it, const bf_scene *sc, bf_err *err)
+static bf_status impmid_init(bf_integrator *it, const void *params,
+                             bf_err *err)
 {
-    impmid_priv *p = calloc(1, sizeof *p);
+    impmid_priv *p = malloc(sizeof *p);
     if (!p)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
+    *p = *(const impmid_priv *)params;
     it->priv = p;
-    p->tol = sc ? bf_scene_real(sc, "integrator", "tol") : 1e-14;
-    p->max_iter = sc ? bf_scene_int(sc, "integrator", "max_iter") : 50;
     return bf_integrator_alloc_work(it, NVEC, err);
 }
 

@@ -8,13 +8,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-bf_status bf_integrator_create(bf_integrator **out, const char *name, size_t n,
-                               const bf_scene *sc, bf_err *err)
+bf_status bf_integrator_create(bf_integrator **out,
+                               const bf_integrator_type *t, size_t n,
+                               const void *params, bf_err *err)
 {
     *out = NULL;
-    const bf_integrator_type *t = bf_integrator_find(name);
-    if (!t)
-        return bf_fail(err, BF_EINPUT, "unknown integrator '%s'", name);
     bf_integrator *it = calloc(1, sizeof *it);
     if (!it)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
@@ -26,7 +24,17 @@ bf_status bf_integrator_create(bf_integrator **out, const char *name, size_t n,
         bf_integrator_free(it);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
-    bf_status st = t->init ? t->init(it, sc, err) : BF_OK;
+    void *defaults = NULL;
+    bf_status st = BF_OK;
+    if (t->spec && !params) {
+        defaults = calloc(1, t->spec->size ? t->spec->size : 1);
+        st = defaults ? bf_params_defaults(t->spec, defaults, err)
+                      : bf_fail(err, BF_EINTERNAL, "out of memory");
+        params = defaults;
+    }
+    if (!st && t->init)
+        st = t->init(it, t->spec ? params : NULL, err);
+    free(defaults);
     if (st) {
         bf_integrator_free(it);
         return st;

@@ -16,16 +16,18 @@
  *
  * The increments x^{n+1} - x^n and v^{n+1} - v^n are formed first and added
  * once: adding several small terms to a large x one by one would lose more
- * to round-off over 10^7 steps.  The formulas live in step_kernels.h, shared
- * with the ball system's specialised step.
+ * to round-off over 10^7 steps.  The formulas live in step_kernels.h;
+ * ball_steps.h makes the specialised steps for balls under effects from
+ * them (the `balls` slot).
  */
-#include "ballfilm/step_kernels.h"
+#include "ball_steps.h"
 
 enum { NVEC = 5 }; /* a0, aV, aT, xV, xT (step_kernels.h) */
 
-static bf_status mv2m_init(bf_integrator *it, const bf_scene *sc, bf_err *err)
+static bf_status mv2m_init(bf_integrator *it, const void *params,
+                          bf_err *err)
 {
-    (void)sc;
+    (void)params;
     return bf_integrator_alloc_work(it, NVEC, err);
 }
 
@@ -36,6 +38,8 @@ static bf_status mv2m_step(bf_integrator *it, const bf_ode *ode, double t,
                           dt, x, v, err);
 }
 
+BF_BALL_STEPPER(mv2m, bf_mv2m_kernel, bf_mv2m_run, NVEC)
+
 const bf_integrator_type bf_integrator_mv2m = {
     .name = "mv2m",
     .doc = "modified Verlet with the second-order mid-point rule (Yasuda eqs "
@@ -45,4 +49,5 @@ const bf_integrator_type bf_integrator_mv2m = {
     .flags = BF_INT_POSITION_ONLY,
     .init = mv2m_init,
     .step = mv2m_step,
+    .balls = &mv2m_balls,
 };

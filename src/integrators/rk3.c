@@ -20,9 +20,10 @@ static const bf_erk_tableau rk3 = {
     .c = {0, 0.5, 1},
 };
 
-static bf_status rk3_init(bf_integrator *it, const bf_scene *sc, bf_err *err)
+static bf_status rk3_init(bf_integrator *it, const void *params,
+                          bf_err *err)
 {
-    (void)sc;
+    (void)params;
     return bf_erk_init(it, rk3.s, err);
 }
 

@@ -21,9 +21,10 @@ static const bf_erk_tableau rk4 = {
     .c = {0, 0.5, 0.5, 1},
 };
 
-static bf_status rk4_init(bf_integrator *it, const bf_scene *sc, bf_err *err)
+static bf_status rk4_init(bf_integrator *it, const void *params,
+                          bf_err *err)
 {
-    (void)sc;
+    (void)params;
     return bf_erk_init(it, rk4.s, err);
 }
 

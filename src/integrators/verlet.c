@@ -6,16 +6,17 @@
  *
  * Second order, symplectic and time-symmetric.  a^{n+1} is kept for the next
  * step, so a step costs one force evaluation.  Requires a = a(x).  The
- * formulas live in step_kernels.h, shared with the ball system's
- * specialised step.
+ * formulas live in step_kernels.h; ball_steps.h makes the specialised
+ * steps for balls under effects from them (the `balls` slot).
  */
-#include "ballfilm/step_kernels.h"
+#include "ball_steps.h"
 
 enum { NVEC = 3 }; /* a0, a1, xn (step_kernels.h) */
 
-static bf_status verlet_init(bf_integrator *it, const bf_scene *sc, bf_err *err)
+static bf_status verlet_init(bf_integrator *it, const void *params,
+                          bf_err *err)
 {
-    (void)sc;
+    (void)params;
     return bf_integrator_alloc_work(it, NVEC, err);
 }
 
@@ -26,6 +27,8 @@ static bf_status verlet_step(bf_integrator *it, const bf_ode *ode, double t,
                             dt, x, v, err);
 }
 
+BF_BALL_STEPPER(verlet, bf_verlet_kernel, bf_verlet_run, NVEC)
+
 const bf_integrator_type bf_integrator_verlet = {
     .name = "verlet",
     .doc = "velocity Verlet (Yasuda eqs 2.9-2.11), order 2, symplectic, "
@@ -35,4 +38,5 @@ const bf_integrator_type bf_integrator_verlet = {
     .flags = BF_INT_SYMMETRIC | BF_INT_POSITION_ONLY,
     .init = verlet_init,
     .step = verlet_step,
+    .balls = &verlet_balls,
 };

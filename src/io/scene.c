@@ -608,7 +608,7 @@ bf_status bf_scene_resolve_with(bf_scene *sc, const bf_spec_provider *prov,
     sc->active[0] = prov->root;
     size_t n = 0;
     const bf_section_spec *more[MAX_SPECS];
-    st = prov->select(sc, more, MAX_SPECS - 1, &n, err);
+    st = prov->select(sc, more, MAX_SPECS - 1, &n, prov->ctx, err);
     if (st) {
         free_resolved(sc);
         return st;

@@ -72,20 +72,21 @@ static void balls_destroy(void *self)
     free(m);
 }
 
-static bf_status balls_create(void **self, const bf_scene *sc, bf_err *err)
+static bf_status balls_create(void **self, const bf_scene *sc,
+                              const bf_model_setup *setup, bf_err *err)
 {
     balls_model *m = calloc(1, sizeof *m);
     if (!m)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     bf_effect_env env = {0};
-    bf_status st = bf_ballsys_create(&m->sys, sc, &env, err);
+    bf_status st = bf_ballsys_create(&m->sys, setup, &env, err);
     if (!st)
         st = bf_retmap_create(&m->rm, sc, m->sys, err);
     if (!st)
         st = bf_lyap_create(&m->ly, sc, m->sys, err);
     if (!st)
         st = bf_compare_create(&m->cmp, sc, m->sys, err);
-    m->dt = bf_scene_real(sc, "scene", "dt");
+    m->dt = setup->run.dt;
     if (st) {
         balls_destroy(m);
         return st;
@@ -234,7 +235,7 @@ const bf_model_type bf_model_balls = {
     .doc = "balls on a line under the listed effects (Yasuda sec. 2)",
     .flags = BF_MODEL_INTEGRATOR | BF_MODEL_EFFECTS,
     .specs = balls_specs,
-    .create = balls_create,
+    .create_scene = balls_create,
     .destroy = balls_destroy,
     .step = balls_step,
     .energy = balls_energy,

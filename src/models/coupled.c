@@ -187,6 +187,7 @@ static void coupled_destroy(void *self)
     coupled_destroy(m->shadow);
     free(m->ly);
     bf_ballsys_free(m->sys);
+    bf_coupling_free(m->cpl);
     bf_filmsys_free(m->fs);
     free(m->x0);
     free(m->v0);
@@ -212,8 +213,7 @@ static bf_status check_symmetric(const coupled_model *m, const bf_scene *sc,
 {
     const bf_ballsys *s = m->sys;
     for (size_t k = 0; k < s->neff; k++)
-        if (s->eff[k].type != &bf_effect_coupling &&
-            strcmp(s->eff[k].type->name, "contact") != 0)
+        if (!(s->eff[k].type->flags & BF_EFFECT_MIRROR_ODD))
             return bf_scene_fail(sc, err, "scene", "effects",
                                  "[coupled] symmetrize = yes: effect '%s' is "
                                  "not known to be mirror symmetric (only "
@@ -309,7 +309,8 @@ static bf_status ball_key(const bf_scene *sc, const char *key, size_t nb,
 }
 
 static bf_status coupled_build(coupled_model **self, const bf_scene *sc,
-                               int with_shadow, bf_err *err);
+                               const bf_model_setup *setup, int with_shadow,
+                               bf_err *err);
 
 /* The shadow's caches after its state was changed from outside: g and the
  * anchors of the coupling, the integrator's force (epoch). */
@@ -349,14 +350,14 @@ static void displace_shadow_balls(coupled_model *m)
 /* [lyapunov]: the running sum and the shadow, its balls displaced (see the
  * file comment). */
 static bf_status shadow_create(coupled_model *m, const bf_scene *sc,
-                               bf_err *err)
+                               const bf_model_setup *setup, bf_err *err)
 {
     m->ly = malloc(sizeof *m->ly);
     if (!m->ly)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     bf_status st = bf_lyap_sum_init(m->ly, sc, m->nb, m->sys->it, err);
     if (!st)
-        st = coupled_build(&m->shadow, sc, 0, err);
+        st = coupled_build(&m->shadow, sc, setup, 0, err);
     if (st)
         return st;
     displace_shadow_balls(m);
@@ -364,16 +365,27 @@ static bf_status shadow_create(coupled_model *m, const bf_scene *sc,
     return BF_OK;
 }
 
-static bf_status coupled_create(void **self, const bf_scene *sc, bf_err *err)
+static bf_status coupled_create(void **self, const bf_scene *sc,
+                                const bf_model_setup *setup, bf_err *err)
 {
     coupled_model *m = NULL;
-    bf_status st = coupled_build(&m, sc, 1, err);
+    bf_status st = coupled_build(&m, sc, setup, 1, err);
     *self = m;
     return st;
 }
 
+/* The [coupling] keys among the setup's effects (NULL: no coupling). */
+static const bf_coupling_keys *coupling_keys(const bf_model_setup *setup)
+{
+    for (size_t k = 0; k < setup->neffects; k++)
+        if (setup->effects[k]->spec == &bf_coupling_spec)
+            return setup->effect_params[k];
+    return NULL;
+}
+
 static bf_status coupled_build(coupled_model **self, const bf_scene *sc,
-                               int with_shadow, bf_err *err)
+                               const bf_model_setup *setup, int with_shadow,
+                               bf_err *err)
 {
     coupled_model *m = calloc(1, sizeof *m);
     if (!m)
@@ -389,19 +401,25 @@ static bf_status coupled_build(coupled_model **self, const bf_scene *sc,
         free(m);
         return st;
     }
-    bf_effect_env env = {.film = bf_filmsys_film(m->fs)};
-    if ((st = bf_ballsys_create(&m->sys, sc, &env, err))) {
-        coupled_destroy(m);
-        return st;
-    }
-    for (size_t k = 0; k < m->sys->neff; k++)
-        if (m->sys->eff[k].type == &bf_effect_coupling)
-            m->cpl = m->sys->eff[k].self;
-    if (!m->cpl) {
+    const bf_coupling_keys *ck = coupling_keys(setup);
+    size_t nballs;
+    bf_setup_get(setup, &bf_ballsys_ball_spec, &nballs);
+    if (!ck) {
         coupled_destroy(m);
         return bf_scene_fail(sc, err, "scene", "effects",
                              "model coupled needs the effect 'coupling' (and "
                              "usually 'contact')");
+    }
+    bf_coupling_params cp = bf_coupling_params_from_keys(ck);
+    if ((st = bf_coupling_create(&m->cpl, &cp, bf_filmsys_film(m->fs), nballs,
+                                 err))) {
+        coupled_destroy(m);
+        return st;
+    }
+    bf_effect_env env = {.coupling = m->cpl};
+    if ((st = bf_ballsys_create(&m->sys, setup, &env, err))) {
+        coupled_destroy(m);
+        return st;
     }
     m->nb = m->sys->b.n;
     const double *x = bf_film_x(bf_filmsys_film(m->fs));
@@ -437,7 +455,7 @@ static bf_status coupled_build(coupled_model **self, const bf_scene *sc,
     for (int k = 0; k < NSYM; k++)
         m->sym_t[k] = NAN;
     if (with_shadow && bf_lyap_enabled(sc) &&
-        (st = shadow_create(m, sc, err))) {
+        (st = shadow_create(m, sc, setup, err))) {
         coupled_destroy(m);
         return st;
     }
@@ -856,7 +874,7 @@ const bf_model_type bf_model_coupled = {
            "film (Yasuda sec. 3.4-3.5)",
     .flags = BF_MODEL_INTEGRATOR | BF_MODEL_EFFECTS,
     .specs = coupled_specs,
-    .create = coupled_create,
+    .create_scene = coupled_create,
     .destroy = coupled_destroy,
     .step = coupled_step,
     .energy = coupled_energy,

@@ -7,8 +7,10 @@
 #include "ballfilm/filmsys.h"
 #include "ballfilm/model.h"
 
-static bf_status film_create(void **self, const bf_scene *sc, bf_err *err)
+static bf_status film_create(void **self, const bf_scene *sc,
+                          const bf_model_setup *setup, bf_err *err)
 {
+    (void)setup;
     bf_filmsys *fs;
     bf_status st = bf_filmsys_create(&fs, sc, 1, err);
     if (!st)
@@ -69,7 +71,7 @@ const bf_model_type bf_model_film = {
            "separation, invariant scheme (Yasuda sec. 3.1-3.4)",
     .flags = 0,
     .specs = film_specs,
-    .create = film_create,
+    .create_scene = film_create,
     .destroy = film_destroy,
     .stable_dt = film_stable_dt,
     .step = film_step,

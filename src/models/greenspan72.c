@@ -274,8 +274,10 @@ static bf_status g72_initial(g72 *m, const bf_scene *sc, bf_err *err)
     return BF_OK;
 }
 
-static bf_status g72_create(void **self, const bf_scene *sc, bf_err *err)
+static bf_status g72_create(void **self, const bf_scene *sc,
+                          const bf_model_setup *setup, bf_err *err)
 {
+    (void)setup;
     const char *S = "greenspan72";
     g72 *m = calloc(1, sizeof *m);
     if (!m)
@@ -710,7 +712,7 @@ const bf_model_type bf_model_greenspan72 = {
            "(Greenspan 1972)",
     .flags = 0,
     .specs = g72_specs,
-    .create = g72_create,
+    .create_scene = g72_create,
     .destroy = g72_destroy,
     .step = g72_step,
     .output_open = g72_output_open,

@@ -305,8 +305,10 @@ static bf_status g73_layout(g73 *m, const bf_scene *sc, bf_err *err)
 
 static void g73_energy(const void *self, double t, double *kin, double *pot);
 
-static bf_status g73_create(void **self, const bf_scene *sc, bf_err *err)
+static bf_status g73_create(void **self, const bf_scene *sc,
+                          const bf_model_setup *setup, bf_err *err)
 {
+    (void)setup;
     const char *S = "greenspan73";
     g73 *m = calloc(1, sizeof *m);
     if (!m)
@@ -607,7 +609,7 @@ const bf_model_type bf_model_greenspan73 = {
            "1973)",
     .flags = 0,
     .specs = g73_specs,
-    .create = g73_create,
+    .create_scene = g73_create,
     .destroy = g73_destroy,
     .step = g73_step,
     .energy = g73_energy,

@@ -226,8 +226,10 @@ static void mac_model_destroy(void *self)
     free(mm);
 }
 
-static bf_status mac_model_create(void **self, const bf_scene *sc, bf_err *err)
+static bf_status mac_model_create(void **self, const bf_scene *sc,
+                          const bf_model_setup *setup, bf_err *err)
 {
+    (void)setup;
     bf_mac_params p;
     bf_status st = read_params(sc, &p, err);
     if (st)
@@ -467,7 +469,7 @@ const bf_model_type bf_model_mac = {
            "(thesis, PROGRAM STRATRES)",
     .flags = 0,
     .specs = mac_specs,
-    .create = mac_model_create,
+    .create_scene = mac_model_create,
     .destroy = mac_model_destroy,
     .step = mac_model_step,
     .output_open = mac_model_output_open,

@@ -1,14 +1,11 @@
-/* registry.c: which sections a scene may contain, decided from its [scene]
- * section (model, integrator, effects), and the --help listing generated
- * from the same tables. */
-#include "ballfilm/registry.h"
-
+/* resolve.c: which sections a scene may contain, decided from its [scene]
+ * section (model, integrator, effects) and the catalog, and the help
+ * listing generated from the same tables. */
 #include <string.h>
 
-#include "ballfilm/effects.h"
-#include "ballfilm/integrator.h"
-#include "ballfilm/model.h"
+#include "ballfilm/registry.h"
 #include "ballfilm/sim.h"
+#include "compose.h"
 
 static void list_names(char *buf, size_t cap, const char *const *names, size_t n)
 {
@@ -35,16 +32,18 @@ static bf_status add_spec(const bf_section_spec **specs, size_t cap, size_t *n,
 }
 
 static bf_status select_specs(const bf_scene *sc, const bf_section_spec **specs,
-                              size_t cap, size_t *n, bf_err *err)
+                              size_t cap, size_t *n, const void *ctx,
+                              bf_err *err)
 {
+    const bf_catalog *cat = ctx;
     char names[1024];
     const char *tmp[64];
     *n = 0;
     const char *model = bf_scene_str(sc, "scene", "model");
-    const bf_model_type *mt = bf_model_find(model);
+    const bf_model_type *mt = bf_catalog_model(cat, model);
     if (!mt) {
         size_t nm;
-        const bf_model_type *const *all = bf_model_types(&nm);
+        const bf_model_type *const *all = bf_catalog_models(cat, &nm);
         for (size_t k = 0; k < nm && k < 64; k++)
             tmp[k] = all[k]->name;
         list_names(names, sizeof names, tmp, nm);
@@ -57,10 +56,11 @@ static bf_status select_specs(const bf_scene *sc, const bf_section_spec **specs,
             return st;
     if (mt->flags & BF_MODEL_INTEGRATOR) {
         const char *iname = bf_scene_str(sc, "scene", "integrator");
-        const bf_integrator_type *it = bf_integrator_find(iname);
+        const bf_integrator_type *it = bf_catalog_integrator(cat, iname);
         if (!it) {
             size_t ni;
-            const bf_integrator_type *const *all = bf_integrator_types(&ni);
+            const bf_integrator_type *const *all =
+                bf_catalog_integrators(cat, &ni);
             for (size_t k = 0; k < ni && k < 64; k++)
                 tmp[k] = all[k]->name;
             list_names(names, sizeof names, tmp, ni);
@@ -82,10 +82,10 @@ static bf_status select_specs(const bf_scene *sc, const bf_section_spec **specs,
         return bf_scene_fail(sc, err, "scene", "effects",
                              "model '%s' takes no ball effects", model);
     for (size_t k = 0; k < ne; k++) {
-        const bf_effect_type *et = bf_effect_find(eff[k]);
+        const bf_effect_type *et = bf_catalog_effect(cat, eff[k]);
         if (!et) {
             size_t na;
-            const bf_effect_type *const *all = bf_effect_types(&na);
+            const bf_effect_type *const *all = bf_catalog_effects(cat, &na);
             for (size_t j = 0; j < na && j < 64; j++)
                 tmp[j] = all[j]->name;
             list_names(names, sizeof names, tmp, na);
@@ -99,14 +99,23 @@ static bf_status select_specs(const bf_scene *sc, const bf_section_spec **specs,
     return BF_OK;
 }
 
-static const bf_spec_provider provider = {&bf_sim_scene_spec, select_specs};
-
-bf_status bf_registry_resolve(bf_scene *sc, bf_err *err)
+bf_status bf_catalog_resolve(const bf_catalog *c, bf_scene *sc, bf_err *err)
 {
+    const bf_spec_provider provider = {&bf_sim_scene_spec, select_specs, c};
     return bf_scene_resolve_with(sc, &provider, err);
 }
 
+bf_status bf_registry_resolve(bf_scene *sc, bf_err *err)
+{
+    return bf_catalog_resolve(bf_catalog_builtin(), sc, err);
+}
+
 void bf_registry_print_help(FILE *f)
+{
+    bf_catalog_print_help(bf_catalog_builtin(), f);
+}
+
+void bf_catalog_print_help(const bf_catalog *c, FILE *f)
 {
     const bf_section_spec *one[1];
     fprintf(f, "Scene files are INI files.  Every key, with its unit and "
@@ -115,9 +124,9 @@ void bf_registry_print_help(FILE *f)
     bf_params_print(f, one, 1);
 
     size_t nm, ni, ne;
-    const bf_model_type *const *models = bf_model_types(&nm);
-    const bf_integrator_type *const *ints = bf_integrator_types(&ni);
-    const bf_effect_type *const *effs = bf_effect_types(&ne);
+    const bf_model_type *const *models = bf_catalog_models(c, &nm);
+    const bf_integrator_type *const *ints = bf_catalog_integrators(c, &ni);
+    const bf_effect_type *const *effs = bf_catalog_effects(c, &ne);
 
     fprintf(f, "\nModels ([scene] model):\n");
     for (size_t k = 0; k < nm; k++)

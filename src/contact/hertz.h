@@ -1,5 +1,5 @@
-/* contact.h: Hertz contact law, shared by ball-floor, ball-ball and
- * (later) particle contacts.
+/* hertz.h: the Hertz contact law, shared by ball-floor, ball-ball and
+ * particle contacts (private to the library: the kernels are inline).
  *
  * Yasuda eqs 2.5-2.6 (and 3.13-3.14): the force is f = k x^{3/2} where x is
  * the deformation of *one* ball.
@@ -16,8 +16,8 @@
  * Units (CGS): k in g cm^{-1/2} s^{-2}, lengths in cm, force in dyn,
  * energy in erg.
  */
-#ifndef BALLFILM_CONTACT_H
-#define BALLFILM_CONTACT_H
+#ifndef BALLFILM_CONTACT_HERTZ_H
+#define BALLFILM_CONTACT_HERTZ_H
 
 #include <math.h>
 

@@ -7,13 +7,20 @@
  * over the effect kind with inlined kernels keeps the effects composable
  * (a scene lists them; absent effects cost nothing) at close to fused speed.
  * Each effect's .c file uses the same kernel for its `accel` pointer, so
- * there is one definition of every force.
+ * there is one definition of every force.  Private to the library.
+ *
+ * The parameter struct of each built-in effect is its kernel's struct
+ * (the section's keys are its members).
  */
 #ifndef BALLFILM_EFFECT_KERNELS_H
 #define BALLFILM_EFFECT_KERNELS_H
 
-#include "ballfilm/contact.h"
-#include "ballfilm/effects.h"
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "ballfilm/effect.h"
+#include "contact/hertz.h"
 
 /* Forced inlining: the dispatch point is called three times per MV2M step;
  * left to itself GCC keeps one out-of-line copy (with a memset call for
@@ -33,7 +40,7 @@
 #endif
 
 typedef struct bf_gravity {
-    double g; /* cm/s^2, pulls towards x = -inf */
+    double g; /* cm/s^2, pulls towards x = -inf ([gravity] g) */
 } bf_gravity;
 
 typedef struct bf_floor {
@@ -133,6 +140,29 @@ BF_EFFECT_INLINE double bf_spring_potential(const bf_spring *p,
     return u;
 }
 
+/* The accel and potential functions of an effect descriptor for a kernel
+ * above: bf_NAME_accel and bf_NAME_potential behind the generic
+ * signatures (the effect's .c file instantiates them once). */
+#define BF_EFFECT_KERNEL_WRAPPERS(NAME)                                        \
+    static int NAME##_accel(const void *self, const bf_balls *b, double t,     \
+                            const double *x, double *acc)                      \
+    {                                                                          \
+        (void)t;                                                               \
+        bf_##NAME##_accel(self, b, x, acc);                                    \
+        return 0;                                                              \
+    }                                                                          \
+    static double NAME##_potential(const void *self, const bf_balls *b,        \
+                                   double t, const double *x)                  \
+    {                                                                          \
+        (void)t;                                                               \
+        return bf_##NAME##_potential(self, b, x);                              \
+    }
+
+/* An effect whose state is a copy of its parameter struct (size bytes):
+ * what the built-in kernels' create functions do. */
+bf_status bf_effect_copy_params(void **self, const void *params, size_t size,
+                                bf_err *err);
+
 /* sum of the effects' potentials at x */
 BF_EFFECT_INLINE double bf_effects_potential_inline(const bf_effect *e,
                                                     size_t ne,
@@ -141,17 +171,17 @@ BF_EFFECT_INLINE double bf_effects_potential_inline(const bf_effect *e,
 {
     double u = 0.0;
     for (size_t k = 0; k < ne; k++) {
-        switch (e[k].type->kind) {
-        case BF_EFFECT_GRAVITY:
+        switch (e[k].type->kernel) {
+        case BF_KERNEL_GRAVITY:
             u += bf_gravity_potential(e[k].self, b, x);
             break;
-        case BF_EFFECT_FLOOR:
+        case BF_KERNEL_FLOOR:
             u += bf_floor_potential(e[k].self, b, x);
             break;
-        case BF_EFFECT_CONTACT:
+        case BF_KERNEL_CONTACT:
             u += bf_contact_potential(e[k].self, b, x);
             break;
-        case BF_EFFECT_SPRING:
+        case BF_KERNEL_SPRING:
             u += bf_spring_potential(e[k].self, b, x);
             break;
         default:
@@ -171,17 +201,17 @@ BF_EFFECT_INLINE int bf_effects_accel_inline(const bf_effect *e, size_t ne,
     for (size_t i = 0; i < b->n; i++)
         acc[i] = 0.0;
     for (size_t k = 0; k < ne; k++) {
-        switch (e[k].type->kind) {
-        case BF_EFFECT_GRAVITY:
+        switch (e[k].type->kernel) {
+        case BF_KERNEL_GRAVITY:
             bf_gravity_accel(e[k].self, b, x, acc);
             break;
-        case BF_EFFECT_FLOOR:
+        case BF_KERNEL_FLOOR:
             bf_floor_accel(e[k].self, b, x, acc);
             break;
-        case BF_EFFECT_CONTACT:
+        case BF_KERNEL_CONTACT:
             bf_contact_accel(e[k].self, b, x, acc);
             break;
-        case BF_EFFECT_SPRING:
+        case BF_KERNEL_SPRING:
             bf_spring_accel(e[k].self, b, x, acc);
             break;
         default:

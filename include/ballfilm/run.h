@@ -1,0 +1,77 @@
+/* run.h: the composition layer, the one place that builds a run from a
+ * scene.
+ *
+ * The catalog lists what a scene may name: models, integrators, effects.
+ * The built-in catalog holds the library's own (src/compose/catalog.c);
+ * a program may add its own descriptors to a catalog of its own and build
+ * scenes against it.
+ *
+ * A setup is what a model is built from: the scene's sections filled into
+ * the typed structs of their specs (params.h), the integrator and the
+ * effects the scene names, and the run context.  Only this layer and the
+ * scene layer read a scene.
+ */
+#ifndef BALLFILM_RUN_H
+#define BALLFILM_RUN_H
+
+#include <stdio.h>
+
+#include "ballfilm/effect.h"
+#include "ballfilm/error.h"
+#include "ballfilm/integrator.h"
+#include "ballfilm/model.h"
+#include "ballfilm/scene.h"
+
+typedef struct bf_catalog bf_catalog;
+
+/* The library's models, integrators and effects. */
+const bf_catalog *bf_catalog_builtin(void);
+
+const bf_model_type *bf_catalog_model(const bf_catalog *c, const char *name);
+const bf_integrator_type *bf_catalog_integrator(const bf_catalog *c,
+                                                const char *name);
+const bf_effect_type *bf_catalog_effect(const bf_catalog *c,
+                                        const char *name);
+/* All entries of a kind, in catalog order. */
+const bf_model_type *const *bf_catalog_models(const bf_catalog *c, size_t *n);
+const bf_integrator_type *const *bf_catalog_integrators(const bf_catalog *c,
+                                                        size_t *n);
+const bf_effect_type *const *bf_catalog_effects(const bf_catalog *c,
+                                                size_t *n);
+
+/* Validate a scene against the catalog: which sections it may contain is
+ * decided by its [scene] section (model, integrator, effects); unknown
+ * sections and keys are errors naming file and line. */
+bf_status bf_catalog_resolve(const bf_catalog *c, bf_scene *sc, bf_err *err);
+
+/* Print every section and key a scene may contain (help). */
+void bf_catalog_print_help(const bf_catalog *c, FILE *f);
+
+/* The setup of a resolved scene's model (it points into the scene: free
+ * it before the scene). */
+typedef struct bf_setup bf_setup;
+bf_status bf_setup_create(bf_setup **out, const bf_catalog *c,
+                          const bf_scene *sc, const bf_run_ctx *run,
+                          bf_err *err);
+void bf_setup_free(bf_setup *s);
+const bf_model_setup *bf_setup_model(const bf_setup *s);
+const bf_model_type *bf_setup_model_type(const bf_setup *s);
+
+/* Create the scene's model from its setup; a failure that names a key is
+ * located in the scene (FILE:LINE). */
+bf_status bf_setup_build_model(const bf_setup *s, const bf_scene *sc,
+                               void **model, bf_err *err);
+
+/* The model of a resolved scene, without a time loop (tests,
+ * benchmarks): its setup in *setup (free it after the model). */
+bf_status bf_model_from_scene(const bf_catalog *c, const bf_scene *sc,
+                              bf_setup **setup, void **model, bf_err *err);
+
+/* The ball system of a resolved ball scene ([ball.N], its effects and
+ * integrator; no coupling), for drivers that step balls themselves
+ * (converge, tests, benchmarks). */
+struct bf_ballsys;
+bf_status bf_ballsys_from_scene(struct bf_ballsys **out, const bf_catalog *c,
+                                const bf_scene *sc, bf_err *err);
+
+#endif
