@@ -55,6 +55,77 @@ const int64_t *bf_ckpt_data_i64(const bf_ckpt *ck, const char *name,
 const char *bf_ckpt_str(const bf_ckpt *ck, const char *name); /* or NULL */
 int bf_ckpt_has(const bf_ckpt *ck, const char *name);
 
+/* ---- state described by data ----
+ * A model (or a component) describes its state by a table of fields:
+ * name, C type, offset in its struct, how many elements, unit.  One call
+ * saves or loads them all, so a new field is one line of the table, and
+ * the counts are checked on load (an entry of another length is refused,
+ * naming it).  Each field is stored as the entry prefix.name (integers as
+ * int64, doubles as they are).
+ *
+ *   static const bf_field g72_state[] = {
+ *       BF_FIELD(g72, steps, BF_F_ULL, "1"),
+ *       BF_FIELD_ARRAY(g72, kind_total, BF_F_ULL, "particle-steps"),
+ *       BF_FIELD_PTR(g72, ax, BF_F_DOUBLE, n, "cm/s^2"),
+ *   };
+ *   bf_ckpt_put_fields(ck, "g72", g72_state, BF_NFIELDS(g72_state), m, err);
+ */
+typedef enum bf_ftype {
+    BF_F_DOUBLE, /* double */
+    BF_F_INT,    /* int */
+    BF_F_LONG,   /* long */
+    BF_F_ULONG,  /* unsigned long */
+    BF_F_ULL,    /* unsigned long long */
+    BF_F_SIZE,   /* size_t */
+    BF_F_I64,    /* int64_t */
+    BF_F_I32,    /* int32_t */
+    BF_F_U32,    /* uint32_t */
+    BF_F_U8      /* uint8_t */
+} bf_ftype;
+
+typedef struct bf_field {
+    const char *name;
+    bf_ftype type;
+    size_t offset;   /* of the member */
+    size_t count;    /* elements of a scalar or array member; 0: pointer */
+    size_t count_of; /* pointer members: offset of the size_t member that
+                        holds the number of elements */
+    const char *unit;
+} bf_field;
+
+#define BF_FTYPE_BF_F_DOUBLE double
+#define BF_FTYPE_BF_F_INT int
+#define BF_FTYPE_BF_F_LONG long
+#define BF_FTYPE_BF_F_ULONG unsigned long
+#define BF_FTYPE_BF_F_ULL unsigned long long
+#define BF_FTYPE_BF_F_SIZE size_t
+#define BF_FTYPE_BF_F_I64 int64_t
+#define BF_FTYPE_BF_F_I32 int32_t
+#define BF_FTYPE_BF_F_U32 uint32_t
+#define BF_FTYPE_BF_F_U8 uint8_t
+/* The members' C types are checked at compile time (as params.h's BF_AT). */
+#define BF_FIELD_CHECK_(ptr, TYPE) (0 * sizeof((ptr) == (BF_FTYPE_##TYPE *)0))
+/* a scalar member */
+#define BF_FIELD(T, m, TYPE, unit)                                             \
+    {#m, TYPE, offsetof(T, m) + BF_FIELD_CHECK_(&((T *)0)->m, TYPE), 1, 0,     \
+     unit}
+/* an array member (its whole length) */
+#define BF_FIELD_ARRAY(T, m, TYPE, unit)                                       \
+    {#m, TYPE, offsetof(T, m) + BF_FIELD_CHECK_(&((T *)0)->m[0], TYPE),        \
+     sizeof(((T *)0)->m) / sizeof(((T *)0)->m[0]), 0, unit}
+/* a pointer member to n elements, n in the size_t member `cnt` */
+#define BF_FIELD_PTR(T, m, TYPE, cnt, unit)                                    \
+    {#m, TYPE, offsetof(T, m) + BF_FIELD_CHECK_(((T *)0)->m, TYPE), 0,         \
+     offsetof(T, cnt) + 0 * sizeof(&((T *)0)->cnt == (size_t *)0), unit}
+#define BF_NFIELDS(table) (sizeof(table) / sizeof((table)[0]))
+
+bf_status bf_ckpt_put_fields(bf_ckpt *ck, const char *prefix,
+                             const bf_field *f, size_t nf, const void *obj,
+                             bf_err *err);
+bf_status bf_ckpt_get_fields(const bf_ckpt *ck, const char *prefix,
+                             const bf_field *f, size_t nf, void *obj,
+                             bf_err *err);
+
 /* Atomic write (PATH.tmp + fsync + rename) and read. */
 bf_status bf_ckpt_write(const bf_ckpt *ck, const char *path, bf_err *err);
 bf_status bf_ckpt_read(bf_ckpt **out, const char *path, bf_err *err);

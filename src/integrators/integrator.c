@@ -120,54 +120,35 @@ void bf_integrator_cache_store(bf_integrator *it, const bf_ode *ode,
     it->cache_valid = 1;
 }
 
+/* What a checkpoint keeps of every integrator (the type's private state
+ * follows, under the same prefix). */
+static const bf_field integrator_state[] = {
+    BF_FIELD(bf_integrator, count.steps, BF_F_ULL, "1"),
+    BF_FIELD(bf_integrator, count.evals, BF_F_ULL, "1"),
+    BF_FIELD(bf_integrator, count.rejected, BF_F_ULL, "1"),
+    BF_FIELD(bf_integrator, count.iterations, BF_F_ULL, "1"),
+    BF_FIELD(bf_integrator, cache_valid, BF_F_INT, "1"),
+    BF_FIELD(bf_integrator, cache_epoch, BF_F_ULONG, "1"),
+    BF_FIELD_PTR(bf_integrator, cache_x, BF_F_DOUBLE, n, "cm"),
+    BF_FIELD_PTR(bf_integrator, cache_a, BF_F_DOUBLE, n, "cm/s^2"),
+};
+
 bf_status bf_integrator_save(const bf_integrator *it, bf_ckpt *ck,
                              const char *prefix, bf_err *err)
 {
-    char name[256];
-    int64_t meta[7] = {(int64_t)it->count.steps, (int64_t)it->count.evals,
-                       (int64_t)it->count.rejected,
-                       (int64_t)it->count.iterations, it->cache_valid,
-                       (int64_t)it->cache_epoch, (int64_t)it->n};
-    bf_status st;
-    snprintf(name, sizeof name, "%s.meta", prefix);
-    if ((st = bf_ckpt_put_i64(ck, name, meta, 7, err)))
-        return st;
-    snprintf(name, sizeof name, "%s.cache_x", prefix);
-    if ((st = bf_ckpt_put(ck, name, it->cache_x, it->n, err)))
-        return st;
-    snprintf(name, sizeof name, "%s.cache_a", prefix);
-    if ((st = bf_ckpt_put(ck, name, it->cache_a, it->n, err)))
-        return st;
-    if (it->type->save)
-        return it->type->save(it, ck, prefix, err);
-    return BF_OK;
+    bf_status st = bf_ckpt_put_fields(ck, prefix, integrator_state,
+                                      BF_NFIELDS(integrator_state), it, err);
+    if (!st && it->type->save)
+        st = it->type->save(it, ck, prefix, err);
+    return st;
 }
 
 bf_status bf_integrator_load(bf_integrator *it, const bf_ckpt *ck,
                              const char *prefix, bf_err *err)
 {
-    char name[256];
-    int64_t meta[7];
-    bf_status st;
-    snprintf(name, sizeof name, "%s.meta", prefix);
-    if ((st = bf_ckpt_get_i64(ck, name, meta, 7, err)))
-        return st;
-    if (meta[6] != (int64_t)it->n)
-        return bf_fail(err, BF_EINPUT, "checkpoint integrator has %lld "
-                       "unknowns, the scene %zu", (long long)meta[6], it->n);
-    it->count.steps = (unsigned long long)meta[0];
-    it->count.evals = (unsigned long long)meta[1];
-    it->count.rejected = (unsigned long long)meta[2];
-    it->count.iterations = (unsigned long long)meta[3];
-    it->cache_valid = (int)meta[4];
-    it->cache_epoch = (unsigned long)meta[5];
-    snprintf(name, sizeof name, "%s.cache_x", prefix);
-    if ((st = bf_ckpt_get(ck, name, it->cache_x, it->n, err)))
-        return st;
-    snprintf(name, sizeof name, "%s.cache_a", prefix);
-    if ((st = bf_ckpt_get(ck, name, it->cache_a, it->n, err)))
-        return st;
-    if (it->type->load)
-        return it->type->load(it, ck, prefix, err);
-    return BF_OK;
+    bf_status st = bf_ckpt_get_fields(ck, prefix, integrator_state,
+                                      BF_NFIELDS(integrator_state), it, err);
+    if (!st && it->type->load)
+        st = it->type->load(it, ck, prefix, err);
+    return st;
 }

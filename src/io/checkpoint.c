@@ -352,3 +352,130 @@ bf_status bf_ckpt_read(bf_ckpt **out, const char *path, bf_err *err)
     *out = ck;
     return BF_OK;
 }
+
+/* ---------------------------------------------------------------- fields */
+
+static size_t ftype_size(bf_ftype t)
+{
+    switch (t) {
+    case BF_F_DOUBLE: return sizeof(double);
+    case BF_F_INT: return sizeof(int);
+    case BF_F_LONG: return sizeof(long);
+    case BF_F_ULONG: return sizeof(unsigned long);
+    case BF_F_ULL: return sizeof(unsigned long long);
+    case BF_F_SIZE: return sizeof(size_t);
+    case BF_F_I64: return sizeof(int64_t);
+    case BF_F_I32: return sizeof(int32_t);
+    case BF_F_U32: return sizeof(uint32_t);
+    case BF_F_U8: return sizeof(uint8_t);
+    }
+    return 0;
+}
+
+/* element k of a field as int64 and back */
+static int64_t get_int(bf_ftype t, const char *p)
+{
+    switch (t) {
+    case BF_F_INT: return *(const int *)p;
+    case BF_F_LONG: return *(const long *)p;
+    case BF_F_ULONG: return (int64_t) * (const unsigned long *)p;
+    case BF_F_ULL: return (int64_t) * (const unsigned long long *)p;
+    case BF_F_SIZE: return (int64_t) * (const size_t *)p;
+    case BF_F_I64: return *(const int64_t *)p;
+    case BF_F_I32: return *(const int32_t *)p;
+    case BF_F_U32: return *(const uint32_t *)p;
+    case BF_F_U8: return *(const uint8_t *)p;
+    case BF_F_DOUBLE: break;
+    }
+    return 0;
+}
+
+static void set_int(bf_ftype t, char *p, int64_t v)
+{
+    switch (t) {
+    case BF_F_INT: *(int *)p = (int)v; break;
+    case BF_F_LONG: *(long *)p = (long)v; break;
+    case BF_F_ULONG: *(unsigned long *)p = (unsigned long)v; break;
+    case BF_F_ULL: *(unsigned long long *)p = (unsigned long long)v; break;
+    case BF_F_SIZE: *(size_t *)p = (size_t)v; break;
+    case BF_F_I64: *(int64_t *)p = v; break;
+    case BF_F_I32: *(int32_t *)p = (int32_t)v; break;
+    case BF_F_U32: *(uint32_t *)p = (uint32_t)v; break;
+    case BF_F_U8: *(uint8_t *)p = (uint8_t)v; break;
+    case BF_F_DOUBLE: break;
+    }
+}
+
+/* the elements of field f of obj and their number */
+static char *field_data(const bf_field *f, const void *obj, size_t *n)
+{
+    char *base = (char *)obj;
+    if (f->count) {
+        *n = f->count;
+        return base + f->offset;
+    }
+    memcpy(n, base + f->count_of, sizeof *n);
+    char *p;
+    memcpy(&p, base + f->offset, sizeof p);
+    return p;
+}
+
+static void field_name(char *buf, size_t cap, const char *prefix,
+                       const bf_field *f)
+{
+    snprintf(buf, cap, "%s.%s", prefix, f->name);
+}
+
+bf_status bf_ckpt_put_fields(bf_ckpt *ck, const char *prefix,
+                             const bf_field *f, size_t nf, const void *obj,
+                             bf_err *err)
+{
+    char name[256];
+    for (size_t k = 0; k < nf; k++) {
+        size_t n;
+        const char *p = field_data(&f[k], obj, &n);
+        field_name(name, sizeof name, prefix, &f[k]);
+        bf_status st;
+        if (f[k].type == BF_F_DOUBLE) {
+            st = put(ck, name, K_REAL, p, n, err);
+        } else {
+            int64_t *v = malloc((n ? n : 1) * sizeof *v);
+            if (!v)
+                return bf_fail(err, BF_EINTERNAL, "out of memory");
+            for (size_t i = 0; i < n; i++)
+                v[i] = get_int(f[k].type, p + i * ftype_size(f[k].type));
+            st = put(ck, name, K_INT, v, n, err);
+            free(v);
+        }
+        if (st)
+            return st;
+    }
+    return BF_OK;
+}
+
+bf_status bf_ckpt_get_fields(const bf_ckpt *ck, const char *prefix,
+                             const bf_field *f, size_t nf, void *obj,
+                             bf_err *err)
+{
+    char name[256];
+    for (size_t k = 0; k < nf; k++) {
+        size_t n;
+        char *p = field_data(&f[k], obj, &n);
+        field_name(name, sizeof name, prefix, &f[k]);
+        bf_status st;
+        if (f[k].type == BF_F_DOUBLE) {
+            st = get(ck, name, K_REAL, p, n, err);
+        } else {
+            int64_t *v = malloc((n ? n : 1) * sizeof *v);
+            if (!v)
+                return bf_fail(err, BF_EINTERNAL, "out of memory");
+            st = get(ck, name, K_INT, v, n, err);
+            for (size_t i = 0; !st && i < n; i++)
+                set_int(f[k].type, p + i * ftype_size(f[k].type), v[i]);
+            free(v);
+        }
+        if (st)
+            return st;
+    }
+    return BF_OK;
+}
