@@ -91,6 +91,16 @@ typedef struct bf_results {
     const double *map_z, *map_v; /* the map's points (NULL: not kept) */
 } bf_results;
 
+/* A model's largest stable time step (model type's stable_dt). */
+typedef struct bf_dt_limit {
+    double dt_max;       /* largest stable [scene] dt, s; 0: no limit */
+    char why[512];       /* what decides it, completing "dt = 0.01 s exceeds
+                            ...": "the film's stable limit 0.00318 s (...)" */
+    char advice[256];    /* what to do about it ("" if nothing to say) */
+    char section[64];    /* the key to name when dt exceeds it ("": */
+    char key[64];        /* [scene] dt) */
+} bf_dt_limit;
+
 typedef struct bf_model_type {
     const char *name;
     const char *doc;
@@ -107,9 +117,11 @@ typedef struct bf_model_type {
     bf_status (*create_scene)(void **self, const bf_scene *sc,
                               const bf_model_setup *setup, bf_err *err);
     void (*destroy)(void *self);
-    /* Largest stable time step for the current state (s), or 0 if the
-     * model has no such limit.  Optional. */
-    double (*stable_dt)(const void *self);
+    /* The largest stable step of the model as set up (bf_dt_limit; leave
+     * lim->dt_max 0 for none).  The loop asks once, when the run is
+     * built, and refuses a larger [scene] dt with lim's text and key.
+     * Optional. */
+    void (*stable_dt)(const void *self, bf_dt_limit *lim);
     /* Advance from t = n dt to t + dt.  A failure message should say what
      * went wrong and where (ball, node, cell); the loop adds step and time. */
     bf_status (*step)(void *self, long n, double t, double dt, bf_err *err);

@@ -120,6 +120,21 @@ bf_status bf_sim_create(bf_sim **out, const bf_scene *sc,
         free(s);
         return st;
     }
+    if (!st && s->mt->stable_dt) {
+        bf_dt_limit lim = {0};
+        s->mt->stable_dt(s->model, &lim);
+        if (lim.dt_max > 0 && s->dt > lim.dt_max) {
+            bf_fail_key(err, BF_EINPUT, lim.section[0] ? lim.section : "scene",
+                        lim.section[0] ? lim.key : "dt",
+                        "dt = %g s exceeds %s%s%s", s->dt, lim.why,
+                        lim.advice[0] ? "; " : "", lim.advice);
+            bf_scene_locate(sc, err);
+            s->mt->destroy(s->model);
+            bf_setup_free(s->setup);
+            free(s);
+            return BF_EINPUT;
+        }
+    }
     if (s->ckpt_every && !bf_sim_can_checkpoint(s)) {
         s->mt->destroy(s->model);
         bf_setup_free(s->setup);

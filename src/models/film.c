@@ -20,10 +20,6 @@ static bf_status film_create(void **self, const bf_scene *sc,
 
 static void film_destroy(void *self) { bf_filmsys_free(self); }
 
-static double film_stable_dt(const void *self)
-{
-    return bf_film_stable_dt(bf_filmsys_film((bf_filmsys *)self), NULL, 0);
-}
 
 static bf_status film_step(void *self, long n, double t, double dt, bf_err *err)
 {
@@ -73,7 +69,6 @@ const bf_model_type bf_model_film = {
     .specs = film_specs,
     .create_scene = film_create,
     .destroy = film_destroy,
-    .stable_dt = film_stable_dt,
     .step = film_step,
     .output_open = film_output_open,
     .output_row = film_output_row,
