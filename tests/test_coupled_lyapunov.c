@@ -9,7 +9,7 @@
 
 #include "ballfilm/coupled.h"
 #include "ballfilm/h5out.h"
-#include "ballfilm/lyapunov.h"
+#include "diag/lyapsum.h"
 #include "testutil.h"
 
 /* Two balls falling on a floor (runs/two_balls_A.ini: lower 1.2 g, a

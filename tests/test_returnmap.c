@@ -23,7 +23,7 @@
 
 #include "ballfilm/balls.h"
 #include "ballfilm/h5out.h"
-#include "ballfilm/lyapunov.h"
+#include "analysis/lyapunov.h"
 #include "ballfilm/registry.h"
 #include "ballfilm/run.h"
 #include "testutil.h"
@@ -182,7 +182,9 @@ static double lyapunov_of(bf_accel_fn f, double T)
     ck_assert(bf_ballsys_from_scene(&sys, bf_catalog_builtin(), sc, &err) == BF_OK);
     sys->ode.accel = f;
     bf_lyap *ly;
-    ck_assert(bf_lyap_create(&ly, sc, sys, &err) == BF_OK && ly);
+    bf_lyap_keys keys;
+    bf_scene_fill(sc, "lyapunov", &bf_lyap_spec, &keys);
+    ck_assert(bf_lyap_create(&ly, &keys, 0.01, sys, &err) == BF_OK && ly);
     long n = lround(T / 0.01);
     const double x0 = sys->b.x[0];
     for (long s = 0; s < n; s++) {

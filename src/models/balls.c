@@ -16,7 +16,7 @@
 #include "ballfilm/balls.h"
 #include "ballfilm/compare.h"
 #include "ballfilm/coupled.h"
-#include "ballfilm/lyapunov.h"
+#include "analysis/lyapunov.h"
 #include "ballfilm/model.h"
 
 typedef struct balls_model {
@@ -83,7 +83,8 @@ static bf_status balls_create(void **self, const bf_scene *sc,
     if (!st)
         st = bf_retmap_create(&m->rm, sc, m->sys, err);
     if (!st)
-        st = bf_lyap_create(&m->ly, sc, m->sys, err);
+        st = bf_lyap_create(&m->ly, bf_setup_get(setup, &bf_lyap_spec, NULL),
+                            setup->run.dt, m->sys, err);
     if (!st)
         st = bf_compare_create(&m->cmp, sc, m->sys, err);
     m->dt = setup->run.dt;

@@ -55,7 +55,7 @@
  *                           (rel. to max |v|)
  *   /coupled/sym_correction_max [4]     the same over the whole run
  *
- * Largest Lyapunov exponent ([lyapunov] enabled = yes, lyapunov.h).  The
+ * Largest Lyapunov exponent ([lyapunov] enabled = yes, src/diag/lyapsum.h).  The
  * model keeps a shadow coupled system: a second instance of this model
  * built from the same scene (its own film, balls, coupling and
  * integrator, the same film_every and symmetrize), whose balls start
@@ -90,7 +90,7 @@
  * <= r for 0 <= s < r, and f <= 1), so h = A_d + A_c > 0 and alpha_k in
  * [0, 1].  A separation that has shrunk (d <= d0) is left alone (no
  * factor > 1, which could push a small alpha below 0), and the sum
- * accounts for it (lyapunov.h); one that has shrunk below
+ * accounts for it (lyapsum.h); one that has shrunk below
  * BF_LYAP_RESEED_BELOW d0 is re-seeded (factor 0: the film becomes the
  * run's exactly, the balls are displaced again) before the two merge.
  */
@@ -105,7 +105,7 @@
 #include "ballfilm/coupled.h"
 #include "ballfilm/coupling.h"
 #include "ballfilm/filmsys.h"
-#include "ballfilm/lyapunov.h"
+#include "diag/lyapsum.h"
 #include "ballfilm/model.h"
 
 enum { NSYM = 4 };
@@ -355,7 +355,10 @@ static bf_status shadow_create(coupled_model *m, const bf_scene *sc,
     m->ly = malloc(sizeof *m->ly);
     if (!m->ly)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    bf_status st = bf_lyap_sum_init(m->ly, sc, m->nb, m->sys->it, err);
+    const bf_integrator_type *t = m->sys->it->type;
+    bf_status st = bf_lyap_sum_init(
+        m->ly, bf_setup_get(setup, &bf_lyap_spec, NULL), setup->run.dt, m->nb,
+        t->flags & BF_INT_ADAPTIVE ? t->name : NULL, err);
     if (!st)
         st = coupled_build(&m->shadow, sc, setup, 0, err);
     if (st)
@@ -454,7 +457,8 @@ static bf_status coupled_build(coupled_model **self, const bf_scene *sc,
     }
     for (int k = 0; k < NSYM; k++)
         m->sym_t[k] = NAN;
-    if (with_shadow && bf_lyap_enabled(sc) &&
+    const bf_lyap_keys *lk = bf_setup_get(setup, &bf_lyap_spec, NULL);
+    if (with_shadow && lk->enabled &&
         (st = shadow_create(m, sc, setup, err))) {
         coupled_destroy(m);
         return st;
@@ -772,7 +776,7 @@ static void coupled_report(const void *self, FILE *f)
                    "refresh) %.3f s\n",
                 m->cpu[0], m->cpu[1], m->cpu[2]);
     if (m->ly)
-        bf_lyap_sum_report(m->ly, &m->shadow->sys->it->count, f);
+        bf_lyap_sum_report(m->ly, m->shadow->sys->it->count.evals, f);
 }
 
 /* ------------------------------------------------------------ checkpoint */

@@ -1,5 +1,6 @@
-/* lyapunov.h: largest Lyapunov exponent of a ball system by two nearby
- * trajectories with periodic renormalisation (Benettin et al. 1976).
+/* lyapsum.h: the bookkeeping of the largest Lyapunov exponent by two
+ * nearby trajectories with periodic renormalisation (Benettin et al. 1976),
+ * shared by the models that estimate it (private to the library).
  *
  * A shadow copy of the balls starts at a distance d0 from the real one in
  * the scaled phase space (x, tau v), along the fixed direction with equal
@@ -32,23 +33,29 @@
  * The choice of tau (a time scale turning velocities into lengths) changes
  * the transient, not the limit.
  *
- * Two layers: bf_lyap_sum is the bookkeeping every model shares ([lyapunov]
- * keys, initial displacement, distance, running sum, output, checkpoint);
- * bf_lyap is the shadow of a plain ball system (the "balls" model).  The
- * coupled model keeps a shadow film as well and uses bf_lyap_sum directly.
+ * This file is the bookkeeping every estimate shares ([lyapunov] keys,
+ * initial displacement, distance, running sum, output, checkpoint); the
+ * shadow of a plain ball system is an analysis (src/analysis/lyapunov.c),
+ * the coupled model keeps a shadow film as well (src/models).
  */
-#ifndef BALLFILM_LYAPUNOV_H
-#define BALLFILM_LYAPUNOV_H
+#ifndef BALLFILM_DIAG_LYAPSUM_H
+#define BALLFILM_DIAG_LYAPSUM_H
 
 #include <stdio.h>
 
-#include "ballfilm/ballsys.h"
 #include "ballfilm/checkpoint.h"
 #include "ballfilm/h5out.h"
+#include "ballfilm/params.h"
+
+/* The keys of [lyapunov]. */
+typedef struct bf_lyap_keys {
+    int enabled;
+    double d0;                      /* cm */
+    double tau;                     /* s */
+    bf_interval renormalise_every; /* steps or s */
+} bf_lyap_keys;
 
 extern const bf_section_spec bf_lyap_spec; /* [lyapunov] */
-
-/* ------------------------------------------------ shared bookkeeping */
 
 typedef struct bf_lyap_sum {
     size_t n;       /* balls */
@@ -67,12 +74,12 @@ typedef struct bf_lyap_sum {
  * the round-off of cm-sized positions). */
 #define BF_LYAP_RESEED_BELOW 1e-4
 
-/* 1 if the scene has [lyapunov] enabled = yes. */
-int bf_lyap_enabled(const bf_scene *sc);
-/* Read [lyapunov] for n balls advanced by `it` (refused if adaptive),
- * naming the key on bad input. */
-bf_status bf_lyap_sum_init(bf_lyap_sum *ls, const bf_scene *sc, size_t n,
-                           const bf_integrator *it, bf_err *err);
+/* From the [lyapunov] keys for n balls stepped by dt.  `adaptive` names
+ * the run's integrator if it is adaptive (refused, naming the key), NULL
+ * otherwise. */
+bf_status bf_lyap_sum_init(bf_lyap_sum *ls, const bf_lyap_keys *k, double dt,
+                           size_t n, const char *adaptive, bf_err *err);
+
 /* The shadow's initial state: (xs, vs) = (x, v) + the displacement of
  * length d0 along equal components in (x, tau v). */
 void bf_lyap_displace(const bf_lyap_sum *ls, const double *x, const double *v,
@@ -99,37 +106,12 @@ void bf_lyap_pull(size_t n, double factor, const double *run, double *shadow);
  * renormalisation); NAN before the first renormalisation. */
 double bf_lyap_sum_estimate(const bf_lyap_sum *ls, double *t_ref);
 /* The summary line, with the shadow's force evaluations. */
-void bf_lyap_sum_report(const bf_lyap_sum *ls, const bf_counters *shadow,
+void bf_lyap_sum_report(const bf_lyap_sum *ls, unsigned long long evals,
                         FILE *f);
 bf_status bf_lyap_sum_output_open(bf_lyap_sum *ls, bf_out *out, bf_err *err);
 bf_status bf_lyap_sum_output_close(const bf_lyap_sum *ls, bf_out *out,
                                    bf_err *err);
 bf_status bf_lyap_sum_save(const bf_lyap_sum *ls, bf_ckpt *ck, bf_err *err);
 bf_status bf_lyap_sum_load(bf_lyap_sum *ls, const bf_ckpt *ck, bf_err *err);
-
-/* ------------------------------------------------ a ball system's shadow */
-
-typedef struct bf_lyap bf_lyap;
-
-/* Create from [lyapunov]; *out is NULL when it is not enabled. */
-bf_status bf_lyap_create(bf_lyap **out, const bf_scene *sc,
-                         const bf_ballsys *sys, bf_err *err);
-void bf_lyap_free(bf_lyap *ly);
-
-/* Advance the shadow over the step t -> t + dt that the ball system has
- * just taken (step number n_done = steps done after it), renormalising
- * when due. */
-bf_status bf_lyap_after_step(bf_lyap *ly, const bf_ballsys *sys, long n_done,
-                             double t, double dt, bf_err *err);
-
-double bf_lyap_estimate(const bf_lyap *ly, double *t_ref);
-void bf_lyap_report(const bf_lyap *ly, FILE *f);
-
-bf_status bf_lyap_output_open(bf_lyap *ly, bf_out *out, bf_err *err);
-bf_status bf_lyap_output_close(const bf_lyap *ly, bf_out *out, bf_err *err);
-bf_status bf_lyap_save(const bf_lyap *ly, bf_ckpt *ck, bf_err *err);
-bf_status bf_lyap_load(bf_lyap *ly, const bf_ckpt *ck, bf_err *err);
-/* Counters of the shadow integrator (work spent on the estimate). */
-const bf_counters *bf_lyap_counters(const bf_lyap *ly);
 
 #endif
