@@ -8,7 +8,7 @@
  * checkpoints, stops) happen at the same steps as with one call per step,
  * and the results are the same bits.
  */
-#include "ballfilm/clock.h"
+#include "base/clock.h"
 #include "ballfilm/sim.h"
 
 #include <math.h>

@@ -1,5 +1,5 @@
 /* h5out.c: buffered, extendible HDF5 series (see h5out.h for the design). */
-#include "ballfilm/clock.h"
+#include "base/clock.h"
 #include "ballfilm/h5out.h"
 
 #include <hdf5.h>

@@ -1,7 +1,7 @@
 /* sweep.c: cases, their runs and the summary of a parameter sweep (see
  * sweep.h).  Nothing here knows about processes or MPI: the front end
  * decides who runs which case. */
-#include "ballfilm/clock.h"
+#include "base/clock.h"
 #include "ballfilm/sweep.h"
 
 #include <errno.h>

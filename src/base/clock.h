@@ -1,7 +1,7 @@
 /* clock.h: wall-clock time for timings and flush intervals (never for
  * simulated time, which is always step * dt). */
-#ifndef BALLFILM_CLOCK_H
-#define BALLFILM_CLOCK_H
+#ifndef BALLFILM_BASE_CLOCK_H
+#define BALLFILM_BASE_CLOCK_H
 
 #include <time.h>
 
