@@ -200,7 +200,7 @@ int main(void)
         load(methods[m], &sr);
         bf_sim_opts opts = {.stop_after = chunk};
         bf_sim *sim;
-        if (bf_sim_create(&sim, sr, &opts, &err)) {
+        if (bf_sim_from_scene(&sim, bf_catalog_builtin(), sr, &opts, &err)) {
             fprintf(stderr, "%s\n", err.msg);
             return 1;
         }

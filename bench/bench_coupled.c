@@ -30,6 +30,7 @@
 #include "ballfilm/registry.h"
 #include "ballfilm/scene.h"
 #include "ballfilm/sim.h"
+#include "ballfilm/run.h"
 
 static double cpu_now(void)
 {
@@ -85,7 +86,7 @@ static double run(const char *const *sets, int timing, double T, double base)
             }
         bf_sim *sim;
         if (bf_registry_resolve(sc, &err) ||
-            bf_sim_create(&sim, sc, NULL, &err)) {
+            bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &err)) {
             fprintf(stderr, "%s\n", err.msg);
             exit(1);
         }

@@ -12,6 +12,7 @@
 #include "ballfilm/registry.h"
 #include "ballfilm/scene.h"
 #include "ballfilm/sim.h"
+#include "ballfilm/run.h"
 
 int bf_fuzz_one(const unsigned char *data, size_t size)
 {
@@ -36,7 +37,7 @@ int bf_fuzz_one(const unsigned char *data, size_t size)
             bf_sim *sim = NULL;
             bf_sim_opts opts = {.progress = 0, .stop_flag = NULL,
                                 .stop_after = 5};
-            if (bf_sim_create(&sim, sc, &opts, &err) == BF_OK) {
+            if (bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, &opts, &err) == BF_OK) {
                 bf_sim_run(sim, &err);
                 bf_sim_free(sim);
             }

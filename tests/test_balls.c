@@ -91,7 +91,7 @@ START_TEST(energy_bound_stops_run)
     ck_assert(bf_scene_set(sc, "scene.max_energy_error=1e-6", "t", &err) == 0);
     ck_assert(bf_registry_resolve(sc, &err) == 0);
     bf_sim *sim;
-    ck_assert(bf_sim_create(&sim, sc, NULL, &err) == BF_OK);
+    ck_assert(bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &err) == BF_OK);
     bf_status st = bf_sim_run(sim, &err);
     ck_assert_int_eq(st, BF_EUNSTABLE);
     ck_assert_msg(strstr(err.msg, "max_energy_error") && strstr(err.msg, "step"),

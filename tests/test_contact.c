@@ -5,6 +5,7 @@
 #include <math.h>
 
 #include "ballfilm/ballsys.h"
+#include "ballfilm/run.h"
 #include "contact/hertz.h"
 #include "testutil.h"
 
@@ -64,7 +65,7 @@ START_TEST(effects_accel_matches_potential)
                             "[spring]\nstiffness = 3\nrest = 0.2\n");
     bf_sim *sim;
     bf_err err = {0};
-    ck_assert_msg(bf_sim_create(&sim, sc, NULL, &err) == BF_OK, "%s", err.msg);
+    ck_assert_msg(bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &err) == BF_OK, "%s", err.msg);
     /* positions where both contacts are active */
     double x[2] = {0.092, 0.19}, a[2], xp[2], xm[2];
     bf_ballsys *sys = bf_balls_model_system(bf_sim_model(sim));

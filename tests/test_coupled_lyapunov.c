@@ -38,8 +38,8 @@ static const char *film_scene =
 
 static double lyapunov_of(bf_sim *sim)
 {
-    bf_balls_analysis a;
-    ck_assert(bf_balls_sim_analysis(sim, &a) == BF_OK);
+    bf_results a;
+    bf_sim_results(sim, &a);
     ck_assert(a.has_lyapunov);
     return a.lyapunov_exponent;
 }

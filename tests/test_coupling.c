@@ -37,6 +37,7 @@
 #include "ballfilm/filmsys.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/registry.h"
+#include "ballfilm/run.h"
 #include "testutil.h"
 
 static const double R0 = 0.5;
@@ -430,7 +431,7 @@ static bf_sim *run(const char *scene, const char *const *sets, bf_scene **scp)
                       err.msg);
     ck_assert_msg(bf_registry_resolve(sc, &err) == BF_OK, "%s", err.msg);
     bf_sim *sim;
-    ck_assert_msg(bf_sim_create(&sim, sc, NULL, &err) == BF_OK, "%s", err.msg);
+    ck_assert_msg(bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &err) == BF_OK, "%s", err.msg);
     ck_assert_msg(bf_sim_run(sim, &err) == BF_OK, "%s", err.msg);
     *scp = sc;
     return sim;

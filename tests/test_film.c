@@ -31,6 +31,7 @@
 #include "ballfilm/filmsys.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/registry.h"
+#include "ballfilm/run.h"
 #include "testutil.h"
 
 static bf_film_params params(double L, double dx)
@@ -417,7 +418,7 @@ static bf_sim *run_film_scene(const char *text, const char *const *sets,
                       err->msg);
     ck_assert_msg(bf_registry_resolve(sc, err) == BF_OK, "%s", err->msg);
     bf_sim *sim;
-    ck_assert_msg(bf_sim_create(&sim, sc, NULL, err) == BF_OK, "%s", err->msg);
+    ck_assert_msg(bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, err) == BF_OK, "%s", err->msg);
     *st = bf_sim_run(sim, err);
     *scp = sc;
     return sim;

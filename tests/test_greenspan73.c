@@ -227,7 +227,7 @@ static void final_state(const char *path, const char *const *sets, double *x,
         ck_assert(bf_scene_set(sc, *sets, "test", &err) == BF_OK);
     ck_assert_msg(bf_registry_resolve(sc, &err) == BF_OK, "%s", err.msg);
     bf_sim *sim;
-    ck_assert_msg(bf_sim_create(&sim, sc, NULL, &err) == BF_OK, "%s", err.msg);
+    ck_assert_msg(bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &err) == BF_OK, "%s", err.msg);
     ck_assert_msg(bf_sim_run(sim, &err) == BF_OK, "%s", err.msg);
     bf_particles *p = bf_greenspan73_particles(bf_sim_model(sim));
     ck_assert(p->n == n);

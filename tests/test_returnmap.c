@@ -21,9 +21,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/balls.h"
 #include "ballfilm/h5out.h"
 #include "analysis/lyapunov.h"
+#include "analysis/returnmap.h"
 #include "ballfilm/registry.h"
 #include "ballfilm/run.h"
 #include "testutil.h"
@@ -75,7 +75,7 @@ static void first_point(const char *s1, const char *s2, const char *s3,
                         double *t, double *z, double *v, double *zt)
 {
     bf_sim *sim = tu_run_scene(scene, s1, s2, s3, NULL);
-    const bf_retmap *rm = bf_balls_model_retmap(bf_sim_model(sim));
+    const bf_retmap *rm = bf_sim_observer(sim, &bf_retmap_observer);
     ck_assert(rm != NULL);
     const double *ct, *cz, *cv, *czt;
     size_t n = bf_retmap_points(rm, &ct, &cz, &cv, &czt);
@@ -140,20 +140,19 @@ START_TEST(two_balls_map_invariants)
                                "[ball.1]\nposition = 0.2\nmass = 1.2\n"
                                "[ball.2]\nposition = 0.5\nmass = 1\n",
                                NULL);
-    bf_balls_analysis a;
-    ck_assert(bf_balls_sim_analysis(sim, &a) == BF_OK);
-    const bf_retmap *rm = bf_balls_model_retmap(bf_sim_model(sim));
+    bf_results a;
+    bf_sim_results(sim, &a);
+    const bf_retmap *rm = bf_sim_observer(sim, &bf_retmap_observer);
     const double *t, *z, *v, *zt;
     size_t n = bf_retmap_points(rm, &t, &z, &v, &zt);
-    ck_assert(n == a.return_map_points && n > 1000);
+    ck_assert(a.has_return_map && n == a.map_points && n > 1000);
     for (size_t k = 0; k < n; k++) {
         ck_assert_msg(zt[k] < R, "point %zu: lower ball at %g", k, zt[k]);
         ck_assert(z[k] > zt[k]);
         if (k)
             ck_assert(t[k] > t[k - 1] + 1e-3); /* one per contact */
     }
-    ck_assert_msg(a.return_map_multi_minima > 0, "no multi-minimum contact "
-                                                 "in 60 s");
+    ck_assert_msg(a.map_multi_minima > 0, "no multi-minimum contact in 60 s");
     bf_sim_free(sim);
 }
 END_TEST
@@ -181,22 +180,29 @@ static double lyapunov_of(bf_accel_fn f, double T)
     bf_err err = {0};
     ck_assert(bf_ballsys_from_scene(&sys, bf_catalog_builtin(), sc, &err) == BF_OK);
     sys->ode.accel = f;
-    bf_lyap *ly;
+    /* the analysis as the time loop drives it, over the ball view */
     bf_lyap_keys keys;
     bf_scene_fill(sc, "lyapunov", &bf_lyap_spec, &keys);
-    ck_assert(bf_lyap_create(&ly, &keys, 0.01, sys, &err) == BF_OK && ly);
+    bf_ball_view view;
+    bf_ballsys_view(sys, &view);
+    bf_run_ctx run = {0.01, T, lround(T / 0.01), 1};
+    bf_analysis_env env = {&view, &run, NULL, NULL};
+    void *ly;
+    ck_assert(bf_lyap_analysis.create(&ly, &keys, &env, &err) == BF_OK && ly);
     long n = lround(T / 0.01);
     const double x0 = sys->b.x[0];
     for (long s = 0; s < n; s++) {
         ck_assert(bf_ballsys_step(sys, s * 0.01, 0.01, &err) == BF_OK);
-        ck_assert(bf_lyap_after_step(ly, sys, s + 1, s * 0.01, 0.01, &err) ==
-                  BF_OK);
+        ck_assert(bf_lyap_observer.after_step(ly, s + 1, s * 0.01, 0.01,
+                                              &err) == BF_OK);
     }
-    double tr, l = bf_lyap_estimate(ly, &tr);
+    bf_results r;
+    bf_lyap_observer.results(ly, &r);
+    double tr = r.lyapunov_time, l = r.lyapunov_exponent;
     ck_assert(fabs(tr - T) < 1e-9);
     /* the run itself followed the replaced force */
     ck_assert(f == inverted ? sys->b.x[0] > 1e3 * x0 : fabs(sys->b.x[0]) < 0.01);
-    bf_lyap_free(ly);
+    bf_lyap_observer.destroy(ly);
     bf_ballsys_free(sys);
     bf_scene_free(sc);
     return l;
@@ -233,8 +239,9 @@ START_TEST(fig2_exponents_differ)
                                    "[ball.1]\nposition = 0.2\n"
                                    "[ball.2]\nposition = 0.5\nmass = 1\n",
                                    m[k], NULL);
-        bf_balls_analysis a;
-        ck_assert(bf_balls_sim_analysis(sim, &a) == BF_OK && a.has_lyapunov);
+        bf_results a;
+        bf_sim_results(sim, &a);
+        ck_assert(a.has_lyapunov);
         l[k] = a.lyapunov_exponent;
         bf_sim_free(sim);
     }

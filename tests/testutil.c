@@ -164,7 +164,7 @@ bf_status tu_scene_error(const char *text, char *msg, size_t cap)
         st = bf_registry_resolve(sc, &err);
         if (!st) {
             bf_sim *sim;
-            st = bf_sim_create(&sim, sc, NULL, &err);
+            st = bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &err);
             if (!st)
                 bf_sim_free(sim);
         }
@@ -210,7 +210,7 @@ bf_sim *tu_run_scene(const char *text, ...)
     st = bf_registry_resolve(sc, &err);
     ck_assert_msg(st == BF_OK, "scene: %s", err.msg);
     bf_sim *sim;
-    st = bf_sim_create(&sim, sc, NULL, &err);
+    st = bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &err);
     ck_assert_msg(st == BF_OK, "create: %s", err.msg);
     st = bf_sim_run(sim, &err);
     ck_assert_msg(st == BF_OK, "run: %s", err.msg);

@@ -4,15 +4,9 @@
 #ifndef BALLFILM_COUPLED_H
 #define BALLFILM_COUPLED_H
 
-#include "ballfilm/balls.h"
 #include "ballfilm/ballsys.h"
 #include "ballfilm/film.h"
 #include "ballfilm/sim.h"
-
-/* For a sim whose model is "coupled": fill *a (the return map is
- * /coupled/return_map; no multi-minimum count) and return BF_OK;
- * otherwise BF_EINPUT. */
-bf_status bf_coupled_sim_analysis(bf_sim *sim, bf_balls_analysis *a);
 
 /* The parts of a coupled system: its balls, its film and the film's
  * coupling chemical potential mu_cpl (eq. 3.11, nodes 0..N). */

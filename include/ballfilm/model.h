@@ -24,8 +24,10 @@
 #include "ballfilm/scene.h"
 
 enum {
-    BF_MODEL_INTEGRATOR = 1u << 0, /* uses [scene] integrator */
-    BF_MODEL_EFFECTS = 1u << 1     /* uses [scene] effects */
+    BF_MODEL_INTEGRATOR = 1u << 0,    /* uses [scene] integrator */
+    BF_MODEL_EFFECTS = 1u << 1,       /* uses [scene] effects */
+    BF_MODEL_BALL_ANALYSES = 1u << 2  /* shows its balls (ball_view) to the
+                                         analyses of balls (sim.h) */
 };
 
 /* The run a model is built for. */

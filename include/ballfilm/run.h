@@ -21,6 +21,7 @@
 #include "ballfilm/integrator.h"
 #include "ballfilm/model.h"
 #include "ballfilm/scene.h"
+#include "ballfilm/sim.h"
 
 typedef struct bf_catalog bf_catalog;
 
@@ -61,6 +62,32 @@ const bf_model_type *bf_setup_model_type(const bf_setup *s);
  * located in the scene (FILE:LINE). */
 bf_status bf_setup_build_model(const bf_setup *s, const bf_scene *sc,
                                void **model, bf_err *err);
+
+/* Attach to sim (whose model the setup built) the analyses of balls its
+ * keys enable (sim.h). */
+struct bf_sim;
+bf_status bf_setup_observe(const bf_setup *s, const bf_catalog *c,
+                           struct bf_sim *sim, bf_err *err);
+
+/* ---- runs from scenes ---- */
+
+/* The run of a resolved scene: its model, the analyses its keys enable,
+ * the loop (sim.h).  The scene must outlive the sim (the output's
+ * provenance is read from it when the output opens).  Failures that are
+ * about a key are located in the scene (FILE:LINE). */
+bf_status bf_sim_from_scene(struct bf_sim **sim, const bf_catalog *c,
+                            const bf_scene *sc,
+                            const struct bf_sim_opts *opts, bf_err *err);
+
+/* Rebuild a run from the checkpoint of OUT (OUT.ckpt): its stored scene
+ * plus extra overrides `sets` (for example a later t_end), the state of
+ * the model, its observers and the loop, and OUT reopened with the rows
+ * written after the checkpoint dropped.  *scene receives the scene (free
+ * it after the sim). */
+bf_status bf_sim_restart(struct bf_sim **sim, bf_scene **scene,
+                         const bf_catalog *c, const char *out_path,
+                         const char *const *sets, size_t nsets,
+                         const struct bf_sim_opts *opts, bf_err *err);
 
 /* The model of a resolved scene, without a time loop (tests,
  * benchmarks): its setup in *setup (free it after the model). */

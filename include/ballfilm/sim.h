@@ -5,6 +5,16 @@
  * initial energy, every [scene] energy_every steps), the stop conditions
  * (non-finite state reported by the model, energy bound, interruption), the
  * progress line and the summary.  It ends with a named status (error.h).
+ *
+ * Observers (Basilisk's events, REBOUND's heartbeat) hook into the loop
+ * without knowing the model's insides: before and after every step, at
+ * output rows, when the output opens and closes, in checkpoints and in the
+ * summary.  The analyses of balls (return maps, Lyapunov exponents,
+ * integrator comparisons) are observers; so is a library user's callback.
+ *
+ * The loop never reads a scene: the composition layer (run.h) builds the
+ * model, hands over the filled [scene] keys and the scene's text for the
+ * provenance of the output and of checkpoints.
  */
 #ifndef BALLFILM_SIM_H
 #define BALLFILM_SIM_H
@@ -12,13 +22,36 @@
 #include <signal.h>
 #include <stdio.h>
 
+#include "ballfilm/checkpoint.h"
 #include "ballfilm/error.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/integrator.h"
 #include "ballfilm/model.h"
-#include "ballfilm/scene.h"
+#include "ballfilm/params.h"
 
 typedef struct bf_sim bf_sim;
+
+/* The keys of [scene], the section every scene has. */
+typedef struct bf_scene_keys {
+    const char *title;
+    const char *model;
+    const char *integrator;
+    bf_names effects;
+    double dt;                    /* s */
+    double t_end;                 /* s */
+    bf_interval output_every;     /* steps or s */
+    long energy_every;            /* steps (0: at output rows) */
+    double max_energy_error;      /* 1 (0: no bound) */
+    double flush_seconds;         /* s of wall time */
+    bf_interval checkpoint_every; /* steps or s (0: when interrupted) */
+} bf_scene_keys;
+
+extern const bf_section_spec bf_sim_scene_spec; /* [scene] */
+
+/* The run context of [scene]: dt, t_end, ceil(t_end/dt) steps (refused,
+ * naming [scene] t_end, when too many), the output interval in steps. */
+bf_status bf_sim_run_ctx(const bf_scene_keys *k, bf_run_ctx *run,
+                         bf_err *err);
 
 typedef struct bf_sim_opts {
     int progress; /* 1: print an updating progress line on stderr */
@@ -30,18 +63,94 @@ typedef struct bf_sim_opts {
     long stop_after;
 } bf_sim_opts;
 
-/* The [scene] section every scene has (model, integrator, effects, dt,
- * t_end, output_every, ...). */
-extern const bf_section_spec bf_sim_scene_spec;
+/* Where the run comes from, for the output's provenance and for
+ * checkpoints (strings are copied): the scene's path and text, the
+ * overrides applied to it (one per line), and a function that writes
+ * every resolved parameter as root attributes of the output. */
+typedef struct bf_provenance {
+    const char *scene_path;
+    const char *scene_text;
+    const char *scene_sets;
+    bf_status (*write_params)(void *ctx, bf_out *out, bf_err *err);
+    void *ctx;
+} bf_provenance;
 
-/* Build the model of a resolved scene.  Validation errors: BF_EINPUT. */
-bf_status bf_sim_create(bf_sim **sim, const bf_scene *sc,
-                        const bf_sim_opts *opts, bf_err *err);
+/* A loop over `model` (of type mt, built for the run context of k; the
+ * sim owns it from now on, also on failure).  Refuses a [scene] dt above
+ * the model's stable step (model.h, stable_dt) and checkpoint_every for a
+ * model that cannot write checkpoints, naming the key.  Failures that
+ * name a key are left for the caller to locate in the scene. */
+bf_status bf_sim_create(bf_sim **sim, const bf_scene_keys *k,
+                        const bf_model_type *mt, void *model,
+                        const bf_provenance *prov, const bf_sim_opts *opts,
+                        bf_err *err);
 void bf_sim_free(bf_sim *sim);
 
-/* Write provenance (version, scene text, every resolved parameter with its
- * unit) and create the datasets.  Without an output file the run still
- * tracks energy and counters. */
+/* Something the sim frees with itself (the composition layer's setup). */
+void bf_sim_own(bf_sim *sim, void *ctx, void (*free_fn)(void *));
+
+/* ---- observers ---- */
+
+enum {
+    /* before_step/after_step are called around every step (the loop then
+     * takes one step at a time instead of runs of steps) */
+    BF_OBS_STEPS = 1u << 0
+};
+
+typedef struct bf_observer_type {
+    const char *name;
+    unsigned flags;
+    /* around the step from t = n dt to t + dt; after_step gets n + 1, the
+     * number of steps done */
+    bf_status (*before_step)(void *self, long n, double t, double dt,
+                             bf_err *err);
+    bf_status (*after_step)(void *self, long n_done, double t, double dt,
+                            bf_err *err);
+    bf_status (*output_open)(void *self, bf_out *out, bf_err *err);
+    bf_status (*output_row)(void *self, long n, double t, bf_err *err);
+    bf_status (*output_close)(void *self, bf_out *out, bf_err *err);
+    void (*report)(const void *self, FILE *f);
+    bf_status (*save)(const void *self, bf_ckpt *ck, bf_err *err);
+    bf_status (*load)(void *self, const bf_ckpt *ck, bf_err *err);
+    void (*results)(const void *self, bf_results *r);
+    void (*destroy)(void *self);
+} bf_observer_type;
+
+/* Attach an observer (called in the order attached, after the model's own
+ * hooks); the sim owns `self` and destroys it with itself. */
+bf_status bf_sim_observe(bf_sim *sim, const bf_observer_type *t, void *self,
+                         bf_err *err);
+/* The first attached observer of type t, or NULL. */
+void *bf_sim_observer(bf_sim *sim, const bf_observer_type *t);
+
+/* ---- analyses of balls ----
+ * An analysis is an observer made from its section's keys for a model
+ * that shows its balls (model.h, ball_view; models with the flag
+ * BF_MODEL_BALL_ANALYSES).  The composition layer creates the analyses
+ * its catalog lists whose keys enable them. */
+typedef struct bf_analysis_env {
+    const bf_ball_view *view;
+    const bf_run_ctx *run;
+    /* integrator types by name (the catalog's); NULL if unknown */
+    const bf_integrator_type *(*integrator)(const void *ctx,
+                                            const char *name);
+    const void *ctx;
+} bf_analysis_env;
+
+typedef struct bf_analysis_type {
+    const char *name;
+    const bf_section_spec *spec;
+    const bf_observer_type *observer;
+    /* *self = NULL when the keys leave it off; failures name the key */
+    bf_status (*create)(void **self, const void *keys,
+                        const bf_analysis_env *env, bf_err *err);
+} bf_analysis_type;
+
+/* ---- running ---- */
+
+/* Create the output file and its datasets; write the provenance (version,
+ * scene text, every resolved parameter with its unit).  Without an output
+ * file the run still tracks energy and counters. */
 bf_status bf_sim_open_output(bf_sim *sim, const char *path, bf_err *err);
 
 /* Run to t_end.  On failure the message names step, time and cause; the
@@ -64,19 +173,18 @@ double bf_sim_output_estimate(const bf_sim *sim);
  * With an output file OUT, checkpoints go to OUT.ckpt (atomically), every
  * [scene] checkpoint_every and when a run is interrupted (BF_INTERRUPTED).
  * A restarted run produces bit for bit the datasets of an uninterrupted
- * one. */
+ * one.  The composition layer rebuilds the run from the checkpoint's scene
+ * (run.h) and calls bf_sim_resume. */
 int bf_sim_can_checkpoint(const bf_sim *sim);
 const char *bf_sim_checkpoint_path(const bf_sim *sim); /* NULL: none */
 bf_status bf_sim_checkpoint_write(bf_sim *sim, const char *path, bf_err *err);
-/* Rebuild a run from the checkpoint of OUT (OUT.ckpt): its stored scene
- * plus extra overrides `sets` (for example a later t_end), the model state,
- * and OUT reopened with the rows written after the checkpoint dropped.
- * *scene receives the scene (free it after the sim). */
-bf_status bf_sim_restart(bf_sim **sim, bf_scene **scene, const char *out_path,
-                         const char *const *sets, size_t nsets,
-                         const bf_sim_opts *opts, bf_err *err);
+/* Continue from checkpoint ck of the output OUT: the loop's state, the
+ * model's and the observers', OUT reopened with the rows written after
+ * the checkpoint dropped. */
+bf_status bf_sim_resume(bf_sim *sim, const bf_ckpt *ck, const char *out_path,
+                        bf_err *err);
 
-/* Read-only views for drivers and tests. */
+/* ---- read-only views for drivers and tests ---- */
 void *bf_sim_model(bf_sim *sim);
 const bf_model_type *bf_sim_model_type(const bf_sim *sim);
 long bf_sim_steps_done(const bf_sim *sim);
@@ -86,5 +194,7 @@ double bf_sim_dt(const bf_sim *sim);
 double bf_sim_max_energy_error(const bf_sim *sim); /* relative; NAN if none */
 double bf_sim_wall_seconds(const bf_sim *sim);
 void bf_sim_counters(const bf_sim *sim, bf_counters *c);
+/* The analyses' results (the model's and every observer's). */
+void bf_sim_results(const bf_sim *sim, bf_results *r);
 
 #endif

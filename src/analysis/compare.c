@@ -1,64 +1,67 @@
 /* compare.c: one-step comparison of two integrators along a run (see
  * compare.h). */
-#include "ballfilm/compare.h"
+#include "compare.h"
 
 #include <stdlib.h>
-
-#include "ballfilm/run.h"
 #include <string.h>
 
 static const bf_param compare_params[] = {
-    {"a", BF_STR, 0, "", "",
+    {"a", BF_AT(bf_compare_keys, a, BF_STR), "", "",
      "integrator a (empty: no comparison); /compare/dv = v after one step of "
      "a - v after one step of b, from the state of every output row",
      0, 0, 0, NULL},
-    {"b", BF_STR, 0, "", "alpha",
+    {"b", BF_AT(bf_compare_keys, b, BF_STR), "", "alpha",
      "integrator b (default parameters; alpha = 1/8 is the second-order "
      "mid-point rule)",
      0, 0, 0, NULL},
     {0},
 };
 
-const bf_section_spec bf_compare_spec = {
+static const bf_section_spec compare_spec = BF_SECTION(
     "compare", "one-step difference of two integrators along the run (Fig. 4)",
-    compare_params, 0};
+    compare_params, bf_compare_keys);
 
-struct bf_compare {
+typedef struct bf_compare {
     size_t n;
     bf_integrator *a, *b;
     double *xa, *va, *xb, *vb, *dv;
+    double dt;
+    bf_ball_view view;
     bf_series *s;
-};
+} bf_compare;
 
-bf_status bf_compare_create(bf_compare **out, const bf_scene *sc,
-                            const bf_ballsys *sys, bf_err *err)
+static void compare_free(void *self);
+
+static bf_status compare_create(void **out, const void *keys,
+                               const bf_analysis_env *env, bf_err *err)
 {
     *out = NULL;
-    const char *na = bf_scene_str(sc, "compare", "a");
-    const char *nb = bf_scene_str(sc, "compare", "b");
+    const bf_compare_keys *k = keys;
+    const char *na = k->a, *nb = k->b;
     if (!*na)
         return BF_OK;
-    const char *names[2] = {na, nb}, *keys[2] = {"a", "b"};
+    const char *names[2] = {na, nb}, *keys_[2] = {"a", "b"};
     const bf_integrator_type *types[2];
-    for (int k = 0; k < 2; k++) {
-        const bf_integrator_type *t =
-            bf_catalog_integrator(bf_catalog_builtin(), names[k]);
-        types[k] = t;
+    for (int q = 0; q < 2; q++) {
+        const bf_integrator_type *t = env->integrator(env->ctx, names[q]);
+        types[q] = t;
         if (!t)
-            return bf_scene_fail(sc, err, "compare", keys[k],
-                                 "unknown integrator '%s'", names[k]);
+            return bf_fail_key(err, BF_EINPUT, "compare", keys_[q],
+                               "unknown integrator '%s'", names[q]);
         if (t->flags & BF_INT_ADAPTIVE)
-            return bf_scene_fail(sc, err, "compare", keys[k],
-                                 "'%s' is adaptive; compare fixed-step "
-                                 "methods", names[k]);
+            return bf_fail_key(err, BF_EINPUT, "compare", keys_[q],
+                               "'%s' is adaptive; compare fixed-step "
+                               "methods", names[q]);
     }
     bf_compare *c = calloc(1, sizeof *c);
-    const size_t n = sys->b.n;
+    const size_t n = env->view->n;
     if (!c || !(c->xa = calloc(5 * n, sizeof *c->xa))) {
         free(c);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
     c->n = n;
+    c->dt = env->run->dt;
+    c->view = *env->view;
     c->va = c->xa + n;
     c->xb = c->xa + 2 * n;
     c->vb = c->xa + 3 * n;
@@ -69,15 +72,16 @@ bf_status bf_compare_create(bf_compare **out, const bf_scene *sc,
     if (!st)
         st = bf_integrator_create(&c->b, types[1], n, NULL, err);
     if (st) {
-        bf_compare_free(c);
+        compare_free(c);
         return st;
     }
     *out = c;
     return BF_OK;
 }
 
-void bf_compare_free(bf_compare *c)
+static void compare_free(void *self)
 {
+    bf_compare *c = self;
     if (!c)
         return;
     bf_integrator_free(c->a);
@@ -86,8 +90,9 @@ void bf_compare_free(bf_compare *c)
     free(c);
 }
 
-bf_status bf_compare_output_open(bf_compare *c, bf_out *out, bf_err *err)
+static bf_status compare_output_open(void *self, bf_out *out, bf_err *err)
 {
+    bf_compare *c = self;
     c->s = bf_out_series(out, "/compare/dv", c->n, 0, "cm/s",
                          "velocity after one step of [compare] a minus after "
                          "one step of [compare] b, both from the state of "
@@ -96,17 +101,21 @@ bf_status bf_compare_output_open(bf_compare *c, bf_out *out, bf_err *err)
     return c->s ? BF_OK : err->status;
 }
 
-bf_status bf_compare_output_row(bf_compare *c, const bf_ballsys *sys, double t,
-                                double dt, bf_err *err)
+/* At every output row: one step of a and one of b from the row's state. */
+static bf_status compare_output_row(void *self, long n, double t, bf_err *err)
 {
+    (void)n;
+    bf_compare *c = self;
+    const bf_ball_view *b = &c->view;
+    const double dt = c->dt;
     const size_t bytes = c->n * sizeof *c->xa;
-    memcpy(c->xa, sys->b.x, bytes);
-    memcpy(c->va, sys->b.v, bytes);
-    memcpy(c->xb, sys->b.x, bytes);
-    memcpy(c->vb, sys->b.v, bytes);
-    bf_status st = bf_integrator_step(c->a, &sys->ode, t, dt, c->xa, c->va, err);
+    memcpy(c->xa, b->x, bytes);
+    memcpy(c->va, b->v, bytes);
+    memcpy(c->xb, b->x, bytes);
+    memcpy(c->vb, b->v, bytes);
+    bf_status st = bf_integrator_step(c->a, b->ode, t, dt, c->xa, c->va, err);
     if (!st)
-        st = bf_integrator_step(c->b, &sys->ode, t, dt, c->xb, c->vb, err);
+        st = bf_integrator_step(c->b, b->ode, t, dt, c->xb, c->vb, err);
     if (st)
         return st;
     for (size_t i = 0; i < c->n; i++)
@@ -115,3 +124,17 @@ bf_status bf_compare_output_row(bf_compare *c, const bf_ballsys *sys, double t,
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     return BF_OK;
 }
+
+const bf_observer_type bf_compare_observer = {
+    .name = "compare",
+    .output_open = compare_output_open,
+    .output_row = compare_output_row,
+    .destroy = compare_free,
+};
+
+const bf_analysis_type bf_compare_analysis = {
+    .name = "compare",
+    .spec = &compare_spec,
+    .observer = &bf_compare_observer,
+    .create = compare_create,
+};

@@ -7,51 +7,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* ------------------------------------------------ a ball system's shadow */
-
 struct bf_lyap {
     bf_lyap_sum sum;
     double *x, *v; /* shadow state */
+    size_t n2;     /* 2 n: the length of x followed by v */
     bf_integrator *it;
+    bf_ball_view view;
 };
 
-bf_status bf_lyap_create(bf_lyap **out, const void *keys, double dt,
-                         const bf_ballsys *sys, bf_err *err)
+static void lyap_free(void *self)
 {
-    *out = NULL;
-    const bf_lyap_keys *k = keys;
-    if (!k->enabled)
-        return BF_OK;
-    bf_lyap_sum sum;
-    const bf_integrator_type *t = sys->it->type;
-    bf_status st = bf_lyap_sum_init(&sum, k, dt, sys->b.n,
-                                    t->flags & BF_INT_ADAPTIVE ? t->name : NULL,
-                                    err);
-    if (st)
-        return st;
-    bf_lyap *ly = calloc(1, sizeof *ly);
-    if (!ly)
-        return bf_fail(err, BF_EINTERNAL, "out of memory");
-    const size_t n = sys->b.n;
-    ly->sum = sum;
-    ly->x = calloc(2 * n, sizeof *ly->x);
-    if (!ly->x) {
-        free(ly);
-        return bf_fail(err, BF_EINTERNAL, "out of memory");
-    }
-    ly->v = ly->x + n;
-    st = bf_integrator_create(&ly->it, sys->it->type, n, sys->it_params, err);
-    if (st) {
-        bf_lyap_free(ly);
-        return st;
-    }
-    bf_lyap_displace(&ly->sum, sys->b.x, sys->b.v, ly->x, ly->v);
-    *out = ly;
-    return BF_OK;
-}
-
-void bf_lyap_free(bf_lyap *ly)
-{
+    bf_lyap *ly = self;
     if (!ly)
         return;
     bf_integrator_free(ly->it);
@@ -59,10 +25,52 @@ void bf_lyap_free(bf_lyap *ly)
     free(ly);
 }
 
-bf_status bf_lyap_after_step(bf_lyap *ly, const bf_ballsys *sys, long n_done,
-                             double t, double dt, bf_err *err)
+static bf_status lyap_create(void **out, const void *keys,
+                             const bf_analysis_env *env, bf_err *err)
 {
-    bf_status st = bf_integrator_step(ly->it, &sys->ode, t, dt, ly->x, ly->v,
+    *out = NULL;
+    const bf_lyap_keys *k = keys;
+    if (!k->enabled)
+        return BF_OK;
+    const bf_ball_view *view = env->view;
+    bf_lyap_sum sum;
+    const bf_integrator_type *t = view->it->type;
+    bf_status st = bf_lyap_sum_init(&sum, k, env->run->dt, view->n,
+                                    t->flags & BF_INT_ADAPTIVE ? t->name : NULL,
+                                    err);
+    if (st)
+        return st;
+    bf_lyap *ly = calloc(1, sizeof *ly);
+    if (!ly)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    const size_t n = view->n;
+    ly->sum = sum;
+    ly->view = *view;
+    ly->n2 = 2 * n;
+    ly->x = calloc(2 * n, sizeof *ly->x);
+    if (!ly->x) {
+        free(ly);
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    ly->v = ly->x + n;
+    st = bf_integrator_create(&ly->it, t, n, view->it_params, err);
+    if (st) {
+        lyap_free(ly);
+        return st;
+    }
+    bf_lyap_displace(&ly->sum, view->x, view->v, ly->x, ly->v);
+    *out = ly;
+    return BF_OK;
+}
+
+/* The shadow's step over the step t -> t + dt that the balls have just
+ * taken (n_done steps done), and the renormalisation when due. */
+static bf_status lyap_after_step(void *self, long n_done, double t, double dt,
+                                 bf_err *err)
+{
+    bf_lyap *ly = self;
+    const bf_ball_view *b = &ly->view;
+    bf_status st = bf_integrator_step(ly->it, b->ode, t, dt, ly->x, ly->v,
                                       err);
     if (st) {
         bf_err_prefix(err, "Lyapunov shadow trajectory");
@@ -71,27 +79,30 @@ bf_status bf_lyap_after_step(bf_lyap *ly, const bf_ballsys *sys, long n_done,
     if (!bf_lyap_due(&ly->sum, n_done))
         return BF_OK;
     double factor;
-    st = bf_lyap_measure(&ly->sum, sys->b.x, sys->b.v, ly->x, ly->v, t + dt,
-                         &factor, err);
+    st = bf_lyap_measure(&ly->sum, b->x, b->v, ly->x, ly->v, t + dt, &factor,
+                         err);
     if (st || factor == 1.0)
         return st;
     if (factor == 0.0) {
-        bf_lyap_displace(&ly->sum, sys->b.x, sys->b.v, ly->x, ly->v);
+        bf_lyap_displace(&ly->sum, b->x, b->v, ly->x, ly->v);
         return BF_OK;
     }
-    bf_lyap_pull(ly->sum.n, factor, sys->b.x, ly->x);
-    bf_lyap_pull(ly->sum.n, factor, sys->b.v, ly->v);
+    bf_lyap_pull(ly->sum.n, factor, b->x, ly->x);
+    bf_lyap_pull(ly->sum.n, factor, b->v, ly->v);
     return BF_OK;
 }
 
-double bf_lyap_estimate(const bf_lyap *ly, double *t_ref)
+static void lyap_report(const void *self, FILE *f)
 {
-    return bf_lyap_sum_estimate(&ly->sum, t_ref);
+    const bf_lyap *ly = self;
+    bf_lyap_sum_report(&ly->sum, ly->it->count.evals, f);
 }
 
-void bf_lyap_report(const bf_lyap *ly, FILE *f)
+static void lyap_results(const void *self, bf_results *r)
 {
-    bf_lyap_sum_report(&ly->sum, ly->it->count.evals, f);
+    const bf_lyap *ly = self;
+    r->has_lyapunov = 1;
+    r->lyapunov_exponent = bf_lyap_sum_estimate(&ly->sum, &r->lyapunov_time);
 }
 
 const bf_counters *bf_lyap_counters(const bf_lyap *ly)
@@ -99,19 +110,26 @@ const bf_counters *bf_lyap_counters(const bf_lyap *ly)
     return &ly->it->count;
 }
 
-bf_status bf_lyap_output_open(bf_lyap *ly, bf_out *out, bf_err *err)
+static bf_status lyap_output_open(void *self, bf_out *out, bf_err *err)
 {
-    return bf_lyap_sum_output_open(&ly->sum, out, err);
+    return bf_lyap_sum_output_open(&((bf_lyap *)self)->sum, out, err);
 }
 
-bf_status bf_lyap_output_close(const bf_lyap *ly, bf_out *out, bf_err *err)
+static bf_status lyap_output_close(void *self, bf_out *out, bf_err *err)
 {
-    return bf_lyap_sum_output_close(&ly->sum, out, err);
+    return bf_lyap_sum_output_close(&((const bf_lyap *)self)->sum, out, err);
 }
 
-bf_status bf_lyap_save(const bf_lyap *ly, bf_ckpt *ck, bf_err *err)
+/* The shadow state (x then v) in a checkpoint. */
+static const bf_field shadow_state[] = {
+    BF_FIELD_PTR(bf_lyap, x, BF_F_DOUBLE, n2, "cm, cm/s"),
+};
+
+static bf_status lyap_save(const void *self, bf_ckpt *ck, bf_err *err)
 {
-    bf_status st = bf_ckpt_put(ck, "lyapunov.x", ly->x, 2 * ly->sum.n, err);
+    const bf_lyap *ly = self;
+    bf_status st = bf_ckpt_put_fields(ck, "lyapunov", shadow_state,
+                                      BF_NFIELDS(shadow_state), ly, err);
     if (!st)
         st = bf_lyap_sum_save(&ly->sum, ck, err);
     if (!st)
@@ -119,12 +137,34 @@ bf_status bf_lyap_save(const bf_lyap *ly, bf_ckpt *ck, bf_err *err)
     return st;
 }
 
-bf_status bf_lyap_load(bf_lyap *ly, const bf_ckpt *ck, bf_err *err)
+static bf_status lyap_load(void *self, const bf_ckpt *ck, bf_err *err)
 {
-    bf_status st = bf_ckpt_get(ck, "lyapunov.x", ly->x, 2 * ly->sum.n, err);
+    bf_lyap *ly = self;
+    bf_status st = bf_ckpt_get_fields(ck, "lyapunov", shadow_state,
+                                      BF_NFIELDS(shadow_state), ly, err);
     if (!st)
         st = bf_lyap_sum_load(&ly->sum, ck, err);
     if (!st)
         st = bf_integrator_load(ly->it, ck, "lyapunov.integrator", err);
     return st;
 }
+
+const bf_observer_type bf_lyap_observer = {
+    .name = "lyapunov",
+    .flags = BF_OBS_STEPS,
+    .after_step = lyap_after_step,
+    .output_open = lyap_output_open,
+    .output_close = lyap_output_close,
+    .report = lyap_report,
+    .save = lyap_save,
+    .load = lyap_load,
+    .results = lyap_results,
+    .destroy = lyap_free,
+};
+
+const bf_analysis_type bf_lyap_analysis = {
+    .name = "lyapunov",
+    .spec = &bf_lyap_spec,
+    .observer = &bf_lyap_observer,
+    .create = lyap_create,
+};

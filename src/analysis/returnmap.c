@@ -10,7 +10,7 @@
  *   q(theta) = 6 th (1 - th) D + (1 - th)(1 - 3th) p0' + th (3th - 2) p1',
  * D = (p1 - p0)/dt, with q(0) = p0' and q(1) = p1'.
  */
-#include "ballfilm/returnmap.h"
+#include "returnmap.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -18,21 +18,21 @@
 #include <string.h>
 
 static const bf_param retmap_params[] = {
-    {"enabled", BF_BOOL, 0, "", "no",
+    {"enabled", BF_AT(bf_retmap_keys, enabled, BF_BOOL), "", "no",
      "record the first-return map (see README): the recorded ball's (z, v) "
      "at each lowest point of the trigger ball on the floor",
      0, 0, 0, NULL},
-    {"trigger", BF_INT, 0, "1", "1",
+    {"trigger", BF_AT(bf_retmap_keys, trigger, BF_INT), "1", "1",
      "ball whose lowest points on the floor define the map (1 = lowest)",
      BF_MIN, 1, 0, NULL},
-    {"record", BF_INT, 0, "1", "2", "ball whose (z, v) is recorded", BF_MIN, 1, 0,
-     NULL},
+    {"record", BF_AT(bf_retmap_keys, record, BF_INT), "1", "2",
+     "ball whose (z, v) is recorded", BF_MIN, 1, 0, NULL},
     {0},
 };
 
-const bf_section_spec bf_retmap_spec = {
+static const bf_section_spec retmap_spec = BF_SECTION(
     "return_map", "first-return map of falling balls (Yasuda Figs 2-3)",
-    retmap_params, 0};
+    retmap_params, bf_retmap_keys);
 
 /* columns of a point */
 enum { P_T, P_Z, P_V, P_ZT, P_MIN, NCOL };
@@ -51,7 +51,7 @@ struct bf_retmap {
     size_t multi;
     bf_events ev;
     int dir;
-    bf_ballsys *sys; /* for the root callback */
+    bf_ball_view view; /* the balls, their forces and integrator */
     bf_series *s_t, *s_z, *s_v, *s_zt, *s_min;
 };
 
@@ -145,32 +145,50 @@ static void rm_hit(void *ctx, int k, double t, const double *x,
     candidate(rm, t, x[rm->trig], x[rm->rec], v[rm->rec]);
 }
 
-bf_status bf_retmap_create(bf_retmap **out, const bf_scene *sc,
-                           bf_ballsys *sys, bf_err *err)
+static void retmap_free(void *self)
+{
+    bf_retmap *rm = self;
+    if (!rm)
+        return;
+    if (rm->view.it && rm->view.it->events == &rm->ev)
+        bf_integrator_set_events(rm->view.it, NULL);
+    free(rm->x0);
+    for (int c = 0; c < NCOL; c++)
+        free(rm->col[c]);
+    free(rm);
+}
+
+static bf_status retmap_create(void **out, const void *keys,
+                               const bf_analysis_env *env, bf_err *err)
 {
     *out = NULL;
-    if (!bf_scene_bool(sc, "return_map", "enabled"))
+    const bf_retmap_keys *k = keys;
+    if (!k->enabled)
         return BF_OK;
-    long trig = bf_scene_int(sc, "return_map", "trigger");
-    long rec = bf_scene_int(sc, "return_map", "record");
-    size_t n = sys->b.n;
-    if ((size_t)trig > n)
-        return bf_scene_fail(sc, err, "return_map", "trigger",
-                             "ball %ld does not exist (%zu balls)", trig, n);
-    if ((size_t)rec > n)
-        return bf_scene_fail(sc, err, "return_map", "record",
-                             "ball %ld does not exist (%zu balls)", rec, n);
-    if (!bf_scene_has_name(sc, "scene", "effects", "floor"))
-        return bf_scene_fail(sc, err, "return_map", "enabled",
-                             "the return map is defined by floor contacts, "
-                             "but [scene] effects has no 'floor'");
+    const bf_ball_view *view = env->view;
+    const size_t n = view->n;
+    if ((size_t)k->trigger > n)
+        return bf_fail_key(err, BF_EINPUT, "return_map", "trigger",
+                           "ball %ld does not exist (%zu balls)", k->trigger,
+                           n);
+    if ((size_t)k->record > n)
+        return bf_fail_key(err, BF_EINPUT, "return_map", "record",
+                           "ball %ld does not exist (%zu balls)", k->record,
+                           n);
+    int floor = 0;
+    for (size_t e = 0; e < view->neffects; e++)
+        floor |= (view->effects[e]->flags & BF_EFFECT_FLOOR) != 0;
+    if (!floor)
+        return bf_fail_key(err, BF_EINPUT, "return_map", "enabled",
+                           "the return map is defined by floor contacts, "
+                           "but [scene] effects has no 'floor'");
     bf_retmap *rm = calloc(1, sizeof *rm);
     if (!rm)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    rm->trig = (size_t)trig - 1;
-    rm->rec = (size_t)rec - 1;
+    rm->trig = (size_t)k->trigger - 1;
+    rm->rec = (size_t)k->record - 1;
     rm->n = n;
-    rm->R = sys->b.R[rm->trig];
+    rm->R = view->R[rm->trig];
     rm->x0 = calloc(4 * n, sizeof *rm->x0);
     if (!rm->x0) {
         free(rm);
@@ -179,40 +197,38 @@ bf_status bf_retmap_create(bf_retmap **out, const bf_scene *sc,
     rm->v0 = rm->x0 + n;
     rm->a0 = rm->x0 + 2 * n;
     rm->a1 = rm->x0 + 3 * n;
-    rm->sys = sys;
-    if (sys->it->type->flags & BF_INT_ROOTS) {
+    rm->view = *view;
+    if (view->it->type->flags & BF_INT_ROOTS) {
         rm->dir = 1;
         rm->ev = (bf_events){1, rm_g, &rm->dir, rm_hit, rm};
-        bf_integrator_set_events(sys->it, &rm->ev);
+        bf_integrator_set_events(view->it, &rm->ev);
     }
     *out = rm;
     return BF_OK;
 }
 
-void bf_retmap_free(bf_retmap *rm)
+static bf_status retmap_before_step(void *self, long n, double t, double dt,
+                                   bf_err *err)
 {
-    if (!rm)
-        return;
-    if (rm->sys && rm->sys->it && rm->sys->it->events == &rm->ev)
-        bf_integrator_set_events(rm->sys->it, NULL);
-    free(rm->x0);
-    for (int c = 0; c < NCOL; c++)
-        free(rm->col[c]);
-    free(rm);
+    (void)n;
+    (void)t;
+    (void)dt;
+    (void)err;
+    bf_retmap *rm = self;
+    memcpy(rm->x0, rm->view.x, rm->n * sizeof *rm->x0);
+    memcpy(rm->v0, rm->view.v, rm->n * sizeof *rm->v0);
+    return BF_OK;
 }
 
-void bf_retmap_before_step(bf_retmap *rm, const bf_ballsys *sys)
+static bf_status retmap_after_step(void *self, long n_done, double t,
+                                   double dt, bf_err *err)
 {
-    memcpy(rm->x0, sys->b.x, rm->n * sizeof *rm->x0);
-    memcpy(rm->v0, sys->b.v, rm->n * sizeof *rm->v0);
-}
-
-bf_status bf_retmap_after_step(bf_retmap *rm, bf_ballsys *sys, double t,
-                               double dt, bf_err *err)
-{
+    (void)n_done;
+    bf_retmap *rm = self;
     const size_t i = rm->trig, r = rm->rec;
-    const double *x1 = sys->b.x, *v1 = sys->b.v;
-    if (!(sys->it->type->flags & BF_INT_ROOTS) && rm->v0[i] < 0 &&
+    const double *x1 = rm->view.x, *v1 = rm->view.v;
+    const bf_ode *ode = rm->view.ode;
+    if (!(rm->view.it->type->flags & BF_INT_ROOTS) && rm->v0[i] < 0 &&
         v1[i] >= 0) {
         const double z0 = rm->x0[i], u0 = rm->v0[i], z1 = x1[i], u1 = v1[i];
         /* the upward zero of the quadratic slope in [0, 1] */
@@ -226,8 +242,8 @@ bf_status bf_retmap_after_step(bf_retmap *rm, bf_ballsys *sys, double t,
         }
         const double th = 0.5 * (lo + hi);
         /* forces at both ends for the velocity interpolant */
-        if (sys->ode.accel(sys->ode.ctx, t, rm->x0, rm->v0, rm->a0) ||
-            sys->ode.accel(sys->ode.ctx, t + dt, x1, v1, rm->a1))
+        if (ode->accel(ode->ctx, t, rm->x0, rm->v0, rm->a0) ||
+            ode->accel(ode->ctx, t + dt, x1, v1, rm->a1))
             return bf_fail(err, BF_EUNSTABLE, "return map: force undefined");
         double zt, z, v;
         cubic_hermite(th, dt, z0, u0, z1, u1, &zt);
@@ -241,8 +257,9 @@ bf_status bf_retmap_after_step(bf_retmap *rm, bf_ballsys *sys, double t,
     return BF_OK;
 }
 
-bf_status bf_retmap_output_open(bf_retmap *rm, bf_out *out, bf_err *err)
+static bf_status retmap_output_open(void *self, bf_out *out, bf_err *err)
 {
+    bf_retmap *rm = self;
     rm->s_t = bf_out_series(out, "/return_map/time", 0, 0, "s",
                             "time of each lowest point of the trigger ball on "
                             "the floor (one per contact, the deepest)",
@@ -268,8 +285,9 @@ bf_status bf_retmap_output_open(bf_retmap *rm, bf_out *out, bf_err *err)
     return rm->s_min ? BF_OK : err->status;
 }
 
-bf_status bf_retmap_output_close(const bf_retmap *rm, bf_out *out, bf_err *err)
+static bf_status retmap_output_close(void *self, bf_out *out, bf_err *err)
 {
+    const bf_retmap *rm = self;
     bf_status st = bf_out_attr_int(out, "/", "return_map_points",
                                    (int64_t)rm->npts, err);
     if (!st)
@@ -278,8 +296,9 @@ bf_status bf_retmap_output_close(const bf_retmap *rm, bf_out *out, bf_err *err)
     return st;
 }
 
-bf_status bf_retmap_save(const bf_retmap *rm, bf_ckpt *ck, bf_err *err)
+static bf_status retmap_save(const void *self, bf_ckpt *ck, bf_err *err)
 {
+    const bf_retmap *rm = self;
     int64_t meta[3] = {(int64_t)rm->npts, (int64_t)rm->multi, rm->pending};
     bf_status st = bf_ckpt_put_i64(ck, "return_map.meta", meta, 3, err);
     if (!st)
@@ -292,8 +311,9 @@ bf_status bf_retmap_save(const bf_retmap *rm, bf_ckpt *ck, bf_err *err)
     return st;
 }
 
-bf_status bf_retmap_load(bf_retmap *rm, const bf_ckpt *ck, bf_err *err)
+static bf_status retmap_load(void *self, const bf_ckpt *ck, bf_err *err)
 {
+    bf_retmap *rm = self;
     int64_t meta[3];
     bf_status st = bf_ckpt_get_i64(ck, "return_map.meta", meta, 3, err);
     if (!st)
@@ -331,3 +351,42 @@ size_t bf_retmap_points(const bf_retmap *rm, const double **t,
 }
 
 size_t bf_retmap_multi_minima(const bf_retmap *rm) { return rm->multi; }
+
+static void retmap_report(const void *self, FILE *f)
+{
+    const bf_retmap *rm = self;
+    fprintf(f, "return map:        %zu points (%zu contacts with more than "
+               "one minimum)\n",
+            rm->npts, rm->multi);
+}
+
+static void retmap_results(const void *self, bf_results *r)
+{
+    const bf_retmap *rm = self;
+    r->has_return_map = 1;
+    r->map_points = rm->npts;
+    r->map_multi_minima = rm->multi;
+    r->map_z = rm->col[P_Z];
+    r->map_v = rm->col[P_V];
+}
+
+const bf_observer_type bf_retmap_observer = {
+    .name = "return_map",
+    .flags = BF_OBS_STEPS,
+    .before_step = retmap_before_step,
+    .after_step = retmap_after_step,
+    .output_open = retmap_output_open,
+    .output_close = retmap_output_close,
+    .report = retmap_report,
+    .save = retmap_save,
+    .load = retmap_load,
+    .results = retmap_results,
+    .destroy = retmap_free,
+};
+
+const bf_analysis_type bf_retmap_analysis = {
+    .name = "return_map",
+    .spec = &retmap_spec,
+    .observer = &bf_retmap_observer,
+    .create = retmap_create,
+};

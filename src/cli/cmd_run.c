@@ -16,6 +16,7 @@
 #include "ballfilm/registry.h"
 #include "ballfilm/scene.h"
 #include "ballfilm/sim.h"
+#include "ballfilm/run.h"
 #include "cli.h"
 
 static volatile sig_atomic_t stop_requested = 0;
@@ -192,7 +193,7 @@ int bf_cmd_run(int argc, char **argv)
     };
     bf_status st;
     if (restart) {
-        st = bf_sim_restart(&sim, &sc, restart, sets, (size_t)nset, &opts, &err);
+        st = bf_sim_restart(&sim, &sc, bf_catalog_builtin(), restart, sets, (size_t)nset, &opts, &err);
         if (st) {
             fprintf(stderr, "ballfilm: error: %s\n", err.msg);
             goto done;
@@ -206,7 +207,7 @@ int bf_cmd_run(int argc, char **argv)
     if (!st)
         st = bf_registry_resolve(sc, &err);
     if (!st)
-        st = bf_sim_create(&sim, sc, &opts, &err);
+        st = bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, &opts, &err);
     if (st) {
         fprintf(stderr, "%s\n", err.msg);
         goto done;

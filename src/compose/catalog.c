@@ -28,6 +28,10 @@ extern const bf_effect_type bf_effect_contact;
 extern const bf_effect_type bf_effect_spring;
 extern const bf_effect_type bf_effect_coupling;
 
+extern const bf_analysis_type bf_retmap_analysis;
+extern const bf_analysis_type bf_lyap_analysis;
+extern const bf_analysis_type bf_compare_analysis;
+
 static const bf_model_type *const models[] = {
     &bf_model_balls,       &bf_model_film,        &bf_model_coupled,
     &bf_model_greenspan72, &bf_model_greenspan73, &bf_model_mac,
@@ -44,11 +48,18 @@ static const bf_effect_type *const effects[] = {
     &bf_effect_spring,  &bf_effect_coupling,
 };
 
+/* analyses of balls, observed in this order */
+static const bf_analysis_type *const analyses[] = {
+    &bf_retmap_analysis,
+    &bf_lyap_analysis,
+    &bf_compare_analysis,
+};
+
 #define COUNT(a) (sizeof a / sizeof a[0])
 
 static const bf_catalog builtin = {
-    models,  COUNT(models), integrators, COUNT(integrators),
-    effects, COUNT(effects),
+    models,  COUNT(models),  integrators, COUNT(integrators),
+    effects, COUNT(effects), analyses,    COUNT(analyses),
 };
 
 const bf_catalog *bf_catalog_builtin(void) { return &builtin; }
@@ -95,4 +106,11 @@ const bf_integrator_type *bf_catalog_integrator(const bf_catalog *c,
 const bf_effect_type *bf_catalog_effect(const bf_catalog *c, const char *name)
 {
     FIND(c->effects, c->neffects, name);
+}
+
+size_t bf_catalog_analyses_of(const bf_catalog *c, const bf_model_type *mt,
+                              const bf_analysis_type *const **list)
+{
+    *list = c->analyses;
+    return mt->flags & BF_MODEL_BALL_ANALYSES ? c->nanalyses : 0;
 }

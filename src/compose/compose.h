@@ -3,6 +3,7 @@
 #define BALLFILM_COMPOSE_H
 
 #include "ballfilm/run.h"
+#include "ballfilm/sim.h"
 
 struct bf_catalog {
     const bf_model_type *const *models;
@@ -11,6 +12,13 @@ struct bf_catalog {
     size_t nintegrators;
     const bf_effect_type *const *effects;
     size_t neffects;
+    const bf_analysis_type *const *analyses;
+    size_t nanalyses;
 };
+
+/* The analyses of balls a model takes (none unless it has
+ * BF_MODEL_BALL_ANALYSES). */
+size_t bf_catalog_analyses_of(const bf_catalog *c, const bf_model_type *mt,
+                              const bf_analysis_type *const **list);
 
 #endif

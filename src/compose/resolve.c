@@ -54,6 +54,11 @@ static bf_status select_specs(const bf_scene *sc, const bf_section_spec **specs,
     for (const bf_section_spec *const *s = mt->specs; s && *s; s++)
         if ((st = add_spec(specs, cap, n, *s, err)))
             return st;
+    const bf_analysis_type *const *an;
+    size_t na = bf_catalog_analyses_of(cat, mt, &an);
+    for (size_t k = 0; k < na; k++)
+        if ((st = add_spec(specs, cap, n, an[k]->spec, err)))
+            return st;
     if (mt->flags & BF_MODEL_INTEGRATOR) {
         const char *iname = bf_scene_str(sc, "scene", "integrator");
         const bf_integrator_type *it = bf_catalog_integrator(cat, iname);
@@ -115,6 +120,35 @@ void bf_registry_print_help(FILE *f)
     bf_catalog_print_help(bf_catalog_builtin(), f);
 }
 
+/* A model's sections: its own, then its analyses'. */
+static size_t model_sections(const bf_catalog *c, const bf_model_type *mt,
+                             const bf_section_spec **out, size_t cap)
+{
+    size_t n = 0;
+    for (const bf_section_spec *const *s = mt->specs; s && *s && n < cap; s++)
+        out[n++] = *s;
+    const bf_analysis_type *const *an;
+    size_t na = bf_catalog_analyses_of(c, mt, &an);
+    for (size_t k = 0; k < na && n < cap; k++)
+        out[n++] = an[k]->spec;
+    return n;
+}
+
+/* Print a section's keys unless already printed. */
+static void show(FILE *f, const bf_section_spec *s, const char *owner,
+                 const bf_section_spec **seen, size_t *nseen)
+{
+    if (!s || *nseen >= 128)
+        return;
+    for (size_t q = 0; q < *nseen; q++)
+        if (seen[q] == s)
+            return;
+    seen[(*nseen)++] = s;
+    fprintf(f, "\n-- used by %s --", owner);
+    const bf_section_spec *one[1] = {s};
+    bf_params_print(f, one, 1);
+}
+
 void bf_catalog_print_help(const bf_catalog *c, FILE *f)
 {
     const bf_section_spec *one[1];
@@ -138,41 +172,31 @@ void bf_catalog_print_help(const bf_catalog *c, FILE *f)
     for (size_t k = 0; k < ne; k++)
         fprintf(f, "  %-14s %s\n", effs[k]->name, effs[k]->doc);
 
-    /* every section once, in registry order */
+    /* every section once, in catalog order, with the models that use it
+     * (a section shared by models, [ball.N] or [lyapunov], names them
+     * all) */
     const bf_section_spec *seen[128];
     size_t nseen = 0;
-#define SHOW(spec_ptr, owner)                                                  \
-    do {                                                                       \
-        const bf_section_spec *s_ = (spec_ptr);                                \
-        int dup_ = 0;                                                          \
-        for (size_t q_ = 0; q_ < nseen; q_++)                                  \
-            dup_ |= seen[q_] == s_;                                            \
-        if (s_ && !dup_ && nseen < 128) {                                      \
-            seen[nseen++] = s_;                                                \
-            fprintf(f, "\n-- used by %s --", owner);                           \
-            one[0] = s_;                                                       \
-            bf_params_print(f, one, 1);                                   \
-        }                                                                      \
-    } while (0)
-    for (size_t k = 0; k < nm; k++)
-        for (const bf_section_spec *const *s = models[k]->specs; s && *s;
-             s++) {
-            /* a section shared by models ([ball.N], [lyapunov]) names
-             * them all */
+    for (size_t k = 0; k < nm; k++) {
+        const bf_section_spec *mine[64];
+        size_t nmine = model_sections(c, models[k], mine, 64);
+        for (size_t q = 0; q < nmine; q++) {
             char owners[256] = "";
-            for (size_t j = 0; j < nm; j++)
-                for (const bf_section_spec *const *t = models[j]->specs;
-                     t && *t; t++)
-                    if (*t == *s) {
+            for (size_t j = 0; j < nm; j++) {
+                const bf_section_spec *theirs[64];
+                size_t nt = model_sections(c, models[j], theirs, 64);
+                for (size_t t = 0; t < nt; t++)
+                    if (theirs[t] == mine[q]) {
                         size_t len = strlen(owners);
                         snprintf(owners + len, sizeof owners - len, "%s%s",
                                  len ? ", " : "", models[j]->name);
                     }
-            SHOW(*s, owners);
+            }
+            show(f, mine[q], owners, seen, &nseen);
         }
+    }
     for (size_t k = 0; k < ni; k++)
-        SHOW(ints[k]->spec, ints[k]->name);
+        show(f, ints[k]->spec, ints[k]->name, seen, &nseen);
     for (size_t k = 0; k < ne; k++)
-        SHOW(effs[k]->spec, effs[k]->name);
-#undef SHOW
+        show(f, effs[k]->spec, effs[k]->name, seen, &nseen);
 }

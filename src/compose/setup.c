@@ -17,6 +17,10 @@ struct bf_setup {
     void *it_params;
     const bf_effect_type **effects;
     void **effect_params;
+    /* the keys of the model's analyses (bf_catalog_analyses_of) */
+    const bf_analysis_type *const *analyses;
+    void **analysis_keys;
+    size_t nanalyses;
 };
 
 void bf_setup_free(bf_setup *s)
@@ -32,6 +36,9 @@ void bf_setup_free(bf_setup *s)
         free(s->effect_params[k]);
     free(s->effect_params);
     free(s->effects);
+    for (size_t k = 0; k < s->nanalyses; k++)
+        free(s->analysis_keys[k]);
+    free(s->analysis_keys);
     free(s);
 }
 
@@ -134,11 +141,50 @@ bf_status bf_setup_create(bf_setup **out, const bf_catalog *c,
         s->pub.effects = s->effects;
         s->pub.effect_params = (const void *const *)s->effect_params;
     }
+    const bf_analysis_type *const *an;
+    size_t na = bf_catalog_analyses_of(c, mt, &an);
+    if (!oom && na) {
+        s->analyses = an;
+        s->analysis_keys = calloc(na, sizeof *s->analysis_keys);
+        oom = !s->analysis_keys;
+        for (size_t k = 0; !oom && k < na; k++) {
+            s->analysis_keys[k] = fill_one(sc, an[k]->spec->name, an[k]->spec);
+            s->nanalyses = k + 1;
+            oom = !s->analysis_keys[k];
+        }
+    }
     if (oom) {
         bf_setup_free(s);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
     *out = s;
+    return BF_OK;
+}
+
+/* The integrators of the catalog by name, for the analyses. */
+static const bf_integrator_type *find_integrator(const void *ctx,
+                                                 const char *name)
+{
+    return bf_catalog_integrator(ctx, name);
+}
+
+bf_status bf_setup_observe(const bf_setup *s, const bf_catalog *c,
+                           bf_sim *sim, bf_err *err)
+{
+    bf_ball_view view;
+    if (!s->nanalyses || !s->mt->ball_view ||
+        !s->mt->ball_view(bf_sim_model(sim), &view))
+        return BF_OK;
+    const bf_analysis_env env = {&view, &s->pub.run, find_integrator, c};
+    for (size_t k = 0; k < s->nanalyses; k++) {
+        void *self = NULL;
+        bf_status st =
+            s->analyses[k]->create(&self, s->analysis_keys[k], &env, err);
+        if (!st && self)
+            st = bf_sim_observe(sim, s->analyses[k]->observer, self, err);
+        if (st)
+            return st;
+    }
     return BF_OK;
 }
 

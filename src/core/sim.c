@@ -6,9 +6,9 @@
  * A model with an `advance` hook (model.h) gets the steps between two
  * events of the loop in one call; the events (rows, energy checks,
  * checkpoints, stops) happen at the same steps as with one call per step,
- * and the results are the same bits.
+ * and the results are the same bits.  Observers that watch every step
+ * (BF_OBS_STEPS) make the loop take one step at a time.
  */
-#include "base/clock.h"
 #include "ballfilm/sim.h"
 
 #include <math.h>
@@ -16,54 +16,73 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/registry.h"
-#include "ballfilm/run.h"
 #include "ballfilm/version.h"
+#include "base/clock.h"
+#include "diag/energy.h"
 
 static const bf_param scene_params[] = {
-    {"title", BF_STR, 0, "", "", "free text describing the scene", 0, 0, 0, NULL},
-    {"model", BF_STR, 0, "", "balls",
+    {"title", BF_AT(bf_scene_keys, title, BF_STR), "", "",
+     "free text describing the scene", 0, 0, 0, NULL},
+    {"model", BF_AT(bf_scene_keys, model, BF_STR), "", "balls",
      "what is simulated (see Models below)", 0, 0, 0, NULL},
-    {"integrator", BF_STR, 0, "", "mv2m",
+    {"integrator", BF_AT(bf_scene_keys, integrator, BF_STR), "", "mv2m",
      "time integrator for ball models (see Integrators below)", 0, 0, 0, NULL},
-    {"effects", BF_NAMES, 0, "", "",
+    {"effects", BF_AT(bf_scene_keys, effects, BF_NAMES), "", "",
      "ball effects to switch on, e.g. 'gravity floor contact' (see Effects "
      "below); nothing else is computed",
      0, 0, 0, NULL},
-    {"dt", BF_REAL, 0, "s", NULL, "time step", BF_POS, 0, 0, NULL},
-    {"t_end", BF_REAL, 0, "s", NULL,
+    {"dt", BF_AT(bf_scene_keys, dt, BF_REAL), "s", NULL, "time step", BF_POS,
+     0, 0, NULL},
+    {"t_end", BF_AT(bf_scene_keys, t_end, BF_REAL), "s", NULL,
      "final time; the run takes ceil(t_end/dt) steps", BF_POS, 0, 0, NULL},
-    {"output_every", BF_INTERVAL, 0, "steps | s", "1",
+    {"output_every", BF_AT(bf_scene_keys, output_every, BF_INTERVAL),
+     "steps | s", "1",
      "output interval: 'N' steps or 'T s' of simulated time (rounded to "
      "whole steps); the final state is always written",
      0, 0, 0, NULL},
-    {"energy_every", BF_INT, 0, "steps", "1",
+    {"energy_every", BF_AT(bf_scene_keys, energy_every, BF_INT), "steps", "1",
      "check the energy every N steps (0: only at output rows)", BF_NONNEG, 0,
      0, NULL},
-    {"max_energy_error", BF_REAL, 0, "1", "0",
+    {"max_energy_error", BF_AT(bf_scene_keys, max_energy_error, BF_REAL), "1",
+     "0",
      "stop the run when the relative energy error exceeds this (0: no "
      "bound)",
      BF_NONNEG, 0, 0, NULL},
-    {"flush_seconds", BF_REAL, 0, "s (wall)", "5",
+    {"flush_seconds", BF_AT(bf_scene_keys, flush_seconds, BF_REAL),
+     "s (wall)", "5",
      "wall-clock interval between HDF5 flushes (what a killed run keeps)",
      BF_POS, 0, 0, NULL},
-    {"checkpoint_every", BF_INTERVAL, 0, "steps | s", "0",
+    {"checkpoint_every", BF_AT(bf_scene_keys, checkpoint_every, BF_INTERVAL),
+     "steps | s", "0",
      "write a checkpoint (OUT.ckpt) every 'N' steps or 'T s' (0: only when "
      "interrupted); continue with ballfilm run --restart OUT",
      0, 0, 0, NULL},
     {0},
 };
 
-const bf_section_spec bf_sim_scene_spec = {
-    "scene", "what to simulate and how long (every scene has it)",
-    scene_params, 0};
+const bf_section_spec bf_sim_scene_spec =
+    BF_SECTION("scene", "what to simulate and how long (every scene has it)",
+               scene_params, bf_scene_keys);
+
+typedef struct observer {
+    const bf_observer_type *t;
+    void *self;
+} observer;
 
 struct bf_sim {
-    const bf_scene *sc;
-    bf_setup *setup;
     const bf_model_type *mt;
     void *model;
     bf_sim_opts opts;
+    /* provenance (owned copies) */
+    char *scene_path, *scene_text, *scene_sets;
+    bf_status (*write_params)(void *ctx, bf_out *out, bf_err *err);
+    void *params_ctx;
+    /* something the composition layer hands over to be freed with us */
+    void *owned;
+    void (*owned_free)(void *);
+    observer *obs;
+    size_t nobs;
+    int obs_steps; /* some observer watches every step */
     double dt, t_end;
     long nsteps, n;
     long out_every, energy_every, ckpt_every;
@@ -74,85 +93,29 @@ struct bf_sim {
     bf_series *s_time, *s_step, *s_ek, *s_ep, *s_et;
     long last_row; /* step of the last output row, -1 if none */
     int has_energy;
-    double e0, max_rel, last_rel;
+    bf_energy_diag en;
     double wall;
     double prog_last;
 };
 
-bf_status bf_sim_create(bf_sim **out, const bf_scene *sc,
-                        const bf_sim_opts *opts, bf_err *err)
+bf_status bf_sim_run_ctx(const bf_scene_keys *k, bf_run_ctx *run, bf_err *err)
 {
-    *out = NULL;
-    bf_sim *s = calloc(1, sizeof *s);
-    if (!s)
-        return bf_fail(err, BF_EINTERNAL, "out of memory");
-    s->sc = sc;
-    if (opts)
-        s->opts = *opts;
-    s->dt = bf_scene_real(sc, "scene", "dt");
-    s->t_end = bf_scene_real(sc, "scene", "t_end");
-    double steps = ceil(s->t_end / s->dt * (1.0 - 1e-12));
-    if (!(steps < 9e15)) {
-        free(s);
-        return bf_scene_fail(sc, err, "scene", "t_end",
-                             "t_end/dt = %g steps is too many", steps);
-    }
-    s->nsteps = (long)steps;
-    s->out_every = bf_interval_steps(bf_scene_interval(sc, "scene", "output_every"),
-                                  s->dt);
-    if (s->out_every < 1)
-        s->out_every = 1;
-    s->ckpt_every = bf_interval_steps(bf_scene_interval(sc, "scene",
-                                                     "checkpoint_every"),
-                                   s->dt);
-    s->energy_every = bf_scene_int(sc, "scene", "energy_every");
-    s->energy_bound = bf_scene_real(sc, "scene", "max_energy_error");
-    s->flush_seconds = bf_scene_real(sc, "scene", "flush_seconds");
-    bf_run_ctx run = {s->dt, s->t_end, s->nsteps, s->out_every};
-    bf_status st = bf_setup_create(&s->setup, bf_catalog_builtin(), sc, &run,
-                                   err);
-    if (!st) {
-        s->mt = bf_setup_model_type(s->setup);
-        st = bf_setup_build_model(s->setup, sc, &s->model, err);
-    }
-    if (st) {
-        bf_setup_free(s->setup);
-        free(s);
-        return st;
-    }
-    if (!st && s->mt->stable_dt) {
-        bf_dt_limit lim = {0};
-        s->mt->stable_dt(s->model, &lim);
-        if (lim.dt_max > 0 && s->dt > lim.dt_max) {
-            bf_fail_key(err, BF_EINPUT, lim.section[0] ? lim.section : "scene",
-                        lim.section[0] ? lim.key : "dt",
-                        "dt = %g s exceeds %s%s%s", s->dt, lim.why,
-                        lim.advice[0] ? "; " : "", lim.advice);
-            bf_scene_locate(sc, err);
-            s->mt->destroy(s->model);
-            bf_setup_free(s->setup);
-            free(s);
-            return BF_EINPUT;
-        }
-    }
-    if (s->ckpt_every && !bf_sim_can_checkpoint(s)) {
-        s->mt->destroy(s->model);
-        bf_setup_free(s->setup);
-        free(s);
-        return bf_scene_fail(sc, err, "scene", "checkpoint_every",
-                             "model '%s' cannot write checkpoints yet",
-                             bf_scene_str(sc, "scene", "model"));
-    }
-    s->last_row = -1;
-    s->has_energy = s->mt->energy != NULL;
-    s->max_rel = 0.0;
-    if (s->has_energy) {
-        double k, p;
-        s->mt->energy(s->model, 0.0, &k, &p);
-        s->e0 = k + p;
-    }
-    *out = s;
+    double steps = ceil(k->t_end / k->dt * (1.0 - 1e-12));
+    if (!(steps < 9e15))
+        return bf_fail_key(err, BF_EINPUT, "scene", "t_end",
+                           "t_end/dt = %g steps is too many", steps);
+    run->dt = k->dt;
+    run->t_end = k->t_end;
+    run->nsteps = (long)steps;
+    run->output_every = bf_interval_steps(k->output_every, k->dt);
+    if (run->output_every < 1)
+        run->output_every = 1;
     return BF_OK;
+}
+
+static char *dup_or_empty(const char *s)
+{
+    return strdup(s ? s : "");
 }
 
 void bf_sim_free(bf_sim *s)
@@ -161,44 +124,129 @@ void bf_sim_free(bf_sim *s)
         return;
     if (s->out)
         bf_out_close(s->out, NULL);
+    for (size_t k = s->nobs; k-- > 0;)
+        if (s->obs[k].t->destroy)
+            s->obs[k].t->destroy(s->obs[k].self);
+    free(s->obs);
     if (s->mt && s->mt->destroy)
         s->mt->destroy(s->model);
-    bf_setup_free(s->setup);
+    if (s->owned_free)
+        s->owned_free(s->owned);
+    free(s->scene_path);
+    free(s->scene_text);
+    free(s->scene_sets);
     free(s->ckpt_path);
     free(s);
 }
 
-/* ------------------------------------------------------------- output */
-
-typedef struct visit_ctx {
-    bf_out *out;
-    bf_err *err;
-} visit_ctx;
-
-static int write_param(void *ctx, const char *name, const char *value,
-                       const char *unit, int is_default)
+void bf_sim_own(bf_sim *s, void *ctx, void (*free_fn)(void *))
 {
-    visit_ctx *v = ctx;
-    char aname[600];
-    double r;
-    bf_status st;
-    /* numbers as numbers, everything else as text */
-    if (bf_parse_real(value, &r))
-        st = bf_out_attr_real(v->out, "/", name, r, v->err);
-    else
-        st = bf_out_attr_str(v->out, "/", name, value, v->err);
-    if (st)
-        return 1;
-    snprintf(aname, sizeof aname, "%s.unit", name);
-    if (bf_out_attr_str(v->out, "/", aname, unit, v->err))
-        return 1;
-    if (is_default) {
-        snprintf(aname, sizeof aname, "%s.default", name);
-        if (bf_out_attr_int(v->out, "/", aname, 1, v->err))
-            return 1;
-    }
-    return 0;
+    s->owned = ctx;
+    s->owned_free = free_fn;
 }
+
+/* The model's largest stable step, refused when [scene] dt exceeds it. */
+static bf_status check_stable_dt(const bf_sim *s, bf_err *err)
+{
+    if (!s->mt->stable_dt)
+        return BF_OK;
+    bf_dt_limit lim = {0};
+    s->mt->stable_dt(s->model, &lim);
+    if (!(lim.dt_max > 0) || s->dt <= lim.dt_max)
+        return BF_OK;
+    return bf_fail_key(err, BF_EINPUT, lim.section[0] ? lim.section : "scene",
+                       lim.section[0] ? lim.key : "dt",
+                       "dt = %g s exceeds %s%s%s", s->dt, lim.why,
+                       lim.advice[0] ? "; " : "", lim.advice);
+}
+
+bf_status bf_sim_create(bf_sim **out, const bf_scene_keys *k,
+                        const bf_model_type *mt, void *model,
+                        const bf_provenance *prov, const bf_sim_opts *opts,
+                        bf_err *err)
+{
+    *out = NULL;
+    bf_run_ctx run;
+    bf_status st = bf_sim_run_ctx(k, &run, err);
+    bf_sim *s = st ? NULL : calloc(1, sizeof *s);
+    if (!s) {
+        if (mt->destroy)
+            mt->destroy(model);
+        return st ? st : bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    s->mt = mt;
+    s->model = model;
+    if (opts)
+        s->opts = *opts;
+    s->scene_path = dup_or_empty(prov ? prov->scene_path : NULL);
+    s->scene_text = dup_or_empty(prov ? prov->scene_text : NULL);
+    s->scene_sets = dup_or_empty(prov ? prov->scene_sets : NULL);
+    if (prov) {
+        s->write_params = prov->write_params;
+        s->params_ctx = prov->ctx;
+    }
+    s->dt = run.dt;
+    s->t_end = run.t_end;
+    s->nsteps = run.nsteps;
+    s->out_every = run.output_every;
+    s->ckpt_every = bf_interval_steps(k->checkpoint_every, s->dt);
+    s->energy_every = k->energy_every;
+    s->energy_bound = k->max_energy_error;
+    s->flush_seconds = k->flush_seconds;
+    if (!s->scene_path || !s->scene_text || !s->scene_sets)
+        st = bf_fail(err, BF_EINTERNAL, "out of memory");
+    if (!st)
+        st = check_stable_dt(s, err);
+    if (!st && s->ckpt_every && !bf_sim_can_checkpoint(s))
+        st = bf_fail_key(err, BF_EINPUT, "scene", "checkpoint_every",
+                         "model '%s' cannot write checkpoints yet", mt->name);
+    if (st) {
+        bf_sim_free(s);
+        return st;
+    }
+    s->last_row = -1;
+    s->has_energy = s->mt->energy != NULL;
+    bf_energy_start(&s->en, 0.0);
+    if (s->has_energy) {
+        double kk, p;
+        s->mt->energy(s->model, 0.0, &kk, &p);
+        bf_energy_start(&s->en, kk + p);
+    }
+    *out = s;
+    return BF_OK;
+}
+
+bf_status bf_sim_observe(bf_sim *s, const bf_observer_type *t, void *self,
+                         bf_err *err)
+{
+    observer *o = realloc(s->obs, (s->nobs + 1) * sizeof *o);
+    if (!o) {
+        if (t->destroy)
+            t->destroy(self);
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    s->obs = o;
+    s->obs[s->nobs++] = (observer){t, self};
+    s->obs_steps |= (t->flags & BF_OBS_STEPS) != 0;
+    return BF_OK;
+}
+
+void *bf_sim_observer(bf_sim *s, const bf_observer_type *t)
+{
+    for (size_t k = 0; k < s->nobs; k++)
+        if (s->obs[k].t == t)
+            return s->obs[k].self;
+    return NULL;
+}
+
+/* Call hook H of every observer that has it with the arguments after self;
+ * stop at the first failure. */
+#define EACH_OBSERVER(s, st, H, ...)                                           \
+    for (size_t k_ = 0; !(st) && k_ < (s)->nobs; k_++)                         \
+        if ((s)->obs[k_].t->H)                                                 \
+    (st) = (s)->obs[k_].t->H((s)->obs[k_].self, __VA_ARGS__)
+
+/* ------------------------------------------------------------- output */
 
 static bf_status set_ckpt_path(bf_sim *s, const char *path, bf_err *err)
 {
@@ -211,7 +259,8 @@ static bf_status set_ckpt_path(bf_sim *s, const char *path, bf_err *err)
     return BF_OK;
 }
 
-/* Datasets of the loop itself (created, or reopened on restart). */
+/* Datasets of the loop itself (created, or reopened on restart), then the
+ * model's and the observers'. */
 static bf_status open_series(bf_sim *s, bf_err *err)
 {
     bf_out *o = s->out;
@@ -236,9 +285,11 @@ static bf_status open_series(bf_sim *s, bf_err *err)
         if (!s->s_et)
             return err->status;
     }
+    bf_status st = BF_OK;
     if (s->mt->output_open)
-        return s->mt->output_open(s->model, o, err);
-    return BF_OK;
+        st = s->mt->output_open(s->model, o, err);
+    EACH_OBSERVER(s, st, output_open, o, err);
+    return st;
 }
 
 bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)
@@ -251,13 +302,12 @@ bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)
         return st;
     bf_out *o = s->out;
     if ((st = bf_out_attr_str(o, "/", "version", bf_version_string(), err)) ||
-        (st = bf_out_attr_str(o, "/", "scene_file", bf_scene_path(s->sc), err)) ||
-        (st = bf_out_attr_str(o, "/", "scene_text", bf_scene_text(s->sc), err)) ||
+        (st = bf_out_attr_str(o, "/", "scene_file", s->scene_path, err)) ||
+        (st = bf_out_attr_str(o, "/", "scene_text", s->scene_text, err)) ||
         (st = bf_out_attr_str(o, "/", "status", "running", err)))
         return st;
-    visit_ctx v = {o, err};
-    if (bf_scene_visit(s->sc, write_param, &v))
-        return err->status ? err->status : BF_EIO;
+    if (s->write_params && (st = s->write_params(s->params_ctx, o, err)))
+        return st;
     if ((st = open_series(s, err)))
         return st;
     return bf_out_flush(o, err);
@@ -283,6 +333,7 @@ static bf_status write_row(bf_sim *s, bf_err *err)
     bf_status st = BF_OK;
     if (s->mt->output_row)
         st = s->mt->output_row(s->model, s->n, t, err);
+    EACH_OBSERVER(s, st, output_row, s->n, t, err);
     if (!st)
         st = bf_out_maybe_flush(s->out, s->flush_seconds, err);
     s->last_row = s->n;
@@ -294,12 +345,7 @@ static double check_energy(bf_sim *s)
 {
     double k, p;
     s->mt->energy(s->model, (double)s->n * s->dt, &k, &p);
-    double e = k + p;
-    double rel = s->e0 != 0.0 ? fabs(e - s->e0) / fabs(s->e0) : fabs(e - s->e0);
-    if (!(rel <= s->max_rel)) /* also catches NaN */
-        s->max_rel = isnan(rel) ? INFINITY : rel;
-    s->last_rel = rel;
-    return rel;
+    return bf_energy_check(&s->en, k + p);
 }
 
 static void progress(bf_sim *s, double t0, int final)
@@ -315,7 +361,7 @@ static void progress(bf_sim *s, double t0, int final)
     fprintf(stderr, "\r  t = %-12.6g s  %5.1f%%  %9.3g steps/s  ETA %7.1f s",
             (double)s->n * s->dt, 100.0 * frac, rate, eta);
     if (s->has_energy)
-        fprintf(stderr, "  dE/E %.2e (max %.2e)", s->last_rel, s->max_rel);
+        fprintf(stderr, "  dE/E %.2e (max %.2e)", s->en.last_rel, s->en.max_rel);
     fprintf(stderr, "   ");
     if (final)
         fprintf(stderr, "\n");
@@ -367,6 +413,22 @@ static long run_length(const bf_sim *s)
     return k;
 }
 
+/* One step of the model with the observers around it; *done: 1 if the
+ * step and its observers succeeded (a failing observer fails the step). */
+static bf_status one_step(bf_sim *s, bf_err *err, long *done)
+{
+    const double t = (double)s->n * s->dt;
+    bf_status st = BF_OK;
+    if (s->obs_steps)
+        EACH_OBSERVER(s, st, before_step, s->n, t, s->dt, err);
+    if (!st)
+        st = s->mt->step(s->model, s->n, t, s->dt, err);
+    if (!st && s->obs_steps)
+        EACH_OBSERVER(s, st, after_step, s->n + 1, t, s->dt, err);
+    *done = st ? 0 : 1;
+    return st;
+}
+
 bf_status bf_sim_run(bf_sim *s, bf_err *err)
 {
     bf_status st = BF_OK;
@@ -377,7 +439,7 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
     const long every = s->out_every, eevery = s->energy_every;
     /* runs of more than one step are possible at all (energy checks or
      * rows every step leave none) */
-    const int runs = s->mt->advance && every > 1 &&
+    const int runs = s->mt->advance && every > 1 && !s->obs_steps &&
                      !(s->has_energy && eevery == 1);
     s->steps_this_run = 0;
     while (s->n < s->nsteps) {
@@ -390,9 +452,8 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
         long k = runs ? run_length(s) : 1, done = 1;
         if (k > 1)
             st = s->mt->advance(s->model, s->n, k, s->dt, &done, err);
-        else if ((st = s->mt->step(s->model, s->n, (double)s->n * s->dt,
-                                   s->dt, err)))
-            done = 0;
+        else
+            st = one_step(s, err, &done);
         s->n += done;
         s->steps_this_run += done;
         if (st) {
@@ -442,6 +503,7 @@ bf_status bf_sim_close_output(bf_sim *s, bf_status run_status,
     bf_status st = BF_OK;
     if (s->mt->output_close)
         st = s->mt->output_close(s->model, o, err);
+    EACH_OBSERVER(s, st, output_close, o, err);
     bf_counters c;
     bf_sim_counters(s, &c);
     if (!st)
@@ -460,8 +522,8 @@ bf_status bf_sim_close_output(bf_sim *s, bf_status run_status,
     if (!st)
         st = bf_out_attr_int(o, "/", "iterations", (int64_t)c.iterations, err);
     if (!st && s->has_energy)
-        st = bf_out_attr_real(o, "/", "max_relative_energy_error", s->max_rel,
-                              err);
+        st = bf_out_attr_real(o, "/", "max_relative_energy_error",
+                              s->en.max_rel, err);
     bf_status cst = bf_out_close(o, st ? NULL : err);
     s->out = NULL;
     return st ? st : cst;
@@ -486,9 +548,13 @@ void bf_sim_summary(const bf_sim *s, FILE *f)
     fprintf(f, "\n");
     if (s->has_energy)
         fprintf(f, "max relative energy error: %.6e (checked every %ld steps)\n",
-                s->max_rel, s->energy_every ? s->energy_every : s->out_every);
+                s->en.max_rel,
+                s->energy_every ? s->energy_every : s->out_every);
     if (s->mt->report)
         s->mt->report(s->model, f);
+    for (size_t k = 0; k < s->nobs; k++)
+        if (s->obs[k].t->report)
+            s->obs[k].t->report(s->obs[k].self, f);
 }
 
 double bf_sim_output_estimate(const bf_sim *s)
@@ -510,7 +576,7 @@ double bf_sim_time(const bf_sim *s) { return (double)s->n * s->dt; }
 double bf_sim_dt(const bf_sim *s) { return s->dt; }
 double bf_sim_max_energy_error(const bf_sim *s)
 {
-    return s->has_energy ? s->max_rel : NAN;
+    return s->has_energy ? s->en.max_rel : NAN;
 }
 double bf_sim_wall_seconds(const bf_sim *s) { return s->wall; }
 
@@ -519,6 +585,17 @@ void bf_sim_counters(const bf_sim *s, bf_counters *c)
     memset(c, 0, sizeof *c);
     if (s->mt->counters)
         s->mt->counters(s->model, c);
+}
+
+void bf_sim_results(const bf_sim *s, bf_results *r)
+{
+    memset(r, 0, sizeof *r);
+    r->lyapunov_exponent = r->lyapunov_time = NAN;
+    if (s->mt->results)
+        s->mt->results(s->model, r);
+    for (size_t k = 0; k < s->nobs; k++)
+        if (s->obs[k].t->results)
+            s->obs[k].t->results(s->obs[k].self, r);
 }
 
 /* ------------------------------------------------------------ checkpoints */
@@ -530,22 +607,41 @@ int bf_sim_can_checkpoint(const bf_sim *s)
 
 const char *bf_sim_checkpoint_path(const bf_sim *s) { return s->ckpt_path; }
 
-/* The overrides joined by newlines (a newline cannot occur in one). */
-static char *join_sets(const bf_scene *sc)
+/* What a checkpoint keeps of the loop itself. */
+static const bf_field loop_state[] = {
+    BF_FIELD(bf_sim, n, BF_F_LONG, "1"),
+    BF_FIELD(bf_sim, last_row, BF_F_LONG, "1"),
+    BF_FIELD(bf_sim, en.e0, BF_F_DOUBLE, "erg"),
+    BF_FIELD(bf_sim, en.max_rel, BF_F_DOUBLE, "1"),
+    BF_FIELD(bf_sim, wall, BF_F_DOUBLE, "s"),
+};
+
+/* The rows of every series and their paths (one per line). */
+static bf_status put_rows(const bf_sim *s, bf_ckpt *ck, bf_err *err)
 {
-    const char *const *list;
-    size_t n = bf_scene_overrides(sc, &list), len = 1;
-    for (size_t k = 0; k < n; k++)
-        len += strlen(list[k]) + 1;
-    char *j = malloc(len);
-    if (!j)
-        return NULL;
-    j[0] = '\0';
-    for (size_t k = 0; k < n; k++) {
-        strcat(j, list[k]);
-        strcat(j, "\n");
+    size_t ns = bf_out_nseries(s->out), plen = 1;
+    int64_t *rows = malloc((ns ? ns : 1) * sizeof *rows);
+    for (size_t k = 0; k < ns; k++)
+        plen += strlen(bf_series_path(bf_out_series_at(s->out, k))) + 1;
+    char *paths = malloc(plen);
+    bf_status st = BF_OK;
+    if (!rows || !paths) {
+        st = bf_fail(err, BF_EINTERNAL, "out of memory");
+    } else {
+        paths[0] = '\0';
+        for (size_t k = 0; k < ns; k++) {
+            bf_series *se = bf_out_series_at(s->out, k);
+            rows[k] = (int64_t)bf_series_rows(se);
+            strcat(paths, bf_series_path(se));
+            strcat(paths, "\n");
+        }
+        st = bf_ckpt_put_i64(ck, "out.rows", rows, ns, err);
+        if (!st)
+            st = bf_ckpt_put_str(ck, "out.paths", paths, err);
     }
-    return j;
+    free(rows);
+    free(paths);
+    return st;
 }
 
 bf_status bf_sim_checkpoint_write(bf_sim *s, const char *path, bf_err *err)
@@ -558,150 +654,58 @@ bf_status bf_sim_checkpoint_write(bf_sim *s, const char *path, bf_err *err)
     if (s->out && (st = bf_out_flush(s->out, err)))
         return st;
     bf_ckpt *ck = bf_ckpt_new();
-    char *sets = join_sets(s->sc);
-    if (!ck || !sets) {
-        bf_ckpt_free(ck);
-        free(sets);
+    if (!ck)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    }
     if (!st) st = bf_ckpt_put_str(ck, "version", bf_version_string(), err);
-    if (!st) st = bf_ckpt_put_str(ck, "scene.path", bf_scene_path(s->sc), err);
-    if (!st) st = bf_ckpt_put_str(ck, "scene.text", bf_scene_text(s->sc), err);
-    if (!st) st = bf_ckpt_put_str(ck, "scene.sets", sets, err);
-    if (!st) st = bf_ckpt_put_int(ck, "sim.n", s->n, err);
-    if (!st) st = bf_ckpt_put_int(ck, "sim.last_row", s->last_row, err);
-    if (!st) st = bf_ckpt_put_real(ck, "sim.e0", s->e0, err);
-    if (!st) st = bf_ckpt_put_real(ck, "sim.max_rel", s->max_rel, err);
-    if (!st) st = bf_ckpt_put_real(ck, "sim.wall", s->wall, err);
-    if (!st && s->out) {
-        size_t ns = bf_out_nseries(s->out), plen = 1;
-        int64_t *rows = malloc((ns ? ns : 1) * sizeof *rows);
-        for (size_t k = 0; k < ns; k++)
-            plen += strlen(bf_series_path(bf_out_series_at(s->out, k))) + 1;
-        char *paths = malloc(plen);
-        if (!rows || !paths)
-            st = bf_fail(err, BF_EINTERNAL, "out of memory");
-        else {
-            paths[0] = '\0';
-            for (size_t k = 0; k < ns; k++) {
-                bf_series *se = bf_out_series_at(s->out, k);
-                rows[k] = (int64_t)bf_series_rows(se);
-                strcat(paths, bf_series_path(se));
-                strcat(paths, "\n");
-            }
-            st = bf_ckpt_put_i64(ck, "out.rows", rows, ns, err);
-            if (!st)
-                st = bf_ckpt_put_str(ck, "out.paths", paths, err);
-        }
-        free(rows);
-        free(paths);
-    }
+    if (!st) st = bf_ckpt_put_str(ck, "scene.path", s->scene_path, err);
+    if (!st) st = bf_ckpt_put_str(ck, "scene.text", s->scene_text, err);
+    if (!st) st = bf_ckpt_put_str(ck, "scene.sets", s->scene_sets, err);
+    if (!st)
+        st = bf_ckpt_put_fields(ck, "sim", loop_state, BF_NFIELDS(loop_state),
+                                s, err);
+    if (!st && s->out)
+        st = put_rows(s, ck, err);
     if (!st)
         st = s->mt->checkpoint_save(s->model, ck, err);
+    EACH_OBSERVER(s, st, save, ck, err);
     if (!st)
         st = bf_ckpt_write(ck, path, err);
     bf_ckpt_free(ck);
-    free(sets);
     return st;
 }
 
-bf_status bf_sim_restart(bf_sim **out, bf_scene **scene, const char *out_path,
-                         const char *const *sets, size_t nsets,
-                         const bf_sim_opts *opts, bf_err *err)
+bf_status bf_sim_resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
+                        bf_err *err)
 {
-    *out = NULL;
-    *scene = NULL;
-    size_t len = strlen(out_path) + 6;
-    char *cpath = malloc(len);
-    if (!cpath)
-        return bf_fail(err, BF_EINTERNAL, "out of memory");
-    snprintf(cpath, len, "%s.ckpt", out_path);
-    bf_ckpt *ck = NULL;
-    bf_scene *sc = NULL;
-    bf_sim *s = NULL;
-    bf_status st = bf_ckpt_read(&ck, cpath, err);
-    if (st) {
-        bf_err_prefix(err, "cannot restart %s", out_path);
-        free(cpath);
+    if (!bf_sim_can_checkpoint(s))
+        return bf_fail(err, BF_EINPUT, "model '%s' cannot restart",
+                       s->mt->name);
+    bf_status st = bf_ckpt_get_fields(ck, "sim", loop_state,
+                                      BF_NFIELDS(loop_state), s, err);
+    if (!st)
+        st = s->mt->checkpoint_load(s->model, ck, err);
+    EACH_OBSERVER(s, st, load, ck, err);
+    if (st)
         return st;
-    }
-    const char *spath = bf_ckpt_str(ck, "scene.path");
-    const char *stext = bf_ckpt_str(ck, "scene.text");
-    const char *ssets = bf_ckpt_str(ck, "scene.sets");
-    if (!spath || !stext || !ssets) {
-        st = bf_fail(err, BF_EINPUT, "%s: checkpoint lacks the scene", cpath);
-        goto fail;
-    }
-    if ((st = bf_scene_load_string(&sc, spath, stext, err)))
-        goto fail;
-    /* the stored overrides, then the new ones */
-    for (const char *p = ssets; *p;) {
-        const char *nl = strchr(p, '\n');
-        size_t l = nl ? (size_t)(nl - p) : strlen(p);
-        char buf[1024];
-        if (l >= sizeof buf) {
-            st = bf_fail(err, BF_EINPUT, "%s: override too long", cpath);
-            goto fail;
-        }
-        memcpy(buf, p, l);
-        buf[l] = '\0';
-        if (l && (st = bf_scene_set(sc, buf, "--set (stored)", err)))
-            goto fail;
-        p += l + (nl ? 1 : 0);
-    }
-    for (size_t k = 0; k < nsets; k++)
-        if ((st = bf_scene_set(sc, sets[k], "--set", err)))
-            goto fail;
-    if ((st = bf_registry_resolve(sc, err)) ||
-        (st = bf_sim_create(&s, sc, opts, err)))
-        goto fail;
-    if (!bf_sim_can_checkpoint(s)) {
-        st = bf_fail(err, BF_EINPUT, "model '%s' cannot restart", s->mt->name);
-        goto fail;
-    }
-    int64_t n, last_row;
-    if ((st = bf_ckpt_get_int(ck, "sim.n", &n, err)) ||
-        (st = bf_ckpt_get_int(ck, "sim.last_row", &last_row, err)) ||
-        (st = bf_ckpt_get_real(ck, "sim.e0", &s->e0, err)) ||
-        (st = bf_ckpt_get_real(ck, "sim.max_rel", &s->max_rel, err)) ||
-        (st = bf_ckpt_get_real(ck, "sim.wall", &s->wall, err)) ||
-        (st = s->mt->checkpoint_load(s->model, ck, err)))
-        goto fail;
-    s->n = (long)n;
-    s->last_row = (long)last_row;
-    if (s->n > s->nsteps) {
-        st = bf_fail(err, BF_EINPUT, "%s: the checkpoint is at step %ld, "
-                     "beyond t_end (%ld steps)", cpath, s->n, s->nsteps);
-        goto fail;
-    }
+    if (s->n > s->nsteps)
+        return bf_fail(err, BF_EINPUT, "%s.ckpt: the checkpoint is at step "
+                       "%ld, beyond t_end (%ld steps)", out_path, s->n,
+                       s->nsteps);
     /* reopen the output and drop rows written after the checkpoint */
     if ((st = set_ckpt_path(s, out_path, err)) ||
         (st = bf_out_open_append(&s->out, out_path, err)) ||
         (st = open_series(s, err)))
-        goto fail;
+        return st;
     size_t nrows;
     const int64_t *rows = bf_ckpt_data_i64(ck, "out.rows", &nrows);
-    if (!rows || nrows != bf_out_nseries(s->out)) {
-        st = bf_fail(err, BF_EINPUT, "%s: the checkpoint does not match the "
-                     "datasets of %s", cpath, out_path);
-        goto fail;
-    }
+    if (!rows || nrows != bf_out_nseries(s->out))
+        return bf_fail(err, BF_EINPUT, "%s.ckpt: the checkpoint does not "
+                       "match the datasets of %s", out_path, out_path);
     for (size_t k = 0; k < nrows; k++)
         if ((st = bf_series_truncate(bf_out_series_at(s->out, k),
                                      (size_t)rows[k], err)))
-            goto fail;
-    if ((st = bf_out_attr_str(s->out, "/", "status", "running", err)) ||
-        (st = bf_out_flush(s->out, err)))
-        goto fail;
-    bf_ckpt_free(ck);
-    free(cpath);
-    *out = s;
-    *scene = sc;
-    return BF_OK;
-fail:
-    bf_sim_free(s);
-    bf_scene_free(sc);
-    bf_ckpt_free(ck);
-    free(cpath);
-    return st;
+            return st;
+    if ((st = bf_out_attr_str(s->out, "/", "status", "running", err)))
+        return st;
+    return bf_out_flush(s->out, err);
 }

@@ -868,6 +868,8 @@ static bf_status coupled_load(void *self, const bf_ckpt *ck, bf_err *err)
     return st;
 }
 
+static void coupled_results(const void *self, bf_results *r);
+
 static const bf_section_spec *const coupled_specs[] = {
     &coupled_spec, &bf_filmsys_spec, &bf_ballsys_ball_spec, &bf_lyap_spec,
     NULL};
@@ -889,23 +891,21 @@ const bf_model_type bf_model_coupled = {
     .report = coupled_report,
     .checkpoint_save = coupled_save,
     .checkpoint_load = coupled_load,
+    .results = coupled_results,
 };
 
 /* ------------------------------------------------------------ drivers */
 
-bf_status bf_coupled_sim_analysis(bf_sim *sim, bf_balls_analysis *a)
+/* The return map is /coupled/return_map (no multi-minimum count, the
+ * points are not kept in memory). */
+static void coupled_results(const void *self, bf_results *r)
 {
-    if (bf_sim_model_type(sim) != &bf_model_coupled)
-        return BF_EINPUT;
-    const coupled_model *m = bf_sim_model(sim);
-    a->has_return_map = 1;
-    a->return_map_points = (size_t)m->nmap;
-    a->return_map_multi_minima = 0;
-    a->has_lyapunov = m->ly != NULL;
-    a->lyapunov_time = 0;
-    a->lyapunov_exponent =
-        m->ly ? bf_lyap_sum_estimate(m->ly, &a->lyapunov_time) : NAN;
-    return BF_OK;
+    const coupled_model *m = self;
+    r->has_return_map = 1;
+    r->map_points = (size_t)m->nmap;
+    r->has_lyapunov = m->ly != NULL;
+    if (m->ly)
+        r->lyapunov_exponent = bf_lyap_sum_estimate(m->ly, &r->lyapunov_time);
 }
 
 static void parts_of(coupled_model *m, bf_coupled_parts *p)

@@ -17,6 +17,7 @@
 #include "ballfilm/h5out.h"
 #include "ballfilm/registry.h"
 #include "ballfilm/sim.h"
+#include "ballfilm/run.h"
 
 bf_status bf_sweep_parse_axis(bf_sweep_axis *ax, const char *spec, bf_err *err)
 {
@@ -379,7 +380,7 @@ bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
     if (!st)
         st = bf_registry_resolve(sc, &cerr);
     if (!st)
-        st = bf_sim_create(&sim, sc, NULL, &cerr);
+        st = bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &cerr);
     if (!st)
         st = bf_sim_open_output(sim, out, &cerr);
     bf_status run_st = st;

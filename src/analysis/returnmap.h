@@ -35,36 +35,27 @@
  * /return_map/z_trigger (cm, the trigger's lowest position) and
  * /return_map/minima; root attributes return_map_points and
  * return_map_multi_minima.
+ *
+ * It is an analysis of the time loop (sim.h): an observer of the balls
+ * of a model through its ball view.  Private to the library.
  */
-#ifndef BALLFILM_RETURNMAP_H
-#define BALLFILM_RETURNMAP_H
+#ifndef BALLFILM_ANALYSIS_RETURNMAP_H
+#define BALLFILM_ANALYSIS_RETURNMAP_H
 
 #include <stddef.h>
 
-#include "ballfilm/ballsys.h"
-#include "ballfilm/checkpoint.h"
-#include "ballfilm/h5out.h"
+#include "ballfilm/sim.h"
+
+/* The keys of [return_map]. */
+typedef struct bf_retmap_keys {
+    int enabled;
+    long trigger, record; /* 1-based ball numbers */
+} bf_retmap_keys;
 
 typedef struct bf_retmap bf_retmap;
 
-extern const bf_section_spec bf_retmap_spec; /* [return_map] */
-
-/* Create from [return_map]; *out is NULL when it is not enabled.  Refuses
- * (naming the key) ball indices out of range and scenes without a floor. */
-bf_status bf_retmap_create(bf_retmap **out, const bf_scene *sc,
-                           bf_ballsys *sys, bf_err *err);
-void bf_retmap_free(bf_retmap *rm);
-
-/* Around every step of the ball system from t to t + dt. */
-void bf_retmap_before_step(bf_retmap *rm, const bf_ballsys *sys);
-bf_status bf_retmap_after_step(bf_retmap *rm, bf_ballsys *sys, double t,
-                               double dt, bf_err *err);
-
-bf_status bf_retmap_output_open(bf_retmap *rm, bf_out *out, bf_err *err);
-bf_status bf_retmap_output_close(const bf_retmap *rm, bf_out *out,
-                                 bf_err *err);
-bf_status bf_retmap_save(const bf_retmap *rm, bf_ckpt *ck, bf_err *err);
-bf_status bf_retmap_load(bf_retmap *rm, const bf_ckpt *ck, bf_err *err);
+extern const bf_analysis_type bf_retmap_analysis; /* [return_map] */
+extern const bf_observer_type bf_retmap_observer;
 
 /* The points recorded so far (arrays of length return value; any pointer
  * may be NULL). */

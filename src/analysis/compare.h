@@ -9,25 +9,20 @@
  * Yasuda eqs 2.19 and 2.20: zero in free fall (both are exact for a
  * constant force), non-zero only during collisions (Fig. 4).  Both use
  * their default parameters.  Costs two steps per output row, nothing per
- * step.
+ * step.  An analysis of the time loop (sim.h) over a model's ball view;
+ * private to the library.
  */
-#ifndef BALLFILM_COMPARE_H
-#define BALLFILM_COMPARE_H
+#ifndef BALLFILM_ANALYSIS_COMPARE_H
+#define BALLFILM_ANALYSIS_COMPARE_H
 
-#include "ballfilm/ballsys.h"
-#include "ballfilm/h5out.h"
+#include "ballfilm/sim.h"
 
-typedef struct bf_compare bf_compare;
+/* The keys of [compare]. */
+typedef struct bf_compare_keys {
+    const char *a, *b; /* integrator names ("": no comparison) */
+} bf_compare_keys;
 
-extern const bf_section_spec bf_compare_spec; /* [compare] */
-
-/* *out is NULL when [compare] a is empty. */
-bf_status bf_compare_create(bf_compare **out, const bf_scene *sc,
-                            const bf_ballsys *sys, bf_err *err);
-void bf_compare_free(bf_compare *c);
-bf_status bf_compare_output_open(bf_compare *c, bf_out *out, bf_err *err);
-/* Append the row for the current state at time t with step dt. */
-bf_status bf_compare_output_row(bf_compare *c, const bf_ballsys *sys, double t,
-                                double dt, bf_err *err);
+extern const bf_analysis_type bf_compare_analysis; /* [compare] */
+extern const bf_observer_type bf_compare_observer;
 
 #endif

@@ -1,0 +1,185 @@
+/* build.c: a run from a scene (see run.h): the [scene] keys, the model's
+ * setup, the model, the loop, the analyses, the provenance; and a run
+ * rebuilt from its checkpoint. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "ballfilm/checkpoint.h"
+#include "compose.h"
+
+/* ------------------------------------------------------------ provenance */
+
+typedef struct visit_ctx {
+    bf_out *out;
+    bf_err *err;
+} visit_ctx;
+
+static int write_param(void *ctx, const char *name, const char *value,
+                       const char *unit, int is_default)
+{
+    visit_ctx *v = ctx;
+    char aname[600];
+    double r;
+    bf_status st;
+    /* numbers as numbers, everything else as text */
+    if (bf_parse_real(value, &r))
+        st = bf_out_attr_real(v->out, "/", name, r, v->err);
+    else
+        st = bf_out_attr_str(v->out, "/", name, value, v->err);
+    if (st)
+        return 1;
+    snprintf(aname, sizeof aname, "%s.unit", name);
+    if (bf_out_attr_str(v->out, "/", aname, unit, v->err))
+        return 1;
+    if (is_default) {
+        snprintf(aname, sizeof aname, "%s.default", name);
+        if (bf_out_attr_int(v->out, "/", aname, 1, v->err))
+            return 1;
+    }
+    return 0;
+}
+
+/* every resolved parameter of the scene as root attributes */
+static bf_status write_params(void *ctx, bf_out *out, bf_err *err)
+{
+    visit_ctx v = {out, err};
+    if (bf_scene_visit(ctx, write_param, &v))
+        return err->status ? err->status : BF_EIO;
+    return BF_OK;
+}
+
+/* The overrides joined by newlines (a newline cannot occur in one). */
+static char *join_sets(const bf_scene *sc)
+{
+    const char *const *list;
+    size_t n = bf_scene_overrides(sc, &list), len = 1;
+    for (size_t k = 0; k < n; k++)
+        len += strlen(list[k]) + 1;
+    char *j = malloc(len);
+    if (!j)
+        return NULL;
+    j[0] = '\0';
+    for (size_t k = 0; k < n; k++) {
+        strcat(j, list[k]);
+        strcat(j, "\n");
+    }
+    return j;
+}
+
+static void free_setup(void *s) { bf_setup_free(s); }
+
+bf_status bf_sim_from_scene(bf_sim **out, const bf_catalog *c,
+                            const bf_scene *sc, const bf_sim_opts *opts,
+                            bf_err *err)
+{
+    *out = NULL;
+    bf_scene_keys k;
+    bf_scene_fill(sc, "scene", &bf_sim_scene_spec, &k);
+    bf_run_ctx run;
+    bf_setup *setup = NULL;
+    void *model = NULL;
+    bf_status st = bf_sim_run_ctx(&k, &run, err);
+    if (!st)
+        st = bf_setup_create(&setup, c, sc, &run, err);
+    if (!st)
+        st = bf_setup_build_model(setup, sc, &model, err);
+    char *sets = st ? NULL : join_sets(sc);
+    if (!st && !sets) {
+        bf_setup_model_type(setup)->destroy(model);
+        st = bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    bf_sim *sim = NULL;
+    if (!st) {
+        bf_provenance prov = {bf_scene_path(sc), bf_scene_text(sc), sets,
+                              write_params, (void *)sc};
+        st = bf_sim_create(&sim, &k, bf_setup_model_type(setup), model, &prov,
+                           opts, err);
+    }
+    free(sets);
+    if (st) {
+        bf_setup_free(setup);
+        bf_scene_locate(sc, err);
+        return st;
+    }
+    bf_sim_own(sim, setup, free_setup);
+    if ((st = bf_setup_observe(setup, c, sim, err))) {
+        bf_scene_locate(sc, err);
+        bf_sim_free(sim);
+        return st;
+    }
+    *out = sim;
+    return BF_OK;
+}
+
+/* The stored overrides (one per line), then the new ones. */
+static bf_status apply_sets(bf_scene *sc, const char *stored,
+                            const char *cpath, const char *const *sets,
+                            size_t nsets, bf_err *err)
+{
+    for (const char *p = stored; *p;) {
+        const char *nl = strchr(p, '\n');
+        size_t l = nl ? (size_t)(nl - p) : strlen(p);
+        char buf[1024];
+        if (l >= sizeof buf)
+            return bf_fail(err, BF_EINPUT, "%s: override too long", cpath);
+        memcpy(buf, p, l);
+        buf[l] = '\0';
+        bf_status st;
+        if (l && (st = bf_scene_set(sc, buf, "--set (stored)", err)))
+            return st;
+        p += l + (nl ? 1 : 0);
+    }
+    for (size_t k = 0; k < nsets; k++) {
+        bf_status st = bf_scene_set(sc, sets[k], "--set", err);
+        if (st)
+            return st;
+    }
+    return BF_OK;
+}
+
+bf_status bf_sim_restart(bf_sim **out, bf_scene **scene, const bf_catalog *c,
+                         const char *out_path, const char *const *sets,
+                         size_t nsets, const bf_sim_opts *opts, bf_err *err)
+{
+    *out = NULL;
+    *scene = NULL;
+    size_t len = strlen(out_path) + 6;
+    char *cpath = malloc(len);
+    if (!cpath)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    snprintf(cpath, len, "%s.ckpt", out_path);
+    bf_ckpt *ck = NULL;
+    bf_scene *sc = NULL;
+    bf_sim *s = NULL;
+    bf_status st = bf_ckpt_read(&ck, cpath, err);
+    if (st) {
+        bf_err_prefix(err, "cannot restart %s", out_path);
+        free(cpath);
+        return st;
+    }
+    const char *spath = bf_ckpt_str(ck, "scene.path");
+    const char *stext = bf_ckpt_str(ck, "scene.text");
+    const char *ssets = bf_ckpt_str(ck, "scene.sets");
+    if (!spath || !stext || !ssets)
+        st = bf_fail(err, BF_EINPUT, "%s: checkpoint lacks the scene", cpath);
+    if (!st)
+        st = bf_scene_load_string(&sc, spath, stext, err);
+    if (!st)
+        st = apply_sets(sc, ssets, cpath, sets, nsets, err);
+    if (!st)
+        st = bf_catalog_resolve(c, sc, err);
+    if (!st)
+        st = bf_sim_from_scene(&s, c, sc, opts, err);
+    if (!st)
+        st = bf_sim_resume(s, ck, out_path, err);
+    bf_ckpt_free(ck);
+    free(cpath);
+    if (st) {
+        bf_sim_free(s);
+        bf_scene_free(sc);
+        return st;
+    }
+    *out = s;
+    *scene = sc;
+    return BF_OK;
+}
