@@ -44,7 +44,6 @@
 #include "ballfilm/ballsys.h"
 #include "ballfilm/run.h"
 #include "contact/hertz.h"
-#include "ballfilm/registry.h"
 #include "ballfilm/scene.h"
 #include "ballfilm/sim.h"
 
@@ -145,7 +144,7 @@ static void load(const char *method, bf_scene **sc)
     snprintf(text, sizeof text, scene_text, method);
     bf_err err = {0};
     if (bf_scene_load_string(sc, "bench", text, &err) ||
-        bf_registry_resolve(*sc, &err)) {
+        bf_catalog_resolve(bf_catalog_builtin(), *sc, &err)) {
         fprintf(stderr, "%s\n", err.msg);
         exit(1);
     }

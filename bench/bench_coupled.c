@@ -27,7 +27,6 @@
 #include <string.h>
 #include <time.h>
 
-#include "ballfilm/registry.h"
 #include "ballfilm/scene.h"
 #include "ballfilm/sim.h"
 #include "ballfilm/run.h"
@@ -85,7 +84,7 @@ static double run(const char *const *sets, int timing, double T, double base)
                 exit(1);
             }
         bf_sim *sim;
-        if (bf_registry_resolve(sc, &err) ||
+        if (bf_catalog_resolve(bf_catalog_builtin(), sc, &err) ||
             bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &err)) {
             fprintf(stderr, "%s\n", err.msg);
             exit(1);

@@ -23,7 +23,6 @@
 #include <time.h>
 
 #include "ballfilm/greenspan.h"
-#include "ballfilm/registry.h"
 #include "ballfilm/scene.h"
 #include "ballfilm/model.h"
 #include "ballfilm/run.h"
@@ -41,7 +40,7 @@ static bf_scene *load(const char *path, const char *text, bf_err *err)
     bf_status st = text ? bf_scene_load_string(&sc, "bench.ini", text, err)
                         : bf_scene_load(&sc, path, err);
     if (!st)
-        st = bf_registry_resolve(sc, err);
+        st = bf_catalog_resolve(bf_catalog_builtin(), sc, err);
     if (st) {
         fprintf(stderr, "bench: %s\n", err->msg);
         exit(1);

@@ -19,7 +19,6 @@
 
 #include "ballfilm/ballsys.h"
 #include "ballfilm/run.h"
-#include "ballfilm/registry.h"
 
 static const char *base =
     "[scene]\nintegrator = %s\neffects = gravity floor\ndt = %.17g\n"
@@ -36,7 +35,7 @@ static double run(const char *name, const char *keys, double dt, char *why,
     bf_err err = {0};
     bf_ballsys *sys;
     if (bf_scene_load_string(&sc, "stability", text, &err) ||
-        bf_registry_resolve(sc, &err) ||
+        bf_catalog_resolve(bf_catalog_builtin(), sc, &err) ||
         bf_ballsys_from_scene(&sys, bf_catalog_builtin(), sc, &err)) {
         fprintf(stderr, "%s\n", err.msg);
         exit(1);

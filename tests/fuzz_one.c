@@ -9,7 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/registry.h"
 #include "ballfilm/scene.h"
 #include "ballfilm/sim.h"
 #include "ballfilm/run.h"
@@ -33,7 +32,7 @@ int bf_fuzz_one(const unsigned char *data, size_t size)
                 ok = bf_scene_set(sc, line + 5, "--set", &err) == BF_OK;
             line = nl ? nl + 1 : NULL;
         }
-        if (ok && bf_registry_resolve(sc, &err) == BF_OK) {
+        if (ok && bf_catalog_resolve(bf_catalog_builtin(), sc, &err) == BF_OK) {
             bf_sim *sim = NULL;
             bf_sim_opts opts = {.progress = 0, .stop_flag = NULL,
                                 .stop_after = 5};

@@ -12,7 +12,7 @@
 #include <string.h>
 
 #include "ballfilm/ballsys.h"
-#include "ballfilm/registry.h"
+#include "ballfilm/run.h"
 #include "testutil.h"
 
 /* Scenes covering every path of ballsys.c: the two fixed effect lists of

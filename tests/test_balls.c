@@ -11,7 +11,6 @@
 
 #include "ballfilm/ballsys.h"
 #include "ballfilm/run.h"
-#include "ballfilm/registry.h"
 #include "testutil.h"
 
 static const char *bouncing =
@@ -28,7 +27,7 @@ static void energy_halves(const char *method, double *first, double *second)
     snprintf(set, sizeof set, "scene.integrator=%s", method);
     bf_err err = {0};
     ck_assert(bf_scene_set(sc, set, "test", &err) == BF_OK);
-    ck_assert(bf_registry_resolve(sc, &err) == BF_OK);
+    ck_assert(bf_catalog_resolve(bf_catalog_builtin(), sc, &err) == BF_OK);
     /* drive the ball system directly to see every step's energy */
     bf_ballsys *sys;
     ck_assert_msg(bf_ballsys_from_scene(&sys, bf_catalog_builtin(), sc, &err) == BF_OK, "%s", err.msg);
@@ -89,7 +88,7 @@ START_TEST(energy_bound_stops_run)
     bf_scene *sc = tu_scene(bouncing);
     bf_err err = {0};
     ck_assert(bf_scene_set(sc, "scene.max_energy_error=1e-6", "t", &err) == 0);
-    ck_assert(bf_registry_resolve(sc, &err) == 0);
+    ck_assert(bf_catalog_resolve(bf_catalog_builtin(), sc, &err) == 0);
     bf_sim *sim;
     ck_assert(bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &err) == BF_OK);
     bf_status st = bf_sim_run(sim, &err);

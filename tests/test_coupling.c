@@ -36,7 +36,6 @@
 #include "ballfilm/coupling.h"
 #include "ballfilm/filmsys.h"
 #include "ballfilm/h5out.h"
-#include "ballfilm/registry.h"
 #include "ballfilm/run.h"
 #include "testutil.h"
 
@@ -429,7 +428,7 @@ static bf_sim *run(const char *scene, const char *const *sets, bf_scene **scp)
     for (; sets && *sets; sets++)
         ck_assert_msg(bf_scene_set(sc, *sets, "--set", &err) == BF_OK, "%s",
                       err.msg);
-    ck_assert_msg(bf_registry_resolve(sc, &err) == BF_OK, "%s", err.msg);
+    ck_assert_msg(bf_catalog_resolve(bf_catalog_builtin(), sc, &err) == BF_OK, "%s", err.msg);
     bf_sim *sim;
     ck_assert_msg(bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &err) == BF_OK, "%s", err.msg);
     ck_assert_msg(bf_sim_run(sim, &err) == BF_OK, "%s", err.msg);

@@ -34,7 +34,6 @@
 #include "ballfilm/h5out.h"
 #include "ballfilm/model.h"
 #include "ballfilm/run.h"
-#include "ballfilm/registry.h"
 #include "ballfilm/repulsion.h"
 #include "ballfilm/support.h"
 #include "ballfilm/walls.h"
@@ -417,7 +416,7 @@ static void never_leave(const char *rule, const char *omega, long steps)
     snprintf(s2, sizeof s2, "walls.omega=%s", omega);
     ck_assert(bf_scene_set(sc, s1, "test", &err) == BF_OK);
     ck_assert(bf_scene_set(sc, s2, "test", &err) == BF_OK);
-    ck_assert(bf_registry_resolve(sc, &err) == BF_OK);
+    ck_assert(bf_catalog_resolve(bf_catalog_builtin(), sc, &err) == BF_OK);
     const bf_model_type *mt = bf_catalog_model(bf_catalog_builtin(), "greenspan72");
     void *m;
     bf_setup *setup;

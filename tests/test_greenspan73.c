@@ -30,7 +30,6 @@
 #include "ballfilm/model.h"
 #include "ballfilm/run.h"
 #include "ballfilm/pdiag.h"
-#include "ballfilm/registry.h"
 #include "testutil.h"
 
 START_TEST(s_identity_limit_and_derivative)
@@ -125,7 +124,7 @@ static drift run_drift(const char *path, const char *const *sets)
     for (; sets && *sets; sets++)
         ck_assert_msg(bf_scene_set(sc, *sets, "test", &err) == BF_OK, "%s",
                       err.msg);
-    ck_assert_msg(bf_registry_resolve(sc, &err) == BF_OK, "%s", err.msg);
+    ck_assert_msg(bf_catalog_resolve(bf_catalog_builtin(), sc, &err) == BF_OK, "%s", err.msg);
     const bf_model_type *mt = bf_catalog_model(bf_catalog_builtin(), "greenspan73");
     void *m;
     bf_setup *setup;
@@ -225,7 +224,7 @@ static void final_state(const char *path, const char *const *sets, double *x,
     ck_assert(bf_scene_load(&sc, path, &err) == BF_OK);
     for (; sets && *sets; sets++)
         ck_assert(bf_scene_set(sc, *sets, "test", &err) == BF_OK);
-    ck_assert_msg(bf_registry_resolve(sc, &err) == BF_OK, "%s", err.msg);
+    ck_assert_msg(bf_catalog_resolve(bf_catalog_builtin(), sc, &err) == BF_OK, "%s", err.msg);
     bf_sim *sim;
     ck_assert_msg(bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &err) == BF_OK, "%s", err.msg);
     ck_assert_msg(bf_sim_run(sim, &err) == BF_OK, "%s", err.msg);

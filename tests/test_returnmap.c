@@ -24,7 +24,6 @@
 #include "ballfilm/h5out.h"
 #include "analysis/lyapunov.h"
 #include "analysis/returnmap.h"
-#include "ballfilm/registry.h"
 #include "ballfilm/run.h"
 #include "testutil.h"
 

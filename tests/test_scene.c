@@ -7,7 +7,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "ballfilm/registry.h"
+#include "ballfilm/run.h"
 #include "testutil.h"
 
 #define GOOD_HEAD                                                              \
@@ -117,12 +117,12 @@ START_TEST(overrides)
     ck_assert(bf_scene_load_string(&sc, "x.ini", GOOD_HEAD, &err) == 0);
     ck_assert(bf_scene_set(sc, "ball.2.mass=0.8", "--set", &err) == 0);
     ck_assert(bf_scene_set(sc, "scene.integrator = verlet", "--set", &err) == 0);
-    ck_assert(bf_registry_resolve(sc, &err) == 0);
+    ck_assert(bf_catalog_resolve(bf_catalog_builtin(), sc, &err) == 0);
     ck_assert(bf_scene_real(sc, "ball.2", "mass") == 0.8);
     ck_assert_str_eq(bf_scene_str(sc, "scene", "integrator"), "verlet");
     /* a bad override names --set */
     ck_assert(bf_scene_set(sc, "scene.dt=-1", "--set", &err) == 0);
-    ck_assert(bf_registry_resolve(sc, &err) == BF_EINPUT);
+    ck_assert(bf_catalog_resolve(bf_catalog_builtin(), sc, &err) == BF_EINPUT);
     ck_assert_msg(strstr(err.msg, "--set") && strstr(err.msg, "dt"), "%s", err.msg);
     ck_assert(bf_scene_set(sc, "nodot=1", "--set", &err) == BF_EINPUT);
     ck_assert(bf_scene_set(sc, "scene.dt", "--set", &err) == BF_EINPUT);
@@ -139,7 +139,7 @@ START_TEST(multiline_and_long_lines)
                                    "[scene]\neffects = gravity\n  floor\n"
                                    "dt = 1\nt_end = 1\n[ball.1]\nposition = 1\n",
                                    &err) == 0);
-    ck_assert(bf_registry_resolve(sc, &err) == 0);
+    ck_assert(bf_catalog_resolve(bf_catalog_builtin(), sc, &err) == 0);
     ck_assert(bf_scene_has_name(sc, "scene", "effects", "floor"));
     bf_scene_free(sc);
     char text[6000] = "[scene]\ntitle = ";

@@ -27,7 +27,7 @@
 
 #include "ballfilm/ballsys.h"
 #include "ballfilm/h5out.h"
-#include "ballfilm/registry.h"
+#include "ballfilm/run.h"
 #include "testutil.h"
 
 static double energy(const bf_ballsys *s)

@@ -15,7 +15,6 @@
 #include <hdf5.h>
 
 #include "ballfilm/h5out.h"
-#include "ballfilm/registry.h"
 #include "ballfilm/run.h"
 
 static char tmpdir[256];
@@ -150,7 +149,7 @@ bf_scene *tu_scene(const char *text)
     bf_err err = {0};
     bf_status st = bf_scene_load_string(&sc, "test.ini", text, &err);
     ck_assert_msg(st == BF_OK, "scene: %s", err.msg);
-    st = bf_registry_resolve(sc, &err);
+    st = bf_catalog_resolve(bf_catalog_builtin(), sc, &err);
     ck_assert_msg(st == BF_OK, "scene: %s", err.msg);
     return sc;
 }
@@ -161,7 +160,7 @@ bf_status tu_scene_error(const char *text, char *msg, size_t cap)
     bf_err err = {0};
     bf_status st = bf_scene_load_string(&sc, "test.ini", text, &err);
     if (!st) {
-        st = bf_registry_resolve(sc, &err);
+        st = bf_catalog_resolve(bf_catalog_builtin(), sc, &err);
         if (!st) {
             bf_sim *sim;
             st = bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &err);
@@ -207,7 +206,7 @@ bf_sim *tu_run_scene(const char *text, ...)
         ck_assert_msg(st == BF_OK, "%s", err.msg);
     }
     va_end(ap);
-    st = bf_registry_resolve(sc, &err);
+    st = bf_catalog_resolve(bf_catalog_builtin(), sc, &err);
     ck_assert_msg(st == BF_OK, "scene: %s", err.msg);
     bf_sim *sim;
     st = bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &err);

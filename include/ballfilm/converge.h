@@ -106,6 +106,10 @@ typedef struct bf_converge_result {
  * cloned for every run, never modified). */
 bf_status bf_converge_run(const bf_scene *sc, const bf_converge_opts *opts,
                           bf_converge_result **out, bf_err *err);
+/* The same on a scene file with overrides "section.key=value". */
+bf_status bf_converge_file(const char *scene_path, const char *const *sets,
+                           size_t nsets, const bf_converge_opts *opts,
+                           bf_converge_result **out, bf_err *err);
 void bf_converge_free(bf_converge_result *r);
 void bf_converge_print(const bf_converge_result *r, FILE *f);
 /* The table as HDF5 (/converge/...; see README). */

@@ -101,4 +101,22 @@ struct bf_ballsys;
 bf_status bf_ballsys_from_scene(struct bf_ballsys **out, const bf_catalog *c,
                                 const bf_scene *sc, bf_err *err);
 
+/* ---- a run owning its scene: what a program drives ---- */
+
+typedef struct bf_run bf_run;
+
+/* Read the scene file, apply the overrides "section.key=value" (origin
+ * "--set"), validate it against the catalog and build its run. */
+bf_status bf_run_load(bf_run **run, const bf_catalog *c,
+                      const char *scene_path, const char *const *sets,
+                      size_t nsets, const struct bf_sim_opts *opts,
+                      bf_err *err);
+/* The run of the output OUT continued from its checkpoint (bf_sim_restart). */
+bf_status bf_run_restart(bf_run **run, const bf_catalog *c,
+                         const char *out_path, const char *const *sets,
+                         size_t nsets, const struct bf_sim_opts *opts,
+                         bf_err *err);
+struct bf_sim *bf_run_sim(bf_run *run);
+void bf_run_free(bf_run *run);
+
 #endif

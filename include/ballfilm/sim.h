@@ -32,7 +32,7 @@
 typedef struct bf_sim bf_sim;
 
 /* The keys of [scene], the section every scene has. */
-typedef struct bf_scene_keys {
+typedef struct bf_sim_keys {
     const char *title;
     const char *model;
     const char *integrator;
@@ -44,13 +44,13 @@ typedef struct bf_scene_keys {
     double max_energy_error;      /* 1 (0: no bound) */
     double flush_seconds;         /* s of wall time */
     bf_interval checkpoint_every; /* steps or s (0: when interrupted) */
-} bf_scene_keys;
+} bf_sim_keys;
 
 extern const bf_section_spec bf_sim_scene_spec; /* [scene] */
 
 /* The run context of [scene]: dt, t_end, ceil(t_end/dt) steps (refused,
  * naming [scene] t_end, when too many), the output interval in steps. */
-bf_status bf_sim_run_ctx(const bf_scene_keys *k, bf_run_ctx *run,
+bf_status bf_sim_run_ctx(const bf_sim_keys *k, bf_run_ctx *run,
                          bf_err *err);
 
 typedef struct bf_sim_opts {
@@ -80,7 +80,7 @@ typedef struct bf_provenance {
  * the model's stable step (model.h, stable_dt) and checkpoint_every for a
  * model that cannot write checkpoints, naming the key.  Failures that
  * name a key are left for the caller to locate in the scene. */
-bf_status bf_sim_create(bf_sim **sim, const bf_scene_keys *k,
+bf_status bf_sim_create(bf_sim **sim, const bf_sim_keys *k,
                         const bf_model_type *mt, void *model,
                         const bf_provenance *prov, const bf_sim_opts *opts,
                         bf_err *err);

@@ -6,7 +6,6 @@
 #include <string.h>
 
 #include "ballfilm/converge.h"
-#include "ballfilm/scene.h"
 #include "cli.h"
 
 static void converge_usage(FILE *f)
@@ -177,14 +176,9 @@ int bf_cmd_converge(int argc, char **argv)
     o.progress = quiet ? NULL : stderr;
 
     bf_err err = {0};
-    bf_scene *sc = NULL;
-    bf_status st = bf_scene_load(&sc, scene_path, &err);
-    for (int k = 0; !st && k < nset; k++)
-        st = bf_scene_set(sc, sets[k], "--set", &err);
     bf_converge_result *res = NULL;
-    if (!st)
-        st = bf_converge_run(sc, &o, &res, &err);
-    bf_scene_free(sc);
+    bf_status st = bf_converge_file(scene_path, sets, (size_t)nset, &o, &res,
+                                    &err);
     if (st) {
         fprintf(stderr, "ballfilm: error: %s\n", err.msg);
         rc = (int)st;

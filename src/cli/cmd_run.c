@@ -13,10 +13,8 @@
 #include <sys/statvfs.h>
 #include <unistd.h>
 
-#include "ballfilm/registry.h"
-#include "ballfilm/scene.h"
-#include "ballfilm/sim.h"
 #include "ballfilm/run.h"
+#include "ballfilm/sim.h"
 #include "cli.h"
 
 static volatile sig_atomic_t stop_requested = 0;
@@ -27,7 +25,10 @@ static void on_signal(int sig)
     stop_requested = 1;
 }
 
-void bf_cli_print_keys(FILE *f) { bf_registry_print_help(f); }
+void bf_cli_print_keys(FILE *f)
+{
+    bf_catalog_print_help(bf_catalog_builtin(), f);
+}
 
 static void run_usage(FILE *f)
 {
@@ -183,7 +184,7 @@ int bf_cmd_run(int argc, char **argv)
     }
 
     bf_err err = {0};
-    bf_scene *sc = NULL;
+    bf_run *run = NULL;
     bf_sim *sim = NULL;
     char *defout = NULL;
     bf_sim_opts opts = {
@@ -193,25 +194,23 @@ int bf_cmd_run(int argc, char **argv)
     };
     bf_status st;
     if (restart) {
-        st = bf_sim_restart(&sim, &sc, bf_catalog_builtin(), restart, sets, (size_t)nset, &opts, &err);
+        st = bf_run_restart(&run, bf_catalog_builtin(), restart, sets,
+                            (size_t)nset, &opts, &err);
         if (st) {
             fprintf(stderr, "ballfilm: error: %s\n", err.msg);
             goto done;
         }
+        sim = bf_run_sim(run);
         out_path = restart;
         goto run;
     }
-    st = bf_scene_load(&sc, scene_path, &err);
-    for (int k = 0; !st && k < nset; k++)
-        st = bf_scene_set(sc, sets[k], "--set", &err);
-    if (!st)
-        st = bf_registry_resolve(sc, &err);
-    if (!st)
-        st = bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, &opts, &err);
+    st = bf_run_load(&run, bf_catalog_builtin(), scene_path, sets,
+                     (size_t)nset, &opts, &err);
     if (st) {
         fprintf(stderr, "%s\n", err.msg);
         goto done;
     }
+    sim = bf_run_sim(run);
     if (!out_path) {
         out_path = defout = default_output(scene_path);
         if (!defout) {
@@ -259,8 +258,7 @@ run:;
     else if (!run_st)
         printf("wrote %s\n", out_path);
 done:
-    bf_sim_free(sim);
-    bf_scene_free(sc);
+    bf_run_free(run);
     free(defout);
     free(sets);
     return (int)st;

@@ -73,7 +73,7 @@ bf_status bf_sim_from_scene(bf_sim **out, const bf_catalog *c,
                             bf_err *err)
 {
     *out = NULL;
-    bf_scene_keys k;
+    bf_sim_keys k;
     bf_scene_fill(sc, "scene", &bf_sim_scene_spec, &k);
     bf_run_ctx run;
     bf_setup *setup = NULL;
@@ -182,4 +182,63 @@ bf_status bf_sim_restart(bf_sim **out, bf_scene **scene, const bf_catalog *c,
     *out = s;
     *scene = sc;
     return BF_OK;
+}
+
+/* ------------------------------------------------------------ bf_run */
+
+struct bf_run {
+    bf_scene *sc;
+    bf_sim *sim;
+};
+
+bf_status bf_run_load(bf_run **out, const bf_catalog *c, const char *path,
+                      const char *const *sets, size_t nsets,
+                      const bf_sim_opts *opts, bf_err *err)
+{
+    *out = NULL;
+    bf_run *r = calloc(1, sizeof *r);
+    if (!r)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    bf_status st = bf_scene_load(&r->sc, path, err);
+    for (size_t k = 0; !st && k < nsets; k++)
+        st = bf_scene_set(r->sc, sets[k], "--set", err);
+    if (!st)
+        st = bf_catalog_resolve(c, r->sc, err);
+    if (!st)
+        st = bf_sim_from_scene(&r->sim, c, r->sc, opts, err);
+    if (st) {
+        bf_run_free(r);
+        return st;
+    }
+    *out = r;
+    return BF_OK;
+}
+
+bf_status bf_run_restart(bf_run **out, const bf_catalog *c,
+                         const char *out_path, const char *const *sets,
+                         size_t nsets, const bf_sim_opts *opts, bf_err *err)
+{
+    *out = NULL;
+    bf_run *r = calloc(1, sizeof *r);
+    if (!r)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    bf_status st =
+        bf_sim_restart(&r->sim, &r->sc, c, out_path, sets, nsets, opts, err);
+    if (st) {
+        bf_run_free(r);
+        return st;
+    }
+    *out = r;
+    return BF_OK;
+}
+
+bf_sim *bf_run_sim(bf_run *r) { return r->sim; }
+
+void bf_run_free(bf_run *r)
+{
+    if (!r)
+        return;
+    bf_sim_free(r->sim);
+    bf_scene_free(r->sc);
+    free(r);
 }

@@ -3,7 +3,7 @@
  * listing generated from the same tables. */
 #include <string.h>
 
-#include "ballfilm/registry.h"
+#include "ballfilm/run.h"
 #include "ballfilm/sim.h"
 #include "compose.h"
 
@@ -108,16 +108,6 @@ bf_status bf_catalog_resolve(const bf_catalog *c, bf_scene *sc, bf_err *err)
 {
     const bf_spec_provider provider = {&bf_sim_scene_spec, select_specs, c};
     return bf_scene_resolve_with(sc, &provider, err);
-}
-
-bf_status bf_registry_resolve(bf_scene *sc, bf_err *err)
-{
-    return bf_catalog_resolve(bf_catalog_builtin(), sc, err);
-}
-
-void bf_registry_print_help(FILE *f)
-{
-    bf_catalog_print_help(bf_catalog_builtin(), f);
 }
 
 /* A model's sections: its own, then its analyses'. */

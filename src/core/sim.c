@@ -21,38 +21,38 @@
 #include "diag/energy.h"
 
 static const bf_param scene_params[] = {
-    {"title", BF_AT(bf_scene_keys, title, BF_STR), "", "",
+    {"title", BF_AT(bf_sim_keys, title, BF_STR), "", "",
      "free text describing the scene", 0, 0, 0, NULL},
-    {"model", BF_AT(bf_scene_keys, model, BF_STR), "", "balls",
+    {"model", BF_AT(bf_sim_keys, model, BF_STR), "", "balls",
      "what is simulated (see Models below)", 0, 0, 0, NULL},
-    {"integrator", BF_AT(bf_scene_keys, integrator, BF_STR), "", "mv2m",
+    {"integrator", BF_AT(bf_sim_keys, integrator, BF_STR), "", "mv2m",
      "time integrator for ball models (see Integrators below)", 0, 0, 0, NULL},
-    {"effects", BF_AT(bf_scene_keys, effects, BF_NAMES), "", "",
+    {"effects", BF_AT(bf_sim_keys, effects, BF_NAMES), "", "",
      "ball effects to switch on, e.g. 'gravity floor contact' (see Effects "
      "below); nothing else is computed",
      0, 0, 0, NULL},
-    {"dt", BF_AT(bf_scene_keys, dt, BF_REAL), "s", NULL, "time step", BF_POS,
+    {"dt", BF_AT(bf_sim_keys, dt, BF_REAL), "s", NULL, "time step", BF_POS,
      0, 0, NULL},
-    {"t_end", BF_AT(bf_scene_keys, t_end, BF_REAL), "s", NULL,
+    {"t_end", BF_AT(bf_sim_keys, t_end, BF_REAL), "s", NULL,
      "final time; the run takes ceil(t_end/dt) steps", BF_POS, 0, 0, NULL},
-    {"output_every", BF_AT(bf_scene_keys, output_every, BF_INTERVAL),
+    {"output_every", BF_AT(bf_sim_keys, output_every, BF_INTERVAL),
      "steps | s", "1",
      "output interval: 'N' steps or 'T s' of simulated time (rounded to "
      "whole steps); the final state is always written",
      0, 0, 0, NULL},
-    {"energy_every", BF_AT(bf_scene_keys, energy_every, BF_INT), "steps", "1",
+    {"energy_every", BF_AT(bf_sim_keys, energy_every, BF_INT), "steps", "1",
      "check the energy every N steps (0: only at output rows)", BF_NONNEG, 0,
      0, NULL},
-    {"max_energy_error", BF_AT(bf_scene_keys, max_energy_error, BF_REAL), "1",
+    {"max_energy_error", BF_AT(bf_sim_keys, max_energy_error, BF_REAL), "1",
      "0",
      "stop the run when the relative energy error exceeds this (0: no "
      "bound)",
      BF_NONNEG, 0, 0, NULL},
-    {"flush_seconds", BF_AT(bf_scene_keys, flush_seconds, BF_REAL),
+    {"flush_seconds", BF_AT(bf_sim_keys, flush_seconds, BF_REAL),
      "s (wall)", "5",
      "wall-clock interval between HDF5 flushes (what a killed run keeps)",
      BF_POS, 0, 0, NULL},
-    {"checkpoint_every", BF_AT(bf_scene_keys, checkpoint_every, BF_INTERVAL),
+    {"checkpoint_every", BF_AT(bf_sim_keys, checkpoint_every, BF_INTERVAL),
      "steps | s", "0",
      "write a checkpoint (OUT.ckpt) every 'N' steps or 'T s' (0: only when "
      "interrupted); continue with ballfilm run --restart OUT",
@@ -62,7 +62,7 @@ static const bf_param scene_params[] = {
 
 const bf_section_spec bf_sim_scene_spec =
     BF_SECTION("scene", "what to simulate and how long (every scene has it)",
-               scene_params, bf_scene_keys);
+               scene_params, bf_sim_keys);
 
 typedef struct observer {
     const bf_observer_type *t;
@@ -98,7 +98,7 @@ struct bf_sim {
     double prog_last;
 };
 
-bf_status bf_sim_run_ctx(const bf_scene_keys *k, bf_run_ctx *run, bf_err *err)
+bf_status bf_sim_run_ctx(const bf_sim_keys *k, bf_run_ctx *run, bf_err *err)
 {
     double steps = ceil(k->t_end / k->dt * (1.0 - 1e-12));
     if (!(steps < 9e15))
@@ -160,7 +160,7 @@ static bf_status check_stable_dt(const bf_sim *s, bf_err *err)
                        lim.advice[0] ? "; " : "", lim.advice);
 }
 
-bf_status bf_sim_create(bf_sim **out, const bf_scene_keys *k,
+bf_status bf_sim_create(bf_sim **out, const bf_sim_keys *k,
                         const bf_model_type *mt, void *model,
                         const bf_provenance *prov, const bf_sim_opts *opts,
                         bf_err *err)

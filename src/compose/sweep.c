@@ -15,7 +15,6 @@
 #include <unistd.h>
 
 #include "ballfilm/h5out.h"
-#include "ballfilm/registry.h"
 #include "ballfilm/sim.h"
 #include "ballfilm/run.h"
 
@@ -193,7 +192,7 @@ bf_status bf_sweep_init(bf_sweep *sw, const char *scene_path,
      * it: a typo fails the sweep at once instead of every case.  Values are
      * checked per case (a case with a meaningless value fails alone). */
     bf_scene *probe = bf_scene_clone(sw->base);
-    st = bf_registry_resolve(probe, err);
+    st = bf_catalog_resolve(bf_catalog_builtin(), probe, err);
     for (size_t a = 0; !st && a < sw->naxis; a++) {
         char sec[256];
         snprintf(sec, sizeof sec, "%s", sw->axis[a].key);
@@ -378,7 +377,7 @@ bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
         st = bf_scene_set(sc, set, "--vary", &cerr);
     }
     if (!st)
-        st = bf_registry_resolve(sc, &cerr);
+        st = bf_catalog_resolve(bf_catalog_builtin(), sc, &cerr);
     if (!st)
         st = bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &cerr);
     if (!st)

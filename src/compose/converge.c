@@ -5,20 +5,14 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "ballfilm/arkode.h"
 #include "ballfilm/ballsys.h"
 #include "ballfilm/h5out.h"
-#include "ballfilm/registry.h"
 #include "ballfilm/run.h"
+#include "base/clock.h"
+#include "diag/energy.h"
 
-static double wall_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* A resolved clone of the scene with `integrator` and the overrides of a
  * method string "name:key=value:..." plus `extra` (NULL-terminated). */
@@ -52,7 +46,7 @@ static bf_status method_scene(const bf_scene *base, const char *method,
     for (const char *const *e = extra; !st && e && *e; e++)
         st = bf_scene_set(sc, *e, "converge", err);
     if (!st)
-        st = bf_registry_resolve(sc, err);
+        st = bf_catalog_resolve(bf_catalog_builtin(), sc, err);
     if (st) {
         bf_err_prefix(err, "method '%s'", method);
         bf_scene_free(sc);
@@ -78,15 +72,8 @@ typedef struct run_out {
 
 typedef struct energy_watch {
     const bf_ballsys *sys;
-    double e0, emax;
+    bf_energy_diag d;
 } energy_watch;
-
-static void watch_energy(energy_watch *w, double k, double p)
-{
-    double rel = fabs(k + p - w->e0) / (w->e0 != 0.0 ? fabs(w->e0) : 1.0);
-    if (!(rel <= w->emax))
-        w->emax = isnan(rel) ? INFINITY : rel;
-}
 
 static void monitor_energy(void *ctx, double t, const double *x,
                            const double *v)
@@ -96,7 +83,8 @@ static void monitor_energy(void *ctx, double t, const double *x,
     double k = 0.0;
     for (size_t i = 0; i < s->b.n; i++)
         k += 0.5 * s->b.m[i] * v[i] * v[i];
-    watch_energy(w, k, bf_effects_potential(s->eff, s->neff, &s->b, t, x));
+    bf_energy_check(&w->d,
+                    k + bf_effects_potential(s->eff, s->neff, &s->b, t, x));
 }
 
 static bf_status run_once(const bf_scene *sc, long nsteps, double h,
@@ -110,7 +98,8 @@ static bf_status run_once(const bf_scene *sc, long nsteps, double h,
     o->order = bf_integrator_order(sys->it);
     double k, p;
     bf_ballsys_energy(sys, 0.0, &k, &p);
-    energy_watch w = {sys, k + p, 0.0};
+    energy_watch w = {.sys = sys};
+    bf_energy_start(&w.d, k + p);
     /* the scene's energy bound stops a run beyond the method's stable
      * step, as in `ballfilm run`, instead of reporting garbage */
     const double bound = bf_scene_real(sc, "scene", "max_energy_error");
@@ -118,7 +107,7 @@ static bf_status run_once(const bf_scene *sc, long nsteps, double h,
         bf_integrator_set_monitor(sys->it, monitor_energy, &w);
     bf_err rerr = {0};
     bf_status rst = BF_OK;
-    double t0 = wall_now();
+    double t0 = bf_wall_time();
     for (long s = 0; s < nsteps; s++) {
         rst = bf_ballsys_step(sys, (double)s * h, h, &rerr);
         if (rst) {
@@ -128,20 +117,20 @@ static bf_status run_once(const bf_scene *sc, long nsteps, double h,
         }
         if (measure) {
             bf_ballsys_energy(sys, (double)(s + 1) * h, &k, &p);
-            watch_energy(&w, k, p);
-            if (bound > 0 && !(w.emax <= bound)) {
+            bf_energy_check(&w.d, k + p);
+            if (bound > 0 && !(w.d.max_rel <= bound)) {
                 rst = bf_fail(&rerr, BF_EUNSTABLE,
                               "relative energy error %.3g exceeds [scene] "
                               "max_energy_error = %g by t = %.9g s",
-                              w.emax, bound, (double)(s + 1) * h);
+                              w.d.max_rel, bound, (double)(s + 1) * h);
                 break;
             }
         }
     }
-    o->wall = wall_now() - t0;
+    o->wall = bf_wall_time() - t0;
     o->status = rst;
     snprintf(o->msg, sizeof o->msg, "%s", rst ? rerr.msg : "");
-    o->energy_err = w.emax;
+    o->energy_err = w.d.max_rel;
     o->count = sys->it->count;
     memcpy(o->x, sys->b.x, sys->b.n * sizeof *o->x);
     memcpy(o->v, sys->b.v, sys->b.n * sizeof *o->v);
@@ -286,7 +275,7 @@ bf_status bf_converge_run(const bf_scene *base_in, const bf_converge_opts *opts,
     bf_scene *base = bf_scene_clone(base_in);
     if (!base)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    bf_status st = bf_registry_resolve(base, err);
+    bf_status st = bf_catalog_resolve(bf_catalog_builtin(), base, err);
     if (st) {
         bf_scene_free(base);
         return st;
@@ -656,4 +645,19 @@ bf_status bf_converge_write(const bf_converge_result *r, const char *path,
     free(ls);
     bf_status cst = bf_out_close(o, st ? NULL : err);
     return st ? st : cst;
+}
+
+bf_status bf_converge_file(const char *scene_path, const char *const *sets,
+                           size_t nsets, const bf_converge_opts *opts,
+                           bf_converge_result **out, bf_err *err)
+{
+    *out = NULL;
+    bf_scene *sc = NULL;
+    bf_status st = bf_scene_load(&sc, scene_path, err);
+    for (size_t k = 0; !st && k < nsets; k++)
+        st = bf_scene_set(sc, sets[k], "--set", err);
+    if (!st)
+        st = bf_converge_run(sc, opts, out, err);
+    bf_scene_free(sc);
+    return st;
 }
