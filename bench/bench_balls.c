@@ -41,7 +41,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "ballfilm/ballsys.h"
+#include "models/ballsys.h"
 #include "ballfilm/run.h"
 #include "contact/hertz.h"
 #include "ballfilm/scene.h"

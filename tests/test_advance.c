@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/ballsys.h"
+#include "models/ballsys.h"
 #include "ballfilm/run.h"
 #include "testutil.h"
 

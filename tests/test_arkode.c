@@ -24,7 +24,7 @@
 #include <arkode/arkode_butcher_erk.h>
 #include <sundials/sundials_config.h>
 
-#include "ballfilm/arkode.h"
+#include "integrators/arkode.h"
 #include "ballfilm/checkpoint.h"
 #include "ballfilm/integrator.h"
 #include "testutil.h"

@@ -9,7 +9,7 @@
 
 #include <string.h>
 
-#include "ballfilm/ballsys.h"
+#include "models/ballsys.h"
 #include "ballfilm/run.h"
 #include "testutil.h"
 

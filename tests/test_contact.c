@@ -4,7 +4,7 @@
  * factor 4/5 of the pair term that the paper's eq. 2.8 gets wrong. */
 #include <math.h>
 
-#include "ballfilm/ballsys.h"
+#include "models/ballsys.h"
 #include "ballfilm/run.h"
 #include "contact/hertz.h"
 #include "testutil.h"

@@ -25,7 +25,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/ballsys.h"
+#include "models/ballsys.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/run.h"
 #include "testutil.h"

@@ -10,7 +10,7 @@
 #include <check.h>
 #include <stddef.h>
 
-#include "ballfilm/ballsys.h"
+#include "models/ballsys.h"
 #include "ballfilm/integrator.h"
 #include "ballfilm/scene.h"
 #include "ballfilm/sim.h"

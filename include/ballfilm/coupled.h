@@ -4,7 +4,7 @@
 #ifndef BALLFILM_COUPLED_H
 #define BALLFILM_COUPLED_H
 
-#include "ballfilm/ballsys.h"
+#include "models/ballsys.h"
 #include "ballfilm/film.h"
 #include "ballfilm/sim.h"
 

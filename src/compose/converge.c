@@ -6,8 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/arkode.h"
-#include "ballfilm/ballsys.h"
+#include "integrators/arkode.h"
+#include "models/ballsys.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/run.h"
 #include "base/clock.h"

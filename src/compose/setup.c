@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/ballsys.h"
+#include "models/ballsys.h"
 #include "compose.h"
 
 struct bf_setup {

@@ -48,7 +48,7 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_config.h>
 
-#include "ballfilm/arkode.h"
+#include "integrators/arkode.h"
 #include "ballfilm/integrator.h"
 
 /* The tables offered, in the order of the [integrator] table choices. */

@@ -8,7 +8,7 @@
  * Every other integrator takes the generic path, and so does every step
  * when a caller has replaced s->ode.accel by its own force function.
  */
-#include "ballfilm/ballsys.h"
+#include "models/ballsys.h"
 
 #include "effects/effect_kernels.h"
 

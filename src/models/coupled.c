@@ -101,7 +101,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "ballfilm/ballsys.h"
+#include "models/ballsys.h"
 #include "ballfilm/coupled.h"
 #include "ballfilm/coupling.h"
 #include "ballfilm/filmsys.h"

@@ -6,8 +6,8 @@
  * increasing position), the effects and the integrator of the setup
  * (model.h).
  */
-#ifndef BALLFILM_BALLSYS_H
-#define BALLFILM_BALLSYS_H
+#ifndef BALLFILM_MODELS_BALLSYS_H
+#define BALLFILM_MODELS_BALLSYS_H
 
 #include "ballfilm/effect.h"
 #include "ballfilm/integrator.h"

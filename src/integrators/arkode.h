@@ -1,8 +1,8 @@
 /* arkode.h: helpers of the ARKODE adapter (src/integrators/arkode.c) for
  * the convergence driver and the tests: the Butcher tables it offers and
  * whether the ARKODE 6.4.1 issue-311 work-around applies to a table. */
-#ifndef BALLFILM_ARKODE_H
-#define BALLFILM_ARKODE_H
+#ifndef BALLFILM_INTEGRATORS_ARKODE_H
+#define BALLFILM_INTEGRATORS_ARKODE_H
 
 #include <stddef.h>
 
