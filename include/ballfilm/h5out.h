@@ -9,6 +9,15 @@
  * flushes when a wall-clock interval has passed or the buffers grow large.
  *
  * Every dataset carries "unit" and "description" attributes.
+ *
+ * The file written is PATH.part, under an exclusive lock for as long as it
+ * is open; bf_out_close renames it over PATH (the result appears at once,
+ * a previous result survives until then), bf_out_close_keep leaves it as
+ * PATH.part (an interrupted run continues it).  A second writer of the same
+ * PATH is refused (BF_EIO).  A flush first reserves the space it needs; a
+ * flush that cannot have it writes nothing and fails (BF_EIO "disk full"),
+ * and nothing more is written after a failure, so the file on disk stays
+ * the consistent state of the last flush.
  */
 #ifndef BALLFILM_H5OUT_H
 #define BALLFILM_H5OUT_H
@@ -21,16 +30,24 @@
 typedef struct bf_out bf_out;
 typedef struct bf_series bf_series;
 
-/* Create (truncate) the file.  Parent groups of every path are created on
+/* Create PATH.part (after locking it; a previous PATH.part of a run that
+ * ended is truncated).  Parent groups of every path are created on
  * demand. */
 bf_status bf_out_create(bf_out **out, const char *path, bf_err *err);
-/* Open an existing file to continue a run (restart): bf_out_series then
- * reopens existing datasets (keeping their rows) and bf_out_array replaces
+/* Open the file of a run to continue it (restart): PATH.part, or PATH
+ * (moved to PATH.part) when the run had ended; bf_out_series then reopens
+ * existing datasets (keeping their rows) and bf_out_array replaces
  * existing fixed datasets. */
 bf_status bf_out_open_append(bf_out **out, const char *path, bf_err *err);
-/* Flush and close; *out is freed even on error. */
+/* Flush, close and rename PATH.part to PATH; *out is freed even on
+ * error (the file is then left as PATH.part). */
 bf_status bf_out_close(bf_out *out, bf_err *err);
+/* Flush and close, leaving PATH.part (for a run to be continued). */
+bf_status bf_out_close_keep(bf_out *out, bf_err *err);
+/* The result's path PATH (the file being written is PATH.part). */
 const char *bf_out_path(const bf_out *out);
+/* 1 after a write failed (nothing more is written). */
+int bf_out_failed(const bf_out *out);
 
 /* An extendible series: ncols == 0 gives a 1-D dataset [n], otherwise a 2-D
  * dataset [n x ncols].  `is_int` selects int64 instead of float64. */

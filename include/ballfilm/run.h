@@ -117,6 +117,10 @@ bf_status bf_run_restart(bf_run **run, const bf_catalog *c,
                          size_t nsets, const struct bf_sim_opts *opts,
                          bf_err *err);
 struct bf_sim *bf_run_sim(bf_run *run);
+/* Create the run's output (bf_sim_open_output) after refusing a path that
+ * is one of the run's inputs (the scene file, a file the scene reads),
+ * which the result would overwrite (BF_EINPUT). */
+bf_status bf_run_open_output(bf_run *run, const char *path, bf_err *err);
 void bf_run_free(bf_run *run);
 
 #endif

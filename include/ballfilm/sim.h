@@ -61,6 +61,9 @@ typedef struct bf_sim_opts {
     /* Stop as if interrupted after this many steps of this invocation
      * (0: never); used to run in chunks and by the restart tests. */
     long stop_after;
+    /* Keep OUT.ckpt when the run ends normally (it is removed otherwise:
+     * a finished run needs no restart). */
+    int keep_checkpoint;
 } bf_sim_opts;
 
 /* Where the run comes from, for the output's provenance and for
@@ -149,8 +152,9 @@ typedef struct bf_analysis_type {
 /* ---- running ---- */
 
 /* Create the output file and its datasets; write the provenance (version,
- * scene text, every resolved parameter with its unit).  Without an output
- * file the run still tracks energy and counters. */
+ * scene text, every resolved parameter with its unit).  A checkpoint OUT.ckpt
+ * left by an earlier run on the same path is removed (this run owns OUT
+ * now).  Without an output file the run still tracks energy and counters. */
 bf_status bf_sim_open_output(bf_sim *sim, const char *path, bf_err *err);
 
 /* Run to t_end.  On failure the message names step, time and cause; the

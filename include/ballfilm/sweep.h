@@ -7,12 +7,16 @@
  * scene and simulation objects (no shared mutable state), and records its
  * summary row in DIR/case_NNNNN.done, written atomically when the case
  * ends.  A sweep run again skips the cases that have a .done file, so a
- * killed sweep completes only what is missing.
+ * killed sweep completes only what is missing.  DIR/sweep.txt ties the
+ * directory to one sweep: the scene's path and a hash of its contents,
+ * the overrides, the varied values; a rerun after an edit of the scene is
+ * refused instead of reusing results of the old scene.
  */
 #ifndef BALLFILM_SWEEP_H
 #define BALLFILM_SWEEP_H
 
 #include <stddef.h>
+#include <signal.h>
 #include <stdio.h>
 
 #include "ballfilm/error.h"
@@ -34,6 +38,9 @@ typedef struct bf_sweep {
     bf_sweep_axis axis[BF_SWEEP_MAX_VARY];
     size_t naxis;
     size_t ncases;
+    /* set asynchronously (a signal) to stop the running case like an
+     * interrupted run; NULL: none */
+    const volatile sig_atomic_t *stop_flag;
 } bf_sweep;
 
 /* One summary row (what rank 0 gathers). */
@@ -68,7 +75,9 @@ void bf_sweep_case_values(const bf_sweep *sw, long k, double *values);
 /* 1 if case k already has its summary row on disk (then *row is filled). */
 int bf_sweep_case_done(const bf_sweep *sw, long k, bf_sweep_row *row);
 /* Run case k from scratch and write its .done row.  A failing case is not
- * an error of the sweep: its status and message go into the row. */
+ * an error of the sweep: its status and message go into the row.  A case
+ * stopped by sw->stop_flag writes no .done row (a rerun runs it again) and
+ * returns BF_INTERRUPTED. */
 bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
                             bf_err *err);
 

@@ -4,6 +4,12 @@
 
 #include <stdio.h>
 
+#include <signal.h>
+
+/* Set by SIGINT/SIGTERM, whose handler main() installs before anything
+ * else: every command stops at its next check with status 6. */
+extern volatile sig_atomic_t bf_cli_stop;
+
 int bf_cmd_run(int argc, char **argv);
 int bf_cmd_sweep(int argc, char **argv);
 int bf_cmd_converge(int argc, char **argv);

@@ -5,7 +5,6 @@
  * output file is created, so a bad scene never truncates an earlier result.
  */
 #include <errno.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,14 +15,6 @@
 #include "ballfilm/run.h"
 #include "ballfilm/sim.h"
 #include "cli.h"
-
-static volatile sig_atomic_t stop_requested = 0;
-
-static void on_signal(int sig)
-{
-    (void)sig;
-    stop_requested = 1;
-}
 
 void bf_cli_print_keys(FILE *f)
 {
@@ -45,6 +36,10 @@ static void run_usage(FILE *f)
             "SIGINT/SIGTERM)\n"
             "  --stop-after N   stop after N steps as if interrupted "
             "(checkpoint written)\n"
+            "  --keep-checkpoint keep OUT.h5.ckpt when the run ends normally "
+            "(to continue it\n"
+            "                   later with --restart OUT.h5 --set "
+            "scene.t_end=...)\n"
             "  --set s.k=v      override key k of section [s] (repeatable);\n"
             "                   e.g. --set scene.integrator=verlet --set "
             "ball.2.mass=0.8\n"
@@ -109,7 +104,7 @@ static void warn_disk_space(const bf_sim *sim, const char *out_path)
 int bf_cmd_run(int argc, char **argv)
 {
     const char *scene_path = NULL, *out_path = NULL, *restart = NULL;
-    int quiet = 0, force_progress = 0;
+    int quiet = 0, force_progress = 0, keep_ckpt = 0;
     long stop_after = 0;
     int nset = 0;
     const char **sets = calloc((size_t)argc, sizeof *sets);
@@ -153,6 +148,8 @@ int bf_cmd_run(int argc, char **argv)
             sets[nset++] = argv[k];
         } else if (!strncmp(a, "--set=", 6)) {
             sets[nset++] = a + 6;
+        } else if (!strcmp(a, "--keep-checkpoint")) {
+            keep_ckpt = 1;
         } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
             quiet = 1;
         } else if (!strcmp(a, "--progress")) {
@@ -189,8 +186,9 @@ int bf_cmd_run(int argc, char **argv)
     char *defout = NULL;
     bf_sim_opts opts = {
         .progress = !quiet && (force_progress || isatty(STDERR_FILENO)),
-        .stop_flag = &stop_requested,
+        .stop_flag = &bf_cli_stop,
         .stop_after = stop_after,
+        .keep_checkpoint = keep_ckpt,
     };
     bf_status st;
     if (restart) {
@@ -211,6 +209,14 @@ int bf_cmd_run(int argc, char **argv)
         goto done;
     }
     sim = bf_run_sim(run);
+    /* interrupted while the scene was read and the model built: nothing
+     * has been written yet, and nothing will be */
+    if (bf_cli_stop) {
+        fprintf(stderr, "ballfilm: interrupted during set-up; nothing was "
+                        "written\n");
+        st = BF_INTERRUPTED;
+        goto done;
+    }
     if (!out_path) {
         out_path = defout = default_output(scene_path);
         if (!defout) {
@@ -220,18 +226,12 @@ int bf_cmd_run(int argc, char **argv)
             goto done;
         }
     }
-    if ((st = bf_sim_open_output(sim, out_path, &err))) {
+    if ((st = bf_run_open_output(run, out_path, &err))) {
         fprintf(stderr, "ballfilm: error: %s\n", err.msg);
         goto done;
     }
 run:;
     warn_disk_space(sim, out_path);
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
 
     bf_status run_st = bf_sim_run(sim, &err);
     bf_err cerr = {0};

@@ -18,6 +18,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -181,6 +183,13 @@ static int gather_and_write(const bf_sweep *sw, bf_sweep_row *rows)
     printf("%zu cases: %zu ok, %zu failed, %zu missing; summary in %s/summary.h5 "
            "and %s/summary.csv\n",
            sw->ncases, ok, failed, missing, sw->dir, sw->dir);
+    /* the sweep's status: interrupted, a case that failed (the first), a
+     * case that did not finish, or ok */
+    if (bf_cli_stop)
+        return 6;
+    for (size_t k = 0; k < sw->ncases; k++)
+        if (rows[k].status)
+            return rows[k].status;
     return missing ? 1 : 0;
 }
 
@@ -193,6 +202,9 @@ static void mark_unfilled(bf_sweep_row *rows, size_t n)
 }
 
 #ifndef BF_MPI
+
+static int run_pool(const bf_sweep *sw, const sweep_args *a, const long *todo,
+                    size_t ntodo);
 
 int bf_cmd_sweep(int argc, char **argv)
 {
@@ -208,6 +220,7 @@ int bf_cmd_sweep(int argc, char **argv)
                 "ballfilm: error: ", err.msg);
         return err.status;
     }
+    sw.stop_flag = &bf_cli_stop;
     bf_sweep_row *rows = calloc(sw.ncases, sizeof *rows);
     long *todo = malloc(sw.ncases * sizeof *todo);
     if (!rows || !todo) {
@@ -229,40 +242,75 @@ int bf_cmd_sweep(int argc, char **argv)
                 a.jobs > 1 ? "es" : "");
     int status = 0;
     if (a.jobs == 1 || ntodo <= 1) {
-        for (size_t q = 0; q < ntodo; q++) {
+        for (size_t q = 0; q < ntodo && !bf_cli_stop; q++) {
             bf_sweep_row r;
             if (bf_sweep_run_case(&sw, todo[q], &r, &err)) {
-                fprintf(stderr, "ballfilm: error: %s\n", err.msg);
+                fprintf(stderr, "ballfilm: %s\n", err.msg);
                 status = err.status;
                 break;
             }
             report_case(&sw, &r, a.quiet, -1);
         }
     } else {
+        status = run_pool(&sw, &a, todo, ntodo);
+    }
+    if (bf_cli_stop) {
+        fprintf(stderr, "ballfilm: sweep interrupted; finished cases are kept, "
+                        "a rerun runs the others\n");
+        status = 6;
+    }
+    if (!status || status == 6) {
+        int gs = gather_and_write(&sw, rows);
+        if (gs && status != 6)
+            status = gs;
+    }
+    free(rows);
+    free(todo);
+    bf_sweep_free(&sw);
+    return status;
+}
+
+/* The process pool: workers take case numbers from a pipe.  A worker dies
+ * with its parent (PR_SET_PDEATHSIG), and an interrupted sweep forwards
+ * the interrupt to its workers, whose running cases stop as interrupted
+ * runs do, and waits for them. */
+static int run_pool(const bf_sweep *sw, const sweep_args *a, const long *todo,
+                    size_t ntodo)
+{
+    int status = 0;
+    {
         int fd[2];
         if (pipe(fd)) {
             fprintf(stderr, "ballfilm: error: pipe: %s\n", strerror(errno));
             status = 1;
         } else {
-            long nproc = a.jobs < (long)ntodo ? a.jobs : (long)ntodo;
+            long nproc = a->jobs < (long)ntodo ? a->jobs : (long)ntodo;
+            pid_t pids[1024];
+            long started = 0;
+            const pid_t parent = getpid();
             fflush(NULL);
             for (long w = 0; w < nproc; w++) {
                 pid_t pid = fork();
                 if (pid == 0) {
                     close(fd[1]);
+                    /* die with the parent, as an interrupted run */
+                    prctl(PR_SET_PDEATHSIG, SIGTERM);
+                    if (getppid() != parent)
+                        _exit(6);
                     int32_t k;
                     /* reads of 4 bytes from a pipe are atomic: every case
                      * number goes to exactly one worker */
-                    while (read(fd[0], &k, sizeof k) == (ssize_t)sizeof k) {
+                    while (!bf_cli_stop &&
+                           read(fd[0], &k, sizeof k) == (ssize_t)sizeof k) {
                         bf_sweep_row r;
                         bf_err e = {0};
-                        if (bf_sweep_run_case(&sw, k, &r, &e))
-                            fprintf(stderr, "ballfilm: error: %s\n", e.msg);
+                        if (bf_sweep_run_case(sw, k, &r, &e))
+                            fprintf(stderr, "ballfilm: %s\n", e.msg);
                         else
-                            report_case(&sw, &r, a.quiet, -1);
+                            report_case(sw, &r, a->quiet, -1);
                     }
                     fflush(NULL);
-                    _exit(0);
+                    _exit(bf_cli_stop ? 6 : 0);
                 }
                 if (pid < 0) {
                     fprintf(stderr, "ballfilm: error: fork: %s\n",
@@ -270,25 +318,32 @@ int bf_cmd_sweep(int argc, char **argv)
                     status = 1;
                     break;
                 }
+                pids[started++] = pid;
             }
             close(fd[0]);
-            for (size_t q = 0; q < ntodo && !status; q++) {
+            for (size_t q = 0; q < ntodo && !status && !bf_cli_stop; q++) {
                 int32_t k = (int32_t)todo[q];
                 if (write(fd[1], &k, sizeof k) != (ssize_t)sizeof k) {
-                    status = 1;
+                    status = bf_cli_stop ? 0 : 1;
                     break;
                 }
             }
             close(fd[1]);
-            while (wait(NULL) > 0)
-                ;
+            int forwarded = 0;
+            for (;;) {
+                if (bf_cli_stop && !forwarded) {
+                    for (long w = 0; w < started; w++)
+                        kill(pids[w], SIGINT);
+                    forwarded = 1;
+                }
+                pid_t p = wait(NULL);
+                if (p < 0 && errno == EINTR)
+                    continue;
+                if (p < 0)
+                    break;
+            }
         }
     }
-    if (!status)
-        status = gather_and_write(&sw, rows);
-    free(rows);
-    free(todo);
-    bf_sweep_free(&sw);
     return status;
 }
 

@@ -1,6 +1,7 @@
 /* main.c: the ballfilm command line.  Subcommands dispatch to cmd_*.c; the
  * exit status is the run's bf_status (error.h): 0 ok, 2 bad input,
  * 3 unstable, 4 no convergence, 5 I/O error, 6 interrupted. */
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -34,8 +35,31 @@ static void usage(FILE *f)
             "             5 I/O error, 6 interrupted\n");
 }
 
+volatile sig_atomic_t bf_cli_stop = 0;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    bf_cli_stop = 1;
+}
+
+/* Before anything else: a signal during set-up must not kill the process
+ * half-way (a file created and not yet flushed); the commands check
+ * bf_cli_stop and end with status 6.  No SA_RESTART: a blocking wait
+ * returns so that the command can react. */
+static void install_handlers(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
 int main(int argc, char **argv)
 {
+    install_handlers();
     if (argc < 2) {
         usage(stderr);
         return 2;

@@ -1,6 +1,8 @@
 /* build.c: a run from a scene (see run.h): the [scene] keys, the model's
  * setup, the model, the loop, the analyses, the provenance; and a run
  * rebuilt from its checkpoint. */
+#define _DEFAULT_SOURCE /* realpath */
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -233,6 +235,47 @@ bf_status bf_run_restart(bf_run **out, const bf_catalog *c,
 }
 
 bf_sim *bf_run_sim(bf_run *r) { return r->sim; }
+
+/* The canonical name of a path that may not exist yet: its directory
+ * resolved, its last component as given. */
+static int canonical(const char *path, char *buf, size_t cap)
+{
+    char dir[4096];
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    if (slash)
+        snprintf(dir, sizeof dir, "%.*s", (int)(slash - path + (slash == path)),
+                 path);
+    else
+        snprintf(dir, sizeof dir, ".");
+    char *r = realpath(dir, NULL);
+    if (!r)
+        return 0;
+    snprintf(buf, cap, "%s/%s", strcmp(r, "/") ? r : "", base);
+    free(r);
+    return 1;
+}
+
+/* 1 if a and b name the same file (or would) */
+static int same_file(const char *a, const char *b)
+{
+    char ca[4200], cb[4200];
+    return a && b && *a && *b && canonical(a, ca, sizeof ca) &&
+           canonical(b, cb, sizeof cb) && !strcmp(ca, cb);
+}
+
+bf_status bf_run_open_output(bf_run *r, const char *path, bf_err *err)
+{
+    const char *inputs[2] = {bf_scene_path(r->sc), NULL};
+    if (bf_scene_has_key(r->sc, "film", "file"))
+        inputs[1] = bf_scene_str(r->sc, "film", "file");
+    for (int k = 0; k < 2; k++)
+        if (same_file(path, inputs[k]))
+            return bf_fail(err, BF_EINPUT, "-o %s: that is %s, an input of "
+                           "this run; the result would overwrite it",
+                           path, k ? "[film] file" : "the scene file");
+    return bf_sim_open_output(r->sim, path, err);
+}
 
 void bf_run_free(bf_run *r)
 {

@@ -2,6 +2,7 @@
  * sweep.h).  Nothing here knows about processes or MPI: the front end
  * decides who runs which case. */
 #include "base/clock.h"
+#include "base/hash.h"
 #include "ballfilm/sweep.h"
 
 #include <errno.h>
@@ -110,8 +111,11 @@ static bf_status check_manifest(const bf_sweep *sw, const char *const *sets,
                                 size_t nsets, bf_err *err)
 {
     char path[1200], want[16384];
-    size_t used = (size_t)snprintf(want, sizeof want, "scene %s\n",
-                                   sw->scene_path);
+    const char *text = bf_scene_text(sw->base);
+    unsigned long long h = bf_hash64(BF_HASH_INIT, text, strlen(text));
+    size_t used = (size_t)snprintf(want, sizeof want,
+                                   "scene %s\nscene_hash %016llx\n",
+                                   sw->scene_path, h);
     for (size_t k = 0; k < nsets && used < sizeof want; k++)
         used += (size_t)snprintf(want + used, sizeof want - used, "set %s\n",
                                  sets[k]);
@@ -135,7 +139,8 @@ static bf_status check_manifest(const bf_sweep *sw, const char *const *sets,
         fclose(f);
         if (strcmp(have, want))
             return bf_fail(err, BF_EINPUT, "%s holds a different sweep (see "
-                           "%s); use another -o directory",
+                           "%s: another scene, scene contents, overrides or "
+                           "values); use another -o directory",
                            sw->dir, path);
         return BF_OK;
     }
@@ -378,8 +383,9 @@ bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
     }
     if (!st)
         st = bf_catalog_resolve(bf_catalog_builtin(), sc, &cerr);
+    bf_sim_opts opts = {.stop_flag = sw->stop_flag};
     if (!st)
-        st = bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &cerr);
+        st = bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, &opts, &cerr);
     if (!st)
         st = bf_sim_open_output(sim, out, &cerr);
     bf_status run_st = st;
@@ -436,6 +442,9 @@ bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
     row->wall = bf_wall_time() - t0;
     bf_sim_free(sim);
     bf_scene_free(sc);
+    if (run_st == BF_INTERRUPTED)
+        return bf_fail(err, BF_INTERRUPTED, "case %ld interrupted (no summary "
+                       "row: a rerun of the sweep runs it again)", k);
     return write_done(sw, row, err);
 }
 

@@ -15,6 +15,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "ballfilm/version.h"
 #include "base/clock.h"
@@ -123,7 +124,7 @@ void bf_sim_free(bf_sim *s)
     if (!s)
         return;
     if (s->out)
-        bf_out_close(s->out, NULL);
+        bf_out_close_keep(s->out, NULL);
     for (size_t k = s->nobs; k-- > 0;)
         if (s->obs[k].t->destroy)
             s->obs[k].t->destroy(s->obs[k].self);
@@ -300,6 +301,8 @@ bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)
     st = bf_out_create(&s->out, path, err);
     if (st)
         return st;
+    /* under the output's lock: a checkpoint of an earlier run is not ours */
+    unlink(s->ckpt_path);
     bf_out *o = s->out;
     if ((st = bf_out_attr_str(o, "/", "version", bf_version_string(), err)) ||
         (st = bf_out_attr_str(o, "/", "scene_file", s->scene_path, err)) ||
@@ -500,6 +503,14 @@ bf_status bf_sim_close_output(bf_sim *s, bf_status run_status,
     if (!s->out)
         return BF_OK;
     bf_out *o = s->out;
+    s->out = NULL;
+    if (bf_out_failed(o)) {
+        /* the file holds what the last good flush wrote: leave it */
+        bf_fail(err, BF_EIO, "%s.part keeps the rows up to the last flush "
+                "before the failed write", bf_out_path(o));
+        bf_out_close_keep(o, NULL);
+        return BF_EIO;
+    }
     bf_status st = BF_OK;
     if (s->mt->output_close)
         st = s->mt->output_close(s->model, o, err);
@@ -524,8 +535,14 @@ bf_status bf_sim_close_output(bf_sim *s, bf_status run_status,
     if (!st && s->has_energy)
         st = bf_out_attr_real(o, "/", "max_relative_energy_error",
                               s->en.max_rel, err);
-    bf_status cst = bf_out_close(o, st ? NULL : err);
-    s->out = NULL;
+    /* an interrupted run is continued in OUT.part; every other run's
+     * file becomes the result */
+    bf_status cst = run_status == BF_INTERRUPTED || st
+                        ? bf_out_close_keep(o, st ? NULL : err)
+                        : bf_out_close(o, err);
+    /* a run that ended well needs no restart */
+    if (!st && !cst && run_status == BF_OK && !s->opts.keep_checkpoint)
+        unlink(s->ckpt_path);
     return st ? st : cst;
 }
 

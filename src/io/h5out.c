@@ -1,10 +1,34 @@
-/* h5out.c: buffered, extendible HDF5 series (see h5out.h for the design). */
+/* h5out.c: buffered, extendible HDF5 series (see h5out.h for the design).
+ *
+ * Owning the output path.  A run writes PATH.part, which it holds under an
+ * exclusive lock (flock on its own descriptor, taken before anything is
+ * truncated; HDF5's own locking is off, so that it does not fight ours),
+ * and renames it over PATH only when it commits: a previous result at
+ * PATH survives until the new one exists, and a second run on the same
+ * path is refused instead of truncating the first one's file.  The lock
+ * goes with the descriptor, also when the process is killed.
+ *
+ * Flush discipline.  Before a flush writes anything, the space it may need
+ * (the buffered rows, whole chunks, metadata) is reserved on the file
+ * system (fallocate without changing the size) and checked against the
+ * process's file-size limit; if it is not there the flush writes nothing
+ * and fails, so the file on disk stays the consistent state of the last
+ * flush.  After a failed write nothing more is written (not even at
+ * close), for the same reason. */
+#define _GNU_SOURCE /* fallocate's FALLOC_FL_KEEP_SIZE */
 #include "base/clock.h"
 #include "ballfilm/h5out.h"
 
+#include <errno.h>
+#include <fcntl.h>
 #include <hdf5.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #define FLUSH_BYTES (8u << 20) /* flush when this much is buffered */
 
@@ -22,7 +46,10 @@ struct bf_series {
 struct bf_out {
     hid_t file;
     int append; /* opened to continue a run */
-    char *path;
+    char *path; /* the result's path */
+    char *part; /* the file written: path + ".part" */
+    int lock_fd; /* descriptor of part holding the lock (-1: none) */
+    int failed;  /* a write failed: touch nothing more */
     bf_series **series;
     size_t nseries, capseries;
     size_t buffered_bytes;
@@ -42,21 +69,77 @@ static hid_t lcpl_intermediate(void)
     return lcpl;
 }
 
+/* A file-access list with HDF5's own file locking off (ours is the lock). */
+static hid_t fapl_unlocked(void)
+{
+    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+#if H5_VERSION_GE(1, 10, 7)
+    H5Pset_file_locking(fapl, 0, 1);
+#endif
+    return fapl;
+}
+
+/* Open and lock PATH.part; fails with BF_EIO when another run holds it. */
+static bf_status claim(bf_out *o, const char *path, bf_err *err)
+{
+    size_t len = strlen(path) + 6;
+    o->path = strdup(path);
+    o->part = malloc(len);
+    o->lock_fd = -1;
+    if (!o->path || !o->part)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    snprintf(o->part, len, "%s.part", path);
+    int fd = open(o->part, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    if (fd < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot create %s: %s", path, o->part,
+                       strerror(errno));
+    if (flock(fd, LOCK_EX | LOCK_NB)) {
+        int e = errno;
+        close(fd);
+        if (e == EWOULDBLOCK)
+            return bf_fail(err, BF_EIO, "%s is in use: another run is writing "
+                           "it (%s is locked); wait for it to end or choose "
+                           "another output file",
+                           path, o->part);
+        return bf_fail(err, BF_EIO, "%s: cannot lock %s: %s", path, o->part,
+                       strerror(e));
+    }
+    o->lock_fd = fd;
+    return BF_OK;
+}
+
+static void release(bf_out *o)
+{
+    if (o->lock_fd >= 0)
+        close(o->lock_fd); /* the lock goes with it */
+    o->lock_fd = -1;
+    free(o->path);
+    free(o->part);
+    free(o);
+}
+
 bf_status bf_out_create(bf_out **out, const char *path, bf_err *err)
 {
     quiet_hdf5();
     *out = NULL;
-    hid_t f = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    if (f < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot create HDF5 file (directory "
-                       "missing or not writable?)", path);
     bf_out *o = calloc(1, sizeof *o);
-    if (!o) {
-        H5Fclose(f);
+    if (!o)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
+    bf_status st = claim(o, path, err);
+    if (st) {
+        release(o);
+        return st;
     }
-    o->file = f;
-    o->path = strdup(path);
+    hid_t fapl = fapl_unlocked();
+    o->file = H5Fcreate(o->part, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+    H5Pclose(fapl);
+    if (o->file < 0) {
+        st = bf_fail(err, BF_EIO, "%s: cannot create the HDF5 file %s", path,
+                     o->part);
+        unlink(o->part);
+        release(o);
+        return st;
+    }
     o->last_flush = bf_wall_time();
     *out = o;
     return BF_OK;
@@ -66,18 +149,30 @@ bf_status bf_out_open_append(bf_out **out, const char *path, bf_err *err)
 {
     quiet_hdf5();
     *out = NULL;
-    hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
-    if (f < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot open the run's HDF5 file to "
-                       "continue it", path);
+    /* a run that ended (its result at PATH) continues in PATH.part */
+    char part[4096];
+    snprintf(part, sizeof part, "%s.part", path);
+    if (access(part, F_OK) && !access(path, F_OK) && rename(path, part))
+        return bf_fail(err, BF_EIO, "%s: cannot move it to %s to continue it: "
+                       "%s", path, part, strerror(errno));
     bf_out *o = calloc(1, sizeof *o);
-    if (!o) {
-        H5Fclose(f);
+    if (!o)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
+    bf_status st = claim(o, path, err);
+    if (st) {
+        release(o);
+        return st;
     }
-    o->file = f;
+    hid_t fapl = fapl_unlocked();
+    o->file = H5Fopen(o->part, H5F_ACC_RDWR, fapl);
+    H5Pclose(fapl);
+    if (o->file < 0) {
+        st = bf_fail(err, BF_EIO, "%s: cannot open the run's HDF5 file %s to "
+                     "continue it", path, o->part);
+        release(o);
+        return st;
+    }
     o->append = 1;
-    o->path = strdup(path);
     o->last_flush = bf_wall_time();
     *out = o;
     return BF_OK;
@@ -96,18 +191,58 @@ static void series_free(bf_series *s)
     free(s);
 }
 
+/* Flush and close the HDF5 file, keep the lock.  After a failed write
+ * nothing is flushed and the file is not closed (closing would write
+ * HDF5's metadata cache into a file that could not take it); the process
+ * is expected to end (the command line leaves without exit handlers). */
+static bf_status finish(bf_out *out, bf_err *err)
+{
+    bf_status st = out->failed ? BF_EIO : bf_out_flush(out, err);
+    if (st && !out->failed)
+        out->failed = 1;
+    for (size_t k = 0; k < out->nseries; k++) {
+        if (out->failed)
+            out->series[k]->dset = -1; /* leave HDF5's objects alone */
+        series_free(out->series[k]);
+    }
+    free(out->series);
+    out->series = NULL;
+    out->nseries = 0;
+    if (!out->failed && H5Fclose(out->file) < 0)
+        st = bf_fail(err, BF_EIO, "%s: closing the HDF5 file failed", out->part);
+    /* give back the space reserved beyond the end and not used */
+    struct stat sb;
+    if (!out->failed && out->lock_fd >= 0 && !fstat(out->lock_fd, &sb) &&
+        ftruncate(out->lock_fd, sb.st_size)) {
+        /* nothing lost: only unused blocks stay allocated */
+    }
+    return st;
+}
+
+int bf_out_failed(const bf_out *out) { return out->failed; }
+
 bf_status bf_out_close(bf_out *out, bf_err *err)
 {
     if (!out)
         return BF_OK;
-    bf_status st = bf_out_flush(out, err);
-    for (size_t k = 0; k < out->nseries; k++)
-        series_free(out->series[k]);
-    free(out->series);
-    if (H5Fclose(out->file) < 0 && st == BF_OK)
-        st = bf_fail(err, BF_EIO, "%s: closing the HDF5 file failed", out->path);
-    free(out->path);
-    free(out);
+    int failed = out->failed;
+    bf_status st = finish(out, failed ? NULL : err);
+    /* the new result replaces the old one at once (POSIX rename) */
+    if (failed)
+        st = BF_EIO;
+    else if (!st && rename(out->part, out->path))
+        st = bf_fail(err, BF_EIO, "%s: cannot rename %s to it: %s", out->path,
+                     out->part, strerror(errno));
+    release(out);
+    return st;
+}
+
+bf_status bf_out_close_keep(bf_out *out, bf_err *err)
+{
+    if (!out)
+        return BF_OK;
+    bf_status st = finish(out, err);
+    release(out);
     return st;
 }
 
@@ -268,6 +403,55 @@ bf_status bf_series_truncate(bf_series *s, size_t rows, bf_err *err)
     return BF_OK;
 }
 
+/* After a failed write nothing more reaches the file. */
+static bf_status failed_before(const bf_out *out, bf_err *err)
+{
+    return bf_fail(err, BF_EIO, "%s: not written: an earlier write failed",
+                   out->path);
+}
+
+/* Bytes a flush may add to the file: the buffered rows, two whole chunks
+ * per series that writes (the extension may start a chunk on each side),
+ * and room for the chunk index and the other metadata. */
+static off_t flush_need(const bf_out *out)
+{
+    off_t need = 256 * 1024;
+    for (size_t k = 0; k < out->nseries; k++) {
+        const bf_series *s = out->series[k];
+        if (s->nbuf)
+            need += (off_t)(s->nbuf * 8 * s->width) + 2 * 65536 + 4096;
+    }
+    return need;
+}
+
+/* Reserve the space of the next flush before anything is written; fails
+ * (writing nothing) when the disk or the file-size limit cannot hold it. */
+static bf_status reserve(bf_out *out, bf_err *err)
+{
+    struct stat sb;
+    if (out->lock_fd < 0 || fstat(out->lock_fd, &sb))
+        return BF_OK;
+    const off_t need = flush_need(out);
+    struct rlimit rl;
+    if (!getrlimit(RLIMIT_FSIZE, &rl) && rl.rlim_cur != RLIM_INFINITY &&
+        (rlim_t)(sb.st_size + need) > rl.rlim_cur)
+        return bf_fail(err, BF_EIO, "%s: disk full: the next write needs "
+                       "about %.1f MiB beyond the %.1f MiB the file may grow "
+                       "to (file size limit)",
+                       out->path, (double)need / 1048576.0,
+                       (double)rl.rlim_cur / 1048576.0);
+    /* blocks beyond the end, the size unchanged: the next writes land in
+     * them (released at close if unused) */
+    int rc = fallocate(out->lock_fd, FALLOC_FL_KEEP_SIZE, sb.st_size, need)
+                 ? errno
+                 : 0;
+    if (rc == ENOSPC || rc == EFBIG || rc == EDQUOT)
+        return bf_fail(err, BF_EIO, "%s: disk full: the next write needs "
+                       "about %.1f MiB (%s)",
+                       out->path, (double)need / 1048576.0, strerror(rc));
+    return BF_OK; /* other errors: a file system without fallocate */
+}
+
 static bf_status series_flush(bf_out *out, bf_series *s, bf_err *err)
 {
     if (!s->nbuf)
@@ -295,14 +479,19 @@ static bf_status series_flush(bf_out *out, bf_series *s, bf_err *err)
 
 bf_status bf_out_flush(bf_out *out, bf_err *err)
 {
-    for (size_t k = 0; k < out->nseries; k++) {
-        bf_status st = series_flush(out, out->series[k], err);
-        if (st)
-            return st;
+    if (out->failed)
+        return bf_fail(err, BF_EIO, "%s: an earlier write failed; the file "
+                       "holds what was flushed before it", out->path);
+    bf_status st = reserve(out, err);
+    for (size_t k = 0; !st && k < out->nseries; k++)
+        st = series_flush(out, out->series[k], err);
+    if (!st && H5Fflush(out->file, H5F_SCOPE_GLOBAL) < 0)
+        st = bf_fail(err, BF_EIO, "%s: flushing the HDF5 file failed (disk "
+                     "full?)", out->path);
+    if (st) {
+        out->failed = 1;
+        return st;
     }
-    if (H5Fflush(out->file, H5F_SCOPE_GLOBAL) < 0)
-        return bf_fail(err, BF_EIO, "%s: flushing the HDF5 file failed (disk "
-                       "full?)", out->path);
     out->last_flush = bf_wall_time();
     return BF_OK;
 }
@@ -321,6 +510,8 @@ static bf_status write_array(bf_out *out, const char *path, const void *data,
                              size_t n0, size_t n1, int is_int, const char *unit,
                              const char *doc, bf_err *err)
 {
+    if (out->failed)
+        return failed_before(out, err);
     int rank = n1 ? 2 : 1;
     hsize_t dims[2] = {n0, n1};
     if (out->append && H5Lexists(out->file, path, H5P_DEFAULT) > 0)
@@ -378,6 +569,8 @@ static hid_t open_obj(bf_out *out, const char *obj)
 bf_status bf_out_attr_str(bf_out *out, const char *obj, const char *name,
                           const char *value, bf_err *err)
 {
+    if (out->failed)
+        return failed_before(out, err);
     hid_t o = open_obj(out, obj);
     if (o < 0)
         return bf_fail(err, BF_EIO, "%s: cannot open %s", out->path, obj);
@@ -392,6 +585,8 @@ bf_status bf_out_attr_str(bf_out *out, const char *obj, const char *name,
 static bf_status num_attr(bf_out *out, const char *obj, const char *name,
                           hid_t ftype, hid_t mtype, const void *v, bf_err *err)
 {
+    if (out->failed)
+        return failed_before(out, err);
     hid_t o = open_obj(out, obj);
     if (o < 0)
         return bf_fail(err, BF_EIO, "%s: cannot open %s", out->path, obj);
