@@ -84,11 +84,12 @@ START_TEST(failed_case_recorded_and_rerun_completes_missing)
     const char *scene = tu_repo("runs/two_balls_B.ini");
     char d[512], path[700];
     snprintf(d, sizeof d, "%s", tu_tmp("sw_fail"));
-    /* mass -1 is refused by the scene: that case fails, the others run */
+    /* mass -1 is refused by the scene: that case fails, the others run;
+     * the sweep's exit status is the failed case's (2, bad input) */
     ck_assert_int_eq(tu_run(NULL, NULL, "sweep", scene, "--vary",
                             "ball.1.mass=-1,0.8,1.2", "--set", "scene.t_end=2",
                             "-o", d, "-q", NULL),
-                     0);
+                     2);
     snprintf(path, sizeof path, "%s/summary.csv", d);
     FILE *f = fopen(path, "r");
     char line[4096];
@@ -110,7 +111,7 @@ START_TEST(failed_case_recorded_and_rerun_completes_missing)
     ck_assert_int_eq(tu_run(NULL, &err, "sweep", scene, "--vary",
                             "ball.1.mass=-1,0.8,1.2", "--set", "scene.t_end=2",
                             "-o", d, NULL),
-                     0);
+                     2);
     ck_assert_msg(strstr(err, "2 already done, 1 to run"), "%s", err);
     ck_assert_msg(strstr(err, "case     2"), "%s", err);
     free(err);

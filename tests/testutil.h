@@ -44,7 +44,11 @@ bf_sim *tu_run_scene(const char *text, ...);
  * with tu_free_list). */
 char **tu_h5_datasets(const char *file);
 void tu_free_list(char **list);
-/* Assert that two files hold the same datasets with the same bits. */
+/* The file a run wrote for output PATH: PATH once the run ended, PATH.part
+ * while it may still be continued (interrupted, killed, disk full). */
+const char *tu_result(const char *path);
+/* Assert that two files hold the same datasets with the same bits (each
+ * looked up with tu_result). */
 void tu_same_datasets(const char *a, const char *b);
 
 /* Run `run SCENE -o PART -q ARGS... --stop-after STOP` (it must stop:
