@@ -24,7 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/mac.h"
+#include "mac/mac.h"
 #include "testutil.h"
 
 static bf_mac *make(bf_mac_params *p, double dt)

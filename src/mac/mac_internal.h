@@ -6,7 +6,7 @@
 #ifndef BALLFILM_MAC_INTERNAL_H
 #define BALLFILM_MAC_INTERNAL_H
 
-#include "ballfilm/mac.h"
+#include "mac/mac.h"
 
 struct bf_mac {
     bf_mac_params prm;

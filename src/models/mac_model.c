@@ -22,7 +22,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "ballfilm/mac.h"
+#include "mac/mac.h"
 #include "ballfilm/model.h"
 
 static const bf_param mac_params[] = {

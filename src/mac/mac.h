@@ -26,9 +26,11 @@
  * are the scaled mu' = mu/(R L W) and alpha' = k/(R L W C_v).
  *
  * The solver is re-entrant: all state lives in one bf_mac object.
+ * A private header: the mac model (src/models/mac_model.c) and the tests
+ * include it as "mac/mac.h".
  */
-#ifndef BALLFILM_MAC_H
-#define BALLFILM_MAC_H
+#ifndef BALLFILM_MAC_MAC_H
+#define BALLFILM_MAC_MAC_H
 
 #include <stddef.h>
 #include <stdint.h>
