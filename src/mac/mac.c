@@ -1,5 +1,6 @@
 /* mac.c: set-up and time step of the thesis's predictor-corrector MAC
- * solver (see mac.h for the eight steps and the indexing).
+ * solver (see mac.h for the eight steps and the indexing; mac_grid.h for
+ * how the files of src/mac build on one another).
  *
  * Momentum without pressure, (3.3)/(3.4), as coded in the listing (labels
  * 101-122; psi = XI on u faces, zeta = ZETA on v faces):
@@ -21,7 +22,12 @@
  * recomputed from them (mac_markers.c), repeated until no cell density
  * changes; the pass after that uses the fine relaxation test and is final.
  */
-#include "mac_internal.h"
+#include "mac/mac.h"
+
+#include "mac/mac_bc.h"
+#include "mac/mac_grid.h"
+#include "mac/mac_markers.h"
+#include "mac/mac_pressure.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -520,26 +526,6 @@ bf_status bf_mac_step(bf_mac *m, double dt, bf_err *err)
     m->last_passes = passes;
     m->last_sweeps = sweeps;
     return BF_OK;
-}
-
-void bf_mac_flood(bf_mac *m, int n, int (*pass)(int flag))
-{
-    const int nyu = m->nj - 2;
-    const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
-    for (int head = 0; head < n;) {
-        int k = m->queue[head++];
-        int i = k / nyu + 2, j = k % nyu + 2;
-        for (int d = 0; d < 4; d++) {
-            int a = i + di[d], b = j + dj[d];
-            if (!mac_interior(m, a, b) || !pass(m->ic[IX(a, b)]))
-                continue;
-            int kk = mac_unk(m, a, b);
-            if (!m->mark[kk]) {
-                m->mark[kk] = 1;
-                m->queue[n++] = kk;
-            }
-        }
-    }
 }
 
 /* ------------------------------------------------------------ views */
