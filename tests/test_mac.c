@@ -59,6 +59,29 @@ static double max_face_speed(const bf_mac *m)
     return s;
 }
 
+/* The defaults of [mac] are the listing's values (bf_mac_params_default
+ * takes them from the key table). */
+START_TEST(defaults_are_the_listings)
+{
+    bf_mac_params p;
+    bf_err err = {0};
+    ck_assert_msg(bf_params_defaults(&bf_mac_spec, &p, &err) == BF_OK, "%s",
+                  err.msg);
+    ck_assert(p.problem == BF_MAC_RESERVOIR && p.update == BF_MAC_PRINTED &&
+              p.solver == BF_MAC_RELAX && p.refine == 1 && !p.compare);
+    ck_assert(p.crude_tol == 3e-4 && p.fine_tol == 2e-4 &&
+              p.max_sweeps == 500 && p.omega == 1.0 && p.max_passes == 10);
+    ck_assert(p.mu == 1.14e-4 && p.alpha == 1.41e-5 && p.g == -0.98);
+    ck_assert(p.rho_mean == 0.9985 && p.rho_amp == 0.0015 &&
+              p.t_mean == 15 && p.t_amp == 10);
+    ck_assert(p.predict && !p.stop_on_oscillation && !p.kappa_listing &&
+              !p.inflow_prescribed && !p.out_gravity && !p.void_fix &&
+              !p.wall_remove);
+    ck_assert(p.out_first == 13 && p.u0 == 0.1 && p.slots == 0 &&
+              p.max_cfl == 1.0 && p.direct_tol == 1e-10);
+}
+END_TEST
+
 START_TEST(initial_state_is_the_listings)
 {
     bf_mac_params p;
@@ -628,6 +651,7 @@ Suite *suite_mac(void)
 {
     Suite *s = suite_create("mac");
     TCase *tc = tu_tcase("mac");
+    tcase_add_test(tc, defaults_are_the_listings);
     tcase_add_test(tc, initial_state_is_the_listings);
     tcase_add_test(tc, rest_tank_consistent_stays_at_rest);
     tcase_add_test(tc, rest_tank_printed_update_moves);

@@ -37,6 +37,7 @@
 
 #include "ballfilm/checkpoint.h"
 #include "ballfilm/error.h"
+#include "ballfilm/params.h"
 #include "ballfilm/particles.h"
 
 /* Cell flags IC of the listing (line 2339, corrected: the code sets the
@@ -60,6 +61,8 @@ enum {
     BF_MAC_REG = 4    /* in the fluid */
 };
 
+/* The values of [mac] problem, update and pressure_solver: the index of
+ * the choice in the key's list (bf_mac_spec). */
 typedef enum bf_mac_problem {
     BF_MAC_RESERVOIR = 0, /* PROGRAM STRATRES: IN left, sink in the bottom */
     BF_MAC_REST = 1,      /* the same fluid in a closed tank: nothing moves */
@@ -85,36 +88,46 @@ typedef enum bf_mac_solver {
     BF_MAC_DIRECT = 1 /* band Cholesky, checked to a residual tolerance */
 } bf_mac_solver;
 
+/* The [mac] section (bf_mac_spec fills it: each member has the C type of
+ * its key's kind, int for choices and booleans, long for integers). */
 typedef struct bf_mac_params {
-    bf_mac_problem problem;
-    int refine;            /* (14 refine + 2)^2 cells, dx = dy = 0.1/refine */
-    bf_mac_update update;
-    bf_mac_solver solver;
+    int problem;           /* bf_mac_problem */
+    long refine;           /* (14 refine + 2)^2 cells, dx = dy = 0.1/refine */
+    int update;            /* bf_mac_update */
+    int solver;            /* bf_mac_solver ([mac] pressure_solver) */
     int compare;           /* with RELAX: also solve exactly, record diff */
     double crude_tol;      /* listing .0003 */
     double fine_tol;       /* listing .0002 */
     long max_sweeps;       /* listing 500 */
     double omega;          /* over-relaxation; listing 1 */
     double direct_tol;     /* relative residual of the direct solve */
-    int max_passes;        /* corrector passes before the fine pass; 10 */
-    int stop_on_oscillation; /* 1: BF_ENOCONV instead of the listing's
-                                "OSCILLATING PARTICLE" + forced fine pass */
+    long max_passes;       /* corrector passes before the fine pass; 10 */
+    int stop_on_oscillation; /* [mac] oscillation = stop: BF_ENOCONV
+                                instead of the listing's "OSCILLATING
+                                PARTICLE" + forced fine pass */
     int predict;           /* put the prediction (3.13) into R (thesis) */
     double mu, alpha, g;   /* listing .000114, .0000141, -.98 */
     double rho_mean, rho_amp; /* .9985, .0015 (tanh profile) */
     double t_mean, t_amp;  /* 15, 10 */
-    int kappa_listing;     /* 1: ALPHA*MU/R (listing) instead of alpha/rho */
-    int out_first;         /* first OUT cell of the 16x16 listing grid: 13 */
+    int kappa_listing;     /* [mac] conduction = listing: ALPHA*MU/R
+                              instead of alpha/rho */
+    long out_first;        /* first OUT cell of the 16x16 listing grid: 13 */
     int out_gravity;       /* add rho |g| dy to the OUT ghost pressure */
-    int inflow_prescribed; /* reservoir: u_in = u0 instead of the copy rule */
+    int inflow_prescribed; /* [mac] inflow = prescribed: the reservoir's
+                              u_in = u0 instead of the copy rule */
     double u0;             /* uniform problem: stream speed */
     int void_fix;          /* empty cells enclosed by fluid become FULL */
-    int wall_remove;       /* 1: markers crossing a wall are removed (the
-                              listing); 0: held on the wall */
+    int wall_remove;       /* [mac] wall_markers = remove: markers crossing
+                              a wall are removed (the listing); hold: held
+                              on the wall */
     long slots;            /* particle slots; 0: 800 refine^2 */
     double max_cfl;        /* stop when |u| dt/dx exceeds this */
 } bf_mac_params;
 
+/* The keys of [mac], bound to bf_mac_params. */
+extern const bf_section_spec bf_mac_spec;
+
+/* The defaults of every key of bf_mac_spec. */
 void bf_mac_params_default(bf_mac_params *p);
 
 /* Counters, cumulative since t = 0 (masses: particle density times its
