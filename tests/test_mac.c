@@ -604,6 +604,16 @@ START_TEST(bad_scenes_are_refused)
     snprintf(text, sizeof text, "%smu = 1\n", res_scene);
     ck_assert_int_eq(tu_scene_error(text, msg, sizeof msg), BF_EINPUT);
     ck_assert_msg(strstr(msg, "dt") && strstr(msg, "viscous"), "%s", msg);
+    snprintf(text, sizeof text, "%salpha = 1\n", res_scene);
+    ck_assert_int_eq(tu_scene_error(text, msg, sizeof msg), BF_EINPUT);
+    ck_assert_msg(strstr(msg, "[scene] dt") && strstr(msg, "conduction"),
+                  "%s", msg);
+    /* the prescribed stream's CFL limit names [mac] u0 */
+    snprintf(text, sizeof text, "%sinflow = prescribed\nu0 = 3\n", res_scene);
+    ck_assert_int_eq(tu_scene_error(text, msg, sizeof msg), BF_EINPUT);
+    ck_assert_msg(strstr(msg, "[mac] u0") && strstr(msg, "dt = 0.05") &&
+                      strstr(msg, "max_cfl"),
+                  "%s", msg);
     snprintf(text, sizeof text, "%sout_first = 15\n", res_scene);
     ck_assert_int_eq(tu_scene_error(text, msg, sizeof msg), BF_EINPUT);
     ck_assert_msg(strstr(msg, "out_first"), "%s", msg);
@@ -616,6 +626,12 @@ START_TEST(bad_scenes_are_refused)
                                     msg, sizeof msg),
                      BF_EINPUT);
     ck_assert_msg(strstr(msg, "reservoir"), "%s", msg);
+    ck_assert_int_eq(tu_scene_error("[scene]\nmodel = mac\ndt = 0.05\n"
+                                    "t_end = 1\n[mac]\nproblem = uniform\n"
+                                    "out_gravity = true\n",
+                                    msg, sizeof msg),
+                     BF_EINPUT);
+    ck_assert_msg(strstr(msg, "[mac] problem"), "%s", msg);
     ck_assert_int_eq(tu_scene_error("[scene]\nmodel = mac\ndt = 0.05\n"
                                     "t_end = 1\nintegrator = verlet\n",
                                     msg, sizeof msg),

@@ -1,10 +1,12 @@
 /* mac_model.c: the "mac" model: the thesis's predictor-corrector MAC
- * solver (include/ballfilm/mac.h) driven by a scene.
+ * solver (src/mac/mac.h) as a model of the time loop.
  *
- * [mac] selects the problem (the stratified reservoir with a point sink of
- * PROGRAM STRATRES, the tank at rest, the uniform stream), the velocity
- * update and pressure solver, and every uncertain reading of the listing
- * (defaults: the listing's most likely reading; see README).
+ * [mac] (its keys: bf_mac_spec, src/mac/mac.c) selects the problem (the
+ * stratified reservoir with a point sink of PROGRAM STRATRES, the tank at
+ * rest, the uniform stream), the velocity update and pressure solver, and
+ * every uncertain reading of the listing (defaults: the listing's most
+ * likely reading; see README).  The explicit terms limit [scene] dt
+ * (stable_dt).
  *
  * Output (one row per output time):
  *   /mac/u [(ni+1) nj], /mac/v [ni (nj+1)], /mac/p, /mac/rho, /mac/T,
@@ -18,15 +20,19 @@
  *   /mac/diag [6]: max |u|, max |v| on fluid faces, max |div w| in FULL
  *   cells, corrector passes and sweeps of the last step, oscillations.
  */
+#include <float.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "mac/mac.h"
 #include "ballfilm/model.h"
 
 typedef struct mac_model {
     bf_mac *mac;
+    bf_mac_params prm; /* the [mac] section it was built from */
     int ni, nj;
     size_t slots;
     bf_series *u, *v, *p, *rho, *temp, *flags;
@@ -35,51 +41,30 @@ typedef struct mac_model {
     int64_t *ibuf; /* the same for the integer series */
 } mac_model;
 
-static bf_status read_params(const bf_scene *sc, const bf_model_setup *setup,
-                             bf_mac_params *p, bf_err *err)
+/* Combinations that cannot work, refused before anything is written (the
+ * time-step limits are mac_model_stable_dt's). */
+static bf_status check_params(const bf_mac_params *p, bf_err *err)
 {
-    *p = *(const bf_mac_params *)bf_setup_get(setup, &bf_mac_spec, NULL);
-
-    /* physics that cannot work, refused before anything is written */
-    double dt = bf_scene_real(sc, "scene", "dt");
-    double h = 0.1 / p->refine;
+    bf_mac_params def;
+    bf_mac_params_default(&def);
     if (p->rho_amp >= p->rho_mean)
-        return bf_scene_fail(sc, err, "mac", "rho_amp",
-                             "rho_amp = %g must be below rho_mean = %g (the "
-                             "density must stay positive)",
-                             p->rho_amp, p->rho_mean);
-    double rmin = p->rho_mean - p->rho_amp;
-    /* explicit viscous and conduction terms: 4 nu dt / h^2 <= 1 */
-    if (4.0 * p->mu * dt / (rmin * h * h) > 1.0)
-        return bf_scene_fail(sc, err, "scene", "dt",
-                             "dt = %g exceeds the explicit viscous limit "
-                             "h^2 rho/(4 mu) = %g for dx = %g",
-                             dt, rmin * h * h / (4.0 * p->mu), h);
-    double kap = p->kappa_listing ? p->alpha * p->mu : p->alpha;
-    if (4.0 * kap * dt / (rmin * h * h) > 1.0)
-        return bf_scene_fail(sc, err, "scene", "dt",
-                             "dt = %g exceeds the explicit conduction limit "
-                             "h^2 rho/(4 alpha) = %g",
-                             dt, rmin * h * h / (4.0 * kap));
-    if ((p->problem == BF_MAC_UNIFORM || p->inflow_prescribed) &&
-        fabs(p->u0) * dt / h > p->max_cfl)
-        return bf_scene_fail(sc, err, "mac", "u0",
-                             "u0 dt/dx = %g exceeds max_cfl = %g",
-                             fabs(p->u0) * dt / h, p->max_cfl);
+        return bf_fail_key(err, BF_EINPUT, "mac", "rho_amp",
+                           "rho_amp = %g must be below rho_mean = %g (the "
+                           "density must stay positive)",
+                           p->rho_amp, p->rho_mean);
     if (p->problem != BF_MAC_RESERVOIR &&
-        (bf_scene_given(sc, "mac", "inflow") ||
-         bf_scene_given(sc, "mac", "out_first") ||
-         bf_scene_given(sc, "mac", "out_gravity")))
-        return bf_scene_fail(sc, err, "mac", "problem",
-                             "inflow, out_first and out_gravity apply to the "
-                             "reservoir problem only");
+        (p->inflow_prescribed != def.inflow_prescribed ||
+         p->out_first != def.out_first || p->out_gravity != def.out_gravity))
+        return bf_fail_key(err, BF_EINPUT, "mac", "problem",
+                           "inflow, out_first and out_gravity apply to the "
+                           "reservoir problem only");
     if ((p->problem == BF_MAC_UNIFORM || p->inflow_prescribed) && p->u0 <= 0)
-        return bf_scene_fail(sc, err, "mac", "u0",
-                             "a prescribed inflow needs u0 > 0 (IN on the "
-                             "left)");
+        return bf_fail_key(err, BF_EINPUT, "mac", "u0",
+                           "a prescribed inflow needs u0 > 0 (IN on the "
+                           "left)");
     if (p->compare && p->solver != BF_MAC_RELAX)
-        return bf_scene_fail(sc, err, "mac", "compare",
-                             "compare needs pressure_solver = relax");
+        return bf_fail_key(err, BF_EINPUT, "mac", "compare",
+                           "compare needs pressure_solver = relax");
     return BF_OK;
 }
 
@@ -94,24 +79,22 @@ static void mac_model_destroy(void *self)
     free(mm);
 }
 
-static bf_status mac_model_create(void **self, const bf_scene *sc,
-                          const bf_model_setup *setup, bf_err *err)
+static bf_status mac_model_create(void **self, const bf_model_setup *setup,
+                                  bf_err *err)
 {
-    bf_mac_params p;
-    bf_status st = read_params(sc, setup, &p, err);
+    const bf_mac_params *p = bf_setup_get(setup, &bf_mac_spec, NULL);
+    bf_status st = check_params(p, err);
     if (st)
         return st;
     mac_model *mm = calloc(1, sizeof *mm);
     if (!mm)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    st = bf_mac_create(&mm->mac, &p, bf_scene_real(sc, "scene", "dt"), err);
+    mm->prm = *p;
+    st = bf_mac_create(&mm->mac, p, setup->run.dt, err);
     if (st) {
         free(mm);
-        if (st == BF_EINPUT) {
-            char msg[BF_ERR_MSG];
-            snprintf(msg, sizeof msg, "%s", err->msg);
-            return bf_scene_fail(sc, err, "mac", NULL, "%s", msg);
-        }
+        if (st == BF_EINPUT && !err->section[0])
+            bf_err_set_key(err, "mac", ""); /* about the section */
         return st;
     }
     bf_mac_dims(mm->mac, &mm->ni, &mm->nj, NULL, NULL);
@@ -127,6 +110,82 @@ static bf_status mac_model_create(void **self, const bf_scene *sc,
     }
     *self = mm;
     return BF_OK;
+}
+
+/* ------------------------------------------------ explicit step limits */
+
+/* A step dt is refused by the explicit viscous and conduction terms when
+ * 4 c dt / (rmin h^2) > 1 (c = mu or the conduction coefficient, rmin the
+ * smallest density, h = dx = dy), and by a prescribed stream when
+ * |u0| dt/dx > max_cfl. */
+typedef struct dt_test {
+    int cfl;       /* 0: the diffusion test with c; 1: the stream's CFL */
+    double c, rmin, h, u0, max_cfl;
+} dt_test;
+
+static int refused(const dt_test *k, double dt)
+{
+    if (!k->cfl)
+        return 4.0 * k->c * dt / (k->rmin * k->h * k->h) > 1.0;
+    return k->u0 * dt / k->h > k->max_cfl;
+}
+
+/* Offer the limit of test k (near `estimate`) to lim: kept if it is the
+ * smallest so far (the first on a tie), with its reason and its key.  The
+ * limit is the largest dt the test passes, moved from the estimate by an
+ * ulp or two, so that the loop refuses exactly the steps it refuses. */
+static void offer(bf_dt_limit *lim, const dt_test *k, double estimate,
+                  const char *section, const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 6, 7)));
+
+static void offer(bf_dt_limit *lim, const dt_test *k, double estimate,
+                  const char *section, const char *key, const char *fmt, ...)
+{
+    double dt = estimate;
+    while (dt > 0 && refused(k, dt))
+        dt = nextafter(dt, 0.0);
+    while (dt < DBL_MAX && !refused(k, nextafter(dt, INFINITY)))
+        dt = nextafter(dt, INFINITY);
+    if (!(dt > 0) || (lim->dt_max > 0 && lim->dt_max <= dt))
+        return;
+    lim->dt_max = dt;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(lim->why, sizeof lim->why, fmt, ap);
+    va_end(ap);
+    snprintf(lim->section, sizeof lim->section, "%s", section);
+    snprintf(lim->key, sizeof lim->key, "%s", key);
+}
+
+/* The smallest of the explicit limits ("" names [scene] dt). */
+static void mac_model_stable_dt(const void *self, bf_dt_limit *lim)
+{
+    const bf_mac_params *p = &((const mac_model *)self)->prm;
+    const double h = 0.1 / (double)p->refine;
+    const double rmin = p->rho_mean - p->rho_amp;
+    const double kap = p->kappa_listing ? p->alpha * p->mu : p->alpha;
+    memset(lim, 0, sizeof *lim);
+    if (p->mu > 0) {
+        const dt_test k = {0, p->mu, rmin, h, 0, 0};
+        const double d = rmin * h * h / (4.0 * p->mu);
+        offer(lim, &k, d, "", "",
+              "the explicit viscous limit h^2 rho/(4 mu) = %g for dx = %g", d,
+              h);
+    }
+    if (kap > 0) {
+        const dt_test k = {0, kap, rmin, h, 0, 0};
+        const double d = rmin * h * h / (4.0 * kap);
+        offer(lim, &k, d, "", "",
+              "the explicit conduction limit h^2 rho/(4 alpha) = %g", d);
+    }
+    if (p->problem == BF_MAC_UNIFORM || p->inflow_prescribed) {
+        const dt_test k = {1, 0, rmin, h, fabs(p->u0), p->max_cfl};
+        const double d = p->max_cfl * h / fabs(p->u0);
+        offer(lim, &k, d, "mac", "u0",
+              "the prescribed stream's CFL limit max_cfl dx/u0 = %g (u0 "
+              "dt/dx must not exceed max_cfl = %g)",
+              d, p->max_cfl);
+    }
 }
 
 static bf_status mac_model_step(void *self, long n, double t, double dt,
@@ -336,8 +395,9 @@ const bf_model_type bf_model_mac = {
            "(thesis, PROGRAM STRATRES)",
     .flags = 0,
     .specs = mac_specs,
-    .create_scene = mac_model_create,
+    .create = mac_model_create,
     .destroy = mac_model_destroy,
+    .stable_dt = mac_model_stable_dt,
     .step = mac_model_step,
     .output_open = mac_model_output_open,
     .output_row = mac_model_output_row,
