@@ -695,108 +695,66 @@ double bf_mac_fluid_mass(const bf_mac *m)
 
 /* ------------------------------------------------------------ checkpoints */
 
-static bf_status put_field(bf_ckpt *ck, const char *prefix, const char *nm,
-                           const double *f, size_t n, bf_err *err)
-{
-    char name[256];
-    snprintf(name, sizeof name, "%s.%s", prefix, nm);
-    return bf_ckpt_put(ck, name, f, n, err);
-}
+/* The state at t = n dt (the work arrays are recomputed by every step),
+ * stored as PREFIX.NAME; the markers as PREFIX.markers (particles.h). */
+static const bf_field mac_state[] = {
+    BF_FIELD_PTR(bf_mac, u, BF_F_DOUBLE, ncell, "W"),
+    BF_FIELD_PTR(bf_mac, v, BF_F_DOUBLE, ncell, "W"),
+    BF_FIELD_PTR(bf_mac, p, BF_F_DOUBLE, ncell, "R W^2"),
+    BF_FIELD_PTR(bf_mac, r, BF_F_DOUBLE, ncell, "R"),
+    BF_FIELD_PTR(bf_mac, t, BF_F_DOUBLE, ncell, "dT"),
+    BF_FIELD_PTR(bf_mac, ic, BF_F_INT, ncell, "1"),
+    BF_FIELD_PTR(bf_mac, dens, BF_F_DOUBLE, part.n, "R"),
+    BF_FIELD(bf_mac, last_passes, BF_F_INT, "1"),
+    BF_FIELD(bf_mac, last_sweeps, BF_F_LONG, "1"),
+};
 
-static bf_status get_field(const bf_ckpt *ck, const char *prefix,
-                           const char *nm, double *f, size_t n, bf_err *err)
-{
-    char name[256];
-    snprintf(name, sizeof name, "%s.%s", prefix, nm);
-    return bf_ckpt_get(ck, name, f, n, err);
-}
-
-/* Counters as two arrays (int64 and real), in the order of the struct. */
-#define MAC_NI64 12
-#define MAC_NREAL 6
-static void counts_pack(const bf_mac_counts *c, int64_t *iv, double *rv)
-{
-    const int64_t in[MAC_NI64] = {c->entered, c->left_out, c->freed,
-                                  c->backflow, c->lost, c->in_clamped,
-                                  c->oscillations, c->passes, c->sweeps,
-                                  c->max_sweeps_step, c->held, c->voids};
-    const double re[MAC_NREAL] = {c->mass_in,   c->mass_out,  c->mass_back,
-                                  c->mass_lost, c->max_gs_dp, c->max_gs_du};
-    memcpy(iv, in, sizeof in);
-    memcpy(rv, re, sizeof re);
-}
-
-static void counts_unpack(bf_mac_counts *c, const int64_t *iv, const double *rv)
-{
-    int64_t *in[MAC_NI64] = {&c->entered, &c->left_out, &c->freed,
-                             &c->backflow, &c->lost, &c->in_clamped,
-                             &c->oscillations, &c->passes, &c->sweeps,
-                             &c->max_sweeps_step, &c->held, &c->voids};
-    double *re[MAC_NREAL] = {&c->mass_in,   &c->mass_out,  &c->mass_back,
-                             &c->mass_lost, &c->max_gs_dp, &c->max_gs_du};
-    for (int k = 0; k < MAC_NI64; k++)
-        *in[k] = iv[k];
-    for (int k = 0; k < MAC_NREAL; k++)
-        *re[k] = rv[k];
-}
+/* The counters, as PREFIX.counts.NAME. */
+static const bf_field mac_counts[] = {
+    BF_FIELD(bf_mac_counts, entered, BF_F_I64, "particles"),
+    BF_FIELD(bf_mac_counts, left_out, BF_F_I64, "particles"),
+    BF_FIELD(bf_mac_counts, freed, BF_F_I64, "particles"),
+    BF_FIELD(bf_mac_counts, backflow, BF_F_I64, "particles"),
+    BF_FIELD(bf_mac_counts, lost, BF_F_I64, "particles"),
+    BF_FIELD(bf_mac_counts, in_clamped, BF_F_I64, "particles"),
+    BF_FIELD(bf_mac_counts, held, BF_F_I64, "moves"),
+    BF_FIELD(bf_mac_counts, voids, BF_F_I64, "cells"),
+    BF_FIELD(bf_mac_counts, oscillations, BF_F_I64, "steps"),
+    BF_FIELD(bf_mac_counts, passes, BF_F_I64, "1"),
+    BF_FIELD(bf_mac_counts, sweeps, BF_F_I64, "1"),
+    BF_FIELD(bf_mac_counts, max_sweeps_step, BF_F_I64, "1"),
+    BF_FIELD(bf_mac_counts, mass_in, BF_F_DOUBLE, "R L^2"),
+    BF_FIELD(bf_mac_counts, mass_out, BF_F_DOUBLE, "R L^2"),
+    BF_FIELD(bf_mac_counts, mass_back, BF_F_DOUBLE, "R L^2"),
+    BF_FIELD(bf_mac_counts, mass_lost, BF_F_DOUBLE, "R L^2"),
+    BF_FIELD(bf_mac_counts, max_gs_dp, BF_F_DOUBLE, "1"),
+    BF_FIELD(bf_mac_counts, max_gs_du, BF_F_DOUBLE, "W"),
+};
 
 bf_status bf_mac_save(const bf_mac *m, bf_ckpt *ck, const char *prefix,
                       bf_err *err)
 {
-    bf_status st;
     char name[256];
-    const double *f[] = {m->u, m->v, m->p, m->r, m->t};
-    const char *nm[] = {"u", "v", "p", "rho", "T"};
-    for (int k = 0; k < 5; k++)
-        if ((st = put_field(ck, prefix, nm[k], f[k], m->ncell, err)))
-            return st;
-    snprintf(name, sizeof name, "%s.flags", prefix);
-    if ((st = bf_ckpt_put_bytes(ck, name, m->ic, m->ncell * sizeof *m->ic,
-                                err)))
-        return st;
-    snprintf(name, sizeof name, "%s.markers", prefix);
-    if ((st = bf_particles_save(&m->part, ck, name, err)))
-        return st;
-    if ((st = put_field(ck, prefix, "density", m->dens, m->part.n, err)))
-        return st;
-    int64_t iv[MAC_NI64 + 2];
-    double rv[MAC_NREAL];
-    counts_pack(&m->cnt, iv, rv);
-    iv[MAC_NI64] = m->last_passes;
-    iv[MAC_NI64 + 1] = m->last_sweeps;
+    bf_status st = bf_ckpt_put_fields(ck, prefix, mac_state,
+                                      BF_NFIELDS(mac_state), m, err);
     snprintf(name, sizeof name, "%s.counts", prefix);
-    if ((st = bf_ckpt_put_i64(ck, name, iv, MAC_NI64 + 2, err)))
-        return st;
-    return put_field(ck, prefix, "masses", rv, MAC_NREAL, err);
+    if (!st)
+        st = bf_ckpt_put_fields(ck, name, mac_counts, BF_NFIELDS(mac_counts),
+                                &m->cnt, err);
+    snprintf(name, sizeof name, "%s.markers", prefix);
+    return st ? st : bf_particles_save(&m->part, ck, name, err);
 }
 
 bf_status bf_mac_load(bf_mac *m, const bf_ckpt *ck, const char *prefix,
                       bf_err *err)
 {
-    bf_status st;
     char name[256];
-    double *f[] = {m->u, m->v, m->p, m->r, m->t};
-    const char *nm[] = {"u", "v", "p", "rho", "T"};
-    for (int k = 0; k < 5; k++)
-        if ((st = get_field(ck, prefix, nm[k], f[k], m->ncell, err)))
-            return st;
-    snprintf(name, sizeof name, "%s.flags", prefix);
-    if ((st = bf_ckpt_get_bytes(ck, name, m->ic, m->ncell * sizeof *m->ic,
-                                err)))
-        return st;
-    snprintf(name, sizeof name, "%s.markers", prefix);
-    if ((st = bf_particles_load(&m->part, ck, name, err)))
-        return st;
-    if ((st = get_field(ck, prefix, "density", m->dens, m->part.n, err)))
-        return st;
-    int64_t iv[MAC_NI64 + 2];
-    double rv[MAC_NREAL];
+    bf_status st = bf_ckpt_get_fields(ck, prefix, mac_state,
+                                      BF_NFIELDS(mac_state), m, err);
     snprintf(name, sizeof name, "%s.counts", prefix);
-    if ((st = bf_ckpt_get_i64(ck, name, iv, MAC_NI64 + 2, err)) ||
-        (st = get_field(ck, prefix, "masses", rv, MAC_NREAL, err)))
-        return st;
-    counts_unpack(&m->cnt, iv, rv);
-    m->last_passes = (int)iv[MAC_NI64];
-    m->last_sweeps = (long)iv[MAC_NI64 + 1];
-    return BF_OK;
+    if (!st)
+        st = bf_ckpt_get_fields(ck, name, mac_counts, BF_NFIELDS(mac_counts),
+                                &m->cnt, err);
+    snprintf(name, sizeof name, "%s.markers", prefix);
+    return st ? st : bf_particles_load(&m->part, ck, name, err);
 }
