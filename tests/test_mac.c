@@ -1,4 +1,5 @@
-/* test_mac.c: the thesis's predictor-corrector MAC solver (seed 004).
+/* test_mac.c: the thesis's predictor-corrector MAC solver
+ * (docs/models/mac.md).
  *
  * Independent checks:
  *  - the initial state against the listing's numbers (densities .99990 to
@@ -93,8 +94,8 @@ START_TEST(initial_state_is_the_listings)
     ck_assert_int_eq(ni, 16);
     ck_assert_int_eq(nj, 16);
     const double *r = bf_mac_rho(m), *t = bf_mac_temp(m), *pr = bf_mac_p(m);
-    /* spec section 8: cell densities .99990 (J = 2) to .99710 (J = 13),
-     * temperatures 5.68 to 24.32 */
+    /* the listing's initial state (docs/models/mac.md): cell densities
+     * .99990 (J = 2) to .99710 (J = 13), temperatures 5.68 to 24.32 */
     ck_assert(fabs(r[bf_mac_index(m, 5, 2)] - 0.99990) < 5e-6);
     ck_assert(fabs(r[bf_mac_index(m, 5, 13)] - 0.99710) < 5e-6);
     ck_assert(fabs(t[bf_mac_index(m, 5, 2)] - 5.68) < 5e-3);

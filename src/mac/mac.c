@@ -137,8 +137,8 @@ static const bf_param mac_params[] = {
 };
 
 const bf_section_spec bf_mac_spec =
-    BF_SECTION("mac", "the thesis's predictor-corrector MAC solver (seed 004)",
-               mac_params, bf_mac_params);
+    BF_SECTION("mac", "the thesis's predictor-corrector MAC solver "
+               "(docs/models/mac.md)", mac_params, bf_mac_params);
 
 void bf_mac_params_default(bf_mac_params *p)
 {

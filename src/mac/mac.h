@@ -1,7 +1,8 @@
 /* mac.h: the thesis's predictor-corrector MAC solver for a stratified,
  * viscous, incompressible fluid with marker particles ("A predictor-
  * corrector method for the transient motion of a nonhomogeneous
- * incompressible, viscous fluid", seed 004; PROGRAM STRATRES).
+ * incompressible, viscous fluid", PROGRAM STRATRES; the model and its
+ * readings of the listing: docs/models/mac.md).
  *
  * Velocity (u, v), pressure P and temperature T live on a staggered MAC
  * grid; the density is carried by marker particles and recomputed per cell
