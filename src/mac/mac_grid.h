@@ -11,11 +11,16 @@
  *                   mac_grid.c);
  *   mac.c           set-up, the eight-step time step, views, checkpoints
  *                   (on all of them; its interface is mac.h).
+ * The types that mac.h shares are in mac_types.h.
  */
 #ifndef BALLFILM_MAC_GRID_H
 #define BALLFILM_MAC_GRID_H
 
-#include "mac/mac.h"
+#include <stddef.h>
+
+#include "ballfilm/error.h"
+#include "ballfilm/particles.h"
+#include "mac/mac_types.h"
 
 struct bf_mac {
     bf_mac_params prm;
