@@ -49,7 +49,8 @@ extern const bf_section_spec bf_mac_spec;
 void bf_mac_params_default(bf_mac_params *p);
 
 /* Build the problem's initial state (listing lines 2262-2440).  dt is the
- * time step the caller will use (checked against the explicit limits). */
+ * time step the caller will use (it must be positive; the explicit limits
+ * on it are the mac model's stable_dt). */
 bf_status bf_mac_create(bf_mac **m, const bf_mac_params *p, double dt,
                         bf_err *err);
 void bf_mac_free(bf_mac *m);
