@@ -1,4 +1,5 @@
-/* test_mac.c: the thesis's predictor-corrector MAC solver (seed 004).
+/* test_mac.c: the thesis's predictor-corrector MAC solver
+ * (docs/models/mac.md).
  *
  * Independent checks:
  *  - the initial state against the listing's numbers (densities .99990 to
@@ -24,7 +25,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/mac.h"
+#include "mac/mac.h"
 #include "testutil.h"
 
 static bf_mac *make(bf_mac_params *p, double dt)
@@ -59,6 +60,29 @@ static double max_face_speed(const bf_mac *m)
     return s;
 }
 
+/* The defaults of [mac] are the listing's values (bf_mac_params_default
+ * takes them from the key table). */
+START_TEST(defaults_are_the_listings)
+{
+    bf_mac_params p;
+    bf_err err = {0};
+    ck_assert_msg(bf_params_defaults(&bf_mac_spec, &p, &err) == BF_OK, "%s",
+                  err.msg);
+    ck_assert(p.problem == BF_MAC_RESERVOIR && p.update == BF_MAC_PRINTED &&
+              p.solver == BF_MAC_RELAX && p.refine == 1 && !p.compare);
+    ck_assert(p.crude_tol == 3e-4 && p.fine_tol == 2e-4 &&
+              p.max_sweeps == 500 && p.omega == 1.0 && p.max_passes == 10);
+    ck_assert(p.mu == 1.14e-4 && p.alpha == 1.41e-5 && p.g == -0.98);
+    ck_assert(p.rho_mean == 0.9985 && p.rho_amp == 0.0015 &&
+              p.t_mean == 15 && p.t_amp == 10);
+    ck_assert(p.predict && !p.stop_on_oscillation && !p.kappa_listing &&
+              !p.inflow_prescribed && !p.out_gravity && !p.void_fix &&
+              !p.wall_remove);
+    ck_assert(p.out_first == 13 && p.u0 == 0.1 && p.slots == 0 &&
+              p.max_cfl == 1.0 && p.direct_tol == 1e-10);
+}
+END_TEST
+
 START_TEST(initial_state_is_the_listings)
 {
     bf_mac_params p;
@@ -70,8 +94,8 @@ START_TEST(initial_state_is_the_listings)
     ck_assert_int_eq(ni, 16);
     ck_assert_int_eq(nj, 16);
     const double *r = bf_mac_rho(m), *t = bf_mac_temp(m), *pr = bf_mac_p(m);
-    /* spec section 8: cell densities .99990 (J = 2) to .99710 (J = 13),
-     * temperatures 5.68 to 24.32 */
+    /* the listing's initial state (docs/models/mac.md): cell densities
+     * .99990 (J = 2) to .99710 (J = 13), temperatures 5.68 to 24.32 */
     ck_assert(fabs(r[bf_mac_index(m, 5, 2)] - 0.99990) < 5e-6);
     ck_assert(fabs(r[bf_mac_index(m, 5, 13)] - 0.99710) < 5e-6);
     ck_assert(fabs(t[bf_mac_index(m, 5, 2)] - 5.68) < 5e-3);
@@ -581,6 +605,16 @@ START_TEST(bad_scenes_are_refused)
     snprintf(text, sizeof text, "%smu = 1\n", res_scene);
     ck_assert_int_eq(tu_scene_error(text, msg, sizeof msg), BF_EINPUT);
     ck_assert_msg(strstr(msg, "dt") && strstr(msg, "viscous"), "%s", msg);
+    snprintf(text, sizeof text, "%salpha = 1\n", res_scene);
+    ck_assert_int_eq(tu_scene_error(text, msg, sizeof msg), BF_EINPUT);
+    ck_assert_msg(strstr(msg, "[scene] dt") && strstr(msg, "conduction"),
+                  "%s", msg);
+    /* the prescribed stream's CFL limit names [mac] u0 */
+    snprintf(text, sizeof text, "%sinflow = prescribed\nu0 = 3\n", res_scene);
+    ck_assert_int_eq(tu_scene_error(text, msg, sizeof msg), BF_EINPUT);
+    ck_assert_msg(strstr(msg, "[mac] u0") && strstr(msg, "dt = 0.05") &&
+                      strstr(msg, "max_cfl"),
+                  "%s", msg);
     snprintf(text, sizeof text, "%sout_first = 15\n", res_scene);
     ck_assert_int_eq(tu_scene_error(text, msg, sizeof msg), BF_EINPUT);
     ck_assert_msg(strstr(msg, "out_first"), "%s", msg);
@@ -593,6 +627,12 @@ START_TEST(bad_scenes_are_refused)
                                     msg, sizeof msg),
                      BF_EINPUT);
     ck_assert_msg(strstr(msg, "reservoir"), "%s", msg);
+    ck_assert_int_eq(tu_scene_error("[scene]\nmodel = mac\ndt = 0.05\n"
+                                    "t_end = 1\n[mac]\nproblem = uniform\n"
+                                    "out_gravity = true\n",
+                                    msg, sizeof msg),
+                     BF_EINPUT);
+    ck_assert_msg(strstr(msg, "[mac] problem"), "%s", msg);
     ck_assert_int_eq(tu_scene_error("[scene]\nmodel = mac\ndt = 0.05\n"
                                     "t_end = 1\nintegrator = verlet\n",
                                     msg, sizeof msg),
@@ -628,6 +668,7 @@ Suite *suite_mac(void)
 {
     Suite *s = suite_create("mac");
     TCase *tc = tu_tcase("mac");
+    tcase_add_test(tc, defaults_are_the_listings);
     tcase_add_test(tc, initial_state_is_the_listings);
     tcase_add_test(tc, rest_tank_consistent_stays_at_rest);
     tcase_add_test(tc, rest_tank_printed_update_moves);

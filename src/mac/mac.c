@@ -1,5 +1,6 @@
 /* mac.c: set-up and time step of the thesis's predictor-corrector MAC
- * solver (see mac.h for the eight steps and the indexing).
+ * solver (see mac.h for the eight steps and the indexing; mac_grid.h for
+ * how the files of src/mac build on one another).
  *
  * Momentum without pressure, (3.3)/(3.4), as coded in the listing (labels
  * 101-122; psi = XI on u faces, zeta = ZETA on v faces):
@@ -21,37 +22,128 @@
  * recomputed from them (mac_markers.c), repeated until no cell density
  * changes; the pass after that uses the fine relaxation test and is final.
  */
-#include "mac_internal.h"
+#include "mac/mac.h"
+
+#include "mac/mac_bc.h"
+#include "mac/mac_grid.h"
+#include "mac/mac_markers.h"
+#include "mac/mac_pressure.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+static const bf_param mac_params[] = {
+    {"problem", BF_AT(bf_mac_params, problem, BF_ENUM), "", "reservoir",
+     "reservoir: PROGRAM STRATRES (IN left, point sink in the bottom); rest: "
+     "the same fluid in a closed tank; uniform: a uniform stream (IN left, "
+     "OUT right, slip bottom)",
+     0, 0, 0, "reservoir|rest|uniform"},
+    {"refine", BF_AT(bf_mac_params, refine, BF_INT), "1", "1",
+     "grid refinement r: (14 r + 2)^2 cells, dx = dy = 0.1/r, same physical "
+     "set-up (scale [scene] dt by 1/r too)",
+     BF_MIN | BF_MAX, 1, 8, NULL},
+    {"update", BF_AT(bf_mac_params, update, BF_ENUM), "", "printed",
+     "printed: (3.11)/(3.12) with (3.10) as printed (thesis, listing); "
+     "consistent: (3.11)/(3.12) with the pressure equation derived from them; "
+     "original: (3.6)-(3.9) with (3.10)",
+     0, 0, 0, "printed|consistent|original"},
+    {"pressure_solver", BF_AT(bf_mac_params, solver, BF_ENUM), "", "relax",
+     "relax: the listing's Gauss-Seidel with crude/fine tests; direct: band "
+     "Cholesky checked to direct_tol",
+     0, 0, 0, "relax|direct"},
+    {"compare", BF_AT(bf_mac_params, compare, BF_BOOL), "", "false",
+     "with relax: also solve the final pass exactly and record the largest "
+     "pressure and velocity differences",
+     0, 0, 0, NULL},
+    {"crude_tol", BF_AT(bf_mac_params, crude_tol, BF_REAL), "1", "3e-4",
+     "crude test: |dP| per sweep / |rho g DEPTH| (listing .0003)", BF_POS, 0,
+     0, NULL},
+    {"fine_tol", BF_AT(bf_mac_params, fine_tol, BF_REAL), "1", "2e-4",
+     "fine test of the last pass (listing .0002)", BF_POS, 0, 0, NULL},
+    {"max_sweeps", BF_AT(bf_mac_params, max_sweeps, BF_INT), "1", "500",
+     "sweeps per relaxation before 'too many iterations' (listing 500)",
+     BF_MIN, 1, 0, NULL},
+    {"omega", BF_AT(bf_mac_params, omega, BF_REAL), "1", "1",
+     "over-relaxation factor (the listing has none: 1)", BF_POS | BF_MAX, 0,
+     1.99, NULL},
+    {"direct_tol", BF_AT(bf_mac_params, direct_tol, BF_REAL), "1", "1e-10",
+     "largest relative residual accepted from the direct solve", BF_POS, 0, 0,
+     NULL},
+    {"max_passes", BF_AT(bf_mac_params, max_passes, BF_INT), "1", "10",
+     "corrector passes before the fine pass is forced (listing ITNUM 10)",
+     BF_MIN, 1, 0, NULL},
+    {"oscillation", BF_AT(bf_mac_params, stop_on_oscillation, BF_ENUM), "",
+     "continue",
+     "when the density still changes after max_passes: continue with the "
+     "fine pass (listing, counted in /mac/diag) or stop (exit 4)",
+     0, 0, 0, "continue|stop"},
+    {"predict", BF_AT(bf_mac_params, predict, BF_BOOL), "", "true",
+     "use the predicted density (3.13) in the first pass (thesis); false: "
+     "the OCR'd listing, which never copies RN into R",
+     0, 0, 0, NULL},
+    {"mu", BF_AT(bf_mac_params, mu, BF_REAL), "1 (scaled)", "1.14e-4",
+     "viscosity mu' (listing MU)", BF_NONNEG, 0, 0, NULL},
+    {"alpha", BF_AT(bf_mac_params, alpha, BF_REAL), "1 (scaled)", "1.41e-5",
+     "conductivity alpha' = k/(R L W C_v) (listing ALPHA)", BF_NONNEG, 0, 0,
+     NULL},
+    {"g", BF_AT(bf_mac_params, g, BF_REAL), "W^2/L", "-0.98",
+     "body force per unit mass, y component (listing G)", 0, 0, 0, NULL},
+    {"rho_mean", BF_AT(bf_mac_params, rho_mean, BF_REAL), "R", "0.9985",
+     "density profile rho = rho_mean - rho_amp tanh(y - D/2)/tanh(D/2)",
+     BF_POS, 0, 0, NULL},
+    {"rho_amp", BF_AT(bf_mac_params, rho_amp, BF_REAL), "R", "0.0015",
+     "density amplitude (0: homogeneous fluid)", BF_NONNEG, 0, 0, NULL},
+    {"t_mean", BF_AT(bf_mac_params, t_mean, BF_REAL), "dT", "15",
+     "temperature T = t_mean + t_amp tanh(...)", 0, 0, 0, NULL},
+    {"t_amp", BF_AT(bf_mac_params, t_amp, BF_REAL), "dT", "10",
+     "temperature amplitude", 0, 0, 0, NULL},
+    {"conduction", BF_AT(bf_mac_params, kappa_listing, BF_ENUM), "", "thesis",
+     "heat conduction coefficient in (3.14): alpha/rho (thesis) or "
+     "ALPHA*MU/R (listing line 3304)",
+     0, 0, 0, "thesis|listing"},
+    {"out_first", BF_AT(bf_mac_params, out_first, BF_INT), "1", "13",
+     "I of the first of the two OUT cells on the 16 x 16 grid: 13 (IC flags, "
+     "velocity and pressure blocks) or 14 (the particle test NI-1, NI-2)",
+     BF_MIN | BF_MAX, 2, 14, NULL},
+    {"out_gravity", BF_AT(bf_mac_params, out_gravity, BF_BOOL), "", "false",
+     "add the hydrostatic rho |g| dy to the OUT ghost pressure (not in the "
+     "listing; the sink then barely draws)",
+     0, 0, 0, NULL},
+    {"inflow", BF_AT(bf_mac_params, inflow_prescribed, BF_ENUM), "", "copy",
+     "reservoir IN boundary: copy U(2,J) = U(3,J) with P = P0 (thesis) or "
+     "prescribed u0 with P from momentum",
+     0, 0, 0, "copy|prescribed"},
+    {"u0", BF_AT(bf_mac_params, u0, BF_REAL), "W", "0.1",
+     "stream speed of the uniform problem (and of a prescribed inflow)", 0, 0,
+     0, NULL},
+    {"void_fix", BF_AT(bf_mac_params, void_fix, BF_BOOL), "", "false",
+     "fill empty cells enclosed by the fluid (no chain of empty cells to an "
+     "EMP cell): FULL with the neighbours' density (not in the listing, "
+     "which makes them SUR cells with a frozen pressure)",
+     0, 0, 0, NULL},
+    {"wall_markers", BF_AT(bf_mac_params, wall_remove, BF_ENUM), "", "hold",
+     "a fluid marker whose move would cross a wall: hold it on the wall, or "
+     "remove it and count it lost (the listing)",
+     0, 0, 0, "hold|remove"},
+    {"slots", BF_AT(bf_mac_params, slots, BF_INT), "1", "0",
+     "particle slots (listing NK = 800); 0: 800 refine^2",
+     BF_NONNEG | BF_MAX, 0, 1e7, NULL},
+    {"max_cfl", BF_AT(bf_mac_params, max_cfl, BF_REAL), "1", "1",
+     "stop (exit 3) when |u| dt/dx or |v| dt/dy exceeds this", BF_POS, 0, 0,
+     NULL},
+    {0},
+};
+
+const bf_section_spec bf_mac_spec =
+    BF_SECTION("mac", "the thesis's predictor-corrector MAC solver "
+               "(docs/models/mac.md)", mac_params, bf_mac_params);
+
 void bf_mac_params_default(bf_mac_params *p)
 {
-    memset(p, 0, sizeof *p);
-    p->problem = BF_MAC_RESERVOIR;
-    p->refine = 1;
-    p->update = BF_MAC_PRINTED;
-    p->solver = BF_MAC_RELAX;
-    p->crude_tol = 3e-4;
-    p->fine_tol = 2e-4;
-    p->max_sweeps = 500;
-    p->omega = 1.0;
-    p->direct_tol = 1e-10;
-    p->max_passes = 10;
-    p->predict = 1;
-    p->mu = 1.14e-4;
-    p->alpha = 1.41e-5;
-    p->g = -0.98;
-    p->rho_mean = 0.9985;
-    p->rho_amp = 0.0015;
-    p->t_mean = 15.0;
-    p->t_amp = 10.0;
-    p->out_first = 13;
-    p->u0 = 0.1;
-    p->max_cfl = 1.0;
+    /* cannot fail: every key has a valid default (tests/test_mac.c) */
+    bf_params_defaults(&bf_mac_spec, p, NULL);
 }
 
 void bf_mac_free(bf_mac *m)
@@ -76,11 +168,11 @@ void bf_mac_free(bf_mac *m)
 static bf_status check_params(const bf_mac_params *p, double dt, bf_err *err)
 {
     if (p->refine < 1 || p->refine > 8)
-        return bf_fail(err, BF_EINPUT, "refine = %d: must be 1..8", p->refine);
+        return bf_fail(err, BF_EINPUT, "refine = %ld: must be 1..8", p->refine);
     if (p->slots < 0 || p->slots > 10000000)
         return bf_fail(err, BF_EINPUT, "slots = %ld: must be 0..1e7", p->slots);
     if (p->out_first < 2 || p->out_first > 14)
-        return bf_fail(err, BF_EINPUT, "out_first = %d: the two OUT cells "
+        return bf_fail(err, BF_EINPUT, "out_first = %ld: the two OUT cells "
                        "must lie under the fluid (2..14)", p->out_first);
     if (!(p->rho_mean > p->rho_amp && p->rho_amp >= 0))
         return bf_fail(err, BF_EINPUT, "rho_mean = %g, rho_amp = %g: the "
@@ -250,7 +342,7 @@ bf_status bf_mac_create(bf_mac **out, const bf_mac_params *p, double dt,
     if (!m)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     m->prm = *p;
-    const int r = p->refine;
+    const int r = (int)p->refine;
     m->ni = m->nj = 14 * r + 2;
     m->st = m->nj + 2;
     m->ncell = (size_t)(m->ni + 2) * (size_t)m->st;
@@ -260,11 +352,11 @@ bf_status bf_mac_create(bf_mac **out, const bf_mac_params *p, double dt,
     m->part_area = 0.25 * m->dx * m->dy;
     m->nsur = 12 * r + 1;
     m->nro = 2 * (m->nsur - 1);
-    m->out_lo = (p->out_first - 2) * r + 2;
+    m->out_lo = (int)(p->out_first - 2) * r + 2;
     m->out_hi = m->out_lo + 2 * r - 1;
     if (m->out_hi > m->ni - 1) {
         bf_mac_free(m);
-        return bf_fail(err, BF_EINPUT, "out_first = %d puts OUT cells under "
+        return bf_fail(err, BF_EINPUT, "out_first = %ld puts OUT cells under "
                        "the right wall", p->out_first);
     }
     size_t nslots = p->slots > 0 ? (size_t)p->slots : (size_t)(800 * r * r);
@@ -522,26 +614,6 @@ bf_status bf_mac_step(bf_mac *m, double dt, bf_err *err)
     return BF_OK;
 }
 
-void bf_mac_flood(bf_mac *m, int n, int (*pass)(int flag))
-{
-    const int nyu = m->nj - 2;
-    const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
-    for (int head = 0; head < n;) {
-        int k = m->queue[head++];
-        int i = k / nyu + 2, j = k % nyu + 2;
-        for (int d = 0; d < 4; d++) {
-            int a = i + di[d], b = j + dj[d];
-            if (!mac_interior(m, a, b) || !pass(m->ic[IX(a, b)]))
-                continue;
-            int kk = mac_unk(m, a, b);
-            if (!m->mark[kk]) {
-                m->mark[kk] = 1;
-                m->queue[n++] = kk;
-            }
-        }
-    }
-}
-
 /* ------------------------------------------------------------ views */
 
 void bf_mac_dims(const bf_mac *m, int *ni, int *nj, double *dx, double *dy)
@@ -623,108 +695,66 @@ double bf_mac_fluid_mass(const bf_mac *m)
 
 /* ------------------------------------------------------------ checkpoints */
 
-static bf_status put_field(bf_ckpt *ck, const char *prefix, const char *nm,
-                           const double *f, size_t n, bf_err *err)
-{
-    char name[256];
-    snprintf(name, sizeof name, "%s.%s", prefix, nm);
-    return bf_ckpt_put(ck, name, f, n, err);
-}
+/* The state at t = n dt (the work arrays are recomputed by every step),
+ * stored as PREFIX.NAME; the markers as PREFIX.markers (particles.h). */
+static const bf_field mac_state[] = {
+    BF_FIELD_PTR(bf_mac, u, BF_F_DOUBLE, ncell, "W"),
+    BF_FIELD_PTR(bf_mac, v, BF_F_DOUBLE, ncell, "W"),
+    BF_FIELD_PTR(bf_mac, p, BF_F_DOUBLE, ncell, "R W^2"),
+    BF_FIELD_PTR(bf_mac, r, BF_F_DOUBLE, ncell, "R"),
+    BF_FIELD_PTR(bf_mac, t, BF_F_DOUBLE, ncell, "dT"),
+    BF_FIELD_PTR(bf_mac, ic, BF_F_INT, ncell, "1"),
+    BF_FIELD_PTR(bf_mac, dens, BF_F_DOUBLE, part.n, "R"),
+    BF_FIELD(bf_mac, last_passes, BF_F_INT, "1"),
+    BF_FIELD(bf_mac, last_sweeps, BF_F_LONG, "1"),
+};
 
-static bf_status get_field(const bf_ckpt *ck, const char *prefix,
-                           const char *nm, double *f, size_t n, bf_err *err)
-{
-    char name[256];
-    snprintf(name, sizeof name, "%s.%s", prefix, nm);
-    return bf_ckpt_get(ck, name, f, n, err);
-}
-
-/* Counters as two arrays (int64 and real), in the order of the struct. */
-#define MAC_NI64 12
-#define MAC_NREAL 6
-static void counts_pack(const bf_mac_counts *c, int64_t *iv, double *rv)
-{
-    const int64_t in[MAC_NI64] = {c->entered, c->left_out, c->freed,
-                                  c->backflow, c->lost, c->in_clamped,
-                                  c->oscillations, c->passes, c->sweeps,
-                                  c->max_sweeps_step, c->held, c->voids};
-    const double re[MAC_NREAL] = {c->mass_in,   c->mass_out,  c->mass_back,
-                                  c->mass_lost, c->max_gs_dp, c->max_gs_du};
-    memcpy(iv, in, sizeof in);
-    memcpy(rv, re, sizeof re);
-}
-
-static void counts_unpack(bf_mac_counts *c, const int64_t *iv, const double *rv)
-{
-    int64_t *in[MAC_NI64] = {&c->entered, &c->left_out, &c->freed,
-                             &c->backflow, &c->lost, &c->in_clamped,
-                             &c->oscillations, &c->passes, &c->sweeps,
-                             &c->max_sweeps_step, &c->held, &c->voids};
-    double *re[MAC_NREAL] = {&c->mass_in,   &c->mass_out,  &c->mass_back,
-                             &c->mass_lost, &c->max_gs_dp, &c->max_gs_du};
-    for (int k = 0; k < MAC_NI64; k++)
-        *in[k] = iv[k];
-    for (int k = 0; k < MAC_NREAL; k++)
-        *re[k] = rv[k];
-}
+/* The counters, as PREFIX.counts.NAME. */
+static const bf_field mac_counts[] = {
+    BF_FIELD(bf_mac_counts, entered, BF_F_I64, "particles"),
+    BF_FIELD(bf_mac_counts, left_out, BF_F_I64, "particles"),
+    BF_FIELD(bf_mac_counts, freed, BF_F_I64, "particles"),
+    BF_FIELD(bf_mac_counts, backflow, BF_F_I64, "particles"),
+    BF_FIELD(bf_mac_counts, lost, BF_F_I64, "particles"),
+    BF_FIELD(bf_mac_counts, in_clamped, BF_F_I64, "particles"),
+    BF_FIELD(bf_mac_counts, held, BF_F_I64, "moves"),
+    BF_FIELD(bf_mac_counts, voids, BF_F_I64, "cells"),
+    BF_FIELD(bf_mac_counts, oscillations, BF_F_I64, "steps"),
+    BF_FIELD(bf_mac_counts, passes, BF_F_I64, "1"),
+    BF_FIELD(bf_mac_counts, sweeps, BF_F_I64, "1"),
+    BF_FIELD(bf_mac_counts, max_sweeps_step, BF_F_I64, "1"),
+    BF_FIELD(bf_mac_counts, mass_in, BF_F_DOUBLE, "R L^2"),
+    BF_FIELD(bf_mac_counts, mass_out, BF_F_DOUBLE, "R L^2"),
+    BF_FIELD(bf_mac_counts, mass_back, BF_F_DOUBLE, "R L^2"),
+    BF_FIELD(bf_mac_counts, mass_lost, BF_F_DOUBLE, "R L^2"),
+    BF_FIELD(bf_mac_counts, max_gs_dp, BF_F_DOUBLE, "1"),
+    BF_FIELD(bf_mac_counts, max_gs_du, BF_F_DOUBLE, "W"),
+};
 
 bf_status bf_mac_save(const bf_mac *m, bf_ckpt *ck, const char *prefix,
                       bf_err *err)
 {
-    bf_status st;
     char name[256];
-    const double *f[] = {m->u, m->v, m->p, m->r, m->t};
-    const char *nm[] = {"u", "v", "p", "rho", "T"};
-    for (int k = 0; k < 5; k++)
-        if ((st = put_field(ck, prefix, nm[k], f[k], m->ncell, err)))
-            return st;
-    snprintf(name, sizeof name, "%s.flags", prefix);
-    if ((st = bf_ckpt_put_bytes(ck, name, m->ic, m->ncell * sizeof *m->ic,
-                                err)))
-        return st;
-    snprintf(name, sizeof name, "%s.markers", prefix);
-    if ((st = bf_particles_save(&m->part, ck, name, err)))
-        return st;
-    if ((st = put_field(ck, prefix, "density", m->dens, m->part.n, err)))
-        return st;
-    int64_t iv[MAC_NI64 + 2];
-    double rv[MAC_NREAL];
-    counts_pack(&m->cnt, iv, rv);
-    iv[MAC_NI64] = m->last_passes;
-    iv[MAC_NI64 + 1] = m->last_sweeps;
+    bf_status st = bf_ckpt_put_fields(ck, prefix, mac_state,
+                                      BF_NFIELDS(mac_state), m, err);
     snprintf(name, sizeof name, "%s.counts", prefix);
-    if ((st = bf_ckpt_put_i64(ck, name, iv, MAC_NI64 + 2, err)))
-        return st;
-    return put_field(ck, prefix, "masses", rv, MAC_NREAL, err);
+    if (!st)
+        st = bf_ckpt_put_fields(ck, name, mac_counts, BF_NFIELDS(mac_counts),
+                                &m->cnt, err);
+    snprintf(name, sizeof name, "%s.markers", prefix);
+    return st ? st : bf_particles_save(&m->part, ck, name, err);
 }
 
 bf_status bf_mac_load(bf_mac *m, const bf_ckpt *ck, const char *prefix,
                       bf_err *err)
 {
-    bf_status st;
     char name[256];
-    double *f[] = {m->u, m->v, m->p, m->r, m->t};
-    const char *nm[] = {"u", "v", "p", "rho", "T"};
-    for (int k = 0; k < 5; k++)
-        if ((st = get_field(ck, prefix, nm[k], f[k], m->ncell, err)))
-            return st;
-    snprintf(name, sizeof name, "%s.flags", prefix);
-    if ((st = bf_ckpt_get_bytes(ck, name, m->ic, m->ncell * sizeof *m->ic,
-                                err)))
-        return st;
-    snprintf(name, sizeof name, "%s.markers", prefix);
-    if ((st = bf_particles_load(&m->part, ck, name, err)))
-        return st;
-    if ((st = get_field(ck, prefix, "density", m->dens, m->part.n, err)))
-        return st;
-    int64_t iv[MAC_NI64 + 2];
-    double rv[MAC_NREAL];
+    bf_status st = bf_ckpt_get_fields(ck, prefix, mac_state,
+                                      BF_NFIELDS(mac_state), m, err);
     snprintf(name, sizeof name, "%s.counts", prefix);
-    if ((st = bf_ckpt_get_i64(ck, name, iv, MAC_NI64 + 2, err)) ||
-        (st = get_field(ck, prefix, "masses", rv, MAC_NREAL, err)))
-        return st;
-    counts_unpack(&m->cnt, iv, rv);
-    m->last_passes = (int)iv[MAC_NI64];
-    m->last_sweeps = (long)iv[MAC_NI64 + 1];
-    return BF_OK;
+    if (!st)
+        st = bf_ckpt_get_fields(ck, name, mac_counts, BF_NFIELDS(mac_counts),
+                                &m->cnt, err);
+    snprintf(name, sizeof name, "%s.markers", prefix);
+    return st ? st : bf_particles_load(&m->part, ck, name, err);
 }

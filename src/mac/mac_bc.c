@@ -26,11 +26,9 @@
  *   (rho u v)_L] (listing lines 2643-2647), with no hydrostatic term: that
  *   missing rho |g| dy is what drains the reservoir through its sink.
  */
-#include "mac_internal.h"
+#include "mac/mac_bc.h"
 
 #include <math.h>
-
-static int ktype(const bf_mac *m) { return m->prm.update == BF_MAC_CONSISTENT; }
 
 /* Ring densities mirror the fluid (labels 106-109; the top row added so
  * that a fluid touching the lid also has a face density). */
@@ -44,33 +42,6 @@ void bf_mac_mirror_density(bf_mac *m)
     for (int j = 2; j <= m->nj - 1; j++) {
         R[IX(1, j)] = R[IX(2, j)];
         R[IX(m->ni, j)] = R[IX(m->ni - 1, j)];
-    }
-}
-
-void bf_mac_face_of(const bf_mac *m, int i, int j, int d, mac_face *f)
-{
-    const double *R = m->r;
-    switch (d) {
-    case MAC_E:
-        f->i = i + 1, f->j = j, f->delta = m->dx, f->s = 1;
-        f->psi = m->xi[IX(i + 1, j)];
-        f->rhof = 0.5 * (R[IX(i, j)] + R[IX(i + 1, j)]);
-        break;
-    case MAC_W:
-        f->i = i - 1, f->j = j, f->delta = m->dx, f->s = -1;
-        f->psi = m->xi[IX(i, j)];
-        f->rhof = 0.5 * (R[IX(i - 1, j)] + R[IX(i, j)]);
-        break;
-    case MAC_N:
-        f->i = i, f->j = j + 1, f->delta = m->dy, f->s = 1;
-        f->psi = m->zeta[IX(i, j + 1)];
-        f->rhof = 0.5 * (R[IX(i, j)] + R[IX(i, j + 1)]);
-        break;
-    default:
-        f->i = i, f->j = j - 1, f->delta = m->dy, f->s = -1;
-        f->psi = m->zeta[IX(i, j)];
-        f->rhof = 0.5 * (R[IX(i, j - 1)] + R[IX(i, j)]);
-        break;
     }
 }
 
@@ -109,7 +80,7 @@ static double out_offset(const bf_mac *m, int ig, int jg, int ic, int jc)
 }
 
 int bf_mac_boundary_face(const bf_mac *m, int ig, int jg, int ic, int jc,
-                      double *val)
+                         double *val)
 {
     int flag = m->ic[IX(ig, jg)];
     if (flag == BF_MAC_IN) {
@@ -147,7 +118,7 @@ static void ghost_one(bf_mac *m, double *p, int ig, int jg, int ic, int jc)
     }
     mac_face f;
     bf_mac_face_of(m, ic, jc, side_of(m, ig, jg), &f);
-    const int K = ktype(m);
+    const int K = mac_consistent(m);
     double k = K ? 1.0 : 1.0 / f.rhof;
     double xc = K ? p[c] / m->r[c] : p[c];
     double xg = xc - f.delta / (m->dt * k) * f.s * (val - f.psi / f.rhof);

@@ -27,7 +27,7 @@
  * the fluid cells is removed (counted as backflow in the IN column, lost
  * otherwise).
  */
-#include "mac_internal.h"
+#include "mac/mac_markers.h"
 
 #include <math.h>
 
@@ -183,7 +183,7 @@ int bf_mac_find_void(bf_mac *m, int *vi, int *vj)
     return n;
 }
 
-int bf_mac_fill_voids(bf_mac *m)
+static int fill_voids(bf_mac *m)
 {
     int filled = 0;
     flood_from_empty(m);
@@ -265,7 +265,7 @@ int bf_mac_correct_density(bf_mac *m)
             }
         }
     if (m->prm.void_fix)
-        m->voids_filled += bf_mac_fill_voids(m);
+        m->voids_filled += fill_voids(m);
     for (int i = 2; i <= m->ni - 1; i++)
         for (int j = 2; j <= m->nj - 1; j++) {
             size_t c = IX(i, j);

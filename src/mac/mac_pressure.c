@@ -32,18 +32,18 @@
  * known fluxes), factored by a band Cholesky (interior cells numbered with
  * J fastest, bandwidth nj - 2) and checked by its residual.
  */
-#include "mac_internal.h"
+#include "mac/mac_pressure.h"
+
+#include "mac/mac_bc.h"
 
 #include <math.h>
 #include <string.h>
-
-static int ktype(const bf_mac *m) { return m->prm.update == BF_MAC_CONSISTENT; }
 
 void bf_mac_pressure_coefficients(bf_mac *m)
 {
     const double dx = m->dx, dy = m->dy, dt = m->dt;
     const double *R = m->r, *XI = m->xi, *ZE = m->zeta;
-    const int K = ktype(m);
+    const int K = mac_consistent(m);
     for (int i = 2; i <= m->ni - 1; i++)
         for (int j = 2; j <= m->nj - 1; j++) {
             size_t c = IX(i, j);
@@ -178,7 +178,7 @@ static double *bel(bf_mac *m, double *band, int k, int d)
 
 static void assemble(bf_mac *m)
 {
-    const int K = ktype(m);
+    const int K = mac_consistent(m);
     const double dt = m->dt;
     const size_t nb = (size_t)m->nunk * (size_t)(m->bw + 1);
     memset(m->band, 0, nb * sizeof *m->band);
@@ -328,7 +328,7 @@ bf_status bf_mac_direct(bf_mac *m, double *pout, bf_err *err)
                        "direct pressure solve: relative residual %.3g > "
                        "direct_tol = %g at cell (%d,%d)",
                        rel, m->prm.direct_tol, worst / nyu + 2, worst % nyu + 2);
-    const int K = ktype(m);
+    const int K = mac_consistent(m);
     if (pout != m->p)
         memcpy(pout, m->p, m->ncell * sizeof *pout);
     for (int i = 2; i <= m->ni - 1; i++)

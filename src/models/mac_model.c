@@ -1,10 +1,12 @@
 /* mac_model.c: the "mac" model: the thesis's predictor-corrector MAC
- * solver (include/ballfilm/mac.h) driven by a scene.
+ * solver (src/mac/mac.h) as a model of the time loop.
  *
- * [mac] selects the problem (the stratified reservoir with a point sink of
- * PROGRAM STRATRES, the tank at rest, the uniform stream), the velocity
- * update and pressure solver, and every uncertain reading of the listing
- * (defaults: the listing's most likely reading; see README).
+ * [mac] (its keys: bf_mac_spec, src/mac/mac.c) selects the problem (the
+ * stratified reservoir with a point sink of PROGRAM STRATRES, the tank at
+ * rest, the uniform stream), the velocity update and pressure solver, and
+ * every uncertain reading of the listing (defaults: the listing's most
+ * likely reading; see README).  The explicit terms limit [scene] dt
+ * (stable_dt).
  *
  * Output (one row per output time):
  *   /mac/u [(ni+1) nj], /mac/v [ni (nj+1)], /mac/p, /mac/rho, /mac/T,
@@ -18,119 +20,19 @@
  *   /mac/diag [6]: max |u|, max |v| on fluid faces, max |div w| in FULL
  *   cells, corrector passes and sweeps of the last step, oscillations.
  */
+#include <float.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
-#include "ballfilm/mac.h"
+#include "mac/mac.h"
 #include "ballfilm/model.h"
-
-static const bf_param mac_params[] = {
-    {"problem", BF_ENUM, 0, "", "reservoir",
-     "reservoir: PROGRAM STRATRES (IN left, point sink in the bottom); rest: "
-     "the same fluid in a closed tank; uniform: a uniform stream (IN left, "
-     "OUT right, slip bottom)",
-     0, 0, 0, "reservoir|rest|uniform"},
-    {"refine", BF_INT, 0, "1", "1",
-     "grid refinement r: (14 r + 2)^2 cells, dx = dy = 0.1/r, same physical "
-     "set-up (scale [scene] dt by 1/r too)",
-     BF_MIN | BF_MAX, 1, 8, NULL},
-    {"update", BF_ENUM, 0, "", "printed",
-     "printed: (3.11)/(3.12) with (3.10) as printed (thesis, listing); "
-     "consistent: (3.11)/(3.12) with the pressure equation derived from them; "
-     "original: (3.6)-(3.9) with (3.10)",
-     0, 0, 0, "printed|consistent|original"},
-    {"pressure_solver", BF_ENUM, 0, "", "relax",
-     "relax: the listing's Gauss-Seidel with crude/fine tests; direct: band "
-     "Cholesky checked to direct_tol",
-     0, 0, 0, "relax|direct"},
-    {"compare", BF_BOOL, 0, "", "false",
-     "with relax: also solve the final pass exactly and record the largest "
-     "pressure and velocity differences",
-     0, 0, 0, NULL},
-    {"crude_tol", BF_REAL, 0, "1", "3e-4",
-     "crude test: |dP| per sweep / |rho g DEPTH| (listing .0003)", BF_POS, 0,
-     0, NULL},
-    {"fine_tol", BF_REAL, 0, "1", "2e-4",
-     "fine test of the last pass (listing .0002)", BF_POS, 0, 0, NULL},
-    {"max_sweeps", BF_INT, 0, "1", "500",
-     "sweeps per relaxation before 'too many iterations' (listing 500)",
-     BF_MIN, 1, 0, NULL},
-    {"omega", BF_REAL, 0, "1", "1",
-     "over-relaxation factor (the listing has none: 1)", BF_POS | BF_MAX, 0,
-     1.99, NULL},
-    {"direct_tol", BF_REAL, 0, "1", "1e-10",
-     "largest relative residual accepted from the direct solve", BF_POS, 0, 0,
-     NULL},
-    {"max_passes", BF_INT, 0, "1", "10",
-     "corrector passes before the fine pass is forced (listing ITNUM 10)",
-     BF_MIN, 1, 0, NULL},
-    {"oscillation", BF_ENUM, 0, "", "continue",
-     "when the density still changes after max_passes: continue with the "
-     "fine pass (listing, counted in /mac/diag) or stop (exit 4)",
-     0, 0, 0, "continue|stop"},
-    {"predict", BF_BOOL, 0, "", "true",
-     "use the predicted density (3.13) in the first pass (thesis); false: "
-     "the OCR'd listing, which never copies RN into R",
-     0, 0, 0, NULL},
-    {"mu", BF_REAL, 0, "1 (scaled)", "1.14e-4", "viscosity mu' (listing MU)",
-     BF_NONNEG, 0, 0, NULL},
-    {"alpha", BF_REAL, 0, "1 (scaled)", "1.41e-5",
-     "conductivity alpha' = k/(R L W C_v) (listing ALPHA)", BF_NONNEG, 0, 0,
-     NULL},
-    {"g", BF_REAL, 0, "W^2/L", "-0.98", "body force per unit mass, y component "
-     "(listing G)", 0, 0, 0, NULL},
-    {"rho_mean", BF_REAL, 0, "R", "0.9985",
-     "density profile rho = rho_mean - rho_amp tanh(y - D/2)/tanh(D/2)",
-     BF_POS, 0, 0, NULL},
-    {"rho_amp", BF_REAL, 0, "R", "0.0015",
-     "density amplitude (0: homogeneous fluid)", BF_NONNEG, 0, 0, NULL},
-    {"t_mean", BF_REAL, 0, "dT", "15", "temperature T = t_mean + t_amp tanh(...)",
-     0, 0, 0, NULL},
-    {"t_amp", BF_REAL, 0, "dT", "10", "temperature amplitude", 0, 0, 0, NULL},
-    {"conduction", BF_ENUM, 0, "", "thesis",
-     "heat conduction coefficient in (3.14): alpha/rho (thesis) or "
-     "ALPHA*MU/R (listing line 3304)",
-     0, 0, 0, "thesis|listing"},
-    {"out_first", BF_INT, 0, "1", "13",
-     "I of the first of the two OUT cells on the 16 x 16 grid: 13 (IC flags, "
-     "velocity and pressure blocks) or 14 (the particle test NI-1, NI-2)",
-     BF_MIN | BF_MAX, 2, 14, NULL},
-    {"out_gravity", BF_BOOL, 0, "", "false",
-     "add the hydrostatic rho |g| dy to the OUT ghost pressure (not in the "
-     "listing; the sink then barely draws)",
-     0, 0, 0, NULL},
-    {"inflow", BF_ENUM, 0, "", "copy",
-     "reservoir IN boundary: copy U(2,J) = U(3,J) with P = P0 (thesis) or "
-     "prescribed u0 with P from momentum",
-     0, 0, 0, "copy|prescribed"},
-    {"u0", BF_REAL, 0, "W", "0.1",
-     "stream speed of the uniform problem (and of a prescribed inflow)", 0, 0,
-     0, NULL},
-    {"void_fix", BF_BOOL, 0, "", "false",
-     "fill empty cells enclosed by the fluid (no chain of empty cells to an "
-     "EMP cell): FULL with the neighbours' density (not in the listing, "
-     "which makes them SUR cells with a frozen pressure)",
-     0, 0, 0, NULL},
-    {"wall_markers", BF_ENUM, 0, "", "hold",
-     "a fluid marker whose move would cross a wall: hold it on the wall, or "
-     "remove it and count it lost (the listing)",
-     0, 0, 0, "hold|remove"},
-    {"slots", BF_INT, 0, "1", "0",
-     "particle slots (listing NK = 800); 0: 800 refine^2",
-     BF_NONNEG | BF_MAX, 0, 1e7, NULL},
-    {"max_cfl", BF_REAL, 0, "1", "1",
-     "stop (exit 3) when |u| dt/dx or |v| dt/dy exceeds this", BF_POS, 0, 0,
-     NULL},
-    {0},
-};
-
-static const bf_section_spec mac_spec = {
-    "mac", "the thesis's predictor-corrector MAC solver (seed 004)",
-    mac_params, 0};
 
 typedef struct mac_model {
     bf_mac *mac;
+    bf_mac_params prm; /* the [mac] section it was built from */
     int ni, nj;
     size_t slots;
     bf_series *u, *v, *p, *rho, *temp, *flags;
@@ -139,79 +41,30 @@ typedef struct mac_model {
     int64_t *ibuf; /* the same for the integer series */
 } mac_model;
 
-static bf_status read_params(const bf_scene *sc, bf_mac_params *p, bf_err *err)
+/* Combinations that cannot work, refused before anything is written (the
+ * time-step limits are mac_model_stable_dt's). */
+static bf_status check_params(const bf_mac_params *p, bf_err *err)
 {
-    bf_mac_params_default(p);
-    p->problem = (bf_mac_problem)bf_scene_enum(sc, "mac", "problem");
-    p->refine = (int)bf_scene_int(sc, "mac", "refine");
-    p->update = (bf_mac_update)bf_scene_enum(sc, "mac", "update");
-    p->solver = (bf_mac_solver)bf_scene_enum(sc, "mac", "pressure_solver");
-    p->compare = bf_scene_bool(sc, "mac", "compare");
-    p->crude_tol = bf_scene_real(sc, "mac", "crude_tol");
-    p->fine_tol = bf_scene_real(sc, "mac", "fine_tol");
-    p->max_sweeps = bf_scene_int(sc, "mac", "max_sweeps");
-    p->omega = bf_scene_real(sc, "mac", "omega");
-    p->direct_tol = bf_scene_real(sc, "mac", "direct_tol");
-    p->max_passes = (int)bf_scene_int(sc, "mac", "max_passes");
-    p->stop_on_oscillation = bf_scene_enum(sc, "mac", "oscillation") == 1;
-    p->predict = bf_scene_bool(sc, "mac", "predict");
-    p->mu = bf_scene_real(sc, "mac", "mu");
-    p->alpha = bf_scene_real(sc, "mac", "alpha");
-    p->g = bf_scene_real(sc, "mac", "g");
-    p->rho_mean = bf_scene_real(sc, "mac", "rho_mean");
-    p->rho_amp = bf_scene_real(sc, "mac", "rho_amp");
-    p->t_mean = bf_scene_real(sc, "mac", "t_mean");
-    p->t_amp = bf_scene_real(sc, "mac", "t_amp");
-    p->kappa_listing = bf_scene_enum(sc, "mac", "conduction") == 1;
-    p->out_first = (int)bf_scene_int(sc, "mac", "out_first");
-    p->out_gravity = bf_scene_bool(sc, "mac", "out_gravity");
-    p->inflow_prescribed = bf_scene_enum(sc, "mac", "inflow") == 1;
-    p->u0 = bf_scene_real(sc, "mac", "u0");
-    p->void_fix = bf_scene_bool(sc, "mac", "void_fix");
-    p->wall_remove = bf_scene_enum(sc, "mac", "wall_markers") == 1;
-    p->slots = bf_scene_int(sc, "mac", "slots");
-    p->max_cfl = bf_scene_real(sc, "mac", "max_cfl");
-
-    /* physics that cannot work, refused before anything is written */
-    double dt = bf_scene_real(sc, "scene", "dt");
-    double h = 0.1 / p->refine;
+    bf_mac_params def;
+    bf_mac_params_default(&def);
     if (p->rho_amp >= p->rho_mean)
-        return bf_scene_fail(sc, err, "mac", "rho_amp",
-                             "rho_amp = %g must be below rho_mean = %g (the "
-                             "density must stay positive)",
-                             p->rho_amp, p->rho_mean);
-    double rmin = p->rho_mean - p->rho_amp;
-    /* explicit viscous and conduction terms: 4 nu dt / h^2 <= 1 */
-    if (4.0 * p->mu * dt / (rmin * h * h) > 1.0)
-        return bf_scene_fail(sc, err, "scene", "dt",
-                             "dt = %g exceeds the explicit viscous limit "
-                             "h^2 rho/(4 mu) = %g for dx = %g",
-                             dt, rmin * h * h / (4.0 * p->mu), h);
-    double kap = p->kappa_listing ? p->alpha * p->mu : p->alpha;
-    if (4.0 * kap * dt / (rmin * h * h) > 1.0)
-        return bf_scene_fail(sc, err, "scene", "dt",
-                             "dt = %g exceeds the explicit conduction limit "
-                             "h^2 rho/(4 alpha) = %g",
-                             dt, rmin * h * h / (4.0 * kap));
-    if ((p->problem == BF_MAC_UNIFORM || p->inflow_prescribed) &&
-        fabs(p->u0) * dt / h > p->max_cfl)
-        return bf_scene_fail(sc, err, "mac", "u0",
-                             "u0 dt/dx = %g exceeds max_cfl = %g",
-                             fabs(p->u0) * dt / h, p->max_cfl);
+        return bf_fail_key(err, BF_EINPUT, "mac", "rho_amp",
+                           "rho_amp = %g must be below rho_mean = %g (the "
+                           "density must stay positive)",
+                           p->rho_amp, p->rho_mean);
     if (p->problem != BF_MAC_RESERVOIR &&
-        (bf_scene_given(sc, "mac", "inflow") ||
-         bf_scene_given(sc, "mac", "out_first") ||
-         bf_scene_given(sc, "mac", "out_gravity")))
-        return bf_scene_fail(sc, err, "mac", "problem",
-                             "inflow, out_first and out_gravity apply to the "
-                             "reservoir problem only");
+        (p->inflow_prescribed != def.inflow_prescribed ||
+         p->out_first != def.out_first || p->out_gravity != def.out_gravity))
+        return bf_fail_key(err, BF_EINPUT, "mac", "problem",
+                           "inflow, out_first and out_gravity apply to the "
+                           "reservoir problem only");
     if ((p->problem == BF_MAC_UNIFORM || p->inflow_prescribed) && p->u0 <= 0)
-        return bf_scene_fail(sc, err, "mac", "u0",
-                             "a prescribed inflow needs u0 > 0 (IN on the "
-                             "left)");
+        return bf_fail_key(err, BF_EINPUT, "mac", "u0",
+                           "a prescribed inflow needs u0 > 0 (IN on the "
+                           "left)");
     if (p->compare && p->solver != BF_MAC_RELAX)
-        return bf_scene_fail(sc, err, "mac", "compare",
-                             "compare needs pressure_solver = relax");
+        return bf_fail_key(err, BF_EINPUT, "mac", "compare",
+                           "compare needs pressure_solver = relax");
     return BF_OK;
 }
 
@@ -226,25 +79,22 @@ static void mac_model_destroy(void *self)
     free(mm);
 }
 
-static bf_status mac_model_create(void **self, const bf_scene *sc,
-                          const bf_model_setup *setup, bf_err *err)
+static bf_status mac_model_create(void **self, const bf_model_setup *setup,
+                                  bf_err *err)
 {
-    (void)setup;
-    bf_mac_params p;
-    bf_status st = read_params(sc, &p, err);
+    const bf_mac_params *p = bf_setup_get(setup, &bf_mac_spec, NULL);
+    bf_status st = check_params(p, err);
     if (st)
         return st;
     mac_model *mm = calloc(1, sizeof *mm);
     if (!mm)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    st = bf_mac_create(&mm->mac, &p, bf_scene_real(sc, "scene", "dt"), err);
+    mm->prm = *p;
+    st = bf_mac_create(&mm->mac, p, setup->run.dt, err);
     if (st) {
         free(mm);
-        if (st == BF_EINPUT) {
-            char msg[BF_ERR_MSG];
-            snprintf(msg, sizeof msg, "%s", err->msg);
-            return bf_scene_fail(sc, err, "mac", NULL, "%s", msg);
-        }
+        if (st == BF_EINPUT && !err->section[0])
+            bf_err_set_key(err, "mac", ""); /* about the section */
         return st;
     }
     bf_mac_dims(mm->mac, &mm->ni, &mm->nj, NULL, NULL);
@@ -260,6 +110,82 @@ static bf_status mac_model_create(void **self, const bf_scene *sc,
     }
     *self = mm;
     return BF_OK;
+}
+
+/* ------------------------------------------------ explicit step limits */
+
+/* A step dt is refused by the explicit viscous and conduction terms when
+ * 4 c dt / (rmin h^2) > 1 (c = mu or the conduction coefficient, rmin the
+ * smallest density, h = dx = dy), and by a prescribed stream when
+ * |u0| dt/dx > max_cfl. */
+typedef struct dt_test {
+    int cfl;       /* 0: the diffusion test with c; 1: the stream's CFL */
+    double c, rmin, h, u0, max_cfl;
+} dt_test;
+
+static int refused(const dt_test *k, double dt)
+{
+    if (!k->cfl)
+        return 4.0 * k->c * dt / (k->rmin * k->h * k->h) > 1.0;
+    return k->u0 * dt / k->h > k->max_cfl;
+}
+
+/* Offer the limit of test k (near `estimate`) to lim: kept if it is the
+ * smallest so far (the first on a tie), with its reason and its key.  The
+ * limit is the largest dt the test passes, moved from the estimate by an
+ * ulp or two, so that the loop refuses exactly the steps it refuses. */
+static void offer(bf_dt_limit *lim, const dt_test *k, double estimate,
+                  const char *section, const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 6, 7)));
+
+static void offer(bf_dt_limit *lim, const dt_test *k, double estimate,
+                  const char *section, const char *key, const char *fmt, ...)
+{
+    double dt = estimate;
+    while (dt > 0 && refused(k, dt))
+        dt = nextafter(dt, 0.0);
+    while (dt < DBL_MAX && !refused(k, nextafter(dt, INFINITY)))
+        dt = nextafter(dt, INFINITY);
+    if (!(dt > 0) || (lim->dt_max > 0 && lim->dt_max <= dt))
+        return;
+    lim->dt_max = dt;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(lim->why, sizeof lim->why, fmt, ap);
+    va_end(ap);
+    snprintf(lim->section, sizeof lim->section, "%s", section);
+    snprintf(lim->key, sizeof lim->key, "%s", key);
+}
+
+/* The smallest of the explicit limits ("" names [scene] dt). */
+static void mac_model_stable_dt(const void *self, bf_dt_limit *lim)
+{
+    const bf_mac_params *p = &((const mac_model *)self)->prm;
+    const double h = 0.1 / (double)p->refine;
+    const double rmin = p->rho_mean - p->rho_amp;
+    const double kap = p->kappa_listing ? p->alpha * p->mu : p->alpha;
+    memset(lim, 0, sizeof *lim);
+    if (p->mu > 0) {
+        const dt_test k = {0, p->mu, rmin, h, 0, 0};
+        const double d = rmin * h * h / (4.0 * p->mu);
+        offer(lim, &k, d, "", "",
+              "the explicit viscous limit h^2 rho/(4 mu) = %g for dx = %g", d,
+              h);
+    }
+    if (kap > 0) {
+        const dt_test k = {0, kap, rmin, h, 0, 0};
+        const double d = rmin * h * h / (4.0 * kap);
+        offer(lim, &k, d, "", "",
+              "the explicit conduction limit h^2 rho/(4 alpha) = %g", d);
+    }
+    if (p->problem == BF_MAC_UNIFORM || p->inflow_prescribed) {
+        const dt_test k = {1, 0, rmin, h, fabs(p->u0), p->max_cfl};
+        const double d = p->max_cfl * h / fabs(p->u0);
+        offer(lim, &k, d, "mac", "u0",
+              "the prescribed stream's CFL limit max_cfl dx/u0 = %g (u0 "
+              "dt/dx must not exceed max_cfl = %g)",
+              d, p->max_cfl);
+    }
 }
 
 static bf_status mac_model_step(void *self, long n, double t, double dt,
@@ -461,7 +387,7 @@ static bf_status mac_model_load(void *self, const bf_ckpt *ck, bf_err *err)
     return bf_mac_load(((mac_model *)self)->mac, ck, "mac", err);
 }
 
-static const bf_section_spec *const mac_specs[] = {&mac_spec, NULL};
+static const bf_section_spec *const mac_specs[] = {&bf_mac_spec, NULL};
 
 const bf_model_type bf_model_mac = {
     .name = "mac",
@@ -469,8 +395,9 @@ const bf_model_type bf_model_mac = {
            "(thesis, PROGRAM STRATRES)",
     .flags = 0,
     .specs = mac_specs,
-    .create_scene = mac_model_create,
+    .create = mac_model_create,
     .destroy = mac_model_destroy,
+    .stable_dt = mac_model_stable_dt,
     .step = mac_model_step,
     .output_open = mac_model_output_open,
     .output_row = mac_model_output_row,

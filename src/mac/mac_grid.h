@@ -1,12 +1,26 @@
-/* mac_internal.h: the state of the MAC solver, shared by the files of
- * src/mac/ (mac.c: set-up and the time step; mac_bc.c: boundary
- * conditions; mac_pressure.c: relaxation and direct solve; mac_markers.c:
- * marker particles, cell flags, corrected density).  Not a public header.
+/* mac_grid.h: the state of the MAC solver and the grid helpers every file
+ * of src/mac builds on (private).
+ *
+ * The files of the folder call one another in one direction, bottom to
+ * top; each private header declares the functions of one file:
+ *   mac_grid.c      the flood over interior cells, the faces of a cell;
+ *   mac_bc.c        boundary conditions (on mac_grid.c);
+ *   mac_pressure.c  the pressure equation, relaxation and direct solve
+ *                   (on mac_bc.c and mac_grid.c);
+ *   mac_markers.c   marker particles, cell flags, corrected density (on
+ *                   mac_grid.c);
+ *   mac.c           set-up, the eight-step time step, views, checkpoints
+ *                   (on all of them; its interface is mac.h).
+ * The types that mac.h shares are in mac_types.h.
  */
-#ifndef BALLFILM_MAC_INTERNAL_H
-#define BALLFILM_MAC_INTERNAL_H
+#ifndef BALLFILM_MAC_GRID_H
+#define BALLFILM_MAC_GRID_H
 
-#include "ballfilm/mac.h"
+#include <stddef.h>
+
+#include "ballfilm/error.h"
+#include "ballfilm/particles.h"
+#include "mac/mac_types.h"
 
 struct bf_mac {
     bf_mac_params prm;
@@ -69,22 +83,26 @@ static inline int mac_fluidish(int flag)
     return flag == BF_MAC_FULL || flag == BF_MAC_SUR;
 }
 
-/* mac.c: breadth-first flood over interior cells.  The caller has marked
- * the seeds (m->mark, index (I-2)(nj-2) + J-2) and queued the first `n` of
- * them in m->queue; every interior cell reachable through cells whose flag
- * satisfies `pass` gets marked. */
-void bf_mac_flood(bf_mac *m, int n, int (*pass)(int flag));
+/* Index of interior cell (i,j) among the unknowns of the pressure
+ * equation (and in m->mark, m->queue): (I-2)(nj-2) + J-2. */
 static inline int mac_unk(const bf_mac *m, int i, int j)
 {
     return (i - 2) * (m->nj - 2) + (j - 2);
 }
 
-/* mac_bc.c */
-void bf_mac_mirror_density(bf_mac *m);
-void bf_mac_surface_pressure(bf_mac *m);
-void bf_mac_ghost_pressure(bf_mac *m, double *p);
-void bf_mac_velocities(bf_mac *m);
-void bf_mac_temperature(bf_mac *m);
+/* The pressure equation and the update in x = P/rho with cell densities
+ * (BF_MAC_CONSISTENT) rather than x = P with face densities. */
+static inline int mac_consistent(const bf_mac *m)
+{
+    return m->prm.update == BF_MAC_CONSISTENT;
+}
+
+/* Breadth-first flood over interior cells.  The caller has marked the
+ * seeds (m->mark, index mac_unk) and queued the first `n` of them in
+ * m->queue; every interior cell reachable through cells whose flag
+ * satisfies `pass` gets marked. */
+void bf_mac_flood(bf_mac *m, int n, int (*pass)(int flag));
+
 /* One face of cell (i,j) towards direction d (MAC_E, MAC_W, MAC_N,
  * MAC_S): the neighbour, the spacing normal to the face, psi or zeta on
  * it, the face density (mean of the two cells) and the sign s of the
@@ -95,28 +113,5 @@ typedef struct mac_face {
     double delta, psi, rhof, s;
 } mac_face;
 void bf_mac_face_of(const bf_mac *m, int i, int j, int d, mac_face *f);
-
-/* The condition on the face between interior cell (ic,jc) and its ring
- * neighbour g = (ig,jg): MAC_DIRICHLET with *val = the ghost pressure (the
- * IN boundary's hydrostatic P0), or MAC_FLUX with *val = the normal face
- * velocity it imposes (0 on walls, u0 at a prescribed inflow, the
- * momentum update with Welch's ghost pressure at an OUT boundary). */
-enum { MAC_DIRICHLET = 0, MAC_FLUX = 1 };
-int bf_mac_boundary_face(const bf_mac *m, int ig, int jg, int ic, int jc,
-                      double *val);
-
-/* mac_pressure.c */
-void bf_mac_pressure_coefficients(bf_mac *m);
-bf_status bf_mac_relax(bf_mac *m, int fine, long *sweeps, bf_err *err);
-bf_status bf_mac_direct(bf_mac *m, double *pout, bf_err *err);
-
-/* mac_markers.c */
-long bf_mac_move_markers(bf_mac *m); /* returns the moves held at a wall */
-int bf_mac_correct_density(bf_mac *m);
-bf_status bf_mac_reflag_markers(bf_mac *m, bf_err *err);
-bf_status bf_mac_markers_finite(const bf_mac *m, bf_err *err);
-int bf_mac_fill_voids(bf_mac *m);
-/* Number of empty cells enclosed by fluid, and the first of them. */
-int bf_mac_find_void(bf_mac *m, int *vi, int *vj);
 
 #endif
