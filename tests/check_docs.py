@@ -10,11 +10,12 @@
    bin/ are not in a clone).  #anchors are stripped; http(s):, mailto: and
    pure #anchor links are not checked.  Links inside fenced code blocks and
    `code spans` are not links and are skipped.
-2. No file tracked by git may point outside the repository: no "../shared",
-   no absolute path of a particular machine (/work/, /home/, /root/, /tmp/;
-   a mktemp template such as /tmp/name-XXXXXX is a pattern, not a path, and
-   is allowed), and no reference to the project's external notes by name
-   (the "spec" documents, which a clone does not contain).
+2. No file tracked by git may point outside the repository: no relative
+   path into the shared folder beside it, no absolute path of a particular
+   machine (home, root, work and temporary folders; a mktemp template ending
+   in XXXXXX is a pattern, not a path, and is allowed), and no reference to
+   the project's external notes by name (the "spec" documents, which a clone
+   does not contain).  The exact patterns are the list OUTSIDE below.
 3. README.md and docs/ carry no dated remarks (no YYYY-MM-DD dates).
 
 Prints one line per problem (FILE:LINE: what) and, when there is none,
@@ -49,7 +50,7 @@ OUTSIDE = [  # PATTERN-LIST
                 r"|\(spec,\s+uncertain\b"),  # PATTERN-LIST
      "refers to notes outside the repository (the 'spec')"),  # PATTERN-LIST
 ]  # PATTERN-LIST
-MKTEMP = re.compile(r"/tmp/[\w.-]*XXXXXX")   # a template, not a path
+MKTEMP = re.compile(r"/tmp/[\w.-]*XXXXXX")   # a template, not a path  PATTERN-LIST
 DATE = re.compile(r"\b(19|20)\d\d-[01]\d-[0-3]\d\b")
 
 LINK = re.compile(r"!?\[(?:[^\[\]]|\[[^\[\]]*\])*\]\(\s*<?([^()\s<>]*(?:\([^()\s]*\)[^()\s<>]*)*)>?"
