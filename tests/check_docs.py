@@ -47,8 +47,8 @@ OUTSIDE = [  # PATTERN-LIST
      "absolute path of a machine"),  # PATTERN-LIST
     (re.compile(r"\bspec\s+(sec\.|section\b|§)|\bspec\s+[\w-]+\.md\b"  # PATTERN-LIST
                 r"|\b(greenspan|mac-thesis|film-scheme|yasuda-balls)\.md\b"  # PATTERN-LIST
-                r"|\(spec,\s+uncertain\b"),  # PATTERN-LIST
-     "refers to notes outside the repository (the 'spec')"),  # PATTERN-LIST
+                r"|\(spec,\s+uncertain\b|\bseeds?[ /]0\d\d\b"),  # PATTERN-LIST
+     "refers to notes outside the repository (the 'spec' or a 'seed')"),  # PATTERN-LIST
 ]  # PATTERN-LIST
 MKTEMP = re.compile(r"/tmp/[\w.-]*XXXXXX")   # a template, not a path  PATTERN-LIST
 DATE = re.compile(r"\b(19|20)\d\d-[01]\d-[0-3]\d\b")
