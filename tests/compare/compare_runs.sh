@@ -5,9 +5,9 @@
 # compares, case by case, the exit statuses and every dataset (and root
 # attribute) of the files written, bit for bit (tests/compare/h5same.py).
 # This is how a refactor proves that it changed no result: build the
-# commit before it somewhere else, e.g.
-#   git worktree add /tmp/before HEAD~1 && make -C /tmp/before
-#   tests/compare/compare_runs.sh /tmp/before/bin/ballfilm bin/ballfilm
+# commit before it in a directory of your choice, DIR, e.g.
+#   git worktree add DIR HEAD~1 && make -C DIR
+#   tests/compare/compare_runs.sh DIR/bin/ballfilm bin/ballfilm
 # Run from the repository root.  Exit 0 when every case is the same.
 set -u
 if [ $# -lt 2 ]; then
