@@ -320,7 +320,15 @@ static bf_status retmap_load(void *self, const bf_ckpt *ck, bf_err *err)
         st = bf_ckpt_get(ck, "return_map.candidate", rm->cand, NCOL, err);
     if (st)
         return st;
-    size_t n = (size_t)meta[0];
+    /* the stored count must be the columns' length (never trusted to size
+     * an allocation by itself) */
+    size_t n = (size_t)meta[0], have = 0;
+    if (!bf_ckpt_data(ck, "return_map.column0", &have) || meta[0] < 0 ||
+        have != n || meta[1] < 0 || meta[1] > meta[0] || meta[2] < 0 ||
+        meta[2] > 1)
+        return bf_fail(err, BF_EINPUT, "checkpoint: the return map's counts "
+                       "(%lld points, %zu stored) are inconsistent",
+                       (long long)meta[0], have);
     if ((st = reserve(rm, n, err)))
         return st;
     for (int c = 0; c < NCOL; c++) {

@@ -113,6 +113,32 @@ bf_status bf_sim_from_scene(bf_sim **out, const bf_catalog *c,
     return BF_OK;
 }
 
+/* The keys a continued run may change: when it ends, how often it writes
+ * and checks, not what it computes. */
+static const char *const restart_keys[] = {
+    "scene.t_end",        "scene.output_every",    "scene.energy_every",
+    "scene.flush_seconds", "scene.checkpoint_every", "scene.max_energy_error",
+    "film.profile_every",
+};
+
+static bf_status restart_key_allowed(const char *set, bf_err *err)
+{
+    const char *eq = strchr(set, '=');
+    size_t len = eq ? (size_t)(eq - set) : strlen(set);
+    while (len && (set[len - 1] == ' ' || set[len - 1] == '\t'))
+        len--;
+    for (size_t k = 0; k < sizeof restart_keys / sizeof *restart_keys; k++)
+        if (strlen(restart_keys[k]) == len && !strncmp(set, restart_keys[k], len))
+            return BF_OK;
+    return bf_fail(err, BF_EINPUT, "--restart --set %.*s: a continued run "
+                   "cannot change what it computes; only t_end, "
+                   "output_every, energy_every, flush_seconds, "
+                   "checkpoint_every, max_energy_error ([scene]) and "
+                   "profile_every ([film]) may change (start a new run for "
+                   "another scene)",
+                   (int)len, set);
+}
+
 /* The stored overrides (one per line), then the new ones. */
 static bf_status apply_sets(bf_scene *sc, const char *stored,
                             const char *cpath, const char *const *sets,
@@ -132,7 +158,9 @@ static bf_status apply_sets(bf_scene *sc, const char *stored,
         p += l + (nl ? 1 : 0);
     }
     for (size_t k = 0; k < nsets; k++) {
-        bf_status st = bf_scene_set(sc, sets[k], "--set", err);
+        bf_status st = restart_key_allowed(sets[k], err);
+        if (!st)
+            st = bf_scene_set(sc, sets[k], "--set", err);
         if (st)
             return st;
     }

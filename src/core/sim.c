@@ -486,8 +486,11 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
         }
         if (s->ckpt_every && s->out && s->n % s->ckpt_every == 0 &&
             s->n < s->nsteps &&
-            (st = bf_sim_checkpoint_write(s, s->ckpt_path, err)))
+            (st = bf_sim_checkpoint_write(s, s->ckpt_path, err))) {
+            bf_err_prefix(err, "step %ld (t = %.9g s): checkpoint", s->n,
+                          (double)s->n * s->dt);
             break;
+        }
         if (s->opts.progress && (s->n & 1023) == 0)
             progress(s, t0, 0);
     }
@@ -708,6 +711,11 @@ bf_status bf_sim_resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
         return bf_fail(err, BF_EINPUT, "%s.ckpt: the checkpoint is at step "
                        "%ld, beyond t_end (%ld steps)", out_path, s->n,
                        s->nsteps);
+    if (s->n < 0 || s->last_row < -1 || s->last_row > s->n ||
+        !(s->wall >= 0) || !isfinite(s->en.e0) || !(s->en.max_rel >= 0))
+        return bf_fail(err, BF_EINPUT, "%s.ckpt: the loop's state is out of "
+                       "range (step %ld, last row %ld)", out_path, s->n,
+                       s->last_row);
     /* reopen the output and drop rows written after the checkpoint */
     if ((st = set_ckpt_path(s, out_path, err)) ||
         (st = bf_out_open_append(&s->out, out_path, err)) ||
@@ -718,10 +726,14 @@ bf_status bf_sim_resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
     if (!rows || nrows != bf_out_nseries(s->out))
         return bf_fail(err, BF_EINPUT, "%s.ckpt: the checkpoint does not "
                        "match the datasets of %s", out_path, out_path);
-    for (size_t k = 0; k < nrows; k++)
+    for (size_t k = 0; k < nrows; k++) {
+        if (rows[k] < 0)
+            return bf_fail(err, BF_EINPUT, "%s.ckpt: a negative row count",
+                           out_path);
         if ((st = bf_series_truncate(bf_out_series_at(s->out, k),
                                      (size_t)rows[k], err)))
             return st;
+    }
     if ((st = bf_out_attr_str(s->out, "/", "status", "running", err)))
         return st;
     return bf_out_flush(s->out, err);

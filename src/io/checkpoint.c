@@ -4,6 +4,8 @@
  * "bytes", "str"). */
 #include "ballfilm/checkpoint.h"
 
+#include "base/hash.h"
+
 #include <fcntl.h>
 #include <hdf5.h>
 #include <stdio.h>
@@ -222,7 +224,50 @@ static int write_kind_attr(hid_t d, kind k)
     return rc;
 }
 
+/* The checksum of a checkpoint: the sum over its entries of a hash of each
+ * (name, kind, length, bytes), so that it does not depend on the order in
+ * which the file lists them.  Stored as the entry CHECKSUM, left out of
+ * its own sum. */
+#define CHECKSUM "checksum"
+
+static uint64_t checksum_of(const bf_ckpt *ck)
+{
+    uint64_t sum = 0;
+    for (size_t k = 0; k < ck->n; k++) {
+        const item *it = &ck->items[k];
+        if (!strcmp(it->name, CHECKSUM))
+            continue;
+        uint64_t h = bf_hash64(BF_HASH_INIT, it->name, strlen(it->name) + 1);
+        uint64_t meta[2] = {(uint64_t)it->k, (uint64_t)it->n};
+        h = bf_hash64(h, meta, sizeof meta);
+        sum += bf_hash64(h, it->data, it->n * elsize(it->k));
+    }
+    return sum;
+}
+
+static bf_status write_file(const bf_ckpt *ck, const char *path, bf_err *err);
+
 bf_status bf_ckpt_write(const bf_ckpt *ck, const char *path, bf_err *err)
+{
+    /* a copy of the entries with their checksum added */
+    bf_ckpt sealed = *ck;
+    item *items = malloc((ck->n + 1) * sizeof *items);
+    if (!items)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    memcpy(items, ck->items, ck->n * sizeof *items);
+    int64_t sum = (int64_t)checksum_of(ck);
+    items[ck->n] = (item){CHECKSUM, K_INT, 1, &sum};
+    sealed.items = items;
+    sealed.n = ck->n + 1;
+    bf_status st = find(ck, CHECKSUM)
+                       ? bf_fail(err, BF_EINTERNAL, "checkpoint entry '%s' "
+                                 "is reserved", CHECKSUM)
+                       : write_file(&sealed, path, err);
+    free(items);
+    return st;
+}
+
+static bf_status write_file(const bf_ckpt *ck, const char *path, bf_err *err)
 {
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
     size_t len = strlen(path);
@@ -349,6 +394,15 @@ bf_status bf_ckpt_read(bf_ckpt **out, const char *path, bf_err *err)
                        path);
     }
     H5Fclose(f);
+    /* every entry as written, or the file is refused */
+    const item *sum = find(ck, CHECKSUM);
+    if (!sum || sum->k != K_INT || sum->n != 1 ||
+        *(const int64_t *)sum->data != (int64_t)checksum_of(ck)) {
+        bf_ckpt_free(ck);
+        return bf_fail(err, BF_EINPUT, "%s: the checkpoint's checksum does "
+                       "not match its contents (damaged or edited); it "
+                       "cannot be trusted", path);
+    }
     *out = ck;
     return BF_OK;
 }

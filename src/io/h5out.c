@@ -38,6 +38,7 @@ struct bf_series {
     size_t width;    /* values per row (max(ncols, 1)) */
     int is_int;
     size_t written;  /* rows on disk */
+    size_t rpc;      /* rows per chunk */
     size_t nbuf, capbuf;
     unsigned char *buf;
     char *path;
@@ -289,6 +290,7 @@ bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
     if (rows > 8192)
         rows = 8192;
     hsize_t chunk[2] = {rows, ncols};
+    s->rpc = rows;
     if (out->append && H5Lexists(out->file, path, H5P_DEFAULT) > 0) {
         s->dset = H5Dopen2(out->file, path, H5P_DEFAULT);
         hid_t fsp = s->dset >= 0 ? H5Dget_space(s->dset) : -1;
@@ -410,16 +412,21 @@ static bf_status failed_before(const bf_out *out, bf_err *err)
                    out->path);
 }
 
-/* Bytes a flush may add to the file: the buffered rows, two whole chunks
- * per series that writes (the extension may start a chunk on each side),
- * and room for the chunk index and the other metadata. */
+/* Bytes a flush may add to the file: the whole chunks its rows start
+ * (HDF5 allocates a chunk of a dataset without filters in full when it is
+ * first written), 4 KiB of chunk index for each, and 64 KiB for the other
+ * metadata. */
 static off_t flush_need(const bf_out *out)
 {
-    off_t need = 256 * 1024;
+    off_t need = 64 * 1024;
     for (size_t k = 0; k < out->nseries; k++) {
         const bf_series *s = out->series[k];
-        if (s->nbuf)
-            need += (off_t)(s->nbuf * 8 * s->width) + 2 * 65536 + 4096;
+        if (!s->nbuf)
+            continue;
+        size_t rpc = s->rpc ? s->rpc : 1;
+        size_t have = (s->written + rpc - 1) / rpc,
+               want = (s->written + s->nbuf + rpc - 1) / rpc;
+        need += (off_t)((want - have) * (rpc * 8 * s->width + 4096));
     }
     return need;
 }
