@@ -120,8 +120,24 @@ START_TEST(sigkill_leaves_readable_file)
               "scene.flush_seconds=0.02", (char *)NULL);
         _exit(127);
     }
-    struct timespec ts = {0, 700000000};
-    nanosleep(&ts, NULL);
+    /* killed once its file holds a few hundred flushed rows (read while it
+     * is written: a read in the middle of a flush may fail, and is
+     * retried) */
+    char marker[600];
+    snprintf(marker, sizeof marker, "%s.part", out);
+    tu_wait_for_file(marker, 0);
+    for (int k = 0; k < 60000; k++) {
+        double *tt;
+        size_t r = 0, r1;
+        bf_err e2 = {0};
+        if (bf_h5_read(marker, "/time", &tt, &r, &r1, &e2) == BF_OK) {
+            free(tt);
+            if (r > 300)
+                break;
+        }
+        const struct timespec ms = {0, 1000000};
+        nanosleep(&ms, NULL);
+    }
     kill(pid, SIGKILL);
     int status;
     waitpid(pid, &status, 0);

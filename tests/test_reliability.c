@@ -78,19 +78,6 @@ static void pause_ms(long ms)
     nanosleep(&ts, NULL);
 }
 
-/* Wait (polling, at most a minute) until `path` exists with more than
- * `bytes` bytes: the marker that a background run is under way. */
-static void wait_for_file(const char *path, off_t bytes)
-{
-    struct stat sb;
-    for (int k = 0; k < 60000; k++) {
-        if (!stat(path, &sb) && sb.st_size > bytes)
-            return;
-        pause_ms(1);
-    }
-    ck_abort_msg("%s never appeared", path);
-}
-
 static void wait_for_line(const char *path, const char *text)
 {
     for (int k = 0; k < 60000; k++) {
@@ -155,7 +142,7 @@ START_TEST(one_output_path_one_run)
                           "-q", "--set", "scene.t_end=1e6", "--set",
                           "scene.flush_seconds=0.01", NULL};
     pid_t a = start(argv, errf, 0);
-    wait_for_file(part, 4096);
+    tu_wait_for_file(part, 4096);
     /* the second run is refused, exit 5, and names the reason */
     char *err = NULL;
     int rc = tu_run(NULL, &err, "run", tu_repo("runs/harmonic.ini"), "-o", out,
@@ -394,7 +381,7 @@ START_TEST(interrupted_sweep_stops_its_workers)
     wait_for_line(errf, "to run on");
     char part[800];
     snprintf(part, sizeof part, "%s/case_00000.h5.part", dir);
-    wait_for_file(part, 0);
+    tu_wait_for_file(part, 0);
     kill(pid, SIGINT);
     ck_assert_int_eq(finish(pid), 6);
     /* every case file it was writing is free again: its writer is gone */

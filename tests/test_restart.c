@@ -121,8 +121,10 @@ START_TEST(sigint_checkpoints_and_restart_identical)
               "-q", (char *)NULL);
         _exit(127);
     }
-    struct timespec ts = {0, 200000000};
-    nanosleep(&ts, NULL);
+    /* under way: its file holds flushed rows */
+    char marker[600];
+    snprintf(marker, sizeof marker, "%s.part", part);
+    tu_wait_for_file(marker, 8192);
     kill(pid, SIGINT);
     int status;
     waitpid(pid, &status, 0);

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -290,6 +291,18 @@ void tu_free_list(char **list)
     for (char **p = list; p && *p; p++)
         free(*p);
     free(list);
+}
+
+void tu_wait_for_file(const char *path, long bytes)
+{
+    struct stat sb;
+    const struct timespec ms = {0, 1000000};
+    for (int k = 0; k < 60000; k++) {
+        if (!stat(path, &sb) && sb.st_size > bytes)
+            return;
+        nanosleep(&ms, NULL);
+    }
+    ck_abort_msg("%s never appeared", path);
 }
 
 const char *tu_result(const char *path)

@@ -47,6 +47,10 @@ void tu_free_list(char **list);
 /* The file a run wrote for output PATH: PATH once the run ended, PATH.part
  * while it may still be continued (interrupted, killed, disk full). */
 const char *tu_result(const char *path);
+/* Wait (polling, at most a minute; the test fails otherwise) until `path`
+ * exists with more than `bytes` bytes: the marker that a background run is
+ * under way, instead of a fixed wait. */
+void tu_wait_for_file(const char *path, long bytes);
 /* Assert that two files hold the same datasets with the same bits (each
  * looked up with tu_result). */
 void tu_same_datasets(const char *a, const char *b);

@@ -59,7 +59,7 @@ def main(a, b):
                 bad.append(f"dataset {k}: differs")
         ka, kb = set(fa.attrs), set(fb.attrs)
         for k in sorted(ka | kb):
-            if k in SKIP_ATTRS or "wall" in k:
+            if k in SKIP_ATTRS or k.endswith("wall"):
                 continue
             if k not in ka or k not in kb:
                 bad.append(f"attribute {k}: only in {a if k in ka else b}")
