@@ -30,14 +30,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/greenspan.h"
+#include "models/greenspan.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/model.h"
 #include "ballfilm/run.h"
 #include "ballfilm/registry.h"
-#include "ballfilm/repulsion.h"
-#include "ballfilm/support.h"
-#include "ballfilm/walls.h"
+#include "particles/repulsion.h"
+#include "particles/support.h"
+#include "particles/walls.h"
 #include "testutil.h"
 
 /* ------------------------------------------------------------ support */

@@ -37,14 +37,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/cells.h"
-#include "ballfilm/greenspan.h"
+#include "particles/cells.h"
+#include "models/greenspan.h"
 #include "ballfilm/model.h"
 #include "ballfilm/particles.h"
-#include "ballfilm/pdiag.h"
-#include "ballfilm/repulsion.h"
-#include "ballfilm/support.h"
-#include "ballfilm/walls.h"
+#include "particles/pdiag.h"
+#include "particles/repulsion.h"
+#include "particles/support.h"
+#include "particles/walls.h"
 
 enum { TAG_HEAVY = 1, TAG_LIGHT = 2 };
 enum { OUT_ALL = 0, OUT_POSITIONS = 1, OUT_DIAG = 2 };

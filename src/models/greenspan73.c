@@ -37,12 +37,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/dforce.h"
-#include "ballfilm/greenspan.h"
-#include "ballfilm/implicit.h"
+#include "particles/dforce.h"
+#include "models/greenspan.h"
+#include "particles/implicit.h"
 #include "ballfilm/model.h"
 #include "ballfilm/particles.h"
-#include "ballfilm/pdiag.h"
+#include "particles/pdiag.h"
 
 static const bf_param g73_params[] = {
     {"layout", BF_ENUM, 0, "", "hexagon",

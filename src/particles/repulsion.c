@@ -2,9 +2,9 @@
  * particles (see repulsion.h).  Every pair is visited once and both
  * accelerations are updated (the listing's ACX(J) += AM(I) TX,
  * ACX(I) -= AM(J) TX). */
-#include "ballfilm/repulsion.h"
+#include "repulsion.h"
 
-#include "ballfilm/ipow.h"
+#include "particles/ipow.h"
 
 #ifdef _OPENMP
 #include <omp.h>

@@ -9,7 +9,7 @@
  * free-fall decisions are identical; only the order of the area sums (and,
  * in the fast method, their form) differs, which changes g by round-off.
  */
-#include "ballfilm/support.h"
+#include "support.h"
 
 #ifdef _OPENMP
 #include <omp.h>

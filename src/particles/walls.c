@@ -1,6 +1,6 @@
 /* walls.c: reflecting, damping container walls (Greenspan 1972 eq. 2.13);
  * see walls.h for the two rules. */
-#include "ballfilm/walls.h"
+#include "walls.h"
 
 #include <math.h>
 

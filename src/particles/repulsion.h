@@ -16,13 +16,13 @@
  * is in cm^(p-1) g^-1 s^-2 (Greenspan's examples set alpha = 1 and treat
  * the numbers as CGS).
  */
-#ifndef BALLFILM_REPULSION_H
-#define BALLFILM_REPULSION_H
+#ifndef BALLFILM_PARTICLES_REPULSION_H
+#define BALLFILM_PARTICLES_REPULSION_H
 
 #include <stddef.h>
 #include <stdint.h>
 
-#include "ballfilm/cells.h"
+#include "particles/cells.h"
 #include "ballfilm/error.h"
 #include "ballfilm/scene.h"
 

@@ -24,8 +24,8 @@
  * or more than BF_WALLS_MAX_HITS reflections in one step) fails the step
  * with BF_EUNSTABLE naming it.  Units: cm and cm/s.
  */
-#ifndef BALLFILM_WALLS_H
-#define BALLFILM_WALLS_H
+#ifndef BALLFILM_PARTICLES_WALLS_H
+#define BALLFILM_PARTICLES_WALLS_H
 
 #include <stddef.h>
 

@@ -49,16 +49,16 @@
  *          of S(P_j) overlaps the strip, else the cell list is asked (rare).
  *          The K = 0 rectangle uses the cell list.
  */
-#ifndef BALLFILM_SUPPORT_H
-#define BALLFILM_SUPPORT_H
+#ifndef BALLFILM_PARTICLES_SUPPORT_H
+#define BALLFILM_PARTICLES_SUPPORT_H
 
 #include <stddef.h>
 #include <stdint.h>
 
-#include "ballfilm/cells.h"
+#include "particles/cells.h"
 #include "ballfilm/error.h"
 #include "ballfilm/scene.h"
-#include "ballfilm/walls.h"
+#include "particles/walls.h"
 
 typedef enum bf_support_method {
     BF_SUPPORT_FAST = 0,
