@@ -26,57 +26,57 @@
 #define HOT static inline __attribute__((always_inline))
 
 static const bf_param support_params[] = {
-    {"g", BF_REAL, 0, "cm/s^2", "980",
+    {"g", BF_AT(bf_support_keys, g, BF_REAL), "cm/s^2", "980",
      "gravitational acceleration g0 of a particle with nothing below it",
      BF_NONNEG, 0, 0, NULL},
-    {"dx", BF_REAL, 0, "cm", NULL,
+    {"dx", BF_AT(bf_support_keys, dx, BF_REAL), "cm", NULL,
      "Delta x: height of the bands below a particle and width of its strip "
      "(eqs 2.8-2.9)",
      BF_POS, 0, 0, NULL},
-    {"method", BF_ENUM, 0, "", "auto",
+    {"method", BF_AT(bf_support_keys, method, BF_ENUM), "", "auto",
      "fast: exact O(N log N) sweep (needs d <= 2 dx); cell: cell list, "
      "O(N * column); naive: all pairs O(N^2); auto: cell for boxes of at "
      "most 64 bands, else fast.  All give the same free-fall decisions and "
      "the same g to round-off",
      0, 0, 0, "fast|cell|naive|auto"},
-    {"tie", BF_ENUM, 0, "", "le",
+    {"tie", BF_AT(bf_support_keys, tie, BF_ENUM), "", "le",
      "support set S(P_j): le counts particles with y_i <= y_j (the listing), "
      "lt only y_i < y_j (the text)",
      0, 0, 0, "le|lt"},
-    {"eps", BF_REAL, 0, "cm^2", "0",
+    {"eps", BF_AT(bf_support_keys, eps, BF_REAL), "cm^2", "0",
      "added to the denominators of 2.8 and 2.9 (0: the text; 1e-3: the "
      "listing)",
      BF_NONNEG, 0, 0, NULL},
     {0},
 };
 
-const bf_section_spec bf_support_spec = {
+const bf_section_spec bf_support_spec = BF_SECTION(
     "support", "support-set gravity (Greenspan 1972 eqs 2.8-2.9)",
-    support_params, 0};
+    support_params, bf_support_keys);
 
-bf_status bf_support_params_from_scene(bf_support_params *p,
-                                       const bf_scene *sc, bf_box box,
-                                       double d, bf_err *err)
+bf_status bf_support_params_from_keys(bf_support_params *p,
+                                      const bf_support_keys *k, bf_box box,
+                                      double d, bf_err *err)
 {
     p->box = box;
     p->d = d;
-    p->g0 = bf_scene_real(sc, "support", "g");
-    p->dx = bf_scene_real(sc, "support", "dx");
-    p->method = (bf_support_method)bf_scene_enum(sc, "support", "method");
-    p->tie = bf_scene_enum(sc, "support", "tie") == 0;
-    p->eps = bf_scene_real(sc, "support", "eps");
+    p->g0 = k->g;
+    p->dx = k->dx;
+    p->method = (bf_support_method)k->method;
+    p->tie = k->tie == 0;
+    p->eps = k->eps;
     if (p->dx > box.bx - box.ax || p->dx > box.by - box.ay)
-        return bf_scene_fail(sc, err, "support", "dx",
-                             "dx = %g is larger than the box", p->dx);
+        return bf_fail_key(err, BF_EINPUT, "support", "dx",
+                           "dx = %g is larger than the box", p->dx);
     if (p->method == BF_SUPPORT_AUTO)
         p->method = floor((box.by - box.ay) / p->dx) <= 64 || d > 2 * p->dx
                         ? BF_SUPPORT_CELL
                         : BF_SUPPORT_FAST;
     if (p->method == BF_SUPPORT_FAST && d > 2 * p->dx)
-        return bf_scene_fail(sc, err, "support", "method",
-                             "method fast needs d <= 2 dx (d = %g, dx = %g); "
-                             "use method = cell",
-                             d, p->dx);
+        return bf_fail_key(err, BF_EINPUT, "support", "method",
+                           "method fast needs d <= 2 dx (d = %g, dx = %g); "
+                           "use method = cell",
+                           d, p->dx);
     return BF_OK;
 }
 

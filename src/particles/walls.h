@@ -30,8 +30,8 @@
 #include <stddef.h>
 
 #include "ballfilm/error.h"
+#include "ballfilm/params.h"
 #include "ballfilm/particles.h"
-#include "ballfilm/scene.h"
 
 #define BF_WALLS_MAX_HITS 10000
 
@@ -48,11 +48,17 @@ typedef struct bf_walls {
     double eps;        /* the listing's EPS (fortran rule only), cm */
 } bf_walls;
 
+/* The keys of [walls] (bf_walls_spec). */
+typedef struct bf_walls_keys {
+    double omega;
+    int rule; /* bf_wall_rule */
+    double eps;
+} bf_walls_keys;
+
 extern const bf_section_spec bf_walls_spec; /* [walls] */
 
-/* Read [walls] for the given box. */
-bf_status bf_walls_from_scene(bf_walls *w, const bf_scene *sc, bf_box box,
-                              bf_err *err);
+/* The walls of the given box from the filled [walls] keys. */
+void bf_walls_from_keys(bf_walls *w, const bf_walls_keys *k, bf_box box);
 
 /* Reflect every particle whose step from (x0[i], y0[i]) to (p->x[i],
  * p->y[i]) left the box; x0 and y0 are scratch (the fortran rule moves
