@@ -680,52 +680,38 @@ static void g72_report(const void *self, FILE *f)
         }
 }
 
+/* The state beyond the particles (the accelerations are recomputed from
+ * the restored positions). */
+static const bf_field g72_state[] = {
+    BF_FIELD_ARRAY(g72, kind_total, BF_F_ULL, "particle-steps"),
+    BF_FIELD(g72, steps, BF_F_ULL, "1"),
+    BF_FIELD(g72, evals, BF_F_ULL, "1"),
+    BF_FIELD(g72, wall_hits, BF_F_ULL, "1"),
+    BF_FIELD_ARRAY(g72, settle_first, BF_F_LONG, "step"),
+    BF_FIELD_ARRAY(g72, settle_lastfail, BF_F_LONG, "step"),
+    BF_FIELD(g72, settle_last_row, BF_F_LONG, "step"),
+    BF_FIELD(g72, rows, BF_F_LONG, "1"),
+};
+
 static bf_status g72_save(const void *self, bf_ckpt *ck, bf_err *err)
 {
     const g72 *m = self;
-    int64_t c[4 + 3 + 2 * NSETTLE + 2];
-    size_t k = 0;
-    for (int q = 0; q < 4; q++)
-        c[k++] = (int64_t)m->kind_total[q];
-    c[k++] = (int64_t)m->steps;
-    c[k++] = (int64_t)m->evals;
-    c[k++] = (int64_t)m->wall_hits;
-    for (int q = 0; q < NSETTLE; q++) {
-        c[k++] = m->settle_first[q];
-        c[k++] = m->settle_lastfail[q];
-    }
-    c[k++] = m->settle_last_row;
-    c[k++] = m->rows;
     bf_status st = bf_particles_save(&m->p, ck, "g72.p", err);
     if (!st)
-        st = bf_ckpt_put_i64(ck, "g72.counters", c, k, err);
+        st = bf_ckpt_put_fields(ck, "g72", g72_state, BF_NFIELDS(g72_state),
+                                m, err);
     return st;
 }
 
 static bf_status g72_load(void *self, const bf_ckpt *ck, bf_err *err)
 {
     g72 *m = self;
-    int64_t c[4 + 3 + 2 * NSETTLE + 2];
     bf_status st = bf_particles_load(&m->p, ck, "g72.p", err);
     if (!st)
-        st = bf_ckpt_get_i64(ck, "g72.counters", c, sizeof c / sizeof c[0],
-                             err);
-    if (st)
-        return st;
-    size_t k = 0;
-    for (int q = 0; q < 4; q++)
-        m->kind_total[q] = (unsigned long long)c[k++];
-    m->steps = (unsigned long long)c[k++];
-    m->evals = (unsigned long long)c[k++];
-    m->wall_hits = (unsigned long long)c[k++];
-    for (int q = 0; q < NSETTLE; q++) {
-        m->settle_first[q] = (long)c[k++];
-        m->settle_lastfail[q] = (long)c[k++];
-    }
-    m->settle_last_row = (long)c[k++];
-    m->rows = (long)c[k++];
+        st = bf_ckpt_get_fields(ck, "g72", g72_state, BF_NFIELDS(g72_state),
+                                m, err);
     m->acc_valid = 0; /* a(x) is recomputed from the restored positions */
-    return BF_OK;
+    return st;
 }
 
 static const bf_section_spec *const g72_specs[] = {

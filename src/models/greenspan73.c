@@ -613,36 +613,34 @@ static void g73_report(const void *self, FILE *f)
     fprintf(f, "reading:           %s\n", m->reading);
 }
 
+static const bf_field g73_state[] = {
+    BF_FIELD(g73, steps, BF_F_ULL, "1"),
+    BF_FIELD(g73, substeps, BF_F_ULL, "1"),
+    BF_FIELD(g73, iterations, BF_F_ULL, "1"),
+    BF_FIELD(g73, failed, BF_F_ULL, "1"),
+    BF_FIELD(g73, depth_max, BF_F_INT, "1"),
+    BF_FIELD(g73, last_iter, BF_F_LONG, "1"),
+    BF_FIELD(g73, last_sub, BF_F_LONG, "1"),
+};
+
 static bf_status g73_save(const void *self, bf_ckpt *ck, bf_err *err)
 {
     const g73 *m = self;
-    int64_t c[7] = {(int64_t)m->steps,      (int64_t)m->substeps,
-                    (int64_t)m->iterations, (int64_t)m->failed,
-                    m->depth_max,           m->last_iter,
-                    m->last_sub};
     bf_status st = bf_particles_save(&m->p, ck, "g73.p", err);
     if (!st)
-        st = bf_ckpt_put_i64(ck, "g73.counters", c, 7, err);
+        st = bf_ckpt_put_fields(ck, "g73", g73_state, BF_NFIELDS(g73_state),
+                                m, err);
     return st;
 }
 
 static bf_status g73_load(void *self, const bf_ckpt *ck, bf_err *err)
 {
     g73 *m = self;
-    int64_t c[7];
     bf_status st = bf_particles_load(&m->p, ck, "g73.p", err);
     if (!st)
-        st = bf_ckpt_get_i64(ck, "g73.counters", c, 7, err);
-    if (st)
-        return st;
-    m->steps = (unsigned long long)c[0];
-    m->substeps = (unsigned long long)c[1];
-    m->iterations = (unsigned long long)c[2];
-    m->failed = (unsigned long long)c[3];
-    m->depth_max = (int)c[4];
-    m->last_iter = (long)c[5];
-    m->last_sub = (long)c[6];
-    return BF_OK;
+        st = bf_ckpt_get_fields(ck, "g73", g73_state, BF_NFIELDS(g73_state),
+                                m, err);
+    return st;
 }
 
 static const bf_section_spec *const g73_specs[] = {&g73_spec, NULL};
