@@ -549,7 +549,12 @@ static bf_status g72_output_open(void *self, bf_out *out, bf_err *err)
     return st;
 }
 
-/* The four settling criteria of spec sec. 1.7 at the current positions. */
+/* The four settling criteria at the current positions (how far the heavy
+ * fluid has sunk; docs/models/greenspan72.md, settling): (a) 1 if every
+ * heavy particle is below every light one, (b) 1 if every heavy one is
+ * below 'bottom', (c) the number of heavy ones below 'bottom' (it holds,
+ * in g72_output_row, when at most one is above), (d) 1 if the mean height
+ * of the heavy is below that of the light. */
 static void g72_settle(const g72 *m, double crit[NSETTLE])
 {
     bf_pdiag_group h = bf_pdiag_group_of(&m->p, TAG_HEAVY);

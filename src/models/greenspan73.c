@@ -2,7 +2,7 @@
  * theory of fluids (Univ. Wisconsin CS TR 171, 1973): the implicit,
  * exactly energy-conserving scheme (2.1)-(2.4) (implicit.h, dforce.h).
  *
- * Layouts (the paper's examples; the spec greenspan.md secs 2.5-2.6):
+ * Layouts (the paper's examples; docs/models/greenspan73.md, layouts):
  *   hexagon  P1-P11 at ((i+1/2) r0, h), P12-P23 at (i r0, 0), P24-P34 at
  *            ((i+1/2) r0, -h), r0 the pair equilibrium distance, h = r0
  *            sqrt(3)/2; v_i = (V + e_i1, e_i2), the 68 numbers e drawn once
@@ -286,7 +286,10 @@ static bf_status g73_layout(g73 *m, const g73_keys *k, bf_err *err)
             P->m[i] = 1.0;
         }
     } else if (layout == LAYOUT_WALL) {
-        /* Jones's SUBROUTINE INP, read as in the spec sec. 2.6 */
+        /* Jones's SUBROUTINE INP: the wall particles P2..P9 a distance
+         * BX = r0 apart on y = 0, P1 (and P10) at the height BY of an
+         * equilateral triangle of side BX above (below) them
+         * (docs/models/greenspan73.md, wall layout) */
         const double BX = r0, BY = sqrt(BX * BX - 0.25 * BX * BX);
         const double wm = k->wall_mass;
         for (size_t i = 1; i < 9; i++) {

@@ -16,8 +16,9 @@
  *           displacement from TANTH with the SIGN(EPS, .) guard, the
  *           velocity rebuilt as omega |v| (x2 - x1)/(|x2 - x1| + EPS).  Even
  *           with omega = 1 every hit multiplies the speed by |D|/(|D| + EPS),
- *           and for omega < 1 the outgoing direction is not specular
- *           (spec greenspan.md sec. 1.5).
+ *           and for omega < 1 the outgoing direction is not specular:
+ *           the rest of the step is scaled by omega^2 along the wall and
+ *           by omega normal to it (docs/models/greenspan72.md, walls).
  *
  * Invariant: after bf_walls_apply every particle is in the closed box
  * [ax, bx] x [ay, by]; a particle that cannot be brought back (non-finite,
