@@ -10,9 +10,11 @@
  *   x^{k+1}   = x^k + dt v^{k+1/2},  then the walls (eq. 2.13, walls.h)
  *
  * a_j = (repulsion 2.11, 2.12 (repulsion.h)) + g_j y^ (support-set gravity
- * 2.8, 2.9 (support.h)).  Initial velocities: the scene's, or uniform in
- * [-V, V] per component from GSL's mt19937 with [greenspan72] seed; an
- * optional uniform perturbation of +-perturb (another seed) for ensembles.
+ * 2.8, 2.9 (support.h)), and with [hertz] enabled the Hertz repulsion of
+ * the particles closer than 2R (hertz_pairs.h; not in the paper).
+ * Initial velocities: the scene's, or uniform in [-V, V] per component
+ * from GSL's mt19937 with [greenspan72] seed; an optional uniform
+ * perturbation of +-perturb (another seed) for ensembles.
  *
  * The model does not conserve energy (support-set gravity has no potential
  * and no reaction), so it reports no energy to the time loop; the kinetic
@@ -39,6 +41,7 @@
 
 #include "particles/cells.h"
 #include "models/greenspan.h"
+#include "particles/hertz_pairs.h"
 #include "ballfilm/model.h"
 #include "ballfilm/particles.h"
 #include "particles/pdiag.h"
@@ -144,6 +147,8 @@ typedef struct g72 {
     double width, height, interface, bottom;
     bf_walls walls;
     bf_repulsion rep;
+    int hertz_on; /* [hertz] enabled */
+    bf_hertz_pairs hertz;
     bf_support *sup;
     int need_cells;
     bf_cells cells;
@@ -301,7 +306,8 @@ static bf_status g72_create(void **self, const bf_model_setup *setup,
     const bf_walls_keys *kw = bf_setup_get(setup, &bf_walls_spec, NULL);
     const bf_repulsion_keys *kr = bf_setup_get(setup, &bf_repulsion_spec, NULL);
     const bf_support_keys *ks = bf_setup_get(setup, &bf_support_spec, NULL);
-    if (!k72 || !kw || !kr || !ks)
+    const bf_hertz_keys *kh = bf_setup_get(setup, &bf_hertz_spec, NULL);
+    if (!k72 || !kw || !kr || !ks || !kh)
         return bf_fail(err, BF_EINTERNAL, "greenspan72: sections missing "
                        "from the setup");
     g72 *m = calloc(1, sizeof *m);
@@ -332,6 +338,9 @@ static bf_status g72_create(void **self, const bf_model_setup *setup,
         (st = g72_initial(m, k72, err)))
         goto fail;
     sp.threads = m->threads;
+    m->hertz_on = kh->enabled;
+    m->hertz.k = kh->k;
+    m->hertz.R = kh->radius > 0 ? kh->radius : 0.5 * d;
     m->bottom = k72->bottom;
     if (m->bottom == 0)
         m->bottom = sp.dx;
@@ -421,6 +430,15 @@ static bf_status g72_accel(g72 *m, bf_err *err)
         return bf_fail(err, BF_EUNSTABLE,
                        "particles %zu and %zu coincide at (%.9g, %.9g) with "
                        "xi = 0: the repulsion has no direction",
+                       bi + 1, bj + 1, p->x[bi], p->y[bi]);
+    /* the Hertz contacts (after the repulsion, which overwrites ax, ay) */
+    if (m->hertz_on &&
+        (c ? bf_hertz_pairs_cells(&m->hertz, c, m->ax, m->ay, &bi, &bj)
+           : bf_hertz_pairs_all(&m->hertz, p->x, p->y, p->m, p->n, m->ax,
+                                m->ay, &bi, &bj)))
+        return bf_fail(err, BF_EUNSTABLE,
+                       "particles %zu and %zu coincide at (%.9g, %.9g): the "
+                       "Hertz force has no direction",
                        bi + 1, bj + 1, p->x[bi], p->y[bi]);
     m->evals++;
     m->acc_valid = 1;
@@ -720,7 +738,8 @@ static bf_status g72_load(void *self, const bf_ckpt *ck, bf_err *err)
 }
 
 static const bf_section_spec *const g72_specs[] = {
-    &g72_spec, &bf_repulsion_spec, &bf_support_spec, &bf_walls_spec, NULL};
+    &g72_spec,     &bf_repulsion_spec, &bf_support_spec,
+    &bf_walls_spec, &bf_hertz_spec,    NULL};
 
 const bf_model_type bf_model_greenspan72 = {
     .name = "greenspan72",
