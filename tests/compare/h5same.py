@@ -6,6 +6,11 @@ the same root attributes; print every difference otherwise.
 Root attributes that describe the build or the wall clock (version,
 wall-time figures) are not compared, nor datasets of wall times (their path
 ends in 'wall'): they differ between any two runs.
+
+A scene key that only B records, at its default (B's "KEY.default" is 1),
+is a key that B's program added: its record (KEY, KEY.unit, KEY.default)
+is not a difference.  What the key does at its default is checked by the
+datasets like everything else.
 """
 import sys
 
@@ -43,6 +48,17 @@ def attr_bytes(v):
     return a.dtype.str, a.shape, a.tobytes()
 
 
+def new_default_key(attrs, other, k):
+    """k is part of the record of a scene key that only `attrs` has, at its
+    default (the key itself, its .unit or its .default)"""
+    base = k
+    for suffix in (".unit", ".default"):
+        if k.endswith(suffix) and k[:-len(suffix)] in attrs:
+            base = k[:-len(suffix)]
+    flag = attrs.get(base + ".default")
+    return base not in other and flag is not None and int(flag) == 1
+
+
 def main(a, b):
     bad = []
     with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
@@ -57,6 +73,8 @@ def main(a, b):
         ka, kb = set(fa.attrs), set(fb.attrs)
         for k in sorted(ka | kb):
             if k in SKIP_ATTRS or "wall" in k:
+                continue
+            if k not in ka and new_default_key(fb.attrs, ka, k):
                 continue
             if k not in ka or k not in kb:
                 bad.append(f"attribute {k}: only in {a if k in ka else b}")
