@@ -72,7 +72,8 @@ $(BUILD)/obj/tests/%.o: tests/%.c $(BUILD)/tests/suites.inc
 
 # OpenMP (libgomp, part of gcc) only where it pays: the particle forces.
 # Their results do not depend on the number of threads (tested).
-OMP_OBJ := $(addprefix $(BUILD)/obj/,src/particles/support.o \
+OMP_OBJ := $(addprefix $(BUILD)/obj/,src/particles/support_setup.o \
+             src/particles/support_cell.o src/particles/support_fast.o \
              src/particles/repulsion.o src/models/greenspan72.o)
 $(OMP_OBJ): CFLAGS += -fopenmp
 

@@ -22,7 +22,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "ballfilm/greenspan.h"
+#include "models/greenspan.h"
 #include "ballfilm/scene.h"
 #include "ballfilm/model.h"
 #include "ballfilm/run.h"

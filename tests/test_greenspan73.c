@@ -24,12 +24,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/dforce.h"
-#include "ballfilm/greenspan.h"
+#include "particles/dforce.h"
+#include "models/greenspan.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/model.h"
 #include "ballfilm/run.h"
-#include "ballfilm/pdiag.h"
+#include "particles/pdiag.h"
 #include "testutil.h"
 
 START_TEST(s_identity_limit_and_derivative)

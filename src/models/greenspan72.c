@@ -10,9 +10,11 @@
  *   x^{k+1}   = x^k + dt v^{k+1/2},  then the walls (eq. 2.13, walls.h)
  *
  * a_j = (repulsion 2.11, 2.12 (repulsion.h)) + g_j y^ (support-set gravity
- * 2.8, 2.9 (support.h)).  Initial velocities: the scene's, or uniform in
- * [-V, V] per component from GSL's mt19937 with [greenspan72] seed; an
- * optional uniform perturbation of +-perturb (another seed) for ensembles.
+ * 2.8, 2.9 (support.h)), and with [hertz] enabled the Hertz repulsion of
+ * the particles closer than 2R (hertz_pairs.h; not in the paper).
+ * Initial velocities: the scene's, or uniform in [-V, V] per component
+ * from GSL's mt19937 with [greenspan72] seed; an optional uniform
+ * perturbation of +-perturb (another seed) for ensembles.
  *
  * The model does not conserve energy (support-set gravity has no potential
  * and no reaction), so it reports no energy to the time loop; the kinetic
@@ -37,86 +39,107 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/cells.h"
-#include "ballfilm/greenspan.h"
+#include "particles/cells.h"
+#include "models/greenspan.h"
+#include "particles/hertz_pairs.h"
 #include "ballfilm/model.h"
 #include "ballfilm/particles.h"
-#include "ballfilm/pdiag.h"
-#include "ballfilm/repulsion.h"
-#include "ballfilm/support.h"
-#include "ballfilm/walls.h"
+#include "particles/pdiag.h"
+#include "particles/repulsion.h"
+#include "particles/support.h"
+#include "particles/walls.h"
 
 enum { TAG_HEAVY = 1, TAG_LIGHT = 2 };
 enum { OUT_ALL = 0, OUT_POSITIONS = 1, OUT_DIAG = 2 };
 enum { NSETTLE = 4 };
 
+/* The keys of [greenspan72]. */
+typedef struct g72_keys {
+    double width, height, interface, d, m_heavy, m_light;
+    int layout; /* LAYOUT_GRID, LAYOUT_LIST */
+    long grid_nx, grid_ny;
+    bf_reals positions, velocities;
+    double v_random;
+    long seed;
+    bf_reals set_velocity;
+    double perturb;
+    long perturb_seed;
+    double bottom;
+    long threads, particles_every;
+    int output; /* OUT_ALL, OUT_POSITIONS, OUT_DIAG */
+} g72_keys;
+
+enum { LAYOUT_GRID = 0, LAYOUT_LIST = 1 };
+
 static const bf_param g72_params[] = {
-    {"width", BF_REAL, 0, "cm", "100", "box width |AB| (x from 0)", BF_POS, 0, 0,
-     NULL},
-    {"height", BF_REAL, 0, "cm", "100", "box height (y from 0)", BF_POS, 0, 0,
-     NULL},
-    {"interface", BF_REAL, 0, "cm", "75",
+    {"width", BF_AT(g72_keys, width, BF_REAL), "cm", "100",
+     "box width |AB| (x from 0)", BF_POS, 0, 0, NULL},
+    {"height", BF_AT(g72_keys, height, BF_REAL), "cm", "100",
+     "box height (y from 0)", BF_POS, 0, 0, NULL},
+    {"interface", BF_AT(g72_keys, interface, BF_REAL), "cm", "75",
      "b: particles starting above y = b are the heavy fluid L1 (tag 1), the "
      "others L2 (tag 2)",
      0, 0, 0, NULL},
-    {"d", BF_REAL, 0, "cm", NULL,
+    {"d", BF_AT(g72_keys, d, BF_REAL), "cm", NULL,
      "particle width d: side of its square in the support-set gravity and "
      "the distance below which beta acts",
      BF_POS, 0, 0, NULL},
-    {"m_heavy", BF_REAL, 0, "g", NULL, "mass m(L1) of a heavy particle", BF_POS,
-     0, 0, NULL},
-    {"m_light", BF_REAL, 0, "g", NULL, "mass m(L2) of a light particle", BF_POS,
-     0, 0, NULL},
-    {"layout", BF_ENUM, 0, "", "grid",
+    {"m_heavy", BF_AT(g72_keys, m_heavy, BF_REAL), "g", NULL,
+     "mass m(L1) of a heavy particle", BF_POS, 0, 0, NULL},
+    {"m_light", BF_AT(g72_keys, m_light, BF_REAL), "g", NULL,
+     "mass m(L2) of a light particle", BF_POS, 0, 0, NULL},
+    {"layout", BF_AT(g72_keys, layout, BF_ENUM), "", "grid",
      "grid: grid_nx x grid_ny cell centres in the listing's order (top row "
      "first, left to right); list: the positions key",
      0, 0, 0, "grid|list"},
-    {"grid_nx", BF_INT, 0, "1", "16", "grid columns", BF_MIN, 1, 0, NULL},
-    {"grid_ny", BF_INT, 0, "1", "16", "grid rows", BF_MIN, 1, 0, NULL},
-    {"positions", BF_REALS, 0, "cm", "",
+    {"grid_nx", BF_AT(g72_keys, grid_nx, BF_INT), "1", "16", "grid columns",
+     BF_MIN, 1, 0, NULL},
+    {"grid_ny", BF_AT(g72_keys, grid_ny, BF_INT), "1", "16", "grid rows",
+     BF_MIN, 1, 0, NULL},
+    {"positions", BF_AT(g72_keys, positions, BF_REALS), "cm", "",
      "layout = list: x1 y1 x2 y2 ... (particle k is pair k)", 0, 0, 0, NULL},
-    {"velocities", BF_REALS, 0, "cm/s", "",
+    {"velocities", BF_AT(g72_keys, velocities, BF_REALS), "cm/s", "",
      "vx1 vy1 vx2 vy2 ... at t = 0 (default: random in [-V, V])", 0, 0, 0,
      NULL},
-    {"v_random", BF_REAL, 0, "cm/s", "0",
+    {"v_random", BF_AT(g72_keys, v_random, BF_REAL), "cm/s", "0",
      "V: random initial velocity components uniform in [-V, V] (when no "
      "velocities are given)",
      BF_NONNEG, 0, 0, NULL},
-    {"seed", BF_INT, 0, "1", "1972", "seed of the random velocities (GSL mt19937)",
-     BF_MIN, 0, 0, NULL},
-    {"set_velocity", BF_REALS, 0, "1, cm/s", "",
+    {"seed", BF_AT(g72_keys, seed, BF_INT), "1", "1972",
+     "seed of the random velocities (GSL mt19937)", BF_MIN, 0, 0, NULL},
+    {"set_velocity", BF_AT(g72_keys, set_velocity, BF_REALS), "1, cm/s", "",
      "triples k vx vy: particle k (1-based) starts with (vx, vy) after the "
      "random draw",
      0, 0, 0, NULL},
-    {"perturb", BF_REAL, 0, "cm/s", "0",
+    {"perturb", BF_AT(g72_keys, perturb, BF_REAL), "cm/s", "0",
      "add a uniform perturbation in [-perturb, perturb] to every initial "
      "velocity component (ensembles)",
      BF_NONNEG, 0, 0, NULL},
-    {"perturb_seed", BF_INT, 0, "1", "1", "seed of the perturbation", BF_MIN, 0,
-     0, NULL},
-    {"bottom", BF_REAL, 0, "cm", "0",
+    {"perturb_seed", BF_AT(g72_keys, perturb_seed, BF_INT), "1", "1",
+     "seed of the perturbation", BF_MIN, 0, 0, NULL},
+    {"bottom", BF_AT(g72_keys, bottom, BF_REAL), "cm", "0",
      "height of 'the bottom' in the settling diagnostics (0: the support "
      "band height dx)",
      BF_NONNEG, 0, 0, NULL},
-    {"threads", BF_INT, 0, "1", "0",
+    {"threads", BF_AT(g72_keys, threads, BF_INT), "1", "0",
      "OpenMP threads for the forces (0: OMP_NUM_THREADS if set, else 1); "
      "the results do not depend on it",
      BF_NONNEG, 0, 0, NULL},
-    {"particles_every", BF_INT, 0, "1", "1",
+    {"particles_every", BF_AT(g72_keys, particles_every, BF_INT), "1", "1",
      "write the per-particle rows (/particles/x ...) at every N-th output "
      "row only; their steps are in /particles/step",
      BF_MIN, 1, 0, NULL},
-    {"output", BF_ENUM, 0, "", "all",
+    {"output", BF_AT(g72_keys, output, BF_ENUM), "", "all",
      "per-row datasets: all (positions, velocities, diagnostics), positions "
      "(no velocities), diagnostics (none per particle)",
      0, 0, 0, "all|positions|diagnostics"},
     {0},
 };
 
-static const bf_section_spec g72_spec = {
+static const bf_section_spec g72_spec = BF_SECTION(
     "greenspan72",
     "two fluids mixing, Greenspan 1972: box, particles, initial data",
-    g72_params, 0};
+    g72_params, g72_keys);
 
 typedef struct g72 {
     bf_particles p;
@@ -124,6 +147,8 @@ typedef struct g72 {
     double width, height, interface, bottom;
     bf_walls walls;
     bf_repulsion rep;
+    int hertz_on; /* [hertz] enabled */
+    bf_hertz_pairs hertz;
     bf_support *sup;
     int need_cells;
     bf_cells cells;
@@ -170,35 +195,35 @@ static void g72_destroy(void *self)
     free(m);
 }
 
-/* Positions and initial velocities from the scene. */
-static bf_status g72_initial(g72 *m, const bf_scene *sc, bf_err *err)
+/* Positions and initial velocities from the keys. */
+static bf_status g72_initial(g72 *m, const g72_keys *k72, bf_err *err)
 {
     const char *S = "greenspan72";
-    size_t n, nv, npos;
-    const double *pos = bf_scene_reals(sc, S, "positions", &npos);
-    const double *vel = bf_scene_reals(sc, S, "velocities", &nv);
-    int list = bf_scene_enum(sc, S, "layout") == 1;
-    long gx = bf_scene_int(sc, S, "grid_nx"), gy = bf_scene_int(sc, S, "grid_ny");
+    size_t n, nv = k72->velocities.n, npos = k72->positions.n;
+    const double *pos = k72->positions.v;
+    const double *vel = k72->velocities.v;
+    int list = k72->layout == LAYOUT_LIST;
+    long gx = k72->grid_nx, gy = k72->grid_ny;
     if (list) {
         if (npos == 0 || npos % 2)
-            return bf_scene_fail(sc, err, S, "positions",
-                                 "layout = list needs x y pairs (%zu numbers "
-                                 "given)",
-                                 npos);
+            return bf_fail_key(err, BF_EINPUT, S, "positions",
+                               "layout = list needs x y pairs (%zu numbers "
+                               "given)",
+                               npos);
         n = npos / 2;
     } else {
         if (npos)
-            return bf_scene_fail(sc, err, S, "positions",
-                                 "positions are only used with layout = list");
+            return bf_fail_key(err, BF_EINPUT, S, "positions",
+                               "positions are only used with layout = list");
         if ((double)gx * (double)gy > 5e7)
-            return bf_scene_fail(sc, err, S, "grid_nx", "%ld x %ld particles "
-                                 "is too many", gx, gy);
+            return bf_fail_key(err, BF_EINPUT, S, "grid_nx",
+                               "%ld x %ld particles is too many", gx, gy);
         n = (size_t)gx * (size_t)gy;
     }
     if (nv && nv != 2 * n)
-        return bf_scene_fail(sc, err, S, "velocities",
-                             "%zu numbers for %zu particles (need %zu)", nv, n,
-                             2 * n);
+        return bf_fail_key(err, BF_EINPUT, S, "velocities",
+                           "%zu numbers for %zu particles (need %zu)", nv, n,
+                           2 * n);
     bf_status st = bf_particles_init(&m->p, n, err);
     if (st)
         return st;
@@ -216,10 +241,10 @@ static bf_status g72_initial(g72 *m, const bf_scene *sc, bf_err *err)
         }
         if (!(p->x[k] >= 0 && p->x[k] <= m->width && p->y[k] >= 0 &&
               p->y[k] <= m->height))
-            return bf_scene_fail(sc, err, S, "positions",
-                                 "particle %zu at (%g, %g) is outside the box "
-                                 "[0, %g] x [0, %g]",
-                                 k + 1, p->x[k], p->y[k], m->width, m->height);
+            return bf_fail_key(err, BF_EINPUT, S, "positions",
+                               "particle %zu at (%g, %g) is outside the box "
+                               "[0, %g] x [0, %g]",
+                               k + 1, p->x[k], p->y[k], m->width, m->height);
     }
     if (nv) {
         for (size_t k = 0; k < n; k++) {
@@ -227,43 +252,43 @@ static bf_status g72_initial(g72 *m, const bf_scene *sc, bf_err *err)
             p->vy[k] = vel[2 * k + 1];
         }
     } else {
-        double V = bf_scene_real(sc, S, "v_random");
+        double V = k72->v_random;
         gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
         if (!r)
             return bf_fail(err, BF_EINTERNAL, "out of memory");
-        gsl_rng_set(r, (unsigned long)bf_scene_int(sc, S, "seed"));
+        gsl_rng_set(r, (unsigned long)k72->seed);
         for (size_t k = 0; k < n; k++) {
             p->vx[k] = V * (2.0 * gsl_rng_uniform(r) - 1.0);
             p->vy[k] = V * (2.0 * gsl_rng_uniform(r) - 1.0);
         }
         gsl_rng_free(r);
     }
-    size_t ns;
-    const double *set = bf_scene_reals(sc, S, "set_velocity", &ns);
+    size_t ns = k72->set_velocity.n;
+    const double *set = k72->set_velocity.v;
     if (ns % 3)
-        return bf_scene_fail(sc, err, S, "set_velocity",
-                             "needs triples k vx vy (%zu numbers)", ns);
+        return bf_fail_key(err, BF_EINPUT, S, "set_velocity",
+                           "needs triples k vx vy (%zu numbers)", ns);
     for (size_t t = 0; t < ns; t += 3) {
         double k = set[t];
         if (!(k >= 1 && k <= (double)n && k == floor(k)))
-            return bf_scene_fail(sc, err, S, "set_velocity",
-                                 "particle number %g is not in 1..%zu", k, n);
+            return bf_fail_key(err, BF_EINPUT, S, "set_velocity",
+                               "particle number %g is not in 1..%zu", k, n);
         p->vx[(size_t)k - 1] = set[t + 1];
         p->vy[(size_t)k - 1] = set[t + 2];
     }
-    double eps = bf_scene_real(sc, S, "perturb");
+    double eps = k72->perturb;
     if (eps > 0) {
         gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
         if (!r)
             return bf_fail(err, BF_EINTERNAL, "out of memory");
-        gsl_rng_set(r, (unsigned long)bf_scene_int(sc, S, "perturb_seed"));
+        gsl_rng_set(r, (unsigned long)k72->perturb_seed);
         for (size_t k = 0; k < n; k++) {
             p->vx[k] += eps * (2.0 * gsl_rng_uniform(r) - 1.0);
             p->vy[k] += eps * (2.0 * gsl_rng_uniform(r) - 1.0);
         }
         gsl_rng_free(r);
     }
-    double mh = bf_scene_real(sc, S, "m_heavy"), ml = bf_scene_real(sc, S, "m_light");
+    double mh = k72->m_heavy, ml = k72->m_light;
     m->n_heavy = 0;
     for (size_t k = 0; k < n; k++) {
         int heavy = p->y[k] > m->interface;
@@ -274,22 +299,28 @@ static bf_status g72_initial(g72 *m, const bf_scene *sc, bf_err *err)
     return BF_OK;
 }
 
-static bf_status g72_create(void **self, const bf_scene *sc,
-                          const bf_model_setup *setup, bf_err *err)
+static bf_status g72_create(void **self, const bf_model_setup *setup,
+                            bf_err *err)
 {
-    (void)setup;
-    const char *S = "greenspan72";
+    const g72_keys *k72 = bf_setup_get(setup, &g72_spec, NULL);
+    const bf_walls_keys *kw = bf_setup_get(setup, &bf_walls_spec, NULL);
+    const bf_repulsion_keys *kr = bf_setup_get(setup, &bf_repulsion_spec, NULL);
+    const bf_support_keys *ks = bf_setup_get(setup, &bf_support_spec, NULL);
+    const bf_hertz_keys *kh = bf_setup_get(setup, &bf_hertz_spec, NULL);
+    if (!k72 || !kw || !kr || !ks || !kh)
+        return bf_fail(err, BF_EINTERNAL, "greenspan72: sections missing "
+                       "from the setup");
     g72 *m = calloc(1, sizeof *m);
     if (!m)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     bf_status st;
-    m->width = bf_scene_real(sc, S, "width");
-    m->height = bf_scene_real(sc, S, "height");
-    m->interface = bf_scene_real(sc, S, "interface");
-    double d = bf_scene_real(sc, S, "d");
-    m->out_mode = bf_scene_enum(sc, S, "output");
-    m->particles_every = bf_scene_int(sc, S, "particles_every");
-    m->threads = (int)bf_scene_int(sc, S, "threads");
+    m->width = k72->width;
+    m->height = k72->height;
+    m->interface = k72->interface;
+    double d = k72->d;
+    m->out_mode = k72->output;
+    m->particles_every = k72->particles_every;
+    m->threads = (int)k72->threads;
 #ifdef _OPENMP
     /* opt-in: spinning threads on a machine whose other cores are busy are
      * slower than one thread */
@@ -301,13 +332,16 @@ static bf_status g72_create(void **self, const bf_scene *sc,
 #endif
     bf_box box = {0.0, m->width, 0.0, m->height};
     bf_support_params sp;
-    if ((st = bf_walls_from_scene(&m->walls, sc, box, err)) ||
-        (st = bf_repulsion_from_scene(&m->rep, sc, d, err)) ||
-        (st = bf_support_params_from_scene(&sp, sc, box, d, err)) ||
-        (st = g72_initial(m, sc, err)))
+    bf_walls_from_keys(&m->walls, kw, box);
+    if ((st = bf_repulsion_from_keys(&m->rep, kr, d, err)) ||
+        (st = bf_support_params_from_keys(&sp, ks, box, d, err)) ||
+        (st = g72_initial(m, k72, err)))
         goto fail;
     sp.threads = m->threads;
-    m->bottom = bf_scene_real(sc, S, "bottom");
+    m->hertz_on = kh->enabled;
+    m->hertz.k = kh->k;
+    m->hertz.R = kh->radius > 0 ? kh->radius : 0.5 * d;
+    m->bottom = k72->bottom;
     if (m->bottom == 0)
         m->bottom = sp.dx;
     const size_t n = m->p.n;
@@ -396,6 +430,15 @@ static bf_status g72_accel(g72 *m, bf_err *err)
         return bf_fail(err, BF_EUNSTABLE,
                        "particles %zu and %zu coincide at (%.9g, %.9g) with "
                        "xi = 0: the repulsion has no direction",
+                       bi + 1, bj + 1, p->x[bi], p->y[bi]);
+    /* the Hertz contacts (after the repulsion, which overwrites ax, ay) */
+    if (m->hertz_on &&
+        (c ? bf_hertz_pairs_cells(&m->hertz, c, m->ax, m->ay, &bi, &bj)
+           : bf_hertz_pairs_all(&m->hertz, p->x, p->y, p->m, p->n, m->ax,
+                                m->ay, &bi, &bj)))
+        return bf_fail(err, BF_EUNSTABLE,
+                       "particles %zu and %zu coincide at (%.9g, %.9g): the "
+                       "Hertz force has no direction",
                        bi + 1, bj + 1, p->x[bi], p->y[bi]);
     m->evals++;
     m->acc_valid = 1;
@@ -524,7 +567,12 @@ static bf_status g72_output_open(void *self, bf_out *out, bf_err *err)
     return st;
 }
 
-/* The four settling criteria of spec sec. 1.7 at the current positions. */
+/* The four settling criteria at the current positions (how far the heavy
+ * fluid has sunk; docs/models/greenspan72.md, settling): (a) 1 if every
+ * heavy particle is below every light one, (b) 1 if every heavy one is
+ * below 'bottom', (c) the number of heavy ones below 'bottom' (it holds,
+ * in g72_output_row, when at most one is above), (d) 1 if the mean height
+ * of the heavy is below that of the light. */
 static void g72_settle(const g72 *m, double crit[NSETTLE])
 {
     bf_pdiag_group h = bf_pdiag_group_of(&m->p, TAG_HEAVY);
@@ -655,56 +703,43 @@ static void g72_report(const void *self, FILE *f)
         }
 }
 
+/* The state beyond the particles (the accelerations are recomputed from
+ * the restored positions). */
+static const bf_field g72_state[] = {
+    BF_FIELD_ARRAY(g72, kind_total, BF_F_ULL, "particle-steps"),
+    BF_FIELD(g72, steps, BF_F_ULL, "1"),
+    BF_FIELD(g72, evals, BF_F_ULL, "1"),
+    BF_FIELD(g72, wall_hits, BF_F_ULL, "1"),
+    BF_FIELD_ARRAY(g72, settle_first, BF_F_LONG, "step"),
+    BF_FIELD_ARRAY(g72, settle_lastfail, BF_F_LONG, "step"),
+    BF_FIELD(g72, settle_last_row, BF_F_LONG, "step"),
+    BF_FIELD(g72, rows, BF_F_LONG, "1"),
+};
+
 static bf_status g72_save(const void *self, bf_ckpt *ck, bf_err *err)
 {
     const g72 *m = self;
-    int64_t c[4 + 3 + 2 * NSETTLE + 2];
-    size_t k = 0;
-    for (int q = 0; q < 4; q++)
-        c[k++] = (int64_t)m->kind_total[q];
-    c[k++] = (int64_t)m->steps;
-    c[k++] = (int64_t)m->evals;
-    c[k++] = (int64_t)m->wall_hits;
-    for (int q = 0; q < NSETTLE; q++) {
-        c[k++] = m->settle_first[q];
-        c[k++] = m->settle_lastfail[q];
-    }
-    c[k++] = m->settle_last_row;
-    c[k++] = m->rows;
     bf_status st = bf_particles_save(&m->p, ck, "g72.p", err);
     if (!st)
-        st = bf_ckpt_put_i64(ck, "g72.counters", c, k, err);
+        st = bf_ckpt_put_fields(ck, "g72", g72_state, BF_NFIELDS(g72_state),
+                                m, err);
     return st;
 }
 
 static bf_status g72_load(void *self, const bf_ckpt *ck, bf_err *err)
 {
     g72 *m = self;
-    int64_t c[4 + 3 + 2 * NSETTLE + 2];
     bf_status st = bf_particles_load(&m->p, ck, "g72.p", err);
     if (!st)
-        st = bf_ckpt_get_i64(ck, "g72.counters", c, sizeof c / sizeof c[0],
-                             err);
-    if (st)
-        return st;
-    size_t k = 0;
-    for (int q = 0; q < 4; q++)
-        m->kind_total[q] = (unsigned long long)c[k++];
-    m->steps = (unsigned long long)c[k++];
-    m->evals = (unsigned long long)c[k++];
-    m->wall_hits = (unsigned long long)c[k++];
-    for (int q = 0; q < NSETTLE; q++) {
-        m->settle_first[q] = (long)c[k++];
-        m->settle_lastfail[q] = (long)c[k++];
-    }
-    m->settle_last_row = (long)c[k++];
-    m->rows = (long)c[k++];
+        st = bf_ckpt_get_fields(ck, "g72", g72_state, BF_NFIELDS(g72_state),
+                                m, err);
     m->acc_valid = 0; /* a(x) is recomputed from the restored positions */
-    return BF_OK;
+    return st;
 }
 
 static const bf_section_spec *const g72_specs[] = {
-    &g72_spec, &bf_repulsion_spec, &bf_support_spec, &bf_walls_spec, NULL};
+    &g72_spec,     &bf_repulsion_spec, &bf_support_spec,
+    &bf_walls_spec, &bf_hertz_spec,    NULL};
 
 const bf_model_type bf_model_greenspan72 = {
     .name = "greenspan72",
@@ -712,7 +747,7 @@ const bf_model_type bf_model_greenspan72 = {
            "(Greenspan 1972)",
     .flags = 0,
     .specs = g72_specs,
-    .create_scene = g72_create,
+    .create = g72_create,
     .destroy = g72_destroy,
     .step = g72_step,
     .output_open = g72_output_open,

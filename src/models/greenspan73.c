@@ -2,7 +2,7 @@
  * theory of fluids (Univ. Wisconsin CS TR 171, 1973): the implicit,
  * exactly energy-conserving scheme (2.1)-(2.4) (implicit.h, dforce.h).
  *
- * Layouts (the paper's examples; the spec greenspan.md secs 2.5-2.6):
+ * Layouts (the paper's examples; docs/models/greenspan73.md, layouts):
  *   hexagon  P1-P11 at ((i+1/2) r0, h), P12-P23 at (i r0, 0), P24-P34 at
  *            ((i+1/2) r0, -h), r0 the pair equilibrium distance, h = r0
  *            sqrt(3)/2; v_i = (V + e_i1, e_i2), the 68 numbers e drawn once
@@ -37,105 +37,140 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/dforce.h"
-#include "ballfilm/greenspan.h"
-#include "ballfilm/implicit.h"
+#include "particles/dforce.h"
+#include "models/greenspan.h"
+#include "particles/implicit.h"
 #include "ballfilm/model.h"
 #include "ballfilm/particles.h"
-#include "ballfilm/pdiag.h"
+#include "particles/pdiag.h"
+
+/* The keys of [greenspan73]. */
+typedef struct g73_keys {
+    int layout; /* LAYOUT_HEXAGON, LAYOUT_WALL, LAYOUT_LIST */
+    long alpha, beta;
+    double p, q;
+    bf_reals pairs;
+    double g;
+    int gravity; /* GRAVITY_LISTED, GRAVITY_ALL */
+    bf_reals gravity_on, fixed;
+    int mass; /* MASS_PAPER, MASS_FORTRAN */
+    double speed, jitter;
+    long seed;
+    double theta;
+    int theta_dir; /* 0: down, 1: up */
+    int start;     /* START_HOLLOW, START_TEXT, START_CENTRE */
+    int below;
+    double fluid_mass, wall_mass;
+    bf_reals positions, velocities, masses;
+    int solver; /* bf_implicit_method */
+    double omega, tol;
+    long max_iter;
+    int jacobian; /* 0: dense, 1: sparse */
+    double jacobian_cutoff;
+    int on_failure; /* 0: stop, 1: halve */
+    long max_halvings, watch;
+} g73_keys;
+
+enum { LAYOUT_HEXAGON = 0, LAYOUT_WALL = 1, LAYOUT_LIST = 2 };
+enum { GRAVITY_LISTED = 0, GRAVITY_ALL = 1 };
+enum { MASS_PAPER = 0, MASS_FORTRAN = 1 };
+enum { START_HOLLOW = 0, START_TEXT = 1, START_CENTRE = 2 };
+/* the choices of `start`, for the summary */
+static const char *const start_names[] = {"hollow", "text", "centre"};
 
 static const bf_param g73_params[] = {
-    {"layout", BF_ENUM, 0, "", "hexagon",
+    {"layout", BF_AT(g73_keys, layout, BF_ENUM), "", "hexagon",
      "hexagon: the 34-particle flow; wall: a fluid particle and the wall "
      "particles P2-P9 (and P10); list: positions/velocities/masses",
      0, 0, 0, "hexagon|wall|list"},
-    {"alpha", BF_INT, 0, "1", "7", "attraction exponent alpha (p / r^alpha)",
-     BF_MIN | BF_MAX, 2, 60, NULL},
-    {"beta", BF_INT, 0, "1", "10", "repulsion exponent beta (q / r^beta)",
-     BF_MIN | BF_MAX, 2, 60, NULL},
-    {"p", BF_REAL, 0, "1", "1", "attraction constant p_ij of every pair",
+    {"alpha", BF_AT(g73_keys, alpha, BF_INT), "1", "7",
+     "attraction exponent alpha (p / r^alpha)", BF_MIN | BF_MAX, 2, 60, NULL},
+    {"beta", BF_AT(g73_keys, beta, BF_INT), "1", "10",
+     "repulsion exponent beta (q / r^beta)", BF_MIN | BF_MAX, 2, 60, NULL},
+    {"p", BF_AT(g73_keys, p, BF_REAL), "1", "1",
+     "attraction constant p_ij of every pair", BF_NONNEG, 0, 0, NULL},
+    {"q", BF_AT(g73_keys, q, BF_REAL), "1", "1",
+     "repulsion constant q_ij of every pair", BF_NONNEG, 0, 0, NULL},
+    {"pairs", BF_AT(g73_keys, pairs, BF_REALS), "1", "",
+     "quadruples i j p q: other constants for the pair (i, j), 1-based", 0, 0,
+     0, NULL},
+    {"g", BF_AT(g73_keys, g, BF_REAL), "cm/s^2", "0", "gravity (along -y)",
      BF_NONNEG, 0, 0, NULL},
-    {"q", BF_REAL, 0, "1", "1", "repulsion constant q_ij of every pair",
-     BF_NONNEG, 0, 0, NULL},
-    {"pairs", BF_REALS, 0, "1", "",
-     "quadruples i j p q: other constants for the pair (i, j), 1-based", 0,
-     0, 0, NULL},
-    {"g", BF_REAL, 0, "cm/s^2", "0", "gravity (along -y)", BF_NONNEG, 0, 0, NULL},
-    {"gravity", BF_ENUM, 0, "", "listed",
+    {"gravity", BF_AT(g73_keys, gravity, BF_ENUM), "", "listed",
      "who feels gravity: the particles in gravity_on (the listing: P1), or "
      "all free particles (the text's eq. 2.4)",
      0, 0, 0, "listed|all"},
-    {"gravity_on", BF_REALS, 0, "1", "1", "particle numbers that feel gravity",
-     BF_MIN, 1, 0, NULL},
-    {"fixed", BF_REALS, 0, "1", "",
-     "particle numbers held fixed (the listing: 2 9; the text: 2 8)", BF_MIN,
-     1, 0, NULL},
-    {"mass", BF_ENUM, 0, "", "paper",
+    {"gravity_on", BF_AT(g73_keys, gravity_on, BF_REALS), "1", "1",
+     "particle numbers that feel gravity", BF_MIN, 1, 0, NULL},
+    {"fixed", BF_AT(g73_keys, fixed, BF_REALS), "1", "",
+     "particle numbers held fixed (the listing: 2 9; the text: 2 8)", BF_MIN, 1,
+     0, NULL},
+    {"mass", BF_AT(g73_keys, mass, BF_ENUM), "", "paper",
      "inertia of the update: paper (F = m a, v += dt F/m) or fortran (the "
      "listing: v += dt F, i.e. inertia 1)",
      0, 0, 0, "paper|fortran"},
-    {"speed", BF_REAL, 0, "cm/s", "50",
-     "hexagon: the drift V; wall: the speed |v| of P1", BF_NONNEG, 0, 0,
-     NULL},
-    {"jitter", BF_REAL, 0, "%", "1",
+    {"speed", BF_AT(g73_keys, speed, BF_REAL), "cm/s", "50",
+     "hexagon: the drift V; wall: the speed |v| of P1", BF_NONNEG, 0, 0, NULL},
+    {"jitter", BF_AT(g73_keys, jitter, BF_REAL), "%", "1",
      "hexagon: J, the largest random velocity component is J V / 100",
      BF_NONNEG, 0, 0, NULL},
-    {"seed", BF_INT, 0, "1", "1973", "hexagon: seed of the random components",
-     BF_MIN, 0, 0, NULL},
-    {"theta", BF_REAL, 0, "deg", "30", "wall: angle of P1's velocity to the "
-     "horizontal", 0, 0, 0, NULL},
-    {"theta_dir", BF_ENUM, 0, "", "down",
+    {"seed", BF_AT(g73_keys, seed, BF_INT), "1", "1973",
+     "hexagon: seed of the random components", BF_MIN, 0, 0, NULL},
+    {"theta", BF_AT(g73_keys, theta, BF_REAL), "deg", "30",
+     "wall: angle of P1's velocity to the horizontal", 0, 0, 0, NULL},
+    {"theta_dir", BF_AT(g73_keys, theta_dir, BF_ENUM), "", "down",
      "wall: down: v = |v| (cos, -sin) towards the wall (the text); up: "
      "(cos, sin) (the listing's VY0 = VEL sin)",
      0, 0, 0, "down|up"},
-    {"start", BF_ENUM, 0, "", "hollow",
+    {"start", BF_AT(g73_keys, start, BF_ENUM), "", "hollow",
      "wall: P1 at (1.5 BX, BY) (hollow), the text's (0.1717, 0.9914) "
      "(text), or (3.5 BX, BY) (centre)",
      0, 0, 0, "hollow|text|centre"},
-    {"below", BF_BOOL, 0, "", "false", "wall: add P10 at (3.5 BX, -BY)", 0, 0,
-     0, NULL},
-    {"fluid_mass", BF_REAL, 0, "g", "0.1", "wall: mass of P1", BF_POS, 0, 0,
-     NULL},
-    {"wall_mass", BF_REAL, 0, "g", "10",
+    {"below", BF_AT(g73_keys, below, BF_BOOL), "", "false",
+     "wall: add P10 at (3.5 BX, -BY)", 0, 0, 0, NULL},
+    {"fluid_mass", BF_AT(g73_keys, fluid_mass, BF_REAL), "g", "0.1",
+     "wall: mass of P1", BF_POS, 0, 0, NULL},
+    {"wall_mass", BF_AT(g73_keys, wall_mass, BF_REAL), "g", "10",
      "wall: mass of the wall particles (the text: 10)", BF_POS, 0, 0, NULL},
-    {"positions", BF_REALS, 0, "cm", "", "list: x1 y1 x2 y2 ...", 0, 0, 0, NULL},
-    {"velocities", BF_REALS, 0, "cm/s", "", "list: vx1 vy1 ... (default 0)", 0,
-     0, 0, NULL},
-    {"masses", BF_REALS, 0, "g", "", "list: m1 m2 ... (default 1)", BF_POS, 0,
-     0, NULL},
-    {"solver", BF_ENUM, 0, "", "fixed_point",
+    {"positions", BF_AT(g73_keys, positions, BF_REALS), "cm", "",
+     "list: x1 y1 x2 y2 ...", 0, 0, 0, NULL},
+    {"velocities", BF_AT(g73_keys, velocities, BF_REALS), "cm/s", "",
+     "list: vx1 vy1 ... (default 0)", 0, 0, 0, NULL},
+    {"masses", BF_AT(g73_keys, masses, BF_REALS), "g", "",
+     "list: m1 m2 ... (default 1)", BF_POS, 0, 0, NULL},
+    {"solver", BF_AT(g73_keys, solver, BF_ENUM), "", "fixed_point",
      "fixed_point: the listing's relaxed iteration; newton: the text's "
      "Newton method",
      0, 0, 0, "fixed_point|newton"},
-    {"omega", BF_REAL, 0, "1", "1", "relaxation of the fixed-point iteration",
-     BF_POS | BF_MAX, 0, 1, NULL},
-    {"tol", BF_REAL, 0, "cm, cm/s", "1e-10",
+    {"omega", BF_AT(g73_keys, omega, BF_REAL), "1", "1",
+     "relaxation of the fixed-point iteration", BF_POS | BF_MAX, 0, 1, NULL},
+    {"tol", BF_AT(g73_keys, tol, BF_REAL), "cm, cm/s", "1e-10",
      "stop iterating when no x or v changes by more than this", BF_POS, 0, 0,
      NULL},
-    {"max_iter", BF_INT, 0, "1", "500", "iterations before a step fails",
-     BF_MIN, 1, 0, NULL},
-    {"jacobian", BF_ENUM, 0, "", "dense",
+    {"max_iter", BF_AT(g73_keys, max_iter, BF_INT), "1", "500",
+     "iterations before a step fails", BF_MIN, 1, 0, NULL},
+    {"jacobian", BF_AT(g73_keys, jacobian, BF_ENUM), "", "dense",
      "Newton: dense (LU) or sparse (GMRES, pairs beyond jacobian_cutoff "
      "left out)",
      0, 0, 0, "dense|sparse"},
-    {"jacobian_cutoff", BF_REAL, 0, "cm", "0",
-     "sparse Jacobian: leave out pairs farther apart (0: keep all)",
-     BF_NONNEG, 0, 0, NULL},
-    {"on_failure", BF_ENUM, 0, "", "stop",
+    {"jacobian_cutoff", BF_AT(g73_keys, jacobian_cutoff, BF_REAL), "cm", "0",
+     "sparse Jacobian: leave out pairs farther apart (0: keep all)", BF_NONNEG,
+     0, 0, NULL},
+    {"on_failure", BF_AT(g73_keys, on_failure, BF_ENUM), "", "stop",
      "when the solver fails: stop the run (exit 4) or halve the step "
      "(repeatedly, up to max_halvings)",
      0, 0, 0, "stop|halve"},
-    {"max_halvings", BF_INT, 0, "1", "12", "most halvings of one step",
-     BF_MIN | BF_MAX, 0, 40, NULL},
-    {"watch", BF_INT, 0, "1", "1",
+    {"max_halvings", BF_AT(g73_keys, max_halvings, BF_INT), "1", "12",
+     "most halvings of one step", BF_MIN | BF_MAX, 0, 40, NULL},
+    {"watch", BF_AT(g73_keys, watch, BF_INT), "1", "1",
      "particle whose final position the summary prints", BF_MIN, 1, 0, NULL},
     {0},
 };
 
-static const bf_section_spec g73_spec = {
-    "greenspan73",
-    "the implicit energy-conserving particle scheme, Greenspan 1973",
-    g73_params, 0};
+static const bf_section_spec g73_spec =
+    BF_SECTION("greenspan73",
+               "the implicit energy-conserving particle scheme, Greenspan 1973",
+               g73_params, g73_keys);
 
 typedef struct g73 {
     bf_particles p;
@@ -169,104 +204,107 @@ bf_particles *bf_greenspan73_particles(void *model)
     return &((g73 *)model)->p;
 }
 
-/* A particle-number list from the scene into flags (1-based numbers). */
-static bf_status number_list(const bf_scene *sc, const char *key, size_t n,
+/* A particle-number list (key `key` of [greenspan73]) into flags (1-based
+ * numbers). */
+static bf_status number_list(bf_reals v, const char *key, size_t n,
                              uint8_t *flag, bf_err *err)
 {
-    size_t k;
-    const double *v = bf_scene_reals(sc, "greenspan73", key, &k);
-    for (size_t a = 0; a < k; a++) {
-        if (!(v[a] == floor(v[a]) && v[a] >= 1 && v[a] <= (double)n))
-            return bf_scene_fail(sc, err, "greenspan73", key,
-                                 "%g is not a particle number 1..%zu", v[a],
-                                 n);
-        flag[(size_t)v[a] - 1] = 1;
+    for (size_t a = 0; a < v.n; a++) {
+        if (!(v.v[a] == floor(v.v[a]) && v.v[a] >= 1 && v.v[a] <= (double)n))
+            return bf_fail_key(err, BF_EINPUT, "greenspan73", key,
+                               "%g is not a particle number 1..%zu", v.v[a],
+                               n);
+        flag[(size_t)v.v[a] - 1] = 1;
     }
     return BF_OK;
 }
 
-static bf_status g73_layout(g73 *m, const bf_scene *sc, bf_err *err)
+static bf_status g73_layout(g73 *m, const g73_keys *k, bf_err *err)
 {
     const char *S = "greenspan73";
-    const int layout = bf_scene_enum(sc, S, "layout");
-    const int alpha = (int)bf_scene_int(sc, S, "alpha"),
-              beta = (int)bf_scene_int(sc, S, "beta");
-    const double p = bf_scene_real(sc, S, "p"), q = bf_scene_real(sc, S, "q");
+    const int layout = k->layout;
+    const int alpha = (int)k->alpha, beta = (int)k->beta;
+    const double p = k->p, q = k->q;
     if (alpha == beta)
-        return bf_scene_fail(sc, err, S, "beta", "alpha = beta = %d: no "
-                             "equilibrium distance", alpha);
-    double r0 = layout == 2 ? 1.0 : bf_dforce_r0(alpha, beta, p, q);
-    if (layout != 2 && !(r0 > 0 && isfinite(r0)))
-        return bf_scene_fail(sc, err, S, "p", "p = %g, q = %g give no "
-                             "equilibrium distance", p, q);
+        return bf_fail_key(err, BF_EINPUT, S, "beta",
+                           "alpha = beta = %d: no equilibrium distance",
+                           alpha);
+    double r0 = layout == LAYOUT_LIST ? 1.0 : bf_dforce_r0(alpha, beta, p, q);
+    if (layout != LAYOUT_LIST && !(r0 > 0 && isfinite(r0)))
+        return bf_fail_key(err, BF_EINPUT, S, "p",
+                           "p = %g, q = %g give no equilibrium distance", p,
+                           q);
     size_t n;
     bf_status st;
-    if (layout == 0) {
+    if (layout == LAYOUT_HEXAGON) {
         n = 34;
-    } else if (layout == 1) {
-        n = bf_scene_bool(sc, S, "below") ? 10 : 9;
+    } else if (layout == LAYOUT_WALL) {
+        n = k->below ? 10 : 9;
     } else {
-        size_t np;
-        bf_scene_reals(sc, S, "positions", &np);
+        size_t np = k->positions.n;
         if (np == 0 || np % 2)
-            return bf_scene_fail(sc, err, S, "positions",
-                                 "layout = list needs x y pairs (%zu "
-                                 "numbers)",
-                                 np);
+            return bf_fail_key(err, BF_EINPUT, S, "positions",
+                               "layout = list needs x y pairs (%zu numbers)",
+                               np);
         n = np / 2;
     }
     if ((st = bf_particles_init(&m->p, n, err)) ||
         (st = bf_dforce_init(&m->f, n, alpha, beta, err)))
         return st;
     bf_particles *P = &m->p;
-    const double V = bf_scene_real(sc, S, "speed");
-    if (layout == 0) {
+    const double V = k->speed;
+    if (layout == LAYOUT_HEXAGON) {
         const double h = r0 * sqrt(3.0) / 2.0;
-        size_t k = 0;
-        for (int i = 0; i < 11; i++, k++) {
-            P->x[k] = (i + 0.5) * r0;
-            P->y[k] = h;
+        size_t j = 0;
+        for (int i = 0; i < 11; i++, j++) {
+            P->x[j] = (i + 0.5) * r0;
+            P->y[j] = h;
         }
-        for (int i = 0; i < 12; i++, k++) {
-            P->x[k] = i * r0;
-            P->y[k] = 0.0;
+        for (int i = 0; i < 12; i++, j++) {
+            P->x[j] = i * r0;
+            P->y[j] = 0.0;
         }
-        for (int i = 0; i < 11; i++, k++) {
-            P->x[k] = (i + 0.5) * r0;
-            P->y[k] = -h;
+        for (int i = 0; i < 11; i++, j++) {
+            P->x[j] = (i + 0.5) * r0;
+            P->y[j] = -h;
         }
         /* one set of 68 random numbers, scaled for each V */
         double e[68], emax = 0.0;
         gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
         if (!r)
             return bf_fail(err, BF_EINTERNAL, "out of memory");
-        gsl_rng_set(r, (unsigned long)bf_scene_int(sc, S, "seed"));
+        gsl_rng_set(r, (unsigned long)k->seed);
         for (int a = 0; a < 68; a++) {
             e[a] = 2.0 * gsl_rng_uniform(r) - 1.0;
             emax = fmax(emax, fabs(e[a]));
         }
         gsl_rng_free(r);
-        const double scale = bf_scene_real(sc, S, "jitter") * V / 100.0 / emax;
+        const double scale = k->jitter * V / 100.0 / emax;
         for (size_t i = 0; i < 34; i++) {
             P->vx[i] = V + scale * e[2 * i];
             P->vy[i] = scale * e[2 * i + 1];
             P->m[i] = 1.0;
         }
-    } else if (layout == 1) {
-        /* Jones's SUBROUTINE INP, read as in the spec sec. 2.6 */
+    } else if (layout == LAYOUT_WALL) {
+        /* Jones's SUBROUTINE INP: the wall particles P2..P9 a distance
+         * BX = r0 apart on y = 0, P1 (and P10) at the height BY of an
+         * equilateral triangle of side BX above (below) them
+         * (docs/models/greenspan73.md, wall layout) */
         const double BX = r0, BY = sqrt(BX * BX - 0.25 * BX * BX);
-        const double wm = bf_scene_real(sc, S, "wall_mass");
+        const double wm = k->wall_mass;
         for (size_t i = 1; i < 9; i++) {
             P->x[i] = (double)(i - 1) * BX;
             P->y[i] = 0.0;
             P->m[i] = wm;
         }
-        int start = bf_scene_enum(sc, S, "start");
-        P->x[0] = start == 0 ? 1.5 * BX : start == 1 ? 0.1717 : 3.5 * BX;
-        P->y[0] = start == 1 ? 0.9914 : BY;
-        P->m[0] = bf_scene_real(sc, S, "fluid_mass");
-        double th = bf_scene_real(sc, S, "theta") * (3.14159265358979323846 / 180.0);
-        double sgn = bf_scene_enum(sc, S, "theta_dir") == 0 ? -1.0 : 1.0;
+        int start = k->start;
+        P->x[0] = start == START_HOLLOW ? 1.5 * BX
+                  : start == START_TEXT ? 0.1717
+                                        : 3.5 * BX;
+        P->y[0] = start == START_TEXT ? 0.9914 : BY;
+        P->m[0] = k->fluid_mass;
+        double th = k->theta * (3.14159265358979323846 / 180.0);
+        double sgn = k->theta_dir == 0 ? -1.0 : 1.0;
         P->vx[0] = V * cos(th);
         P->vy[0] = sgn * V * sin(th);
         if (n == 10) {
@@ -275,17 +313,16 @@ static bf_status g73_layout(g73 *m, const bf_scene *sc, bf_err *err)
             P->m[9] = wm;
         }
     } else {
-        size_t nv, nm;
-        const double *pos = bf_scene_reals(sc, S, "positions", &n);
-        const double *vel = bf_scene_reals(sc, S, "velocities", &nv);
-        const double *mas = bf_scene_reals(sc, S, "masses", &nm);
-        n /= 2;
+        size_t nv = k->velocities.n, nm = k->masses.n;
+        const double *pos = k->positions.v;
+        const double *vel = k->velocities.v;
+        const double *mas = k->masses.v;
         if (nv && nv != 2 * n)
-            return bf_scene_fail(sc, err, S, "velocities",
-                                 "%zu numbers for %zu particles", nv, n);
+            return bf_fail_key(err, BF_EINPUT, S, "velocities",
+                               "%zu numbers for %zu particles", nv, n);
         if (nm && nm != n)
-            return bf_scene_fail(sc, err, S, "masses",
-                                 "%zu numbers for %zu particles", nm, n);
+            return bf_fail_key(err, BF_EINPUT, S, "masses",
+                               "%zu numbers for %zu particles", nm, n);
         for (size_t i = 0; i < n; i++) {
             P->x[i] = pos[2 * i];
             P->y[i] = pos[2 * i + 1];
@@ -297,39 +334,65 @@ static bf_status g73_layout(g73 *m, const bf_scene *sc, bf_err *err)
     for (size_t i = 0; i < n; i++)
         for (size_t j = i + 1; j < n; j++)
             if (P->x[i] == P->x[j] && P->y[i] == P->y[j])
-                return bf_scene_fail(sc, err, S, "positions",
-                                     "particles %zu and %zu coincide", i + 1,
-                                     j + 1);
+                return bf_fail_key(err, BF_EINPUT, S, "positions",
+                                   "particles %zu and %zu coincide", i + 1,
+                                   j + 1);
     return BF_OK;
 }
 
 static void g73_energy(const void *self, double t, double *kin, double *pot);
 
-static bf_status g73_create(void **self, const bf_scene *sc,
-                          const bf_model_setup *setup, bf_err *err)
+/* The solver's readings for the summary (and the output's "reading"). */
+static void g73_reading(g73 *m, const g73_keys *k)
 {
-    (void)setup;
+    const size_t nfx = k->fixed.n;
+    const double *fx = k->fixed.v;
+    char fixed[64] = "";
+    for (size_t a = 0; a < nfx && a < 6; a++)
+        snprintf(fixed + strlen(fixed), sizeof fixed - strlen(fixed), "%s%g",
+                 a ? " " : "", fx[a]);
+    snprintf(m->reading, sizeof m->reading,
+             "mass = %s, gravity = %s, fixed = %s%s%s",
+             k->mass == MASS_FORTRAN ? "fortran (v += dt F)"
+                                     : "paper (a = F/m)",
+             k->gravity == GRAVITY_ALL ? "all free particles" : "listed",
+             nfx ? fixed : "none",
+             k->layout == LAYOUT_WALL ? ", wall_mass = " : "", "");
+    if (k->layout == LAYOUT_WALL)
+        snprintf(m->reading + strlen(m->reading),
+                 sizeof m->reading - strlen(m->reading), "%g, start = %s",
+                 k->wall_mass, start_names[k->start]);
+}
+
+static bf_status g73_create(void **self, const bf_model_setup *setup,
+                            bf_err *err)
+{
     const char *S = "greenspan73";
+    const g73_keys *k = bf_setup_get(setup, &g73_spec, NULL);
+    if (!k)
+        return bf_fail(err, BF_EINTERNAL, "greenspan73: [greenspan73] "
+                       "missing from the setup");
     g73 *m = calloc(1, sizeof *m);
     if (!m)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    bf_status st = g73_layout(m, sc, err);
+    bf_status st = g73_layout(m, k, err);
     if (st)
         goto fail;
     const size_t n = m->p.n;
     bf_dforce *f = &m->f;
-    f->g = bf_scene_real(sc, S, "g");
+    f->g = k->g;
     for (size_t i = 0; i < n; i++) {
         f->m[i] = m->p.m[i];
         for (size_t j = 0; j < n; j++) {
-            f->p[i * n + j] = bf_scene_real(sc, S, "p");
-            f->q[i * n + j] = bf_scene_real(sc, S, "q");
+            f->p[i * n + j] = k->p;
+            f->q[i * n + j] = k->q;
         }
     }
-    size_t np;
-    const double *pr = bf_scene_reals(sc, S, "pairs", &np);
+    const size_t np = k->pairs.n;
+    const double *pr = k->pairs.v;
     if (np % 4) {
-        st = bf_scene_fail(sc, err, S, "pairs", "needs quadruples i j p q");
+        st = bf_fail_key(err, BF_EINPUT, S, "pairs",
+                         "needs quadruples i j p q");
         goto fail;
     }
     for (size_t a = 0; a < np; a += 4) {
@@ -337,19 +400,21 @@ static bf_status g73_create(void **self, const bf_scene *sc,
         if (!(i >= 1 && j >= 1 && i <= (double)n && j <= (double)n &&
               i == floor(i) && j == floor(j) && i != j && pr[a + 2] >= 0 &&
               pr[a + 3] >= 0)) {
-            st = bf_scene_fail(sc, err, S, "pairs", "bad pair %g %g", i, j);
+            st = bf_fail_key(err, BF_EINPUT, S, "pairs", "bad pair %g %g", i,
+                             j);
             goto fail;
         }
         size_t ii = (size_t)i - 1, jj = (size_t)j - 1;
         f->p[ii * n + jj] = f->p[jj * n + ii] = pr[a + 2];
         f->q[ii * n + jj] = f->q[jj * n + ii] = pr[a + 3];
     }
-    if ((st = number_list(sc, "fixed", n, f->fixed, err)))
+    if ((st = number_list(k->fixed, "fixed", n, f->fixed, err)))
         goto fail;
-    if (bf_scene_enum(sc, S, "gravity") == 1) {
+    if (k->gravity == GRAVITY_ALL) {
         for (size_t i = 0; i < n; i++)
             f->gravity[i] = !f->fixed[i];
-    } else if ((st = number_list(sc, "gravity_on", n, f->gravity, err))) {
+    } else if ((st = number_list(k->gravity_on, "gravity_on", n, f->gravity,
+                                 err))) {
         goto fail;
     }
     for (size_t i = 0; i < n; i++) {
@@ -365,46 +430,28 @@ static bf_status g73_create(void **self, const bf_scene *sc,
         st = bf_fail(err, BF_EINTERNAL, "out of memory");
         goto fail;
     }
-    int fortran = bf_scene_enum(sc, S, "mass") == 1;
+    int fortran = k->mass == MASS_FORTRAN;
     for (size_t i = 0; i < n; i++)
         m->mu[i] = fortran ? 1.0 : m->p.m[i];
     bf_implicit_opts o = {
-        .method = (bf_implicit_method)bf_scene_enum(sc, S, "solver"),
-        .omega = bf_scene_real(sc, S, "omega"),
-        .tol = bf_scene_real(sc, S, "tol"),
-        .max_iter = (int)bf_scene_int(sc, S, "max_iter"),
-        .sparse = bf_scene_enum(sc, S, "jacobian") == 1,
-        .jac_cutoff = bf_scene_real(sc, S, "jacobian_cutoff"),
+        .method = (bf_implicit_method)k->solver,
+        .omega = k->omega,
+        .tol = k->tol,
+        .max_iter = (int)k->max_iter,
+        .sparse = k->jacobian == 1,
+        .jac_cutoff = k->jacobian_cutoff,
     };
     if ((st = bf_implicit_create(&m->solver, f, &o, err)))
         goto fail;
-    m->halve = bf_scene_enum(sc, S, "on_failure") == 1;
-    m->max_halvings = (int)bf_scene_int(sc, S, "max_halvings");
-    m->watch = (int)bf_scene_int(sc, S, "watch");
+    m->halve = k->on_failure == 1;
+    m->max_halvings = (int)k->max_halvings;
+    m->watch = (int)k->watch;
     if ((size_t)m->watch > n) {
-        st = bf_scene_fail(sc, err, S, "watch", "particle %d of %zu", m->watch,
-                           n);
+        st = bf_fail_key(err, BF_EINPUT, S, "watch", "particle %d of %zu",
+                         m->watch, n);
         goto fail;
     }
-    size_t nfx;
-    const double *fx = bf_scene_reals(sc, S, "fixed", &nfx);
-    char fixed[64] = "";
-    for (size_t a = 0; a < nfx && a < 6; a++)
-        snprintf(fixed + strlen(fixed), sizeof fixed - strlen(fixed), "%s%g",
-                 a ? " " : "", fx[a]);
-    snprintf(m->reading, sizeof m->reading,
-             "mass = %s, gravity = %s, fixed = %s%s%s",
-             fortran ? "fortran (v += dt F)" : "paper (a = F/m)",
-             bf_scene_enum(sc, S, "gravity") == 1 ? "all free particles"
-                                                   : "listed",
-             nfx ? fixed : "none",
-             bf_scene_enum(sc, S, "layout") == 1 ? ", wall_mass = " : "",
-             "");
-    if (bf_scene_enum(sc, S, "layout") == 1)
-        snprintf(m->reading + strlen(m->reading),
-                 sizeof m->reading - strlen(m->reading), "%g, start = %s",
-                 bf_scene_real(sc, S, "wall_mass"),
-                 bf_scene_str(sc, S, "start"));
+    g73_reading(m, k);
     double K, V;
     g73_energy(m, 0.0, &K, &V);
     m->e0 = K + V;
@@ -569,36 +616,34 @@ static void g73_report(const void *self, FILE *f)
     fprintf(f, "reading:           %s\n", m->reading);
 }
 
+static const bf_field g73_state[] = {
+    BF_FIELD(g73, steps, BF_F_ULL, "1"),
+    BF_FIELD(g73, substeps, BF_F_ULL, "1"),
+    BF_FIELD(g73, iterations, BF_F_ULL, "1"),
+    BF_FIELD(g73, failed, BF_F_ULL, "1"),
+    BF_FIELD(g73, depth_max, BF_F_INT, "1"),
+    BF_FIELD(g73, last_iter, BF_F_LONG, "1"),
+    BF_FIELD(g73, last_sub, BF_F_LONG, "1"),
+};
+
 static bf_status g73_save(const void *self, bf_ckpt *ck, bf_err *err)
 {
     const g73 *m = self;
-    int64_t c[7] = {(int64_t)m->steps,      (int64_t)m->substeps,
-                    (int64_t)m->iterations, (int64_t)m->failed,
-                    m->depth_max,           m->last_iter,
-                    m->last_sub};
     bf_status st = bf_particles_save(&m->p, ck, "g73.p", err);
     if (!st)
-        st = bf_ckpt_put_i64(ck, "g73.counters", c, 7, err);
+        st = bf_ckpt_put_fields(ck, "g73", g73_state, BF_NFIELDS(g73_state),
+                                m, err);
     return st;
 }
 
 static bf_status g73_load(void *self, const bf_ckpt *ck, bf_err *err)
 {
     g73 *m = self;
-    int64_t c[7];
     bf_status st = bf_particles_load(&m->p, ck, "g73.p", err);
     if (!st)
-        st = bf_ckpt_get_i64(ck, "g73.counters", c, 7, err);
-    if (st)
-        return st;
-    m->steps = (unsigned long long)c[0];
-    m->substeps = (unsigned long long)c[1];
-    m->iterations = (unsigned long long)c[2];
-    m->failed = (unsigned long long)c[3];
-    m->depth_max = (int)c[4];
-    m->last_iter = (long)c[5];
-    m->last_sub = (long)c[6];
-    return BF_OK;
+        st = bf_ckpt_get_fields(ck, "g73", g73_state, BF_NFIELDS(g73_state),
+                                m, err);
+    return st;
 }
 
 static const bf_section_spec *const g73_specs[] = {&g73_spec, NULL};
@@ -609,7 +654,7 @@ const bf_model_type bf_model_greenspan73 = {
            "1973)",
     .flags = 0,
     .specs = g73_specs,
-    .create_scene = g73_create,
+    .create = g73_create,
     .destroy = g73_destroy,
     .step = g73_step,
     .energy = g73_energy,

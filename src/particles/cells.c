@@ -1,5 +1,5 @@
 /* cells.c: cell list by stable counting sort (see cells.h). */
-#include "ballfilm/cells.h"
+#include "cells.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -1,7 +1,7 @@
 /* dforce.c: Greenspan's discrete pair force, eq. 2.4 (see dforce.h). */
-#include "ballfilm/dforce.h"
+#include "dforce.h"
 
-#include "ballfilm/ipow.h"
+#include "particles/ipow.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,7 +1,7 @@
 /* implicit.c: the implicit step of Greenspan 1973, eqs 2.1-2.3, by the
  * listing's relaxed fixed-point iteration or by Newton's method (see
  * implicit.h). */
-#include "ballfilm/implicit.h"
+#include "implicit.h"
 
 #include <gsl/gsl_linalg.h>
 #include <gsl/gsl_splinalg.h>

@@ -59,50 +59,42 @@ int bf_particles_finite(const bf_particles *p, size_t *bad)
     return 1;
 }
 
+/* Every array of the storage (the count is checked first, with a message
+ * that names both numbers). */
+static const bf_field particle_state[] = {
+    BF_FIELD_PTR(bf_particles, x, BF_F_DOUBLE, n, "cm"),
+    BF_FIELD_PTR(bf_particles, y, BF_F_DOUBLE, n, "cm"),
+    BF_FIELD_PTR(bf_particles, vx, BF_F_DOUBLE, n, "cm/s"),
+    BF_FIELD_PTR(bf_particles, vy, BF_F_DOUBLE, n, "cm/s"),
+    BF_FIELD_PTR(bf_particles, m, BF_F_DOUBLE, n, "g"),
+    BF_FIELD_PTR(bf_particles, tag, BF_F_I32, n, "1"),
+    BF_FIELD_PTR(bf_particles, flags, BF_F_U32, n, "1"),
+};
+
 bf_status bf_particles_save(const bf_particles *p, bf_ckpt *ck,
                             const char *prefix, bf_err *err)
 {
     char name[256];
-    const double *arr[] = {p->x, p->y, p->vx, p->vy, p->m};
-    const char *nm[] = {"x", "y", "vx", "vy", "m"};
-    bf_status st;
     snprintf(name, sizeof name, "%s.n", prefix);
-    if ((st = bf_ckpt_put_int(ck, name, (int64_t)p->n, err)))
-        return st;
-    for (int k = 0; k < 5; k++) {
-        snprintf(name, sizeof name, "%s.%s", prefix, nm[k]);
-        if ((st = bf_ckpt_put(ck, name, arr[k], p->n, err)))
-            return st;
-    }
-    snprintf(name, sizeof name, "%s.tag", prefix);
-    if ((st = bf_ckpt_put_bytes(ck, name, p->tag, p->n * sizeof *p->tag, err)))
-        return st;
-    snprintf(name, sizeof name, "%s.flags", prefix);
-    return bf_ckpt_put_bytes(ck, name, p->flags, p->n * sizeof *p->flags, err);
+    bf_status st = bf_ckpt_put_int(ck, name, (int64_t)p->n, err);
+    if (!st)
+        st = bf_ckpt_put_fields(ck, prefix, particle_state,
+                                BF_NFIELDS(particle_state), p, err);
+    return st;
 }
 
 bf_status bf_particles_load(bf_particles *p, const bf_ckpt *ck,
                             const char *prefix, bf_err *err)
 {
     char name[256];
-    double *arr[] = {p->x, p->y, p->vx, p->vy, p->m};
-    const char *nm[] = {"x", "y", "vx", "vy", "m"};
-    bf_status st;
     int64_t n;
     snprintf(name, sizeof name, "%s.n", prefix);
-    if ((st = bf_ckpt_get_int(ck, name, &n, err)))
+    bf_status st = bf_ckpt_get_int(ck, name, &n, err);
+    if (st)
         return st;
     if (n != (int64_t)p->n)
         return bf_fail(err, BF_EINPUT, "checkpoint has %lld particles, the "
                        "scene %zu", (long long)n, p->n);
-    for (int k = 0; k < 5; k++) {
-        snprintf(name, sizeof name, "%s.%s", prefix, nm[k]);
-        if ((st = bf_ckpt_get(ck, name, arr[k], p->n, err)))
-            return st;
-    }
-    snprintf(name, sizeof name, "%s.tag", prefix);
-    if ((st = bf_ckpt_get_bytes(ck, name, p->tag, p->n * sizeof *p->tag, err)))
-        return st;
-    snprintf(name, sizeof name, "%s.flags", prefix);
-    return bf_ckpt_get_bytes(ck, name, p->flags, p->n * sizeof *p->flags, err);
+    return bf_ckpt_get_fields(ck, prefix, particle_state,
+                              BF_NFIELDS(particle_state), p, err);
 }

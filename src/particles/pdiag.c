@@ -1,5 +1,5 @@
 /* pdiag.c: particle diagnostics (see pdiag.h). */
-#include "ballfilm/pdiag.h"
+#include "pdiag.h"
 
 #include <math.h>
 #include <string.h>

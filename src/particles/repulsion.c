@@ -2,9 +2,9 @@
  * particles (see repulsion.h).  Every pair is visited once and both
  * accelerations are updated (the listing's ACX(J) += AM(I) TX,
  * ACX(I) -= AM(J) TX). */
-#include "ballfilm/repulsion.h"
+#include "repulsion.h"
 
-#include "ballfilm/ipow.h"
+#include "particles/ipow.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -21,64 +21,65 @@
 #define HOT static inline __attribute__((always_inline))
 
 /* At most NRUN columns in a neighbourhood: reach <= NRUN - 1, i.e. cells
- * of at least cutoff / (NRUN - 1) (bf_repulsion_from_scene refuses smaller
+ * of at least cutoff / (NRUN - 1) (bf_repulsion_from_keys refuses smaller
  * ones; bf_repulsion_cells falls back to all pairs). */
 enum { NRUN = 16 };
 
 static const bf_param repulsion_params[] = {
-    {"alpha", BF_REAL, 0, "1", "1", "strength alpha of eqs 2.11-2.12",
-     BF_NONNEG, 0, 0, NULL},
-    {"xi", BF_REAL, 0, "cm", "0",
+    {"alpha", BF_AT(bf_repulsion_keys, alpha, BF_REAL), "1", "1",
+     "strength alpha of eqs 2.11-2.12", BF_NONNEG, 0, 0, NULL},
+    {"xi", BF_AT(bf_repulsion_keys, xi, BF_REAL), "cm", "0",
      "xi: added to the distance (how close centres may come)", BF_NONNEG, 0,
      0, NULL},
-    {"p", BF_INT, 0, "1", "2", "exponent p of (r + xi)^p", BF_MIN | BF_MAX, 0, 30,
-     NULL},
-    {"beta", BF_INT, 0, "1", "5",
+    {"p", BF_AT(bf_repulsion_keys, p, BF_INT), "1", "2",
+     "exponent p of (r + xi)^p", BF_MIN | BF_MAX, 0, 30, NULL},
+    {"beta", BF_AT(bf_repulsion_keys, beta, BF_INT), "1", "5",
      "exponent beta of ((r + xi)/d)^beta, applied only for r < d",
      BF_MIN | BF_MAX, 0, 30, NULL},
-    {"cutoff", BF_REAL, 0, "cm", "0",
+    {"cutoff", BF_AT(bf_repulsion_keys, cutoff, BF_REAL), "cm", "0",
      "only pairs with r < cutoff interact (Example 2: 2d = 10); 0: all pairs",
      BF_NONNEG, 0, 0, NULL},
-    {"method", BF_ENUM, 0, "", "auto",
+    {"method", BF_AT(bf_repulsion_keys, method, BF_ENUM), "", "auto",
      "cells: cell list (needs a cutoff); pairs: all pairs; auto: cells when "
      "there is a cutoff",
      0, 0, 0, "auto|cells|pairs"},
-    {"cell", BF_REAL, 0, "cm", "0",
+    {"cell", BF_AT(bf_repulsion_keys, cell, BF_REAL), "cm", "0",
      "side of the cell-list cells (0: the cutoff); smaller cells test "
      "fewer pairs but visit more cells",
      BF_NONNEG | BF_HIDDEN, 0, 0, NULL},
     {0},
 };
 
-const bf_section_spec bf_repulsion_spec = {
+const bf_section_spec bf_repulsion_spec = BF_SECTION(
     "repulsion", "repulsion between particles (Greenspan 1972 eqs 2.10-2.12)",
-    repulsion_params, 0};
+    repulsion_params, bf_repulsion_keys);
 
-bf_status bf_repulsion_from_scene(bf_repulsion *r, const bf_scene *sc,
-                                  double d, bf_err *err)
+bf_status bf_repulsion_from_keys(bf_repulsion *r, const bf_repulsion_keys *k,
+                                 double d, bf_err *err)
 {
-    r->alpha = bf_scene_real(sc, "repulsion", "alpha");
-    r->xi = bf_scene_real(sc, "repulsion", "xi");
-    r->p = (int)bf_scene_int(sc, "repulsion", "p");
-    r->beta = (int)bf_scene_int(sc, "repulsion", "beta");
-    r->cutoff = bf_scene_real(sc, "repulsion", "cutoff");
-    r->cell = bf_scene_real(sc, "repulsion", "cell");
+    r->alpha = k->alpha;
+    r->xi = k->xi;
+    r->p = (int)k->p;
+    r->beta = (int)k->beta;
+    r->cutoff = k->cutoff;
+    r->cell = k->cell;
     r->d = d;
     r->inv_d = 1.0 / d;
-    int m = bf_scene_enum(sc, "repulsion", "method");
-    r->use_cells = m == 1 || (m == 0 && r->cutoff > 0);
+    int m = k->method;
+    r->use_cells = m == BF_REPULSION_CELLS ||
+                   (m == BF_REPULSION_AUTO && r->cutoff > 0);
     if (r->use_cells && !(r->cutoff > 0))
-        return bf_scene_fail(sc, err, "repulsion", "method",
-                             "the cell list needs a cutoff > 0");
+        return bf_fail_key(err, BF_EINPUT, "repulsion", "method",
+                           "the cell list needs a cutoff > 0");
     if (r->cell > 0 && r->cutoff > 0 && r->cell > r->cutoff)
-        return bf_scene_fail(sc, err, "repulsion", "cell",
-                             "cell side %g is above the cutoff %g", r->cell,
-                             r->cutoff);
+        return bf_fail_key(err, BF_EINPUT, "repulsion", "cell",
+                           "cell side %g is above the cutoff %g", r->cell,
+                           r->cutoff);
     if (r->cell > 0 && r->cell * (NRUN - 1) < r->cutoff)
-        return bf_scene_fail(sc, err, "repulsion", "cell",
-                             "cell side %g is below cutoff/%d (the search "
-                             "reaches at most %d cells)",
-                             r->cell, NRUN - 1, NRUN - 1);
+        return bf_fail_key(err, BF_EINPUT, "repulsion", "cell",
+                           "cell side %g is below cutoff/%d (the search "
+                           "reaches at most %d cells)",
+                           r->cell, NRUN - 1, NRUN - 1);
     return BF_OK;
 }
 

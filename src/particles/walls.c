@@ -1,36 +1,33 @@
 /* walls.c: reflecting, damping container walls (Greenspan 1972 eq. 2.13);
  * see walls.h for the two rules. */
-#include "ballfilm/walls.h"
+#include "walls.h"
 
 #include <math.h>
 
 static const bf_param walls_params[] = {
-    {"omega", BF_REAL, 0, "1", "1",
+    {"omega", BF_AT(bf_walls_keys, omega, BF_REAL), "1", "1",
      "reflected speed / incident speed at a wall, eq. 2.13 (0 < omega <= 1)",
      BF_POS | BF_MAX, 0, 1, NULL},
-    {"rule", BF_ENUM, 0, "", "clean",
+    {"rule", BF_AT(bf_walls_keys, rule, BF_ENUM), "", "clean",
      "clean: specular reflection of the rest of the step, speed times omega "
      "(the text); fortran: Schubert's WALCOL literally (EPS damping, omega^2 "
      "tangential artefact)",
      0, 0, 0, "clean|fortran"},
-    {"eps", BF_REAL, 0, "cm", "1e-3",
+    {"eps", BF_AT(bf_walls_keys, eps, BF_REAL), "cm", "1e-3",
      "the listing's EPS in WALCOL (rule = fortran only)", BF_POS, 0, 0, NULL},
     {0},
 };
 
-const bf_section_spec bf_walls_spec = {
+const bf_section_spec bf_walls_spec = BF_SECTION(
     "walls", "container walls that reflect particles (Greenspan 1972 eq. 2.13)",
-    walls_params, 0};
+    walls_params, bf_walls_keys);
 
-bf_status bf_walls_from_scene(bf_walls *w, const bf_scene *sc, bf_box box,
-                              bf_err *err)
+void bf_walls_from_keys(bf_walls *w, const bf_walls_keys *k, bf_box box)
 {
-    (void)err;
     w->box = box;
-    w->omega = bf_scene_real(sc, "walls", "omega");
-    w->rule = (bf_wall_rule)bf_scene_enum(sc, "walls", "rule");
-    w->eps = bf_scene_real(sc, "walls", "eps");
-    return BF_OK;
+    w->omega = k->omega;
+    w->rule = (bf_wall_rule)k->rule;
+    w->eps = k->eps;
 }
 
 static inline int inside(const bf_box *b, double x, double y)

@@ -8,6 +8,11 @@ wall-time figures) are not compared, nor datasets of wall times (their path
 ends in 'wall'): they differ between any two runs.  The scene's text
 (scene_text) is the run's input, not its result: a difference there (an
 edited comment in a scene file) is printed as a note and does not fail.
+
+A scene key that only B records, at its default (B's "KEY.default" is 1),
+is a key that B's program added: its record (KEY, KEY.unit, KEY.default)
+is not a difference (it is printed as a note).  What the key does at its
+default is checked by the datasets like everything else.
 """
 import sys
 
@@ -46,6 +51,17 @@ def attr_bytes(v):
     return a.dtype.str, a.shape, a.tobytes()
 
 
+def new_default_key(attrs, other, k):
+    """k is part of the record of a scene key that only `attrs` has, at its
+    default (the key itself, its .unit or its .default)"""
+    base = k
+    for suffix in (".unit", ".default"):
+        if k.endswith(suffix) and k[:-len(suffix)] in attrs:
+            base = k[:-len(suffix)]
+    flag = attrs.get(base + ".default")
+    return base not in other and flag is not None and int(flag) == 1
+
+
 def main(a, b):
     bad, notes = [], []
     with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
@@ -60,6 +76,10 @@ def main(a, b):
         ka, kb = set(fa.attrs), set(fb.attrs)
         for k in sorted(ka | kb):
             if k in SKIP_ATTRS or k.endswith("wall"):
+                continue
+            if k not in ka and new_default_key(fb.attrs, ka, k):
+                if not k.endswith((".unit", ".default")):
+                    notes.append(f"attribute {k}: a new key, at its default")
                 continue
             if k not in ka or k not in kb:
                 bad.append(f"attribute {k}: only in {a if k in ka else b}")

@@ -1,11 +1,13 @@
 /* greenspan.h: read access to the state of the Greenspan particle models
  * (models "greenspan72" and "greenspan73") for drivers, tests and
- * benchmarks.  `model` is bf_sim_model() of a sim running that model. */
-#ifndef BALLFILM_GREENSPAN_H
-#define BALLFILM_GREENSPAN_H
+ * benchmarks.  `model` is bf_sim_model() of a sim running that model.
+ * Private to the library (beside the models' code; tests and benchmarks
+ * include it as "models/greenspan.h"). */
+#ifndef BALLFILM_MODELS_GREENSPAN_H
+#define BALLFILM_MODELS_GREENSPAN_H
 
 #include "ballfilm/particles.h"
-#include "ballfilm/support.h"
+#include "particles/support.h"
 
 /* The particles of a greenspan72 model (positions x^k, velocities
  * v^{k-1/2}). */

@@ -16,8 +16,8 @@
  * Cost: O(N + cells) per build; no allocation after bf_cells_init.
  * Units: whatever the positions are in (cm in the scenes).
  */
-#ifndef BALLFILM_CELLS_H
-#define BALLFILM_CELLS_H
+#ifndef BALLFILM_PARTICLES_CELLS_H
+#define BALLFILM_PARTICLES_CELLS_H
 
 #include <math.h>
 #include <stddef.h>

@@ -16,22 +16,23 @@
  *           displacement from TANTH with the SIGN(EPS, .) guard, the
  *           velocity rebuilt as omega |v| (x2 - x1)/(|x2 - x1| + EPS).  Even
  *           with omega = 1 every hit multiplies the speed by |D|/(|D| + EPS),
- *           and for omega < 1 the outgoing direction is not specular
- *           (spec greenspan.md sec. 1.5).
+ *           and for omega < 1 the outgoing direction is not specular:
+ *           the rest of the step is scaled by omega^2 along the wall and
+ *           by omega normal to it (docs/models/greenspan72.md, walls).
  *
  * Invariant: after bf_walls_apply every particle is in the closed box
  * [ax, bx] x [ay, by]; a particle that cannot be brought back (non-finite,
  * or more than BF_WALLS_MAX_HITS reflections in one step) fails the step
  * with BF_EUNSTABLE naming it.  Units: cm and cm/s.
  */
-#ifndef BALLFILM_WALLS_H
-#define BALLFILM_WALLS_H
+#ifndef BALLFILM_PARTICLES_WALLS_H
+#define BALLFILM_PARTICLES_WALLS_H
 
 #include <stddef.h>
 
 #include "ballfilm/error.h"
+#include "ballfilm/params.h"
 #include "ballfilm/particles.h"
-#include "ballfilm/scene.h"
 
 #define BF_WALLS_MAX_HITS 10000
 
@@ -48,11 +49,17 @@ typedef struct bf_walls {
     double eps;        /* the listing's EPS (fortran rule only), cm */
 } bf_walls;
 
+/* The keys of [walls] (bf_walls_spec). */
+typedef struct bf_walls_keys {
+    double omega;
+    int rule; /* bf_wall_rule */
+    double eps;
+} bf_walls_keys;
+
 extern const bf_section_spec bf_walls_spec; /* [walls] */
 
-/* Read [walls] for the given box. */
-bf_status bf_walls_from_scene(bf_walls *w, const bf_scene *sc, bf_box box,
-                              bf_err *err);
+/* The walls of the given box from the filled [walls] keys. */
+void bf_walls_from_keys(bf_walls *w, const bf_walls_keys *k, bf_box box);
 
 /* Reflect every particle whose step from (x0[i], y0[i]) to (p->x[i],
  * p->y[i]) left the box; x0 and y0 are scratch (the fortran rule moves

@@ -2,8 +2,8 @@
  * integer exponents).  The small exponents are written out (a switch on a
  * value that does not change within a run is predicted), the others by
  * repeated squaring. */
-#ifndef BALLFILM_IPOW_H
-#define BALLFILM_IPOW_H
+#ifndef BALLFILM_PARTICLES_IPOW_H
+#define BALLFILM_PARTICLES_IPOW_H
 
 static inline double bf_ipow(double b, int e)
 {

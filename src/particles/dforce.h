@@ -24,8 +24,8 @@
  *
  * 2-D, gravity along -y.  Units: the papers' (dimensionless; read as CGS).
  */
-#ifndef BALLFILM_DFORCE_H
-#define BALLFILM_DFORCE_H
+#ifndef BALLFILM_PARTICLES_DFORCE_H
+#define BALLFILM_PARTICLES_DFORCE_H
 
 #include <stddef.h>
 #include <stdint.h>

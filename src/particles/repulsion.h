@@ -16,15 +16,15 @@
  * is in cm^(p-1) g^-1 s^-2 (Greenspan's examples set alpha = 1 and treat
  * the numbers as CGS).
  */
-#ifndef BALLFILM_REPULSION_H
-#define BALLFILM_REPULSION_H
+#ifndef BALLFILM_PARTICLES_REPULSION_H
+#define BALLFILM_PARTICLES_REPULSION_H
 
 #include <stddef.h>
 #include <stdint.h>
 
-#include "ballfilm/cells.h"
 #include "ballfilm/error.h"
-#include "ballfilm/scene.h"
+#include "ballfilm/params.h"
+#include "particles/cells.h"
 
 typedef struct bf_repulsion {
     double alpha;  /* strength */
@@ -37,11 +37,23 @@ typedef struct bf_repulsion {
     double inv_d;  /* 1/d */
 } bf_repulsion;
 
+/* The keys of [repulsion] (bf_repulsion_spec). */
+enum { BF_REPULSION_AUTO = 0, BF_REPULSION_CELLS = 1, BF_REPULSION_PAIRS = 2 };
+typedef struct bf_repulsion_keys {
+    double alpha, xi;
+    long p, beta;
+    double cutoff;
+    int method; /* BF_REPULSION_AUTO, _CELLS, _PAIRS */
+    double cell;
+} bf_repulsion_keys;
+
 extern const bf_section_spec bf_repulsion_spec; /* [repulsion] */
 
-/* Read [repulsion]; d comes from the model. */
-bf_status bf_repulsion_from_scene(bf_repulsion *r, const bf_scene *sc,
-                                  double d, bf_err *err);
+/* The law from the filled [repulsion] keys; d comes from the model.
+ * Refuses (naming the key) a cell list without a cutoff and cell sides
+ * above the cutoff or below cutoff/15. */
+bf_status bf_repulsion_from_keys(bf_repulsion *r, const bf_repulsion_keys *k,
+                                 double d, bf_err *err);
 
 /* Accelerations (cm/s^2), overwriting ax, ay: all pairs, O(N^2).  Returns 0,
  * or 1 if two particles coincide with xi = 0 (the direction is undefined;

@@ -26,10 +26,10 @@
  * last iterate moved and where) after max_iter iterations or when an
  * iterate is not finite.
  */
-#ifndef BALLFILM_IMPLICIT_H
-#define BALLFILM_IMPLICIT_H
+#ifndef BALLFILM_PARTICLES_IMPLICIT_H
+#define BALLFILM_PARTICLES_IMPLICIT_H
 
-#include "ballfilm/dforce.h"
+#include "particles/dforce.h"
 #include "ballfilm/error.h"
 
 typedef enum bf_implicit_method {

@@ -49,16 +49,16 @@
  *          of S(P_j) overlaps the strip, else the cell list is asked (rare).
  *          The K = 0 rectangle uses the cell list.
  */
-#ifndef BALLFILM_SUPPORT_H
-#define BALLFILM_SUPPORT_H
+#ifndef BALLFILM_PARTICLES_SUPPORT_H
+#define BALLFILM_PARTICLES_SUPPORT_H
 
 #include <stddef.h>
 #include <stdint.h>
 
-#include "ballfilm/cells.h"
 #include "ballfilm/error.h"
-#include "ballfilm/scene.h"
-#include "ballfilm/walls.h"
+#include "ballfilm/params.h"
+#include "particles/cells.h"
+#include "particles/walls.h"
 
 typedef enum bf_support_method {
     BF_SUPPORT_FAST = 0,
@@ -87,12 +87,22 @@ typedef struct bf_support_params {
     double inv_dx; /* 1/dx (set by bf_support_create) */
 } bf_support_params;
 
+/* The keys of [support] (bf_support_spec). */
+typedef struct bf_support_keys {
+    double g, dx;
+    int method; /* bf_support_method */
+    int tie;    /* 0: le (y_i <= y_j counts), 1: lt */
+    double eps;
+} bf_support_keys;
+
 extern const bf_section_spec bf_support_spec; /* [support] */
 
-/* Read [support] (g, dx, method, tie, eps); box and d come from the model. */
-bf_status bf_support_params_from_scene(bf_support_params *p,
-                                       const bf_scene *sc, bf_box box,
-                                       double d, bf_err *err);
+/* The parameters from the filled [support] keys; box and d come from the
+ * model.  Resolves method auto; refuses (naming the key) dx larger than
+ * the box and method fast with d > 2 dx. */
+bf_status bf_support_params_from_keys(bf_support_params *p,
+                                      const bf_support_keys *k, bf_box box,
+                                      double d, bf_err *err);
 
 typedef struct bf_support bf_support;
 

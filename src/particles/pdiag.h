@@ -2,8 +2,8 @@
  * kinetic energy by label, mean height by label, counts per horizontal
  * layer, the kinetic energy of the centre of mass.  Units: cm, cm/s, g,
  * erg. */
-#ifndef BALLFILM_PDIAG_H
-#define BALLFILM_PDIAG_H
+#ifndef BALLFILM_PARTICLES_PDIAG_H
+#define BALLFILM_PARTICLES_PDIAG_H
 
 #include <stddef.h>
 

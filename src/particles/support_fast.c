@@ -1,0 +1,502 @@
+/* support_fast.c: the fast method of the support-set gravity (see
+ * support.h): the squares entirely below a particle's top band from one
+ * sweep in x with a Fenwick tree over levels, the squares cut by that line
+ * from the cell list, the empty bands from the gaps between x-sorted
+ * squares (support_impl.h).
+ */
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "particles/support_impl.h"
+
+/* The lowest level m >= 1 whose line z_m = band_hi(m) is at or above t:
+ * exact with respect to band_hi, so that "full below z_m" (the sweep) and
+ * "cut by z_m" (t > z_m, the cell query) never disagree. */
+static inline int full_level(const bf_support *s, double t)
+{
+    int m = k_of(&s->p, t);
+    if (m < 1)
+        m = 1;
+    while (m > 1 && band_hi(s, m - 1) >= t)
+        m--;
+    while (band_hi(s, m) < t)
+        m++;
+    return m;
+}
+
+/* The lowest band q >= 1 whose top z_q is above b: with full_level, a
+ * square reaches (positive height, if t > b) exactly the bands
+ * first_band(b) .. full_level(t). */
+static inline int first_band(const bf_support *s, double b)
+{
+    int q = k_of(&s->p, b) + 1;
+    while (q > 1 && band_hi(s, q - 1) > b)
+        q--;
+    while (q <= s->kmax + 1 && !(band_hi(s, q) > b)) /* bounded for NaN */
+        q++;
+    return q;
+}
+
+/* Sort the indices 0..n-1 of x[] by x: counting sort into n bins, then
+ * insertion sort inside each bin (ties keep the index order).  Expected
+ * O(n). */
+static void sort_by_x(bf_support *s, const double *x, size_t n)
+{
+    const double ax = s->p.box.ax, w = s->p.box.bx - s->p.box.ax;
+    const double scale = (double)n / w;
+    uint32_t *binc = s->binc, *ord = s->ord, *tmp = s->nxt;
+    memset(binc, 0, (n + 1) * sizeof *binc);
+    for (size_t i = 0; i < n; i++) {
+        double f = (x[i] - ax) * scale;
+        size_t b = f > 0 ? (size_t)f : 0;
+        if (b >= n)
+            b = n - 1;
+        tmp[i] = (uint32_t)b;
+        binc[b + 1]++;
+    }
+    for (size_t b = 0; b < n; b++)
+        binc[b + 1] += binc[b];
+    for (size_t i = 0; i < n; i++)
+        ord[binc[tmp[i]]++] = (uint32_t)i;
+    /* binc[b] is now the end of bin b; insertion sort each bin */
+    size_t lo = 0;
+    for (size_t b = 0; b < n; b++) {
+        size_t hi = binc[b];
+        for (size_t a = lo + 1; a < hi; a++) {
+            uint32_t v = ord[a];
+            double xv = x[v];
+            size_t c = a;
+            while (c > lo && x[ord[c - 1]] > xv) {
+                ord[c] = ord[c - 1];
+                c--;
+            }
+            ord[c] = v;
+        }
+        lo = hi;
+    }
+}
+
+/* Fenwick tree over levels 1..m of 2 sums (A, B), stored side by side
+ * (with SSE2 both in one register: the same additions, the same bits). */
+static inline void fen_add(double *fen, int m, int level, double a, double b)
+{
+#if defined(__SSE2__)
+    const __m128d ab = _mm_set_pd(b, a);
+    for (int k = level; k <= m; k += k & -k)
+        _mm_storeu_pd(fen + 2 * k, _mm_add_pd(_mm_loadu_pd(fen + 2 * k), ab));
+#else
+    for (int k = level; k <= m; k += k & -k) {
+        fen[2 * k] += a;
+        fen[2 * k + 1] += b;
+    }
+#endif
+}
+
+/* The square at sorted position p, with its left (sigma = +1) or right
+ * (sigma = -1) edge at local coordinate e, enters the sweep.  It counts
+ * with its full height h at every level m whose line z_m = ay + m dx is at
+ * or above its top (m >= sl[p]; a square clipped by the ceiling never
+ * counts); squares cut by the line z_m are added by the cell-list query of
+ * the particle asking (cut_band). */
+static inline void sweep_add(const bf_support *s, double *fen, int mq,
+                             size_t p, double sigma, double e)
+{
+    const int mt = s->sl[p];
+    if (mt <= mq) {
+        double h = sigma * (s->ts[p] - s->bs[p]);
+        fen_add(fen, mq, mt, h, h * e);
+    }
+}
+
+/* G(x) = x A - B at level m (local coordinates). */
+static inline double sweep_eval(const double *fen, double x, int m)
+{
+#if defined(__SSE2__)
+    __m128d ab = _mm_setzero_pd();
+    for (int k = m; k > 0; k -= k & -k)
+        ab = _mm_add_pd(ab, _mm_loadu_pd(fen + 2 * k));
+    return x * _mm_cvtsd_f64(ab) - _mm_cvtsd_f64(_mm_unpackhi_pd(ab, ab));
+#else
+    double a = 0, b = 0;
+    for (int k = m; k > 0; k -= k & -k) {
+        a += fen[2 * k];
+        b += fen[2 * k + 1];
+    }
+    return x * a - b;
+#endif
+}
+
+/* First sorted position p in [lo, hi) with v[p] > key (or >= if ge). */
+static size_t bsearch_pos(const double *v, size_t lo, size_t hi, double key,
+                          int ge)
+{
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (ge ? v[mid] >= key : v[mid] > key)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return lo;
+}
+
+/* Lower-band areas of the particles whose strips start in the chunk
+ * [X0, X1): a sweep over the square edges in (X0, X1 + dx], in coordinates
+ * relative to X0 so that the sums stay small (their round-off does not
+ * grow with the box).  Squares straddling X0 enter with their left edge at
+ * X0: G(x) = integral from X0 to x of the filled height. */
+static void sweep_chunk(bf_support *s, double *fen, size_t n, int mq,
+                        double X0, double X1, int last)
+{
+    const double *ls = s->ls, *rs = s->rs, *gs = s->gs, *ds = s->ds;
+    size_t q0 = bsearch_pos(gs, 0, n, X0, 1);
+    size_t q1 = last ? n : bsearch_pos(gs, q0, n, X1, 1);
+    if (q0 == q1)
+        return;
+    memset(fen, 0, 2 * (size_t)(mq + 1) * sizeof *fen);
+    /* squares with l <= X0 < r enter at X0 */
+    size_t pr = bsearch_pos(rs, 0, n, X0, 0);
+    size_t pl = bsearch_pos(ls, 0, n, X0, 0);
+    for (size_t p = pr; p < pl; p++)
+        sweep_add(s, fen, mq, p, 1.0, 0.0);
+    size_t pg = q0, pd = q0;
+    const double inf = INFINITY;
+    while (pd < q1) {
+        double vl = pl < n ? ls[pl] : inf, vr = pr < n ? rs[pr] : inf;
+        double vg = pg < q1 ? gs[pg] : inf, vd = ds[pd];
+        if (vl <= vr && vl <= vg && vl <= vd) {
+            sweep_add(s, fen, mq, pl, 1.0, vl - X0);
+            pl++;
+        } else if (vr <= vg && vr <= vd) {
+            sweep_add(s, fen, mq, pr, -1.0, vr - X0);
+            pr++;
+        } else if (vg <= vd) {
+            if (s->ks[pg] >= 1)
+                s->fgam[pg] = sweep_eval(fen, vg - X0, s->ks[pg]);
+            pg++;
+        } else {
+            if (s->ks[pd] >= 1)
+                s->lower[pd] = sweep_eval(fen, vd - X0, s->ks[pd]) -
+                               s->fgam[pd];
+            pd++;
+        }
+    }
+}
+
+static inline uint32_t skip_find(uint32_t *nxt, uint32_t p)
+{
+    while (nxt[p] != p) {
+        nxt[p] = nxt[nxt[p]];
+        p = nxt[p];
+    }
+    return p;
+}
+
+/* For every sorted position, the lowest band q <= mq in which no square
+ * overlaps its strip with positive area (lowe), or a value > mq. */
+static void empty_bands(bf_support *s, size_t n, int mq)
+{
+    uint32_t *bstart = s->bstart, *bfill = s->bfill, *blist = s->blist;
+    uint32_t *nxt = s->nxt;
+    memset(bstart, 0, (size_t)(mq + 2) * sizeof *bstart);
+    /* squares per band, in x order */
+    for (int pass = 0; pass < 2; pass++) {
+        for (size_t k = 0; k < n; k++) {
+            /* f1 > 0 exactly in the bands mb..mt (z_{q-1} < t and
+             * z_q > b), unless the square has no height */
+            if (!(s->ts[k] > s->bs[k]))
+                continue;
+            const int qa = s->mb[k], qb = s->mt[k] < mq ? s->mt[k] : mq;
+            for (int q = qa; q <= qb; q++) {
+                if (pass == 0)
+                    bstart[q + 1]++;
+                else
+                    blist[bfill[q]++] = (uint32_t)k;
+            }
+        }
+        if (pass == 0) {
+            for (int q = 1; q <= mq; q++)
+                bstart[q + 1] += bstart[q];
+            memcpy(bfill, bstart, (size_t)(mq + 2) * sizeof *bfill);
+        }
+    }
+    double wmin = INFINITY;
+    for (size_t k = 0; k < n; k++) {
+        double w = s->ds[k] - s->gs[k];
+        if (w < wmin)
+            wmin = w;
+        s->lowe[k] = mq + 1;
+        nxt[k] = (uint32_t)k;
+    }
+    nxt[n] = (uint32_t)n;
+    size_t left = n;
+    for (int q = 1; q <= mq && left; q++) {
+        uint32_t a = bstart[q], e = bstart[q + 1];
+        /* gaps: (-inf, l_first], [r_k, l_{k+1}], [r_last, +inf) */
+        for (uint32_t k = a; k <= e; k++) {
+            double lo = k == a ? -INFINITY : s->rs[blist[k - 1]];
+            double hi = k == e ? INFINITY : s->ls[blist[k]];
+            /* rounding is monotone: a strip of width w fits only if the
+             * rounded gap width is >= w */
+            if (!(hi - lo >= wmin))
+                continue;
+            size_t p0 = bsearch_pos(s->gs, 0, n, lo, 1);
+            size_t p1 = bsearch_pos(s->ds, 0, n, hi, 0);
+            for (uint32_t j = skip_find(nxt, (uint32_t)p0); j < p1;
+                 j = skip_find(nxt, j + 1)) {
+                s->lowe[j] = q;
+                nxt[j] = j + 1;
+                left--;
+            }
+        }
+    }
+}
+
+/* Slots [u, u1): is there a square of S(P_j) with positive area in the
+ * strip in band K (f2 > 0, f1 > 0 as in add_square)? */
+static inline int band_range(const bf_support *s, const double *sy,
+                             const stripq *q, uint32_t u, uint32_t u1)
+{
+    for (; u < u1; u++) {
+        double f2 = dmin(s->cr[u], q->del) - dmax(s->cl[u], q->gam);
+        double f1 = dmin(s->ct[u], q->hi) - dmax(s->cb[u], q->lo);
+        if (sy[u] <= q->ytop && f2 > 0 && f1 > 0)
+            return 1;
+    }
+    return 0;
+}
+
+/* The slots [u0, u1) of column col, rows r0..r1, without tj. */
+static inline void run_without(const bf_cells *c, int col, int r0, int r1,
+                               uint32_t tj, uint32_t u[4])
+{
+    bf_cells_run(c, col, r0, r1, &u[0], &u[3]);
+    if (tj >= u[0] && tj < u[3]) {
+        u[1] = tj;
+        u[2] = tj + 1;
+    } else {
+        u[1] = u[2] = u[3];
+    }
+}
+
+/* Particle j (slot tj of the cell list, height yj, strip [gam, del],
+ * K >= 1): the area in bands 1..K of the squares of S(P_j) that the sweep
+ * at level K leaves out (sweep level csl > K: the squares cut by the line
+ * z_K = hi_K, and those clipped by the ceiling), area min(t, hi_K) - b
+ * times f2.  Each of them has positive area in band K (b < hi_K <= t or
+ * the ceiling); *count is how many, with f2 > 0 as in add_square.  They
+ * lie in hi_K - d/2 < y < hi_K + d/2 (with a margin for rounding), a
+ * window about half as tall as band K with the squares that reach it.
+ * j itself is skipped. */
+static inline double cut_band(const bf_support *s, const bf_cells *c,
+                              const stripq *q, uint32_t tj, double yj,
+                              uint32_t *count)
+{
+    const double hd = s->hd, eps = 1e-12 * (fabs(q->hi) + hd);
+    int c0 = bf_cells_col(c, q->gam - hd), c1 = bf_cells_col(c, q->del + hd);
+    int r0 = bf_cells_row(c, q->hi - hd - eps),
+        r1 = bf_cells_row(c, dmin(yj, q->hi + hd + eps));
+    double acc = 0.0;
+    uint64_t mask = 0; /* not used by a cut query */
+    uint32_t cnt = 0;
+    for (int col = c0; col <= c1; col++) {
+        uint32_t u0, u1;
+        bf_cells_run(c, col, r0, r1, &u0, &u1);
+        if (tj >= u0 && tj < u1) {
+            strip_range(s, c->sy, q, u0, tj, 1, &acc, &mask, &cnt);
+            strip_range(s, c->sy, q, tj + 1, u1, 1, &acc, &mask, &cnt);
+        } else {
+            strip_range(s, c->sy, q, u0, u1, 1, &acc, &mask, &cnt);
+        }
+    }
+    *count = cnt;
+    return acc;
+}
+
+/* Is band K of particle j non-empty: a square of S(P_j) with positive area
+ * in it (those cut by z_K are not enough when cut_band counted none: the
+ * squares of sweep level K count too)?  Only asked when cut_band found
+ * none, so rarely. */
+static int band_filled(const bf_support *s, const bf_cells *c, const stripq *q,
+                       uint32_t tj, double yj)
+{
+    const double hd = s->hd, eps = 1e-12 * (fabs(q->lo) + hd);
+    int c0 = bf_cells_col(c, q->gam - hd), c1 = bf_cells_col(c, q->del + hd);
+    int r0 = bf_cells_row(c, q->lo - hd - eps), r1 = bf_cells_row(c, yj);
+    for (int col = c0; col <= c1; col++) {
+        uint32_t u[4];
+        run_without(c, col, r0, r1, tj, u);
+        if (band_range(s, c->sy, q, u[0], u[1]) ||
+            band_range(s, c->sy, q, u[2], u[3]))
+            return 1;
+    }
+    return 0;
+}
+
+/* The square, strip and levels of the particle at sorted position k (slot
+ * ord[k] of the cell list, positions sx, sy); returns its K. */
+static inline int fast_setup(bf_support *s, const double *sx,
+                             const double *sy, size_t k)
+{
+    const bf_support_params *p = &s->p;
+    uint32_t i = s->ord[k];
+    double xi = sx[i], yi = sy[i];
+    s->ys[k] = yi;
+    s->ls[k] = dmax(xi - s->hd, p->box.ax);
+    s->rs[k] = dmin(xi + s->hd, p->box.bx);
+    s->bs[k] = dmax(yi - s->hd, p->box.ay);
+    s->ts[k] = dmin(yi + s->hd, p->box.by);
+    s->gs[k] = dmax(xi - s->hdx, p->box.ax);
+    s->ds[k] = dmin(xi + s->hdx, p->box.bx);
+    int K = k_of(p, yi);
+    s->ks[k] = K;
+    s->mb[k] = first_band(s, s->bs[k]);
+    s->mt[k] = full_level(s, s->ts[k]);
+    s->sl[k] = yi + s->hd > p->box.by ? INT32_MAX : s->mt[k];
+    s->lower[k] = 0.0;
+    s->lowe[k] = INT32_MAX;
+    return K;
+}
+
+/* The results of sorted position k into the order of the cell list. */
+static inline void fast_to_slots(bf_support *s, size_t k)
+{
+    uint32_t t = s->ord[k];
+    s->fgam[t] = s->lower[k];
+    s->ks[t] = s->lowe[k];
+    s->csl[t] = s->sl[k];
+}
+
+/* g of the particle in slot t: lower (the sweep) and lowe (the lowest
+ * empty band) are in the order of the cell list. */
+static inline void fast_one(const bf_support *s, const bf_cells *c,
+                            const double *lower, const int32_t *lowe,
+                            size_t t, double *g, uint8_t *kind)
+{
+    const bf_support_params *p = &s->p;
+    uint32_t j = c->idx[t];
+    const double xj = c->sx[t], yj = c->sy[t];
+    const int K = k_of(p, yj);
+    uint8_t kd = BF_SUP_REST;
+    double gj;
+    if (resting(s, yj, K)) {
+        gj = 0.0;
+    } else if (K >= 2 && lowe[t] <= K - 1) {
+        gj = -p->g0;
+        kd = BF_SUP_FREE;
+    } else {
+        /* the K = 0 rectangle, or the squares that the sweep at level K
+         * leaves out and the test of band K */
+        double gam = dmax(xj - s->hdx, p->box.ax);
+        double del = dmin(xj + s->hdx, p->box.bx);
+        double area = 0.0;
+        uint32_t cnt = 0;
+        if (K == 0) {
+            bf_sup_column(s, c, j, yj, gam, del, 0, 0, 0, &area, &cnt);
+        } else {
+            const stripq q =
+                stripq_of(gam, del, band_hi(s, K), band_lo(s, K),
+                          p->tie ? yj : nextafter(yj, -INFINITY), K);
+            area = cut_band(s, c, &q, (uint32_t)t, yj, &cnt);
+            if (cnt == 0 && band_filled(s, c, &q, (uint32_t)t, yj))
+                cnt = 1;
+        }
+        if (cnt == 0) {
+            gj = -p->g0;
+            kd = BF_SUP_FREE;
+        } else {
+            double tot = (K >= 1 ? lower[t] : 0.0) + area;
+            double den = K == 0 ? (del - gam) * (yj - p->box.ay)
+                                : (del - gam) * ((double)K * p->dx);
+            gj = -p->g0 * (1.0 - tot / (den + p->eps));
+            kd = gj > 0 ? BF_SUP_ANTI : BF_SUP_PARTIAL;
+        }
+    }
+    g[j] = gj;
+    if (kind)
+        kind[j] = kd;
+}
+
+/* (The positions come from the cell list, which holds them in its order.) */
+void bf_sup_eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
+                      uint8_t *kind)
+{
+    const bf_support_params *p = &s->p;
+    const int nt = s->threads, pr = par(s, n);
+    (void)nt;
+    if (n == 0)
+        return;
+    /* the slots of the cell list in x order: the cell list is already
+     * sorted by columns of cells, so the reads and writes through ord stay
+     * within a column's block of slots (in the cache) */
+    sort_by_x(s, c->sx, n);
+    int kmax = 0;
+    if (pr) {
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(nt) reduction(max : kmax)
+        for (size_t k = 0; k < n; k++) {
+            int K = fast_setup(s, c->sx, c->sy, k);
+            kmax = K > kmax ? K : kmax;
+        }
+#endif
+    } else {
+        for (size_t k = 0; k < n; k++) {
+            int K = fast_setup(s, c->sx, c->sy, k);
+            kmax = K > kmax ? K : kmax;
+        }
+    }
+    if (kmax >= 1) {
+        /* the chunks are independent (each has its own tree), so they run
+         * in parallel with results independent of the thread count */
+        const double w = p->box.bx - p->box.ax, chunk = 8.0 * p->dx;
+        long nch = (long)ceil(w / chunk);
+        if (nch < 1)
+            nch = 1;
+        const size_t fsz = 2 * ((size_t)s->kmax + 3);
+        if (pr) {
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+            for (long ch = 0; ch < nch; ch++)
+                sweep_chunk(s, s->fen + (size_t)omp_get_thread_num() * fsz, n,
+                            kmax, p->box.ax + (double)ch * chunk,
+                            p->box.ax + (double)(ch + 1) * chunk,
+                            ch == nch - 1);
+#endif
+        } else {
+            for (long ch = 0; ch < nch; ch++)
+                sweep_chunk(s, s->fen, n, kmax,
+                            p->box.ax + (double)ch * chunk,
+                            p->box.ax + (double)(ch + 1) * chunk,
+                            ch == nch - 1);
+        }
+        if (kmax >= 2) /* bands 1..kmax - 1, below every top band */
+            empty_bands(s, n, kmax - 1);
+    }
+    /* the sweep's results and the square edges in the order of the cell
+     * list; then g in that order (neighbouring queries read neighbouring
+     * cells) */
+    bf_sup_slot_edges(s, c, n, 0);
+    if (pr) {
+#ifdef _OPENMP
+#pragma omp parallel num_threads(nt)
+        {
+#pragma omp for schedule(static)
+            for (size_t k = 0; k < n; k++)
+                fast_to_slots(s, k);
+#pragma omp for schedule(dynamic, 256)
+            for (size_t t = 0; t < n; t++)
+                fast_one(s, c, s->fgam, s->ks, t, g, kind);
+        }
+#endif
+    } else {
+        for (size_t k = 0; k < n; k++)
+            fast_to_slots(s, k);
+        for (size_t t = 0; t < n; t++)
+            fast_one(s, c, s->fgam, s->ks, t, g, kind);
+    }
+}
