@@ -11,8 +11,9 @@ Ends with the line 'movies: N passed, N failed'; exit 1 on a failure."""
 import json
 import os
 import shutil
-import subprocess
 import sys
+
+from pychecks import Checks, run, run_scene
 
 FRAMES, W, H = 10, 320, 240
 
@@ -30,21 +31,8 @@ RUNS = {
     "mac": ("runs/stratres.ini", ["scene.t_end=1", "scene.output_every=2"]),
 }
 
-passed, failed = 0, 0
-
-
-def check(ok, what, detail=""):
-    global passed, failed
-    if ok:
-        passed += 1
-        print("ok    %s" % what)
-    else:
-        failed += 1
-        print("FAIL  %s%s" % (what, (": " + detail) if detail else ""))
-
-
-def run(cmd, env=None):
-    return subprocess.run(cmd, capture_output=True, text=True, env=env)
+CK = Checks("movies")
+check = CK.check
 
 
 def probe(path):
@@ -67,10 +55,7 @@ def main(prog, work):
     os.makedirs(work, exist_ok=True)
     for name, (scene, sets) in RUNS.items():
         h5 = os.path.join(work, name + ".h5")
-        cmd = [prog, "run", scene, "-q", "-o", h5]
-        for s in sets:
-            cmd += ["--set", s]
-        r = run(cmd)
+        r = run_scene(prog, scene, h5, sets)
         check(r.returncode == 0, "%s: run %s" % (name, scene), r.stderr)
         if r.returncode:
             continue
@@ -106,8 +91,7 @@ def main(prog, work):
         got = str(e)
     check(got == (FRAMES, W, H), "fallback: GIF has %d frames of %dx%d"
           % (FRAMES, W, H), "got %s" % (got,))
-    print("movies: %d passed, %d failed" % (passed, failed))
-    return 1 if failed else 0
+    return CK.done()
 
 
 if __name__ == "__main__":

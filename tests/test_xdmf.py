@@ -15,11 +15,12 @@ import json
 import os
 import re
 import shutil
-import subprocess
 import sys
 
 import h5py
 import numpy as np
+
+from pychecks import Checks, run, run_scene
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 RUNS = {
@@ -32,21 +33,8 @@ RUNS = {
     "mac": ("runs/stratres.ini", ["scene.t_end=1", "scene.output_every=2"]),
 }
 
-passed, failed = 0, 0
-
-
-def check(ok, what, detail=""):
-    global passed, failed
-    if ok:
-        passed += 1
-        print("ok    %s" % what)
-    else:
-        failed += 1
-        print("FAIL  %s%s" % (what, (": " + detail) if detail else ""))
-
-
-def run(cmd):
-    return subprocess.run(cmd, capture_output=True, text=True)
+CK = Checks("xdmf")
+check = CK.check
 
 
 def probe(xmf):
@@ -137,10 +125,7 @@ def main(prog, work):
         xmf = os.path.join(work, name + ".xmf")
         if os.path.exists(xmf):
             os.remove(xmf)
-        cmd = [prog, "run", scene, "-q", "-o", h5]
-        for s in sets:
-            cmd += ["--set", s]
-        r = run(cmd)
+        r = run_scene(prog, scene, h5, sets)
         check(r.returncode == 0 and os.path.exists(xmf),
               "%s: ballfilm run writes %s" % (name, xmf), r.stderr)
         if os.path.exists(xmf):
@@ -164,8 +149,7 @@ def main(prog, work):
     check(2 <= len(times) <= 10 and float(times[-1]) == t_last,
           "xdmf --max-steps 10: at most 10 steps, the last row kept",
           "%d steps, last %s" % (len(times), times[-1:] or None))
-    print("xdmf: %d passed, %d failed" % (passed, failed))
-    return 1 if failed else 0
+    return CK.done()
 
 
 if __name__ == "__main__":
