@@ -17,6 +17,8 @@ SHELL := /bin/bash
 BUILD_PKGS := gcc make pkg-config libsundials-dev libgsl-dev libhdf5-dev \
               hdf5-tools libinih-dev check openmpi-bin libopenmpi-dev
 PLOT_PKGS  := python3-numpy python3-matplotlib python3-h5py
+MOVIE_PKGS := ffmpeg python3-pil
+XDMF_PKGS  := paraview
 PY         := /usr/bin/python3
 
 # ---------------------------------------------------------------- flags
@@ -58,7 +60,7 @@ RUNNER    := $(BUILD)/tests/runner
         film-orders fig6 fig8 fig9 fig8-sym fig9-sym sym-divergence \
         multirate fig-g72-ex1 \
         fig-g72-ex1-ensemble fig-g72-ex2 fig-g72-large fig-g73-hex \
-        fig-g73-wall
+        fig-g73-wall movies deps-movies deps-xdmf test-movies test-xdmf
 
 all: $(PROG)
 
@@ -146,6 +148,12 @@ deps:
 
 deps-plot:
 	$(call need_pkgs,$(PLOT_PKGS))
+
+deps-movies:
+	$(call need_pkgs,$(PLOT_PKGS) $(MOVIE_PKGS))
+
+deps-xdmf:
+	$(call need_pkgs,$(PLOT_PKGS) $(XDMF_PKGS))
 
 # ---------------------------------------------------------------- main job
 run:
@@ -450,6 +458,30 @@ fig-g73-wall: $(PROG) | deps deps-plot
 	    out/g73_pen_text.h5 -o out/fig_g73_3_10.png \
 	    --table out/g73_penetration.txt
 
+# One short movie per model (ballfilm animate, 100 frames at 20 fps), from
+# short runs: out/movies/NAME.mp4 beside NAME.h5 and NAME.xmf.
+MOVIE_DIR := out/movies
+MOVIE_ARGS := --frames 100 --fps 20
+define movie
+	$(PROG) run $(2) -q -o $(MOVIE_DIR)/$(1).h5 $(3) > /dev/null
+	$(PROG) animate $(MOVIE_DIR)/$(1).h5 -o $(MOVIE_DIR)/$(1).mp4 $(MOVIE_ARGS)
+endef
+movies: $(PROG) | deps deps-movies
+	@mkdir -p $(MOVIE_DIR)
+	$(call movie,balls,runs/two_balls_B.ini,--set scene.t_end=20)
+	$(call movie,film,runs/kink_steady.ini,--set scene.t_end=20 \
+	    --set "scene.output_every=0.2 s" --set "film.profile_every=0.2 s" \
+	    --set film.perturbation=0.05)
+	$(call movie,coupled,runs/coupled_fig8.ini,--set scene.t_end=1 \
+	    --set "film.profile_every=0.01 s")
+	$(call movie,greenspan72,runs/greenspan72_ex2.ini,--set scene.t_end=20 \
+	    --set scene.output_every=20)
+	$(call movie,greenspan73_hex,runs/greenspan73_hex_v300.ini, \
+	    --set scene.t_end=2)
+	$(call movie,greenspan73_wall,runs/greenspan73_wall_friction.ini,)
+	$(call movie,mac,runs/stratres.ini,--set scene.output_every=2)
+	@echo "movies are in $(MOVIE_DIR)/"
+
 figures:
 	@$(MAKE) --no-print-directory deps deps-plot
 	@$(MAKE) --no-print-directory all
@@ -519,6 +551,17 @@ test-run: build-tests
 test:
 	@$(MAKE) --no-print-directory deps
 	@$(MAKE) --no-print-directory test-run
+	@$(MAKE) --no-print-directory test-movies
+	@$(MAKE) --no-print-directory test-xdmf
+
+# Movies of every model (ffprobe counts frames and sizes; the GIF fallback
+# without ffmpeg) and the XDMF sidecars in ParaView (pvpython against
+# h5py); the packages are installed when run as root.
+test-movies: $(PROG) | deps-movies
+	$(PY) tests/test_movies.py $(PROG) build/test-movies
+
+test-xdmf: $(PROG) | deps-xdmf
+	$(PY) tests/test_xdmf.py $(PROG) build/test-xdmf
 
 # ASAN_LEAKS=0 turns off LeakSanitizer only (for containers that forbid
 # the ptrace it needs; .ci/run decides this by a probe and says so).

@@ -8,6 +8,7 @@ usage: fig1_phase.py VERLET.h5 MV2M.h5 -o fig1_phase.png
 import argparse
 
 import numpy as np
+from matplotlib.ticker import FuncFormatter, MaxNLocator
 
 from bfplot import attr_str, load, plt, save
 
@@ -35,10 +36,15 @@ for col, (path, label) in enumerate([(a.verlet, "Verlet"), (a.mv2m, "MV2M")]):
     zoom.plot(z[near], v[near], ",", color="C%d" % col)
     zoom.set_title("(%s) enlargement near the apex (z = 0.2 cm)"
                    % "BD"[col])
-    zoom.set_xlabel("z [cm]")
     zoom.set_ylabel("v [cm/s]")
     zoom.set_xlim(0.1985, 0.2005)
     zoom.set_ylim(-1.5, 1.5)
+    # four ticks with the distance from the apex: the full numbers
+    # (0.1985, 0.1990, ...) overlapped at this width
+    zoom.xaxis.set_major_locator(MaxNLocator(4))
+    zoom.xaxis.set_major_formatter(FuncFormatter(
+        lambda z, _: "%+g" % round((z - 0.2) * 1e4, 6)))
+    zoom.set_xlabel("z - 0.2 cm [1e-4 cm]")
 fig.suptitle("Bouncing ball (Yasuda 2010, Fig. 1): R = 0.1 cm, k = 1e7, "
              "m = 1 g, 100 s")
 save(fig, a.output)

@@ -43,7 +43,7 @@ p.legend()
 p = ax[1][0]
 p.plot(x, psi[-1] - kink, lw=0.8)
 p.set_xlabel("x [cm]")
-p.set_ylabel("psi - kink")
+p.set_ylabel("psi - kink [1]")
 p.set_title("(C) psi minus the analytic kink, whole film")
 p = ax[1][1]
 p.semilogy(t, kerr, label="max |psi - kink|")

@@ -68,7 +68,7 @@ p = ax[1][0]
 dpsi = probe - probe[0]
 p.plot(t[w], dpsi[w], lw=0.6)
 p.set_xlabel("t [s]")
-p.set_ylabel("psi(%g, t) - psi(%g, 0)" % (attrs["coupled.probe"],
+p.set_ylabel("psi(%g, t) - psi(%g, 0) [1]" % (attrs["coupled.probe"],
                                           attrs["coupled.probe"]))
 p.set_title("(C) order parameter at x = %g cm" % attrs["coupled.probe"])
 p = ax[1][1]

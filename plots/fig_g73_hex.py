@@ -58,7 +58,7 @@ for k, tk in enumerate(a.times):
                     xytext=(2, 2), textcoords="offset points")
     ax.set_title("t = %.1f" % t[r], fontsize=10)
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("x - V t")
+    ax.set_xlabel("x - V t [cm]")
     if a.directions:
         ax = axs[1][k]
         u, w = vx[r] - vx[r].mean(), vy[r] - vy[r].mean()

@@ -40,14 +40,14 @@ if a.friction:
         axs[0].plot(x[-1, 1:9], y[-1, 1:9], "s", mfc="none", ms=7,
                     color="C%d" % k)
         axs[1].plot(step, vx[:, 0], color="C%d" % k, label=label(attrs))
-    axs[0].set_xlabel("x")
+    axs[0].set_xlabel("x [cm]")
     axs[0].set_ylim(-0.06, 0.16)
-    axs[0].set_ylabel("y")
+    axs[0].set_ylabel("y [cm]")
     axs[0].set_title("Fig. 3.7: P1 from t_0 to t_200 (open squares: wall at "
                      "t_200)", fontsize=10)
     axs[0].legend(fontsize=7, loc="upper right", ncol=1)
     axs[1].set_xlabel("step")
-    axs[1].set_ylabel("v_x of P1")
+    axs[1].set_ylabel("v_x of P1 [cm/s]")
     axs[1].set_title("Fig. 3.8: v_x of P1 (the paper: 8.66 at t_0 is "
                      "maximal)", fontsize=10)
     axs[1].legend(fontsize=7)

@@ -39,6 +39,11 @@ bf_status bf_out_create(bf_out **out, const char *path, bf_err *err);
  * existing datasets (keeping their rows) and bf_out_array replaces
  * existing fixed datasets. */
 bf_status bf_out_open_append(bf_out **out, const char *path, bf_err *err);
+/* Compress the datasets created from now on with HDF5's shuffle and
+ * deflate filters at `level` (1-9; 0, the default: no filters, the file
+ * is laid out as without this call): every series, and fixed arrays of
+ * more than 64 KiB. */
+void bf_out_set_compression(bf_out *out, int level);
 /* Flush, close and rename PATH.part to PATH; *out is freed even on
  * error (the file is then left as PATH.part). */
 bf_status bf_out_close(bf_out *out, bf_err *err);

@@ -44,6 +44,7 @@ typedef struct bf_sim_keys {
     double max_energy_error;      /* 1 (0: no bound) */
     double flush_seconds;         /* s of wall time */
     bf_interval checkpoint_every; /* steps or s (0: when interrupted) */
+    long compress;                /* deflate level of large datasets (0: off) */
 } bf_sim_keys;
 
 extern const bf_section_spec bf_sim_scene_spec; /* [scene] */

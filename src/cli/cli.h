@@ -13,6 +13,10 @@ extern volatile sig_atomic_t bf_cli_stop;
 int bf_cmd_run(int argc, char **argv);
 int bf_cmd_sweep(int argc, char **argv);
 int bf_cmd_converge(int argc, char **argv);
+int bf_cmd_xdmf(int argc, char **argv);
+int bf_cmd_animate(int argc, char **argv);
+/* Write OUT.xmf beside OUT.h5 after a run; a failure is a warning. */
+void bf_cli_write_xdmf(const char *h5_path);
 /* Create ./out if missing; 0 on success (else prints why). */
 int bf_cli_mkdir_out(void);
 void bf_cli_print_keys(FILE *f);

@@ -257,6 +257,8 @@ run:;
         fprintf(stderr, "ballfilm: error: %s\n", cerr.msg);
     else if (!run_st)
         printf("wrote %s\n", out_path);
+    if (!close_st && run_st != BF_EIO)
+        bf_cli_write_xdmf(out_path);
 done:
     bf_run_free(run);
     free(defout);

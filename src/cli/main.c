@@ -27,6 +27,12 @@ static void usage(FILE *f)
             "                     convergence / work-precision study against "
             "an ARKODE\n"
             "                     reference (see 'ballfilm converge --help')\n"
+            "  xdmf OUT.h5 [-o OUT.xmf]\n"
+            "                     XDMF sidecar for ParaView/VisIt (see "
+            "'ballfilm xdmf --help')\n"
+            "  animate OUT.h5 [-o MOVIE.mp4] [--fps N] [--t0 T] [--t1 T]\n"
+            "                     a movie of a run (see 'ballfilm animate "
+            "--help')\n"
             "  help               this text and every scene key\n"
             "  version            print the version\n"
             "\n"
@@ -88,6 +94,10 @@ int main(int argc, char **argv)
         return bf_cmd_sweep(argc - 1, argv + 1);
     if (!strcmp(cmd, "converge"))
         return bf_cmd_converge(argc - 1, argv + 1);
+    if (!strcmp(cmd, "xdmf"))
+        return bf_cmd_xdmf(argc - 1, argv + 1);
+    if (!strcmp(cmd, "animate"))
+        return bf_cmd_animate(argc - 1, argv + 1);
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
         usage(stdout);
         printf("\n");

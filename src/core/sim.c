@@ -58,6 +58,10 @@ static const bf_param scene_params[] = {
      "write a checkpoint (OUT.ckpt) every 'N' steps or 'T s' (0: only when "
      "interrupted); continue with ballfilm run --restart OUT",
      0, 0, 0, NULL},
+    {"compress", BF_AT(bf_sim_keys, compress, BF_INT), "1", "0",
+     "compress the series and large arrays of the output with HDF5's "
+     "shuffle and deflate filters at this level (1-9; 0: off)",
+     BF_MIN | BF_MAX, 0, 9, NULL},
     {0},
 };
 
@@ -90,6 +94,7 @@ struct bf_sim {
     long steps_this_run;
     char *ckpt_path;
     double energy_bound, flush_seconds;
+    int compress; /* deflate level of the output (0: off) */
     bf_out *out;
     bf_series *s_time, *s_step, *s_ek, *s_ep, *s_et;
     long last_row; /* step of the last output row, -1 if none */
@@ -194,6 +199,7 @@ bf_status bf_sim_create(bf_sim **out, const bf_sim_keys *k,
     s->energy_every = k->energy_every;
     s->energy_bound = k->max_energy_error;
     s->flush_seconds = k->flush_seconds;
+    s->compress = (int)k->compress;
     if (!s->scene_path || !s->scene_text || !s->scene_sets)
         st = bf_fail(err, BF_EINTERNAL, "out of memory");
     if (!st)
@@ -304,6 +310,7 @@ bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)
     /* under the output's lock: a checkpoint of an earlier run is not ours */
     unlink(s->ckpt_path);
     bf_out *o = s->out;
+    bf_out_set_compression(o, s->compress);
     if ((st = bf_out_attr_str(o, "/", "version", bf_version_string(), err)) ||
         (st = bf_out_attr_str(o, "/", "scene_file", s->scene_path, err)) ||
         (st = bf_out_attr_str(o, "/", "scene_text", s->scene_text, err)) ||

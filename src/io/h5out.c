@@ -55,7 +55,26 @@ struct bf_out {
     size_t nseries, capseries;
     size_t buffered_bytes;
     double last_flush;
+    int deflate; /* level of new datasets' deflate filter (0: none) */
 };
+
+/* Arrays above this size are compressed when compression is on. */
+#define COMPRESS_ARRAY_BYTES (64u << 10)
+
+void bf_out_set_compression(bf_out *out, int level)
+{
+    out->deflate = level < 0 ? 0 : level > 9 ? 9 : level;
+}
+
+/* Shuffle (bytes of a value grouped, which deflate packs better) and
+ * deflate on a chunked dataset's creation properties. */
+static void add_filters(const bf_out *out, hid_t dcpl)
+{
+    if (out->deflate > 0) {
+        H5Pset_shuffle(dcpl);
+        H5Pset_deflate(dcpl, (unsigned)out->deflate);
+    }
+}
 
 static void quiet_hdf5(void)
 {
@@ -313,6 +332,7 @@ bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
     hid_t sp = H5Screate_simple(rank, dims, maxdims);
     hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
     H5Pset_chunk(dcpl, rank, chunk);
+    add_filters(out, dcpl);
     hid_t lcpl = lcpl_intermediate();
     s->dset = H5Dcreate2(out->file, path,
                          is_int ? H5T_STD_I64LE : H5T_IEEE_F64LE, sp, lcpl, dcpl,
@@ -525,8 +545,18 @@ static bf_status write_array(bf_out *out, const char *path, const void *data,
         H5Ldelete(out->file, path, H5P_DEFAULT);
     hid_t sp = H5Screate_simple(rank, dims, NULL);
     hid_t lcpl = lcpl_intermediate();
+    hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    if (out->deflate > 0 && 8.0 * (double)n0 * (double)(n1 ? n1 : 1) >
+                                COMPRESS_ARRAY_BYTES) {
+        /* chunks of about 1 MiB of whole rows */
+        size_t rowbytes = 8 * (n1 ? n1 : 1), rows = (1u << 20) / rowbytes;
+        hsize_t chunk[2] = {rows < 1 ? 1 : rows > n0 ? n0 : rows, n1};
+        H5Pset_chunk(dcpl, rank, chunk);
+        add_filters(out, dcpl);
+    }
     hid_t d = H5Dcreate2(out->file, path, is_int ? H5T_STD_I64LE : H5T_IEEE_F64LE,
-                         sp, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+                         sp, lcpl, dcpl, H5P_DEFAULT);
+    H5Pclose(dcpl);
     H5Pclose(lcpl);
     herr_t rc = -1;
     if (d >= 0) {

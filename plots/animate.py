@@ -1,0 +1,549 @@
+#!/usr/bin/python3
+"""animate.py: a movie of a ballfilm run, one frame per output row (thinned
+to --frames rows spread evenly over --t0..--t1).
+
+  balls        positions against time with the contacts marked, and the
+               phase point (x, v) of every ball with its recent trail;
+  film,        psi(x) and h(x) with the balls drawn on the film and the
+  coupled      coupling kernel exp(-|x - X_i|/r0) under each ball; time
+               and the relative energy change in the corner (Yasuda 2010,
+               Fig. 8 in motion);
+  greenspan72  the particles coloured by fluid inside the box's walls;
+  greenspan73  fluid particles and wall particles (fixed ones outlined);
+  mac          the markers coloured by density over the speed (or
+               pressure) field, walls, inflow and the sink marked.
+
+Rows are read one at a time (h5py slices), so memory does not grow with
+the run's length or particle count.  MP4 needs Debian's ffmpeg; without
+it the movie is a GIF written through Pillow (and the script says so).
+
+usage: animate.py OUT.h5 [-o MOVIE.mp4] [--fps N] [--frames N]
+                  [--t0 T] [--t1 T] [--size WxH] [--field speed|p]
+                  [--xlim A B] [--quiet]
+(`ballfilm animate OUT.h5 ...` runs this script.)"""
+import argparse
+import os
+import shutil
+import sys
+
+try:
+    import h5py
+    import numpy as np
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib import animation
+    from matplotlib.lines import Line2D
+except ImportError as e:  # pragma: no cover - depends on the machine
+    sys.exit("animate: %s; it needs Debian's packages: sudo apt-get install "
+             "-y python3-numpy python3-matplotlib python3-h5py (ffmpeg for "
+             "MP4, python3-pil for GIF)" % e)
+
+TRAIL = 40  # the phase-plane trail: 1/TRAIL of the shown rows
+
+
+def attr(f, key, default=None):
+    v = f.attrs.get(key, default)
+    if isinstance(v, bytes):
+        v = v.decode()
+    if isinstance(v, np.ndarray) and v.shape == ():
+        v = v[()]
+    return v
+
+
+def frames_of(times, nframes, t0, t1):
+    """Indices of at most nframes rows with t0 <= t <= t1, evenly spread,
+    first and last included (floor(x + 1/2) keeps them distinct)."""
+    lo = -np.inf if t0 is None else t0
+    hi = np.inf if t1 is None else t1
+    idx = np.nonzero((times >= lo - 1e-12) & (times <= hi + 1e-12))[0]
+    if len(idx) == 0:
+        sys.exit("animate: no output row in %s..%s" % (t0, t1))
+    if len(idx) <= nframes:
+        return idx
+    pos = np.floor(np.linspace(0, len(idx) - 1, nframes) + 0.5).astype(int)
+    return idx[pos]
+
+
+def strided(ds, i0, i1, most=4000):
+    """Rows i0..i1 of ds, every k-th so that at most `most` come back, and
+    their indices."""
+    step = max(1, int(np.ceil((i1 - i0 + 1) / most)))
+    return np.arange(i0, i1 + 1, step), ds[i0:i1 + 1:step]
+
+
+def corner(ax, text):
+    return ax.text(0.01, 0.97, text, transform=ax.transAxes, va="top",
+                   ha="left", fontsize=9, family="monospace",
+                   bbox=dict(facecolor="white", alpha=0.8, lw=0))
+
+
+def energy_text(f, t):
+    """Relative energy change at the /time row nearest t ('' if none)."""
+    if "/energy/total" not in f or "/time" not in f:
+        return ""
+    times = f["/time"]
+    k = min(int(np.searchsorted(times[()], t)), len(times) - 1)
+    e = f["/energy/total"]
+    e0, ek = e[0], e[k]
+    rel = (ek - e0) / abs(e0) if e0 != 0 else ek - e0
+    return "\n(E - E0)/|E0| = %+.2e" % rel
+
+
+# --------------------------------------------------------------- balls
+
+class Balls:
+    """Balls on a line: x_i(t) with contacts, and the phase plane."""
+
+    def __init__(self, f, a):
+        self.f = f
+        self.t = f["/time"][()]
+        self.frames = frames_of(self.t, a.frames, a.t0, a.t1)
+        self.x, self.v = f["/balls/position"], f["/balls/velocity"]
+        self.R = f["/balls/radius"][()]
+        self.floor = "floor" in str(attr(f, "scene.effects", ""))
+        i0, i1 = self.frames[0], self.frames[-1]
+        self.ti, self.xs = strided(self.x, i0, i1)
+        self.vs = strided(self.v, i0, i1)[1]
+        self.contacts = self.find_contacts(i0, i1)
+
+    def find_contacts(self, i0, i1, chunk=65536, most=20000):
+        """(t, x) where a contact begins (ball-ball: x_j+1 - x_j <= R_j +
+        R_j+1; ball-floor: x_0 <= R_0), scanning every row in chunks."""
+        out_t, out_x = [], []
+        prev = None
+        for c0 in range(i0, i1 + 1, chunk):
+            c1 = min(i1 + 1, c0 + chunk)
+            x = self.x[c0:c1]
+            touch = [x[:, j + 1] - x[:, j] <= self.R[j] + self.R[j + 1]
+                     for j in range(x.shape[1] - 1)]
+            where = [0.5 * (x[:, j] + x[:, j + 1])
+                     for j in range(x.shape[1] - 1)]
+            if self.floor:
+                touch.append(x[:, 0] <= self.R[0])
+                where.append(x[:, 0] - self.R[0])
+            if not touch:
+                return np.zeros(0), np.zeros(0)
+            touch, where = np.array(touch).T, np.array(where).T
+            before = np.vstack([prev if prev is not None
+                                else np.zeros_like(touch[:1]), touch[:-1]])
+            onset = touch & ~before
+            r, p = np.nonzero(onset)
+            out_t.append(self.t[c0 + r])
+            out_x.append(where[r, p])
+            prev = touch[-1:]
+        t, x = np.concatenate(out_t), np.concatenate(out_x)
+        if len(t) > most:
+            keep = np.linspace(0, len(t) - 1, most).astype(int)
+            t, x = t[keep], x[keep]
+        return t, x
+
+    def setup(self, fig):
+        axp, axs = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.6, 1]})
+        n = self.xs.shape[1]
+        for j in range(n):
+            axp.plot(self.t[self.ti], self.xs[:, j], lw=0.7, color="C%d" % j,
+                     label="ball %d" % (j + 1))
+        ct, cx = self.contacts
+        axp.plot(ct, cx, "k|", ms=5, mew=0.6,
+                 label="contact begins (%d)" % len(ct))
+        self.cursor = axp.axvline(self.t[self.frames[0]], color="k", lw=0.8)
+        self.now = axp.plot(np.zeros(n), np.zeros(n), "ko", ms=4)[0]
+        axp.set_xlabel("t [s]")
+        axp.set_ylabel("position [cm]")
+        axp.set_title("positions and contacts", fontsize=10)
+        axp.legend(fontsize=7, loc="upper right")
+        self.trails, self.points = [], []
+        for j in range(n):
+            axs.plot(self.xs[:, j], self.vs[:, j], ",", color="C%d" % j,
+                     alpha=0.5)
+            self.trails.append(axs.plot([], [], lw=1.2, color="C%d" % j)[0])
+            self.points.append(axs.plot([], [], "o", color="C%d" % j,
+                                        ms=6, mec="k")[0])
+        axs.set_xlabel("position [cm]")
+        axs.set_ylabel("velocity [cm/s]")
+        axs.set_title("phase points", fontsize=10)
+        self.text = corner(axs, "")
+
+    def draw(self, n):
+        k = self.frames[n]
+        t = self.t[k]
+        x, v = self.x[k], self.v[k]
+        self.cursor.set_xdata([t, t])
+        self.now.set_data(np.full(len(x), t), x)
+        # the trail: the last 1/TRAIL of the shown rows, at most 2000
+        span = max(1, (self.frames[-1] - self.frames[0]) // TRAIL)
+        lo = max(self.frames[0], k - span)
+        xt, vt = strided(self.x, lo, k, 2000)[1], strided(self.v, lo, k,
+                                                          2000)[1]
+        for j in range(len(x)):
+            self.trails[j].set_data(xt[:, j], vt[:, j])
+            self.points[j].set_data([x[j]], [v[j]])
+        self.text.set_text("t = %.4f s%s" % (t, energy_text(self.f, t)))
+
+
+# ---------------------------------------------------------------- film
+
+class Film:
+    """psi(x), h(x), the balls and their coupling kernels."""
+
+    def __init__(self, f, a):
+        self.f = f
+        self.t = f["/film/time"][()]
+        self.frames = frames_of(self.t, a.frames, a.t0, a.t1)
+        self.xn = f["/film/x"][()]
+        self.psi, self.h = f["/film/psi"], f["/film/h"]
+        self.balls = "/balls/position" in f
+        self.r0 = float(attr(f, "coupling.r0", 0.5))
+        lo, hi = self.xn[0], self.xn[-1]
+        if self.balls:
+            bt = f["/time"][()]
+            self.brow = [min(int(np.searchsorted(bt, self.t[k])),
+                             len(bt) - 1) for k in self.frames]
+            xb = strided(f["/balls/position"], self.brow[0],
+                         self.brow[-1])[1]
+            margin = max(8 * self.r0, 1.0)
+            lo = max(lo, xb.min() - margin)
+            hi = min(hi, xb.max() + margin)
+        if a.xlim:
+            lo, hi = a.xlim
+        self.lim = (lo, hi)
+        self.win = (self.xn >= lo) & (self.xn <= hi)
+        hmin, hmax = np.inf, -np.inf
+        for k in self.frames:  # one row of h at a time
+            hw = self.h[k][self.win]
+            hmin, hmax = min(hmin, hw.min()), max(hmax, hw.max())
+        pad = 0.05 * (hmax - hmin) if hmax > hmin else 1e-6 * abs(hmax) + 1e-9
+        self.hlim = (hmin - pad, hmax + pad)
+
+    def setup(self, fig):
+        axp, axh = fig.subplots(2, 1, sharex=True)
+        self.lp = axp.plot([], [], "C0-", lw=1.2, label="psi")[0]
+        axp.set_ylim(-1.15, 1.15)
+        axp.set_ylabel("psi = alpha_d - alpha_c [1]")
+        axp.set_xlim(*self.lim)
+        self.lh = axh.plot([], [], "C2-", lw=1.2)[0]
+        axh.set_ylim(*self.hlim)
+        axh.set_ylabel("h [cm]")
+        axh.set_xlabel("x [cm]")
+        self.text = corner(axp, "")
+        self.kern, self.dots = [], None
+        if self.balls:
+            nb = self.f["/balls/position"].shape[1]
+            R = self.f["/balls/radius"][()]
+            self.R = R
+            for j in range(nb):
+                self.kern.append(axp.fill_between(
+                    [], [], [], color="C%d" % (j + 1), alpha=0.0))
+            self.axp = axp
+            self.dots = axh.scatter(np.zeros(nb), np.zeros(nb), s=60,
+                                    c=["C%d" % (j + 1) for j in range(nb)],
+                                    edgecolors="k", zorder=3)
+            self.marks = axp.scatter(np.zeros(nb), np.zeros(nb), s=40,
+                                     c=["C%d" % (j + 1) for j in range(nb)],
+                                     edgecolors="k", zorder=3, marker="v")
+            axp.plot([], [], color="C1", alpha=0.4, lw=6,
+                     label="kernel exp(-|x - X_i|/r0), r0 = %g cm" % self.r0)
+        axp.legend(fontsize=7, loc="upper right")
+
+    def draw(self, n):
+        k = self.frames[n]
+        x = self.xn[self.win]
+        psi, h = self.psi[k][self.win], self.h[k][self.win]
+        self.lp.set_data(x, psi)
+        self.lh.set_data(x, h)
+        extra = ""
+        if self.balls:
+            br = self.brow[n]
+            xb = self.f["/balls/position"][br]
+            hb = np.interp(xb, x, h)
+            self.dots.set_offsets(np.column_stack([xb, hb]))
+            self.marks.set_offsets(np.column_stack([xb, np.full(len(xb),
+                                                                 1.08)]))
+            for j, c in enumerate(self.kern):
+                c.remove()
+                w = np.exp(-np.abs(x - xb[j]) / self.r0)
+                self.kern[j] = self.axp.fill_between(
+                    x, -1.15, -1.15 + 0.6 * w, color="C%d" % (j + 1),
+                    alpha=0.35, lw=0)
+            extra = energy_text(self.f, self.t[k])
+        self.text.set_text("t = %.4f s%s" % (self.t[k], extra))
+
+
+# ----------------------------------------------------------- particles
+
+class Particles:
+    """Greenspan's particles: fluids by colour, walls, wall particles."""
+
+    def __init__(self, f, a):
+        self.f = f
+        if "/particles/step" in f:
+            self.t = f["/particles/step"][()] * float(attr(f, "scene.dt"))
+        else:
+            self.t = f["/time"][()]
+        self.frames = frames_of(self.t, a.frames, a.t0, a.t1)
+        self.x, self.y = f["/particles/x"], f["/particles/y"]
+        self.n = self.x.shape[1]
+        self.model = str(attr(f, "scene.model"))
+        self.box = None
+        if self.model == "greenspan72":
+            self.box = (float(attr(f, "greenspan72.width")),
+                        float(attr(f, "greenspan72.height")))
+            tag = f["/particles/tag"][()]
+            self.groups = [("heavy fluid L1", tag == 1, "C3"),
+                           ("light fluid L2", tag == 2, "C0")]
+        else:
+            fixed = (f["/particles/fixed"][()] > 0
+                     if "/particles/fixed" in f else np.zeros(self.n, bool))
+            wall = np.zeros(self.n, bool)
+            if str(attr(f, "greenspan73.layout")) == "wall":
+                wall[1:] = True
+            self.groups = [("fluid particles", ~wall & ~fixed, "C0"),
+                           ("wall particles", wall & ~fixed, "0.45"),
+                           ("fixed particles", fixed, "k")]
+            self.groups = [g for g in self.groups if g[1].any()]
+            self.span = self.extent()
+
+    def extent(self):
+        """Half widths of a window that follows the centre of the
+        particles and holds them in every frame."""
+        wx = wy = 0.0
+        for k in self.frames:
+            x, y = self.x[k], self.y[k]
+            wx = max(wx, np.ptp(x) / 2, abs(x - x.mean()).max())
+            wy = max(wy, np.ptp(y) / 2, abs(y - y.mean()).max())
+        w = 1.15 * max(wx, wy, 1e-6)
+        return w, w
+
+    def setup(self, fig):
+        ax = fig.subplots(1, 1)
+        self.ax = ax
+        self.arts = []
+        big = self.n > 20000
+        for name, sel, col in self.groups:
+            if big:
+                art = ax.plot([], [], ",", color=col, label=name)[0]
+            else:
+                s = 30 if self.n < 100 else max(2, 3000 / self.n)
+                art = ax.scatter([], [], s=s, color=col, label=name,
+                                 marker="s" if "wall" in name or "fixed" in
+                                 name else "o", lw=0)
+            self.arts.append((art, sel, big))
+        if self.box:
+            W, H = self.box
+            ax.plot([0, 0, W, W, 0], [0, H, H, 0, 0], "k-", lw=1.5,
+                    label="walls")
+            m = 0.03 * max(W, H)
+            ax.set_xlim(-m, W + m)
+            ax.set_ylim(-m, H + m)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x [cm]")
+        ax.set_ylabel("y [cm]")
+        handles, labels = ax.get_legend_handles_labels()
+        if big:  # pixel markers do not show in a legend: squares instead
+            handles = [Line2D([], [], ls="", marker="s", color=h.get_color())
+                       if h.get_marker() == "," else h for h in handles]
+        ax.legend(handles, labels, fontsize=7, loc="upper right")
+        self.text = corner(ax, "")
+        ax.set_title("%s: %d particles" % (self.model, self.n), fontsize=10)
+
+    def draw(self, n):
+        k = self.frames[n]
+        x, y = self.x[k], self.y[k]
+        for art, sel, big in self.arts:
+            if big:
+                art.set_data(x[sel], y[sel])
+            else:
+                art.set_offsets(np.column_stack([x[sel], y[sel]]))
+        if not self.box:
+            wx, wy = self.span
+            cx, cy = x.mean(), y.mean()
+            self.ax.set_xlim(cx - wx, cx + wx)
+            self.ax.set_ylim(cy - wy, cy + wy)
+        self.text.set_text("t = %.4f s (row %d)%s"
+                           % (self.t[k], k, energy_text(self.f, self.t[k])
+                              if self.model == "greenspan73" else ""))
+
+
+# ----------------------------------------------------------------- MAC
+
+class Mac:
+    """Markers coloured by density over the speed or pressure field."""
+
+    def __init__(self, f, a):
+        self.f = f
+        self.t = f["/time"][()]
+        self.frames = frames_of(self.t, a.frames, a.t0, a.t1)
+        ni, nj, dx, dy = f["/mac/grid"][()]
+        self.ni, self.nj, self.dx, self.dy = int(ni), int(nj), dx, dy
+        self.field = a.field
+        live = []
+        for k in self.frames:
+            fl = f["/mac/particles/flag"][k] > 1
+            live.append(f["/mac/particles/density"][k][fl])
+        live = np.concatenate(live) if live else np.zeros(1)
+        self.dlim = (live.min(), live.max()) if live.size else (0, 1)
+        vmax = 0.0
+        for k in self.frames:  # over the fluid cells (FULL, SUR)
+            fluid = np.isin(f["/mac/flags"][k].reshape(self.ni, self.nj),
+                            (10, 11))
+            vals = np.abs(self.values(k))[fluid]
+            if vals.size:
+                vmax = max(vmax, np.nanmax(vals))
+        vmax = vmax or 1.0
+        self.vlim = (0, vmax) if self.field == "speed" else (-vmax, vmax)
+
+    def values(self, k):
+        """The field of row k on the cells, [ni x nj]."""
+        ni, nj = self.ni, self.nj
+        if self.field == "p":
+            return self.f["/mac/p"][k].reshape(ni, nj)
+        u = self.f["/mac/u"][k].reshape(ni + 1, nj)
+        v = self.f["/mac/v"][k].reshape(ni, nj + 1)
+        uc = 0.5 * (u[:-1, :] + u[1:, :])
+        vc = 0.5 * (v[:, :-1] + v[:, 1:])
+        return np.hypot(uc, vc)
+
+    def setup(self, fig):
+        ax = fig.subplots(1, 1)
+        dx, dy, ni, nj = self.dx, self.dy, self.ni, self.nj
+        ext = (-dx, (ni - 1) * dx, -dy, (nj - 1) * dy)
+        self.img = ax.imshow(np.zeros((nj, ni)), origin="lower", extent=ext,
+                             cmap="Greys" if self.field == "speed" else
+                             "RdBu_r", vmin=self.vlim[0], vmax=self.vlim[1],
+                             interpolation="nearest")
+        cb = fig.colorbar(self.img, ax=ax, fraction=0.04, pad=0.02)
+        cb.set_label("|w| [W]" if self.field == "speed" else "p [R W^2]")
+        self.sc = ax.scatter([], [], c=[], s=max(4, 9 * (0.1 / dx) ** 2),
+                             cmap="viridis_r", vmin=self.dlim[0],
+                             vmax=self.dlim[1], lw=0)
+        cb2 = fig.colorbar(self.sc, ax=ax, fraction=0.04, pad=0.02)
+        cb2.set_label("marker density [R]")
+        width, depth = (ni - 2) * dx, (nj - 2) * dy
+        ax.plot([0, width, width], [depth, depth, 0], "k-", lw=1.2)
+        ax.plot([0, 0], [0, depth], "b--", lw=1.2, label="inflow (IN)")
+        flags = self.f["/mac/flags"][self.frames[0]].reshape(ni, nj)
+        first = True
+        for i in range(ni):
+            x0 = (i - 1) * dx
+            if flags[i, 0] == 3:
+                ax.plot([x0, x0 + dx], [0, 0], "r-", lw=4,
+                        label="sink (OUT cells)" if first else None)
+                first = False
+            elif 1 <= i <= ni - 2:
+                ax.plot([x0, x0 + dx], [0, 0], "k-", lw=1.2)
+        ax.set_xlim(ext[0], ext[1])
+        ax.set_ylim(ext[2], ext[3])
+        ax.set_aspect("equal")
+        ax.set_xlabel("x [L]")
+        ax.set_ylabel("y [L]")
+        ax.legend(fontsize=7, loc="upper right")
+        self.text = corner(ax, "")
+
+    def draw(self, n):
+        k = self.frames[n]
+        self.img.set_data(self.values(k).T)
+        fl = self.f["/mac/particles/flag"][k] > 1
+        x = self.f["/mac/particles/x"][k][fl]
+        y = self.f["/mac/particles/y"][k][fl]
+        self.sc.set_offsets(np.column_stack([x, y]))
+        self.sc.set_array(self.f["/mac/particles/density"][k][fl])
+        self.text.set_text("t = %.3f L/W\nmarkers %d" % (self.t[k], fl.sum()))
+
+
+SCENES = {"balls": Balls, "film": Film, "coupled": Film,
+          "greenspan72": Particles, "greenspan73": Particles, "mac": Mac}
+
+
+def scene_of(f, a):
+    model = str(attr(f, "scene.model", ""))
+    if model in SCENES:
+        return model, SCENES[model](f, a)
+    for path, cls in (("/mac/p", Mac), ("/particles/x", Particles),
+                      ("/film/psi", Film), ("/balls/position", Balls)):
+        if path in f:
+            return model or path, cls(f, a)
+    sys.exit("animate: %s holds nothing to animate (model '%s')"
+             % (f.filename, model))
+
+
+def writer_for(out, fps):
+    """(writer, path): MP4 through ffmpeg, else a GIF through Pillow."""
+    if not out.endswith(".gif") and shutil.which("ffmpeg"):
+        return animation.FFMpegWriter(
+            fps=fps, codec="libx264",
+            extra_args=["-pix_fmt", "yuv420p", "-preset", "veryfast"]), out
+    gif = out if out.endswith(".gif") else os.path.splitext(out)[0] + ".gif"
+    if gif != out:
+        print("animate: ffmpeg is not on PATH (Debian: apt-get install -y "
+              "ffmpeg), so no MP4; writing a GIF through Pillow instead: %s"
+              % gif, file=sys.stderr)
+    try:
+        import PIL  # noqa: F401
+    except ImportError:
+        sys.exit("animate: a GIF needs Pillow (Debian: apt-get install -y "
+                 "python3-pil); an MP4 needs ffmpeg")
+    return animation.PillowWriter(fps=fps), gif
+
+
+def progress(n, total, quiet):
+    if quiet:
+        return
+    w = 30
+    done = int(w * n / total)
+    sys.stderr.write("\ranimate: [%s%s] %d/%d frames"
+                     % ("#" * done, " " * (w - done), n, total))
+    if n == total:
+        sys.stderr.write("\n")
+    sys.stderr.flush()
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("h5")
+    ap.add_argument("-o", "--output", default=None,
+                    help="movie file (default: OUT.mp4 beside OUT.h5)")
+    ap.add_argument("--fps", type=float, default=20)
+    ap.add_argument("--frames", type=int, default=200,
+                    help="at most this many frames (rows spread evenly)")
+    ap.add_argument("--t0", type=float, default=None)
+    ap.add_argument("--t1", type=float, default=None)
+    ap.add_argument("--size", default="960x540",
+                    help="frame size WxH in pixels (even numbers)")
+    ap.add_argument("--field", choices=("speed", "p"), default="speed",
+                    help="MAC: the field under the markers")
+    ap.add_argument("--xlim", type=float, nargs=2, default=None,
+                    help="film: the x range shown [cm]")
+    ap.add_argument("-q", "--quiet", action="store_true",
+                    help="no progress bar")
+    a = ap.parse_args()
+    if a.frames < 1 or a.fps <= 0:
+        sys.exit("animate: --frames and --fps must be positive")
+    try:
+        w, h = (int(v) for v in a.size.lower().split("x"))
+    except ValueError:
+        sys.exit("animate: --size wants WxH, e.g. 960x540")
+    w, h = w + w % 2, h + h % 2  # H.264 with yuv420p wants even sizes
+    out = a.output or os.path.splitext(a.h5)[0] + ".mp4"
+    dpi = 100
+    with h5py.File(a.h5, "r") as f:
+        model, sc = scene_of(f, a)
+        fig = plt.figure(figsize=(w / dpi, h / dpi), dpi=dpi,
+                         layout="constrained")
+        sc.setup(fig)
+        fig.suptitle("%s (%s)" % (attr(f, "scene.title", "") or a.h5, model),
+                     fontsize=10)
+        writer, path = writer_for(out, a.fps)
+        total = len(sc.frames)
+        with writer.saving(fig, path, dpi):
+            for n in range(total):
+                sc.draw(n)
+                writer.grab_frame()
+                progress(n + 1, total, a.quiet)
+        plt.close(fig)
+    print("wrote %s (%d frames, %dx%d, %g fps)" % (path, total, w, h, a.fps))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,609 @@
+/* xdmf.c: the XDMF sidecar of an output file (see xdmf.h).
+ *
+ * XDMF 3 with HDF5 DataItems: a whole dataset is "FILE.h5:/path"; row k of
+ * a [rows x n] series is a HyperSlab (start k 0, stride 1 1, count 1 n) of
+ * it.  The structured meshes of the MAC grid are curvilinear (2DSMesh)
+ * with their point coordinates written once, inline, and referenced from
+ * every grid: the fields are stored with J (y) fastest, the transpose of
+ * XDMF's rectilinear ordering, and explicit points put x and y where they
+ * belong without copying a field.
+ */
+#define _XOPEN_SOURCE 700 /* realpath */
+#include "io/xdmf.h"
+
+#include <hdf5.h>
+#include <limits.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct xw {
+    FILE *f;
+    hid_t h5;
+    char *href;       /* the HDF5 file as the sidecar names it (escaped) */
+    size_t max_steps; /* grids per collection at most (0: all) */
+    double dt;        /* [scene] dt, for rows counted in steps */
+} xw;
+
+typedef struct dset {
+    int rank; /* 0: absent */
+    int is_int;
+    size_t n0, n1;
+} dset;
+
+static dset dset_of(const xw *x, const char *path)
+{
+    dset d = {0, 0, 0, 0};
+    if (H5Lexists(x->h5, path, H5P_DEFAULT) <= 0)
+        return d;
+    hid_t id = H5Dopen2(x->h5, path, H5P_DEFAULT);
+    if (id < 0)
+        return d;
+    hid_t sp = H5Dget_space(id), t = H5Dget_type(id);
+    hsize_t dims[2] = {0, 0};
+    int rank = H5Sget_simple_extent_ndims(sp);
+    if (rank == 1 || rank == 2) {
+        H5Sget_simple_extent_dims(sp, dims, NULL);
+        d.rank = rank;
+        d.is_int = H5Tget_class(t) == H5T_INTEGER;
+        d.n0 = (size_t)dims[0];
+        d.n1 = rank == 2 ? (size_t)dims[1] : 0;
+    }
+    H5Tclose(t);
+    H5Sclose(sp);
+    H5Dclose(id);
+    return d;
+}
+
+/* A 1-D dataset (or its first n values) as doubles; NULL on failure. */
+static double *read_vec(const xw *x, const char *path, size_t n)
+{
+    double *v = malloc((n ? n : 1) * sizeof *v);
+    hid_t id = v ? H5Dopen2(x->h5, path, H5P_DEFAULT) : -1;
+    if (id < 0) {
+        free(v);
+        return NULL;
+    }
+    hid_t fsp = H5Dget_space(id);
+    hsize_t start = 0, count = n;
+    H5Sselect_hyperslab(fsp, H5S_SELECT_SET, &start, NULL, &count, NULL);
+    hid_t msp = H5Screate_simple(1, &count, NULL);
+    herr_t rc = n ? H5Dread(id, H5T_NATIVE_DOUBLE, msp, fsp, H5P_DEFAULT, v)
+                  : 0;
+    H5Sclose(msp);
+    H5Sclose(fsp);
+    H5Dclose(id);
+    if (rc < 0) {
+        free(v);
+        return NULL;
+    }
+    return v;
+}
+
+static void indent(const xw *x, int depth)
+{
+    fprintf(x->f, "%*s", 2 * depth, "");
+}
+
+static void numtype(const xw *x, int is_int)
+{
+    fprintf(x->f, "NumberType=\"%s\" Precision=\"8\"",
+            is_int ? "Int" : "Float");
+}
+
+/* A whole dataset. */
+static void item_whole(const xw *x, const char *path, const dset *d,
+                       int depth)
+{
+    indent(x, depth);
+    fprintf(x->f, "<DataItem Dimensions=\"%zu", d->n0);
+    if (d->rank == 2)
+        fprintf(x->f, " %zu", d->n1);
+    fprintf(x->f, "\" ");
+    numtype(x, d->is_int);
+    fprintf(x->f, " Format=\"HDF\">%s:%s</DataItem>\n", x->href, path);
+}
+
+/* The shape of a row's values where a mesh wants its own (a structured
+ * mesh: the dimensions of its points or cells). */
+typedef struct shape {
+    int rank;
+    size_t d[3];
+} shape;
+
+/* Row k of a [rows x n] series, as 1 x n or shaped sh. */
+static void item_row(const xw *x, const char *path, const dset *d, size_t k,
+                     const shape *sh, int depth)
+{
+    indent(x, depth);
+    fprintf(x->f, "<DataItem ItemType=\"HyperSlab\" Dimensions=\"");
+    if (sh)
+        for (int r = 0; r < sh->rank; r++)
+            fprintf(x->f, r ? " %zu" : "%zu", sh->d[r]);
+    else
+        fprintf(x->f, "1 %zu", d->n1);
+    fprintf(x->f, "\" Type=\"HyperSlab\">\n");
+    indent(x, depth + 1);
+    fprintf(x->f, "<DataItem Dimensions=\"3 2\" Format=\"XML\">%zu 0 1 1 1 "
+                  "%zu</DataItem>\n", k, d->n1);
+    item_whole(x, path, d, depth + 1);
+    indent(x, depth);
+    fprintf(x->f, "</DataItem>\n");
+}
+
+/* An attribute from row k of a series (2-D dataset) or from a whole 1-D
+ * dataset; nothing when the dataset is absent. */
+static void attribute(const xw *x, const char *name, const char *center,
+                      const char *path, size_t k, const shape *sh,
+                      int depth)
+{
+    dset d = dset_of(x, path);
+    if (!d.rank)
+        return;
+    indent(x, depth);
+    fprintf(x->f, "<Attribute Name=\"%s\" AttributeType=\"Scalar\" "
+                  "Center=\"%s\">\n", name, center);
+    if (d.rank == 2)
+        item_row(x, path, &d, k, sh, depth + 1);
+    else
+        item_whole(x, path, &d, depth + 1);
+    indent(x, depth);
+    fprintf(x->f, "</Attribute>\n");
+}
+
+/* The 2-D vector (vx, vy, 0) of row k as a function of two series. */
+static void vector_attribute(const xw *x, const char *name, const char *px,
+                             const char *py, size_t k, int depth)
+{
+    dset a = dset_of(x, px), b = dset_of(x, py);
+    if (a.rank != 2 || b.rank != 2 || a.n1 != b.n1)
+        return;
+    indent(x, depth);
+    fprintf(x->f, "<Attribute Name=\"%s\" AttributeType=\"Vector\" "
+                  "Center=\"Node\">\n", name);
+    indent(x, depth + 1);
+    fprintf(x->f, "<DataItem ItemType=\"Function\" Function=\"JOIN($0, $1, "
+                  "0 * $0)\" Dimensions=\"%zu 3\">\n", a.n1);
+    item_row(x, px, &a, k, NULL, depth + 2);
+    item_row(x, py, &b, k, NULL, depth + 2);
+    indent(x, depth + 1);
+    fprintf(x->f, "</DataItem>\n");
+    indent(x, depth);
+    fprintf(x->f, "</Attribute>\n");
+}
+
+/* Points (x, y) of row k of two series, or x only (y = z = 0). */
+static void point_set(const xw *x, const char *px, const char *py, size_t k,
+                      int depth)
+{
+    dset a = dset_of(x, px);
+    indent(x, depth);
+    fprintf(x->f, "<Topology TopologyType=\"Polyvertex\" "
+                  "NumberOfElements=\"%zu\" NodesPerElement=\"1\"/>\n", a.n1);
+    indent(x, depth);
+    fprintf(x->f, "<Geometry GeometryType=\"%s\">\n", py ? "X_Y" : "X_Y_Z");
+    item_row(x, px, &a, k, NULL, depth + 1);
+    if (py) {
+        dset b = dset_of(x, py);
+        item_row(x, py, &b, k, NULL, depth + 1);
+    } else {
+        for (int c = 0; c < 2; c++) {
+            indent(x, depth + 1);
+            fprintf(x->f, "<DataItem Dimensions=\"%zu\" NumberType=\"Float\" "
+                          "Format=\"XML\">", a.n1);
+            for (size_t i = 0; i < a.n1; i++)
+                fprintf(x->f, i ? " 0" : "0");
+            fprintf(x->f, "</DataItem>\n");
+        }
+    }
+    indent(x, depth);
+    fprintf(x->f, "</Geometry>\n");
+}
+
+/* ---------------------------------------------------------- collections */
+
+typedef void (*grid_fn)(const xw *x, size_t row, const void *ctx, int depth);
+
+/* A temporal collection of the rows 0, s, 2s, ... and the last one
+ * (s = 1 unless there are more rows than max_steps) at the given times. */
+static void collection(const xw *x, const char *name, const double *times,
+                       size_t rows, grid_fn fn, const void *ctx)
+{
+    if (!rows)
+        return;
+    size_t s = 1;
+    if (x->max_steps && rows > x->max_steps)
+        s = (rows + x->max_steps - 2) / (x->max_steps - 1 ? x->max_steps - 1
+                                                          : 1);
+    if (s > 1)
+        fprintf(x->f, "    <!-- %s: every %zu-th of %zu rows (ballfilm xdmf "
+                      "--all for every row) -->\n", name, s, rows);
+    fprintf(x->f, "    <Grid Name=\"%s\" GridType=\"Collection\" "
+                  "CollectionType=\"Temporal\">\n", name);
+    for (size_t k = 0; k < rows; k += s) {
+        if (k + s >= rows)
+            k = rows - 1;
+        fprintf(x->f, "      <Grid Name=\"%s\" GridType=\"Uniform\">\n"
+                      "        <Time Value=\"%.17g\"/>\n", name, times[k]);
+        fn(x, k, ctx, 4);
+        fprintf(x->f, "      </Grid>\n");
+    }
+    fprintf(x->f, "    </Grid>\n");
+}
+
+/* The times of the rows of a series: the 1-D dataset `tpath`, or steps
+ * of `spath` times dt. */
+static double *row_times(const xw *x, const char *tpath, const char *spath,
+                         size_t rows)
+{
+    double *t = read_vec(x, tpath ? tpath : spath, rows);
+    if (t && !tpath)
+        for (size_t k = 0; k < rows; k++)
+            t[k] *= x->dt;
+    return t;
+}
+
+static size_t min_rows(const xw *x, const char *const *paths)
+{
+    size_t rows = SIZE_MAX;
+    for (; *paths; paths++) {
+        dset d = dset_of(x, *paths);
+        if (d.rank && d.n0 < rows)
+            rows = d.n0;
+    }
+    return rows == SIZE_MAX ? 0 : rows;
+}
+
+static bf_status timed(const xw *x, const char *name, const char *tpath,
+                       const char *spath, const char *const *series,
+                       grid_fn fn, const void *ctx, bf_err *err)
+{
+    const char *need[8];
+    size_t m = 0;
+    need[m++] = tpath ? tpath : spath;
+    for (size_t k = 0; series[k] && m < 7; k++)
+        need[m++] = series[k];
+    need[m] = NULL;
+    size_t rows = min_rows(x, need);
+    double *t = row_times(x, tpath, spath, rows);
+    if (!t)
+        return bf_fail(err, BF_EIO, "cannot read the times of %s", name);
+    collection(x, name, t, rows, fn, ctx);
+    free(t);
+    return BF_OK;
+}
+
+/* ---------------------------------------------------------------- film */
+
+static void film_grid(const xw *x, size_t k, const void *ctx, int depth)
+{
+    /* a line of n points along x: XDMF orders dimensions Z Y X */
+    const double *xs = ctx; /* n, x_0, dx */
+    const shape line = {3, {1, 1, (size_t)xs[0]}};
+    indent(x, depth);
+    fprintf(x->f, "<Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"1 1 "
+                  "%zu\"/>\n", line.d[2]);
+    indent(x, depth);
+    fprintf(x->f, "<Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n");
+    for (int c = 0; c < 2; c++) {
+        indent(x, depth + 1);
+        fprintf(x->f, "<DataItem Dimensions=\"3\" NumberType=\"Float\" "
+                      "Precision=\"8\" Format=\"XML\">%d %d %.17g</DataItem>\n",
+                c, c, xs[1 + c]);
+    }
+    indent(x, depth);
+    fprintf(x->f, "</Geometry>\n");
+    static const char *const f[][2] = {
+        {"psi", "/film/psi"}, {"h", "/film/h"},
+        {"u_d", "/film/u_d"}, {"u_c", "/film/u_c"}};
+    for (size_t a = 0; a < sizeof f / sizeof f[0]; a++)
+        attribute(x, f[a][0], "Node", f[a][1], k, &line, depth);
+}
+
+/* --------------------------------------------------------------- balls */
+
+static void balls_grid(const xw *x, size_t k, const void *ctx, int depth)
+{
+    (void)ctx;
+    point_set(x, "/balls/position", NULL, k, depth);
+    attribute(x, "velocity", "Node", "/balls/velocity", k, NULL, depth);
+    attribute(x, "mass", "Node", "/balls/mass", k, NULL, depth);
+    attribute(x, "radius", "Node", "/balls/radius", k, NULL, depth);
+}
+
+/* ----------------------------------------------------------- particles */
+
+static void particles_grid(const xw *x, size_t k, const void *ctx,
+                           int depth)
+{
+    const char *const *p = ctx; /* x, y, vx, vy */
+    point_set(x, p[0], p[1], k, depth);
+    vector_attribute(x, "velocity", p[2], p[3], k, depth);
+    attribute(x, "vx", "Node", p[2], k, NULL, depth);
+    attribute(x, "vy", "Node", p[3], k, NULL, depth);
+    static const char *const f[][2] = {
+        {"fluid", "/particles/tag"},     {"mass", "/particles/mass"},
+        {"inertia", "/particles/inertia"}, {"fixed", "/particles/fixed"},
+        {"gravity", "/particles/gravity"}};
+    for (size_t a = 0; a < sizeof f / sizeof f[0]; a++)
+        attribute(x, f[a][0], "Node", f[a][1], k, NULL, depth);
+}
+
+static void marker_grid(const xw *x, size_t k, const void *ctx, int depth)
+{
+    const char *const *p = ctx; /* x, y */
+    point_set(x, p[0], p[1], k, depth);
+    attribute(x, "density", "Node", "/mac/particles/density", k, NULL, depth);
+    attribute(x, "flag", "Node", "/mac/particles/flag", k, NULL, depth);
+}
+
+/* ----------------------------------------------------------------- MAC */
+
+/* A mesh of ni1 x nj1 points (I slow, J fast) at x = (I + ox) dx,
+ * y = (J + oy) dy, I, J from 0, and the fields on it. */
+typedef struct mac_mesh {
+    const char *name; /* also the name of its coordinates in the Domain */
+    size_t ni1, nj1;
+    double ox, oy, dx, dy;
+    const char *center;
+    const char *const *fields; /* name, path pairs, NULL-terminated */
+} mac_mesh;
+
+static void mac_coordinates(const xw *x, const mac_mesh *m)
+{
+    for (int c = 0; c < 2; c++) {
+        fprintf(x->f, "    <DataItem Name=\"%s_%c\" Dimensions=\"%zu %zu\" "
+                      "NumberType=\"Float\" Precision=\"8\" Format=\"XML\">\n",
+                m->name, "xy"[c], m->ni1, m->nj1);
+        for (size_t i = 0; i < m->ni1; i++) {
+            fprintf(x->f, "     ");
+            for (size_t j = 0; j < m->nj1; j++)
+                fprintf(x->f, " %.17g",
+                        c ? ((double)j + m->oy) * m->dy
+                          : ((double)i + m->ox) * m->dx);
+            fprintf(x->f, "\n");
+        }
+        fprintf(x->f, "    </DataItem>\n");
+    }
+}
+
+static void mac_grid(const xw *x, size_t k, const void *ctx, int depth)
+{
+    const mac_mesh *m = ctx;
+    indent(x, depth);
+    fprintf(x->f, "<Topology TopologyType=\"2DSMesh\" Dimensions=\"%zu "
+                  "%zu\"/>\n", m->ni1, m->nj1);
+    indent(x, depth);
+    fprintf(x->f, "<Geometry GeometryType=\"X_Y\">\n");
+    for (int c = 0; c < 2; c++) {
+        indent(x, depth + 1);
+        fprintf(x->f, "<DataItem Reference=\"XML\">/Xdmf/Domain/DataItem"
+                      "[@Name=\"%s_%c\"]</DataItem>\n", m->name, "xy"[c]);
+    }
+    indent(x, depth);
+    fprintf(x->f, "</Geometry>\n");
+    /* the shape of the values: points, or the cells between them */
+    const int cells = !strcmp(m->center, "Cell");
+    const shape sh = {2, {m->ni1 - (size_t)cells, m->nj1 - (size_t)cells}};
+    for (const char *const *f = m->fields; *f; f += 2)
+        attribute(x, f[0], m->center, f[1], k, &sh, depth);
+}
+
+static bf_status write_mac(const xw *x, bf_err *err)
+{
+    dset g = dset_of(x, "/mac/grid");
+    double *grid = g.rank == 1 && g.n0 >= 4 ? read_vec(x, "/mac/grid", 4)
+                                             : NULL;
+    if (!grid)
+        return bf_fail(err, BF_EIO, "no readable /mac/grid (ni, nj, dx, dy)");
+    size_t ni = (size_t)grid[0], nj = (size_t)grid[1];
+    double dx = grid[2], dy = grid[3];
+    free(grid);
+    /* cell (I,J), I, J from 1, covers [(I-2)dx, (I-1)dx) x [(J-2)dy, ...) */
+    static const char *const cell_f[] = {"p", "/mac/p", "rho", "/mac/rho",
+                                         "T", "/mac/T", "flags", "/mac/flags",
+                                         NULL};
+    static const char *const u_f[] = {"u", "/mac/u", NULL};
+    static const char *const v_f[] = {"v", "/mac/v", NULL};
+    const mac_mesh mesh[3] = {
+        {"mac_cells", ni + 1, nj + 1, -1.0, -1.0, dx, dy, "Cell", cell_f},
+        {"mac_u", ni + 1, nj, -1.0, -0.5, dx, dy, "Node", u_f},
+        {"mac_v", ni, nj + 1, -0.5, -1.0, dx, dy, "Node", v_f},
+    };
+    static const char *const series[3][5] = {
+        {"/mac/p", "/mac/rho", "/mac/T", "/mac/flags", NULL},
+        {"/mac/u", NULL},
+        {"/mac/v", NULL}};
+    for (int m = 0; m < 3; m++)
+        mac_coordinates(x, &mesh[m]);
+    for (int m = 0; m < 3; m++) {
+        bf_status st = timed(x, mesh[m].name, "/time", NULL, series[m],
+                             mac_grid, &mesh[m], err);
+        if (st)
+            return st;
+    }
+    static const char *const mk[] = {"/mac/particles/x", "/mac/particles/y",
+                                     "/mac/particles/density",
+                                     "/mac/particles/flag", NULL};
+    if (dset_of(x, mk[0]).rank == 2)
+        return timed(x, "mac_markers", "/time", NULL, mk, marker_grid, mk,
+                     err);
+    return BF_OK;
+}
+
+/* --------------------------------------------------------------- files */
+
+/* The directory of path, resolved (malloc'd). */
+static char *real_dir(const char *path)
+{
+    char *d = strdup(path);
+    if (!d)
+        return NULL;
+    char *slash = strrchr(d, '/');
+    if (slash)
+        *(slash == d ? slash + 1 : slash) = '\0';
+    char *r = realpath(slash ? d : ".", NULL);
+    free(d);
+    return r;
+}
+
+/* target named relative to the directory dir (both absolute). */
+static char *relative(const char *target, const char *dir)
+{
+    size_t common = 0, k = 0;
+    for (; target[k] && target[k] == dir[k]; k++)
+        if (target[k] == '/')
+            common = k;
+    if (!dir[k] && target[k] == '/')
+        common = k;
+    size_t ups = 0;
+    for (const char *p = dir + common; *p; p++)
+        ups += *p == '/' && p[1] != '\0';
+    if (!strcmp(dir, "/"))
+        ups = 0;
+    const char *rest = target + common + 1;
+    char *r = malloc(3 * ups + strlen(rest) + 1);
+    if (!r)
+        return NULL;
+    r[0] = '\0';
+    for (size_t u = 0; u < ups; u++)
+        strcat(r, "../");
+    strcat(r, rest);
+    return r;
+}
+
+/* XML-escaped copy of s (malloc'd). */
+static char *xml_escape(const char *s)
+{
+    char *e = malloc(6 * strlen(s) + 1), *o = e;
+    if (!e)
+        return NULL;
+    for (; *s; s++) {
+        const char *r = *s == '&'    ? "&amp;"
+                        : *s == '<'  ? "&lt;"
+                        : *s == '>'  ? "&gt;"
+                        : *s == '"'  ? "&quot;"
+                        : *s == '\'' ? "&apos;"
+                                     : NULL;
+        if (r) {
+            strcpy(o, r);
+            o += strlen(r);
+        } else {
+            *o++ = *s;
+        }
+    }
+    *o = '\0';
+    return e;
+}
+
+static char *href_of(const char *h5_path, const char *xmf_path)
+{
+    char *target = realpath(h5_path, NULL), *dir = real_dir(xmf_path);
+    char *rel = target && dir ? relative(target, dir) : NULL;
+    char *e = rel ? xml_escape(rel) : NULL;
+    free(target);
+    free(dir);
+    free(rel);
+    return e;
+}
+
+static double root_real(hid_t h5, const char *name, double fallback)
+{
+    double v = fallback;
+    if (H5Aexists(h5, name) <= 0)
+        return v;
+    hid_t a = H5Aopen(h5, name, H5P_DEFAULT);
+    if (a >= 0) {
+        if (H5Aread(a, H5T_NATIVE_DOUBLE, &v) < 0)
+            v = fallback;
+        H5Aclose(a);
+    }
+    return v;
+}
+
+static bf_status write_all(xw *x, bf_err *err)
+{
+    fprintf(x->f, "<?xml version=\"1.0\" ?>\n"
+                  "<!-- written by ballfilm for %s: open it in ParaView or "
+                  "VisIt; it names the datasets of the HDF5 file, which must "
+                  "stay beside it -->\n"
+                  "<Xdmf Version=\"2.0\">\n  <Domain>\n", x->href);
+    bf_status st = BF_OK;
+    static const char *const film[] = {"/film/psi", "/film/h", "/film/u_d",
+                                       "/film/u_c", NULL};
+    static const char *const balls[] = {"/balls/position", "/balls/velocity",
+                                        NULL};
+    dset fx = dset_of(x, "/film/x");
+    if (dset_of(x, "/film/psi").rank == 2 && fx.rank == 1 && fx.n0 >= 2) {
+        /* the nodes x_i = x_0 + i dx, i = 0..n-1 (/film/x) */
+        double *xv = read_vec(x, "/film/x", fx.n0);
+        if (!xv)
+            return bf_fail(err, BF_EIO, "cannot read /film/x");
+        const double xs[3] = {(double)fx.n0, xv[0],
+                              (xv[fx.n0 - 1] - xv[0]) / (double)(fx.n0 - 1)};
+        free(xv);
+        st = timed(x, "film", "/film/time", NULL, film, film_grid, xs, err);
+    }
+    if (!st && dset_of(x, "/balls/position").rank == 2)
+        st = timed(x, "balls", "/time", NULL, balls, balls_grid, NULL, err);
+    if (!st && dset_of(x, "/particles/x").rank == 2) {
+        static const char *const p[] = {"/particles/x", "/particles/y",
+                                        "/particles/vx", "/particles/vy",
+                                        NULL};
+        int by_step = dset_of(x, "/particles/step").rank == 1;
+        st = timed(x, "particles", by_step ? NULL : "/time",
+                   by_step ? "/particles/step" : NULL, p, particles_grid, p,
+                   err);
+    }
+    if (!st && dset_of(x, "/mac/p").rank == 2)
+        st = write_mac(x, err);
+    fprintf(x->f, "  </Domain>\n</Xdmf>\n");
+    return st;
+}
+
+bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
+                          size_t max_steps, bf_err *err)
+{
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    xw x = {NULL, -1, NULL, max_steps, 0.0};
+    x.h5 = H5Fopen(h5_path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (x.h5 < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", h5_path);
+    bf_status st = BF_OK;
+    x.dt = root_real(x.h5, "scene.dt", 1.0);
+    x.href = href_of(h5_path, xmf_path);
+    if (!x.href)
+        st = bf_fail(err, BF_EIO, "%s: cannot name %s relative to it (is its "
+                     "directory there?)", xmf_path, h5_path);
+    if (!st && !(x.f = fopen(xmf_path, "w")))
+        st = bf_fail(err, BF_EIO, "%s: cannot create the XDMF file",
+                     xmf_path);
+    if (!st)
+        st = write_all(&x, err);
+    if (st && err)
+        bf_err_prefix(err, "%s", xmf_path);
+    if (x.f && (ferror(x.f) | fclose(x.f)) && !st)
+        st = bf_fail(err, BF_EIO, "%s: writing the XDMF file failed (disk "
+                     "full?)", xmf_path);
+    free(x.href);
+    H5Fclose(x.h5);
+    return st;
+}
+
+bf_status bf_xdmf_write(const char *h5_path, const char *xmf_path,
+                        bf_err *err)
+{
+    return bf_xdmf_write_n(h5_path, xmf_path, BF_XDMF_MAX_STEPS, err);
+}
+
+char *bf_xdmf_default_path(const char *h5_path)
+{
+    size_t n = strlen(h5_path);
+    if (n > 3 && !strcmp(h5_path + n - 3, ".h5"))
+        n -= 3;
+    char *p = malloc(n + 5);
+    if (p)
+        snprintf(p, n + 5, "%.*s.xmf", (int)n, h5_path);
+    return p;
+}

@@ -1,0 +1,43 @@
+/* xdmf.h: an XDMF sidecar for a ballfilm output file, so that ParaView and
+ * VisIt open the run (private to the io layer and its users).
+ *
+ * The sidecar is XML that points at the HDF5 datasets by path (with the
+ * HDF5 file named relative to the sidecar, so the two move together); no
+ * data is copied.  It holds one temporal collection per thing the file
+ * describes, with one grid per output row (a row is selected from a
+ * [rows x n] series with a HyperSlab):
+ *   film       a 1-D rectilinear grid on /film/x with psi, h, u_d, u_c
+ *              (rows of /film/time);
+ *   balls      points on the line with velocity, mass and radius (rows of
+ *              /time);
+ *   particles  points (x, y) with velocity, fluid tag, mass and the 1973
+ *              wall flags (rows of /particles/step, or of /time);
+ *   mac        the staggered MAC grid: p, rho, T and the cell flags on the
+ *              cells, u on the vertical faces and v on the horizontal faces
+ *              (each on a mesh of its own points), and the markers as
+ *              points with density and flag (rows of /time).
+ * Which of them a file has is decided by the datasets present.
+ */
+#ifndef BALLFILM_IO_XDMF_H
+#define BALLFILM_IO_XDMF_H
+
+#include <stddef.h>
+
+#include "ballfilm/error.h"
+
+/* Grids per temporal collection at most, by default: a series with more
+ * rows is thinned to every k-th row (and the last), which the sidecar
+ * says in a comment. */
+#define BF_XDMF_MAX_STEPS 2000
+
+/* Write the sidecar of h5_path to xmf_path with at most max_steps grids
+ * per collection (0: one per row). */
+bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
+                          size_t max_steps, bf_err *err);
+/* The same with BF_XDMF_MAX_STEPS. */
+bf_status bf_xdmf_write(const char *h5_path, const char *xmf_path,
+                        bf_err *err);
+/* OUT.h5 -> OUT.xmf (malloc'd; NULL when out of memory). */
+char *bf_xdmf_default_path(const char *h5_path);
+
+#endif
