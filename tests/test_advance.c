@@ -33,7 +33,8 @@ static const scene_case scenes[] = {
      "[ball.1]\nposition = 0.2\nmass = 0.8\n[ball.2]\nposition = 0.5\n"
      "[spring]\nstiffness = 3000\nrest = 0.4\n"},
 };
-static const char *methods[] = {"verlet", "mv2m", "rk4", "impmid"};
+static const char *methods[] = {"verlet", "mv2m", "rk4", "impmid", "rkn6",
+                                "greenspan73"};
 
 static const char *scene_text(const scene_case *c, const char *method,
                               double dt)

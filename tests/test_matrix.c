@@ -70,6 +70,12 @@ START_TEST(every_integrator_on_the_oscillator)
     const bf_integrator_type *const *t = all_integrators(&n);
     for (size_t k = 0; k < n; k++) {
         double e1 = osc_error(t[k], 0.02), e2 = osc_error(t[k], 0.01);
+        if (!(t[k]->flags & BF_INT_ADAPTIVE) && e2 < 1e-12) {
+            /* order 6 (rkn6) is at round-off (1e-15) there: 0.1 and 0.05
+             * are its asymptotic range (errors 5e-11, 8e-13) */
+            e1 = osc_error(t[k], 0.1);
+            e2 = osc_error(t[k], 0.05);
+        }
         if (t[k]->flags & BF_INT_ADAPTIVE) {
             /* default rtol 1e-8 */
             ck_assert_msg(e2 < 100 * 1e-8, "%s: error %g", t[k]->name, e2);
@@ -123,6 +129,10 @@ static void converges_through_contacts(const char *scene)
             continue; /* its error is set by its tolerance, not by dt */
         double e1 = energy_error(scene, t[k], 2e-4);
         double e2 = energy_error(scene, t[k], 1e-4);
+        /* an energy-conserving method (greenspan73) is at round-off at
+         * both steps: nothing to halve */
+        if (e1 < 1e-12 && e2 < 1e-12)
+            continue;
         ck_assert_msg(e2 < 0.05 && e1 / e2 > 2.0,
                       "%s: energy errors %g at dt = 2e-4, %g at 1e-4",
                       t[k]->name, e1, e2);

@@ -33,12 +33,24 @@
 typedef int (*bf_accel_fn)(void *ctx, double t, const double *x,
                            const double *v, double *acc);
 
+/* Discrete-gradient acceleration (optional): for a = -grad V / m,
+ * abar(x, xn)[i] = -Dbar_i V(x, xn) / m_i with Dbar V a discrete gradient
+ * of V: sum_i Dbar_i V (xn_i - x_i) = V(xn) - V(x), Dbar V(x, x) =
+ * grad V(x), and symmetric, Dbar V(x, xn) = Dbar V(xn, x).  Energy-
+ * conserving integrators (greenspan73) step with it; the ball system
+ * gives it from its effects' potentials (src/effects/effect_kernels.h).
+ * Returns 0, or non-zero if it cannot be evaluated. */
+typedef int (*bf_daccel_fn)(void *ctx, double t, const double *x,
+                            const double *xn, double *abar);
+
 typedef struct bf_ode {
     size_t n;
     bf_accel_fn accel;
     void *ctx;
     int velocity_dependent; /* a depends on v (Verlet-type methods refuse) */
     unsigned long epoch;    /* bumped when the force field changes */
+    bf_daccel_fn daccel;    /* NULL: none (integrators that need it fall
+                             * back, see greenspan73.c) */
 } bf_ode;
 
 /* Events (optional, see bf_integrator_set_events).  g(ctx, t, x, v) ->
@@ -155,6 +167,13 @@ struct bf_integrator {
     int cache_valid;
     unsigned long cache_epoch;
     const bf_events *events; /* NULL: none (bf_integrator_set_events) */
+    const bf_events *kinks;  /* NULL: none (bf_integrator_set_kinks) */
+    /* [integrator] events = yes: the caller splits each fixed step at the
+     * kinks of its right-hand side (the ball system at contact onsets and
+     * releases, ballsys.c); adaptive integrators stop and restart at them
+     * (bf_integrator_set_kinks).  Set by the type's init. */
+    int split_events;
+    double split_zone; /* [integrator] events_zone, s (see ballsys.c) */
     bf_monitor_fn monitor;   /* NULL: none (bf_integrator_set_monitor) */
     void *monitor_ctx;
 };
@@ -172,6 +191,25 @@ void bf_integrator_describe(const bf_integrator *it, char *buf, size_t cap);
 /* Register events (kept by pointer; NULL removes them).  Only integrators
  * with BF_INT_ROOTS use them. */
 void bf_integrator_set_events(bf_integrator *it, const bf_events *ev);
+/* Register the kinks of the right-hand side (kept by pointer; NULL
+ * removes them): functions whose zeros are the points where a(t, x, v) is
+ * not smooth (a Hertz contact's onset and release).  Integrators with
+ * BF_INT_ROOTS locate each zero inside their steps, end an internal step
+ * there and restart from it, so that no internal step straddles a kink;
+ * `hit` (may be NULL) is called at each.  Independent of the events. */
+void bf_integrator_set_kinks(bf_integrator *it, const bf_events *kinks);
+/* The [integrator] keys `events` (yes/no) and `events_zone` (s) of every
+ * integrator that offers them: two rows for the type's bf_param table
+ * (members `events` and `events_zone` of its struct). */
+#define BF_EVENTS_PARAMS(type)                                                \
+    {"events", BF_AT(type, events, BF_BOOL), "", "no",                        \
+     "split every step at the contact onsets and releases inside it (ball "   \
+     "systems; docs/accuracy-balls.md); off: the step as it is",              \
+     0, 0, 0, NULL},                                                          \
+    {"events_zone", BF_AT(type, events_zone, BF_REAL), "s", "1e-3",           \
+     "with events: the time after an onset and before a release over which "  \
+     "the substeps are graded (about half a contact's duration)",            \
+     BF_POS, 0, 0, NULL}
 /* Watch the internal steps of adaptive integrators (NULL removes it).
  * Fixed-step integrators do not call it: each of their steps is a call. */
 void bf_integrator_set_monitor(bf_integrator *it, bf_monitor_fn fn, void *ctx);

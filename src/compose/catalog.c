@@ -19,6 +19,8 @@ extern const bf_integrator_type bf_integrator_alpha;
 extern const bf_integrator_type bf_integrator_rk3;
 extern const bf_integrator_type bf_integrator_rk4;
 extern const bf_integrator_type bf_integrator_impmid;
+extern const bf_integrator_type bf_integrator_greenspan73;
+extern const bf_integrator_type bf_integrator_rkn6;
 extern const bf_integrator_type bf_integrator_arkode;
 extern const bf_integrator_type bf_integrator_arkode_fixed;
 
@@ -41,6 +43,7 @@ static const bf_integrator_type *const integrators[] = {
     &bf_integrator_verlet, &bf_integrator_mv2m,   &bf_integrator_alpha,
     &bf_integrator_rk3,    &bf_integrator_rk4,    &bf_integrator_impmid,
     &bf_integrator_arkode, &bf_integrator_arkode_fixed,
+    &bf_integrator_greenspan73, &bf_integrator_rkn6,
 };
 
 static const bf_effect_type *const effects[] = {

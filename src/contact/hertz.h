@@ -33,6 +33,34 @@ static inline double bf_hertz_energy(double k, double x)
     return x > 0 ? 0.4 * k * x * x * sqrt(x) : 0.0;
 }
 
+/* The divided difference of bf_hertz_energy,
+ *   (E(a) - E(b)) / (a - b),   E(x) = (2/5) k max(x, 0)^{5/2},
+ * for the discrete gradients of energy-conserving steps (Greenspan 1973:
+ * a pair force -(phi(r+) - phi(r))/(r+ - r); src/integrators/
+ * greenspan73.c).  Formed without cancellation: with s = sqrt(a),
+ * u = sqrt(b) (a, b > 0),
+ *   a^{5/2} - b^{5/2} = (s - u)(s^4 + s^3 u + s^2 u^2 + s u^3 + u^4),
+ *   a - b = (s - u)(s + u),
+ * so the quotient is (2/5) k (s^4 + s^3 u + s^2 u^2 + s u^3 + u^4)/(s + u),
+ * accurate to a few ulps for any a, b, and at a = b it is the force
+ * k a^{3/2} itself (no guard for a tiny increment is needed).  When only
+ * a > 0 the quotient is E(a)/(a - b) with a - b >= a (no cancellation);
+ * when neither is positive it is 0.  The arguments are sorted first, so
+ * the result is bitwise symmetric in (a, b): a step built on it is
+ * time-symmetric to the last bit.  Units: dyn. */
+static inline double bf_hertz_energy_dd(double k, double a, double b)
+{
+    const double hi = a > b ? a : b, lo = a > b ? b : a;
+    if (!(hi > 0))
+        return 0.0;
+    if (!(lo > 0))
+        return bf_hertz_energy(k, hi) / (hi - lo);
+    const double s = sqrt(hi), u = sqrt(lo);
+    const double s2 = s * s, u2 = u * u;
+    return 0.4 * k * (s2 * s2 + s2 * s * u + s2 * u2 + s * u2 * u + u2 * u2) /
+           (s + u);
+}
+
 /* Upward force of the floor on a ball of radius R centred at height z. */
 static inline double bf_hertz_floor_force(double k, double R, double z)
 {

@@ -140,6 +140,100 @@ BF_EFFECT_INLINE double bf_spring_potential(const bf_spring *p,
     return u;
 }
 
+/* ---- discrete gradients (integrator.h, bf_daccel_fn): abar(x, xn) =
+ * -Dbar V(x, xn)/m per effect, exact discrete gradients of the
+ * potentials above, so that sum_i m_i abar_i (xn_i - x_i) is
+ * -(V(xn) - V(x)) to round-off and abar(x, x) is the acceleration.  Each
+ * is symmetric in (x, xn).  Greenspan's pair form: for a term phi(r) of
+ * one variable r (a deformation, a gap), Dbar = (phi(r') - phi(r))/(r' -
+ * r), formed by bf_hertz_energy_dd without cancellation. */
+
+/* gravity: linear, its gradient is its discrete gradient */
+BF_EFFECT_INLINE void bf_gravity_daccel(const bf_gravity *p, const bf_balls *b,
+                                        double *abar)
+{
+    BF_UNROLL
+    for (size_t i = 0; i < b->n; i++)
+        abar[i] -= p->g;
+}
+
+/* floor: V = E(R - z); Dbar = (E(R - z') - E(R - z))/(z' - z) = -dd */
+BF_EFFECT_INLINE void bf_floor_daccel(const bf_floor *p, const bf_balls *b,
+                                      const double *x, const double *xn,
+                                      double *abar)
+{
+    BF_UNROLL
+    for (size_t i = 0; i < b->n; i++)
+        if (x[i] < b->R[i] || xn[i] < b->R[i])
+            abar[i] += bf_hertz_energy_dd(p->k, b->R[i] - x[i],
+                                          b->R[i] - xn[i]) *
+                       b->inv_m[i];
+}
+
+/* pair: V = 2 E(delta), delta = (R_i + R_j - r)/2, r = x_j - x_i:
+ * dV/dr = -E'(delta), so the pair pushes apart with dd(delta, delta') */
+BF_EFFECT_INLINE void bf_contact_daccel(const bf_contact *p, const bf_balls *b,
+                                        const double *x, const double *xn,
+                                        double *abar)
+{
+    BF_UNROLL
+    for (size_t i = 0; i + 1 < b->n; i++) {
+        const double s = b->R[i] + b->R[i + 1];
+        const double d = x[i + 1] - x[i], dn = xn[i + 1] - xn[i];
+        if (d < s || dn < s) {
+            double f = bf_hertz_energy_dd(p->k, 0.5 * (s - d), 0.5 * (s - dn));
+            abar[i] -= f * b->inv_m[i];
+            abar[i + 1] += f * b->inv_m[i + 1];
+        }
+    }
+}
+
+/* spring: quadratic, the discrete gradient is the gradient at the mid-point */
+BF_EFFECT_INLINE void bf_spring_daccel(const bf_spring *p, const bf_balls *b,
+                                       const double *x, const double *xn,
+                                       double *abar)
+{
+    for (size_t i = 0; i < b->n; i++)
+        abar[i] -= p->s * (0.5 * (x[i] + xn[i]) - p->rest) * b->inv_m[i];
+}
+
+/* Any other effect: the symmetrised coordinate-increment (Itoh-Abe)
+ * discrete gradient of its potential (effects.c); through its force at the
+ * mid-point if it has no potential. */
+int bf_effect_daccel_generic(const bf_effect *e, const bf_balls *b, double t,
+                             const double *x, const double *xn, double *abar);
+
+/* abar = the sum over the effects (zeroed first); non-zero on failure */
+BF_EFFECT_INLINE int bf_effects_daccel_inline(const bf_effect *e, size_t ne,
+                                              const bf_balls *b, double t,
+                                              const double *x,
+                                              const double *xn, double *abar)
+{
+    BF_UNROLL
+    for (size_t i = 0; i < b->n; i++)
+        abar[i] = 0.0;
+    for (size_t k = 0; k < ne; k++) {
+        switch (e[k].type->kernel) {
+        case BF_KERNEL_GRAVITY:
+            bf_gravity_daccel(e[k].self, b, abar);
+            break;
+        case BF_KERNEL_FLOOR:
+            bf_floor_daccel(e[k].self, b, x, xn, abar);
+            break;
+        case BF_KERNEL_CONTACT:
+            bf_contact_daccel(e[k].self, b, x, xn, abar);
+            break;
+        case BF_KERNEL_SPRING:
+            bf_spring_daccel(e[k].self, b, x, xn, abar);
+            break;
+        default:
+            if (bf_effect_daccel_generic(&e[k], b, t, x, xn, abar))
+                return 1;
+        }
+    }
+    return 0;
+}
+
 /* The accel and potential functions of an effect descriptor for a kernel
  * above: bf_NAME_accel and bf_NAME_potential behind the generic
  * signatures (the effect's .c file instantiates them once). */

@@ -43,6 +43,8 @@ enum { POS_VERLET, POS_TRAPEZOID };
 typedef struct alpha_priv {
     double alpha;
     int position; /* POS_VERLET, POS_TRAPEZOID */
+    int events;   /* [integrator] events (integrator.h) */
+    double events_zone;
 } alpha_priv;
 
 static const bf_param alpha_params[] = {
@@ -54,6 +56,7 @@ static const bf_param alpha_params[] = {
      "position update: verlet (x += dt v + dt^2/2 a(x^n)) or trapezoid "
      "(x += dt (v^n + v^{n+1})/2); see README for their stability",
      0, 0, 0, "verlet|trapezoid"},
+    BF_EVENTS_PARAMS(alpha_priv),
     {0},
 };
 
@@ -69,6 +72,8 @@ static bf_status alpha_init(bf_integrator *it, const void *params,
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     *p = *(const alpha_priv *)params;
     it->priv = p;
+    it->split_events = p->events;
+    it->split_zone = p->events_zone;
     return bf_integrator_alloc_work(it, NVEC, err);
 }
 

@@ -98,7 +98,13 @@ typedef struct ark {
     N_Vector y;
     int *rootsfound;
     const bf_events *roots_registered;
+    const bf_events *kinks_registered;
+    int nroots_ev; /* the first nroots_ev roots are the events, then kinks */
     int monitor_on; /* the post-processing hook is registered */
+    /* with kinks: the state at the start (tprev, yprev) and end (tcur,
+     * ycur) of the last accepted internal step (n doubles each of x, v) */
+    int history;
+    double tprev, tcur, *yprev, *ycur;
     /* valid during a call of step() */
     bf_integrator *it;
     const bf_ode *ode;
@@ -124,15 +130,29 @@ static int ark_g(realtype t, N_Vector y, realtype *g, void *ud)
 {
     ark *p = ud;
     const double *yy = N_VGetArrayPointer(y);
-    const bf_events *ev = p->it->events;
-    return ev->g(ev->ctx, t, yy, yy + p->it->n, g) ? -1 : 0;
+    const bf_events *ev = p->roots_registered, *kk = p->kinks_registered;
+    if (ev && ev->n > 0 && ev->g(ev->ctx, t, yy, yy + p->it->n, g))
+        return -1;
+    if (kk && kk->n > 0 &&
+        kk->g(kk->ctx, t, yy, yy + p->it->n, g + p->nroots_ev))
+        return -1;
+    return 0;
 }
 
 static int ark_post(realtype t, N_Vector y, void *ud)
 {
     ark *p = ud;
     const double *yy = N_VGetArrayPointer(y);
-    p->it->monitor(p->it->monitor_ctx, t, yy, yy + p->it->n);
+    if (p->history) {
+        double *sw = p->yprev;
+        p->yprev = p->ycur;
+        p->ycur = sw;
+        p->tprev = p->tcur;
+        p->tcur = t;
+        memcpy(p->ycur, yy, 2 * p->it->n * sizeof *yy);
+    }
+    if (p->it->monitor)
+        p->it->monitor(p->it->monitor_ctx, t, yy, yy + p->it->n);
     return 0;
 }
 
@@ -212,6 +232,8 @@ typedef struct ark_keys {
     double rtol, atol, max_step;
     long max_steps, substeps;
     int work_around_311;
+    int events;
+    double events_zone;
 } ark_keys;
 
 static const bf_param adaptive_params[] = {
@@ -236,6 +258,10 @@ static const bf_param adaptive_params[] = {
      BF_NONNEG, 0, 0, NULL},
     {"work_around_311", BF_AT(ark_keys, work_around_311, BF_BOOL), "", "yes",
      "pad tables hit by ARKODE issue 311 (tests only)", BF_HIDDEN, 0, 0, NULL},
+    /* events: rootfinding at the ball system's contact onsets and
+     * releases, restarting there (bf_integrator_set_kinks); events_zone
+     * is unused by adaptive steps */
+    BF_EVENTS_PARAMS(ark_keys),
     {0},
 };
 
@@ -269,6 +295,8 @@ static void ark_free(bf_integrator *it)
     if (p->sunctx)
         SUNContext_Free(&p->sunctx);
     free(p->rootsfound);
+    free(p->yprev);
+    free(p->ycur);
     free(p);
 }
 
@@ -288,6 +316,8 @@ static bf_status ark_init_common(bf_integrator *it, int fixed,
     if (!p)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     it->priv = p;
+    it->split_events = k->events;
+    it->split_zone = k->events_zone;
     p->fixed = fixed;
     p->table = k->table;
     const char *tname = tables[p->table].name;
@@ -364,10 +394,13 @@ static bf_status ark_init_fixed(bf_integrator *it, const void *params,
     return ark_init_common(it, 1, params, err);
 }
 
-/* (Re)register the events with ERKStep when they changed. */
-static bf_status ark_register_roots(ark *p, const bf_events *ev, bf_err *err)
+/* (Re)register the events and the kinks with ERKStep when they changed:
+ * one root function, the events' components first. */
+static bf_status ark_register_roots(ark *p, const bf_events *ev,
+                                    const bf_events *kk, bf_err *err)
 {
-    const int n = ev ? ev->n : 0;
+    p->nroots_ev = ev ? ev->n : 0;
+    const int n = p->nroots_ev + (kk ? kk->n : 0);
     free(p->rootsfound);
     p->rootsfound = NULL;
     if (n > 0) {
@@ -375,19 +408,56 @@ static bf_status ark_register_roots(ark *p, const bf_events *ev, bf_err *err)
         if (!p->rootsfound)
             return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
+    p->roots_registered = ev;
+    p->kinks_registered = kk;
     int flag = ERKStepRootInit(p->mem, n, n > 0 ? ark_g : NULL);
-    if (flag >= 0 && n > 0 && ev->dir) {
-        int *dir = malloc((size_t)n * sizeof *dir);
+    if (flag >= 0 && n > 0 && ev && ev->dir) {
+        int *dir = calloc((size_t)n, sizeof *dir); /* kinks: both ways */
         if (!dir)
             return bf_fail(err, BF_EINTERNAL, "out of memory");
-        memcpy(dir, ev->dir, (size_t)n * sizeof *dir);
+        memcpy(dir, ev->dir, (size_t)ev->n * sizeof *dir);
         flag = ERKStepSetRootDirection(p->mem, dir);
         free(dir);
     }
     if (flag >= 0 && n > 0)
         flag = ERKStepSetNoInactiveRootWarn(p->mem);
-    p->roots_registered = ev;
     return ark_check(p, flag, "rootfinding setup", err);
+}
+
+/* Restart at a kink found at tr inside the last internal step
+ * (tprev, tcur]: the state at tr is not taken from ARKODE's interpolant
+ * (whose error across a kink is not controlled) but by integrating again
+ * from the step's start with the stop time tr and no rootfinding, steps
+ * that end on the kink instead of crossing it; then ERKStep is reset at
+ * tr with that state and the roots registered again. */
+static bf_status ark_restart_at(ark *p, double tr, double tend, bf_err *err)
+{
+    const bf_events *ev = p->roots_registered, *kk = p->kinks_registered;
+    double *yy = N_VGetArrayPointer(p->y), h = 0.0, tret = p->tprev;
+    const size_t n = p->it->n;
+    ERKStepGetCurrentStep(p->mem, &h);
+    memcpy(yy, p->yprev, 2 * n * sizeof *yy);
+    int flag = ERKStepRootInit(p->mem, 0, NULL);
+    if (flag >= 0)
+        flag = ERKStepSetInitStep(p->mem, h);
+    if (flag >= 0)
+        flag = ERKStepReset(p->mem, p->tprev, p->y);
+    if (flag >= 0)
+        flag = ERKStepSetStopTime(p->mem, tr);
+    if (flag >= 0 && tr > p->tprev)
+        flag = ERKStepEvolve(p->mem, tr, p->y, &tret, ARK_NORMAL);
+    bf_status st = ark_check(p, flag, "the step to a kink", err);
+    if (st)
+        return st;
+    p->roots_registered = p->kinks_registered = NULL; /* re-registered */
+    if ((st = ark_register_roots(p, ev, kk, err)))
+        return st;
+    flag = ERKStepReset(p->mem, tr, p->y);
+    if (flag >= 0)
+        flag = ERKStepSetStopTime(p->mem, tend);
+    p->tcur = tr;
+    memcpy(p->ycur, yy, 2 * n * sizeof *yy);
+    return ark_check(p, flag, "restart at a kink", err);
 }
 
 static bf_status ark_step(bf_integrator *it, const bf_ode *ode, double t,
@@ -402,17 +472,25 @@ static bf_status ark_step(bf_integrator *it, const bf_ode *ode, double t,
     p->rhs_failed = 0;
     p->msg[0] = '\0';
     bf_status st;
-    const bf_events *ev = it->events;
-    if (ev != p->roots_registered && (st = ark_register_roots(p, ev, err)))
+    const bf_events *ev = it->events, *kk = it->kinks;
+    if ((ev != p->roots_registered || kk != p->kinks_registered) &&
+        (st = ark_register_roots(p, ev, kk, err)))
         return st;
-    if ((it->monitor != NULL) != p->monitor_on) {
+    p->history = kk != NULL;
+    if (p->history && !p->yprev) {
+        p->yprev = calloc(2 * n, sizeof *p->yprev);
+        p->ycur = calloc(2 * n, sizeof *p->ycur);
+        if (!p->yprev || !p->ycur)
+            return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
+    if ((it->monitor != NULL || p->history) != p->monitor_on) {
         /* (a post-processing hook makes ERKStep re-evaluate the first stage
          * of FSAL tables: one more evaluation per step, same solution) */
-        int f = ERKStepSetPostprocessStepFn(p->mem, it->monitor ? ark_post
-                                                                : NULL);
+        int on = it->monitor != NULL || p->history;
+        int f = ERKStepSetPostprocessStepFn(p->mem, on ? ark_post : NULL);
         if ((st = ark_check(p, f, "monitor setup", err)))
             return st;
-        p->monitor_on = it->monitor != NULL;
+        p->monitor_on = on;
     }
     memcpy(yy, x, n * sizeof *yy);
     memcpy(yy + n, v, n * sizeof *yy);
@@ -425,17 +503,35 @@ static bf_status ark_step(bf_integrator *it, const bf_ode *ode, double t,
         flag = ERKStepSetStopTime(p->mem, tend);
     if ((st = ark_check(p, flag, "reset", err)))
         return st;
+    p->tcur = t;
+    if (p->history)
+        memcpy(p->ycur, yy, 2 * n * sizeof *yy);
     long nst0 = 0, netf0 = 0, nst1 = 0, netf1 = 0;
     ERKStepGetNumSteps(p->mem, &nst0);
     ERKStepGetNumErrTestFails(p->mem, &netf0);
-    double tret = t;
+    double tret = t, treset = -INFINITY;
     for (;;) {
         flag = ERKStepEvolve(p->mem, tend, p->y, &tret, ARK_NORMAL);
         if (flag == ARK_ROOT_RETURN) {
             ERKStepGetRootInfo(p->mem, p->rootsfound);
-            for (int k = 0; k < ev->n; k++)
+            int kink = 0;
+            for (int k = 0; k < p->nroots_ev; k++)
                 if (p->rootsfound[k])
                     ev->hit(ev->ctx, k, tret, yy, yy + n);
+            for (int k = p->nroots_ev; kk && k < p->nroots_ev + kk->n; k++)
+                if (p->rootsfound[k]) {
+                    kink = 1;
+                    if (kk->hit)
+                        kk->hit(kk->ctx, k - p->nroots_ev, tret, yy, yy + n);
+                }
+            /* a kink of the right-hand side: restart there, so that no
+             * step straddles it; not again within round-off of the last
+             * restart (the zero found once more from its other side) */
+            if (kink && tret - treset > 1e-12 * fmax(1.0, fabs(tret))) {
+                if ((st = ark_restart_at(p, tret, tend, err)))
+                    return st;
+                treset = tret;
+            }
             continue;
         }
         break;

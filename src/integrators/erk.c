@@ -8,10 +8,12 @@
  * with the increments formed first and added once.  Sums run over the
  * non-zero coefficients only, in stage order. */
 #include "erk.h"
+#include "fixed_step.h"
 
-bf_status bf_erk_init(bf_integrator *it, int stages, bf_err *err)
+bf_status bf_erk_init(bf_integrator *it, const void *params, int stages,
+                      bf_err *err)
 {
-    return bf_integrator_alloc_work(it, 3 * (size_t)stages, err);
+    return bf_fixed_step_init(it, params, 3 * (size_t)stages, err);
 }
 
 bf_status bf_erk_step(const bf_erk_tableau *tab, bf_integrator *it,

@@ -14,8 +14,10 @@ typedef struct bf_erk_tableau {
     double b[BF_ERK_MAXS], c[BF_ERK_MAXS];
 } bf_erk_tableau;
 
-/* it->work must hold 3 s n doubles (bf_erk_init). */
-bf_status bf_erk_init(bf_integrator *it, int stages, bf_err *err);
+/* it->work must hold 3 s n doubles (bf_erk_init); params: the
+ * bf_fixed_step_keys of [integrator] (fixed_step.h). */
+bf_status bf_erk_init(bf_integrator *it, const void *params, int stages,
+                      bf_err *err);
 bf_status bf_erk_step(const bf_erk_tableau *tab, bf_integrator *it,
                       const bf_ode *ode, double t, double h, double *x,
                       double *v, bf_err *err);

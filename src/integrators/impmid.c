@@ -30,6 +30,8 @@ enum { A, XM, VM, VN, NVEC };
 typedef struct impmid_priv {
     double tol;
     long max_iter;
+    int events; /* [integrator] events (integrator.h) */
+    double events_zone;
 } impmid_priv;
 
 static const bf_param impmid_params[] = {
@@ -40,6 +42,7 @@ static const bf_param impmid_params[] = {
     {"max_iter", BF_AT(impmid_priv, max_iter, BF_INT), "1", "50",
      "iterations allowed per step before the step fails (exit 4)", BF_MIN, 1,
      0, NULL},
+    BF_EVENTS_PARAMS(impmid_priv),
     {0},
 };
 
@@ -55,6 +58,8 @@ static bf_status impmid_init(bf_integrator *it, const void *params,
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     *p = *(const impmid_priv *)params;
     it->priv = p;
+    it->split_events = p->events;
+    it->split_zone = p->events_zone;
     return bf_integrator_alloc_work(it, NVEC, err);
 }
 

@@ -1,6 +1,7 @@
 /* integrator.c: creation, force cache and helpers shared by all
  * integrators (see integrator.h). */
 #include "ballfilm/integrator.h"
+#include "fixed_step.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -60,6 +61,29 @@ void bf_integrator_reset(bf_integrator *it) { it->cache_valid = 0; }
 void bf_integrator_set_events(bf_integrator *it, const bf_events *ev)
 {
     it->events = ev;
+}
+
+void bf_integrator_set_kinks(bf_integrator *it, const bf_events *kinks)
+{
+    it->kinks = kinks;
+}
+
+static const bf_param fixed_step_params[] = {
+    BF_EVENTS_PARAMS(bf_fixed_step_keys),
+    {0},
+};
+
+const bf_section_spec bf_fixed_step_spec =
+    BF_SECTION("integrator", "parameters of a fixed-step integrator",
+               fixed_step_params, bf_fixed_step_keys);
+
+bf_status bf_fixed_step_init(bf_integrator *it, const void *params,
+                             size_t nvec, bf_err *err)
+{
+    const bf_fixed_step_keys *k = params;
+    it->split_events = k->events;
+    it->split_zone = k->events_zone;
+    return bf_integrator_alloc_work(it, nvec, err);
 }
 
 void bf_integrator_set_monitor(bf_integrator *it, bf_monitor_fn fn, void *ctx)

@@ -21,14 +21,14 @@
  * them (the `balls` slot).
  */
 #include "ball_steps.h"
+#include "fixed_step.h"
 
 enum { NVEC = 5 }; /* a0, aV, aT, xV, xT (step_kernels.h) */
 
 static bf_status mv2m_init(bf_integrator *it, const void *params,
                           bf_err *err)
 {
-    (void)params;
-    return bf_integrator_alloc_work(it, NVEC, err);
+    return bf_fixed_step_init(it, params, NVEC, err);
 }
 
 static bf_status mv2m_step(bf_integrator *it, const bf_ode *ode, double t,
@@ -47,6 +47,7 @@ const bf_integrator_type bf_integrator_mv2m = {
     .order = 3,
     .evals_per_step = 3,
     .flags = BF_INT_POSITION_ONLY,
+    .spec = &bf_fixed_step_spec,
     .init = mv2m_init,
     .step = mv2m_step,
     .balls = &mv2m_balls,

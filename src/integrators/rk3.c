@@ -12,6 +12,7 @@
  * with this tableau.
  */
 #include "erk.h"
+#include "fixed_step.h"
 
 static const bf_erk_tableau rk3 = {
     .s = 3,
@@ -23,8 +24,7 @@ static const bf_erk_tableau rk3 = {
 static bf_status rk3_init(bf_integrator *it, const void *params,
                           bf_err *err)
 {
-    (void)params;
-    return bf_erk_init(it, rk3.s, err);
+    return bf_erk_init(it, params, rk3.s, err);
 }
 
 static bf_status rk3_step(bf_integrator *it, const bf_ode *ode, double t,
@@ -40,6 +40,7 @@ const bf_integrator_type bf_integrator_rk3 = {
     .order = 3,
     .evals_per_step = 3,
     .flags = 0,
+    .spec = &bf_fixed_step_spec,
     .init = rk3_init,
     .step = rk3_step,
 };

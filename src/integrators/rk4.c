@@ -13,6 +13,7 @@
  * step is erk.c's with this tableau.
  */
 #include "erk.h"
+#include "fixed_step.h"
 
 static const bf_erk_tableau rk4 = {
     .s = 4,
@@ -24,8 +25,7 @@ static const bf_erk_tableau rk4 = {
 static bf_status rk4_init(bf_integrator *it, const void *params,
                           bf_err *err)
 {
-    (void)params;
-    return bf_erk_init(it, rk4.s, err);
+    return bf_erk_init(it, params, rk4.s, err);
 }
 
 static bf_status rk4_step(bf_integrator *it, const bf_ode *ode, double t,
@@ -41,6 +41,7 @@ const bf_integrator_type bf_integrator_rk4 = {
     .order = 4,
     .evals_per_step = 4,
     .flags = 0,
+    .spec = &bf_fixed_step_spec,
     .init = rk4_init,
     .step = rk4_step,
 };

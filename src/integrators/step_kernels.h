@@ -1,5 +1,5 @@
-/* step_kernels.h: the step formulas of Verlet (Yasuda eqs 2.9-2.11) and
- * MV2M (eqs 2.19-2.21, 2.24) written once, as inline functions of the
+/* step_kernels.h: the step formulas of Verlet (Yasuda eqs 2.9-2.11),
+ * MV2M (eqs 2.19-2.21, 2.24) and RKN6 (rkn6.c) written once, as inline functions of the
  * acceleration callback.
  *
  * Why: verlet.c and mv2m.c call them with the bf_ode's callback (an
@@ -270,6 +270,127 @@ BF_ALWAYS_INLINE bf_status bf_mv2m_run(bf_integrator *it, const bf_ode *ode,
     }
     it->count.evals += evals;
     it->count.steps += (unsigned long long)j;
+    *done = j;
+    return st;
+}
+
+/* ---- RKN6: Dormand, El-Mikkawy & Prince's RKN6(4)6FD (see rkn6.c) ---- */
+
+enum { BF_RKN6_S = 6 };
+/* nodes c_i, position coefficients a_ij (multiplying dt^2; the last row is
+ * the position weights b_j, so stage 6 is at x^{n+1}) and velocity
+ * weights bv_j, from the exact values in sqrt(8581) of the paper (rkn6.c),
+ * rounded to double */
+static const double bf_rkn6_c[BF_RKN6_S] = {
+    0.0, 0.12929590313670442, 0.25859180627340883, 0.67029708261548, 0.9,
+    1.0};
+static const double bf_rkn6_a[BF_RKN6_S][BF_RKN6_S - 1] = {
+    {0},
+    {0.008358715283968025},
+    {0.011144953711957367, 0.022289907423914734},
+    {0.1454747428010918, -0.22986064052264749, 0.3090349872029675},
+    {-0.20766826295078997, 0.6863667842925143, -0.19954927787234925,
+     0.12585075653062489},
+    {0.07811016144349478, 0.0, 0.2882917411897668, 0.12242553717457041,
+     0.011172560192168035},
+};
+static const double bf_rkn6_bv[BF_RKN6_S] = {
+    0.07811016144349478, 0.0, 0.3888434787059826, 0.3713207579288423,
+    0.11172560192168035, 0.05};
+
+/* One step with k_1 = a(x^n) in work[0..n): x, v advanced in place and
+ * work[0..n) = a(x^{n+1}) (the last stage, first same as last).  Five
+ * evaluations, each counted in *evals before it is made; non-zero if the
+ * force fails (x, v unchanged then).  work holds 7n doubles: the six
+ * stages k_1..k_6 and the stage position X. */
+BF_ALWAYS_INLINE int bf_rkn6_core(bf_accel_fn accel, void *ctx, size_t n,
+                                  double t, double dt, double *restrict x,
+                                  double *restrict v, double *restrict work,
+                                  unsigned long long *evals)
+{
+    double *k = work, *X = work + BF_RKN6_S * n;
+    const double h2 = dt * dt;
+    for (int s = 1; s < BF_RKN6_S; s++) {
+        const double ch = bf_rkn6_c[s] * dt;
+        BF_KUNROLL
+        for (size_t i = 0; i < n; i++) {
+            double sum = 0.0;
+            for (int j = 0; j < s; j++)
+                sum += bf_rkn6_a[s][j] * k[(size_t)j * n + i];
+            X[i] = x[i] + (ch * v[i] + h2 * sum);
+        }
+        ++*evals;
+        if (accel(ctx, t + ch, X, v, k + (size_t)s * n))
+            return 1;
+    }
+    BF_KUNROLL
+    for (size_t i = 0; i < n; i++) {
+        double sum = 0.0;
+        for (int j = 0; j < BF_RKN6_S; j++)
+            sum += bf_rkn6_bv[j] * k[(size_t)j * n + i];
+        x[i] = X[i];
+        v[i] += dt * sum;
+        k[i] = k[(size_t)(BF_RKN6_S - 1) * n + i];
+    }
+    return 0;
+}
+
+/* One step with the force cache; work holds 7n doubles. */
+BF_ALWAYS_INLINE bf_status bf_rkn6_kernel(bf_integrator *it, const bf_ode *ode,
+                                          bf_accel_fn accel, void *ctx,
+                                          size_t n, double *restrict work,
+                                          double t, double dt,
+                                          double *restrict x,
+                                          double *restrict v, bf_err *err)
+{
+    unsigned long long evals = 0;
+    if (!bf_verlet_cache_get(it, ode, n, x, work)) {
+        evals++;
+        if (accel(ctx, t, x, v, work)) {
+            it->count.evals += evals;
+            return bf_ode_eval_failed(err);
+        }
+    }
+    int fail = bf_rkn6_core(accel, ctx, n, t, dt, x, v, work, &evals);
+    it->count.evals += evals;
+    if (fail)
+        return bf_ode_eval_failed(err);
+    bf_verlet_cache_put(it, ode, n, x, work);
+    it->count.steps++;
+    return BF_OK;
+}
+
+/* k >= 0 steps from t = n0 dt, as bf_verlet_run; work holds 7n doubles. */
+BF_ALWAYS_INLINE bf_status bf_rkn6_run(bf_integrator *it, const bf_ode *ode,
+                                       bf_accel_fn accel, void *ctx,
+                                       bf_stop_fn stop, size_t n,
+                                       double *restrict work, long n0, long k,
+                                       double dt, double *restrict x,
+                                       double *restrict v, long *done,
+                                       bf_err *err)
+{
+    unsigned long long evals = 0;
+    long j = 0;
+    bf_status st = BF_OK;
+    if (k > 0 && !bf_verlet_cache_get(it, ode, n, x, work)) {
+        evals++;
+        if (accel(ctx, (double)n0 * dt, x, v, work))
+            st = bf_ode_eval_failed(err);
+    }
+    while (!st && j < k) {
+        if (bf_rkn6_core(accel, ctx, n, (double)(n0 + j) * dt, dt, x, v, work,
+                         &evals)) {
+            st = bf_ode_eval_failed(err);
+            break;
+        }
+        j++;
+        if (stop(x, v, n))
+            break;
+    }
+    it->count.evals += evals;
+    it->count.steps += (unsigned long long)j;
+    if (j > 0)
+        bf_verlet_cache_put(it, ode, n, x, work);
     *done = j;
     return st;
 }

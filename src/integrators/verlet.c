@@ -10,14 +10,14 @@
  * steps for balls under effects from them (the `balls` slot).
  */
 #include "ball_steps.h"
+#include "fixed_step.h"
 
 enum { NVEC = 3 }; /* a0, a1, xn (step_kernels.h) */
 
 static bf_status verlet_init(bf_integrator *it, const void *params,
                           bf_err *err)
 {
-    (void)params;
-    return bf_integrator_alloc_work(it, NVEC, err);
+    return bf_fixed_step_init(it, params, NVEC, err);
 }
 
 static bf_status verlet_step(bf_integrator *it, const bf_ode *ode, double t,
@@ -36,6 +36,7 @@ const bf_integrator_type bf_integrator_verlet = {
     .order = 2,
     .evals_per_step = 1,
     .flags = BF_INT_SYMMETRIC | BF_INT_POSITION_ONLY,
+    .spec = &bf_fixed_step_spec,
     .init = verlet_init,
     .step = verlet_step,
     .balls = &verlet_balls,

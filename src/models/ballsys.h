@@ -37,6 +37,15 @@ typedef struct bf_ballsys {
      * integrator has none; then its generic step) */
     bf_ball_step_fn fast_step;
     bf_ball_advance_fn fast_advance;
+    /* Contact events ([integrator] events = yes; ballsys.c, "Event
+     * splitting").  The gaps: x_i - R_i per ball with a floor effect,
+     * (x_{i+1} - x_i) - (R_i + R_{i+1}) per pair with a contact effect. */
+    int split;      /* fixed-step integrator: split each step at them */
+    int gap_floor, gap_pair;
+    int ngaps;
+    double *ev_work; /* scratch of the splitting */
+    int *ev_side;
+    bf_events kinks; /* adaptive integrator with roots: its kinks */
 } bf_ballsys;
 
 /* Read the balls of the setup, create its effects (env is passed to them)
@@ -51,6 +60,20 @@ void bf_ballsys_free(bf_ballsys *s);
  * effects (ctx: the bf_ballsys). */
 int bf_ballsys_accel(void *ctx, double t, const double *x, const double *v,
                      double *acc);
+
+/* The discrete-gradient acceleration the ball system installs in ode
+ * (integrator.h, bf_daccel_fn): the sum of its effects' (effect_kernels.h). */
+int bf_ballsys_daccel(void *ctx, double t, const double *x, const double *xn,
+                      double *abar);
+
+/* The gaps of the event splitting at x (bf_root_fn; ctx: the bf_ballsys). */
+int bf_ballsys_gaps_fn(void *ctx, double t, const double *x, const double *v,
+                       double *g);
+
+/* One step split at the contact onsets and releases inside it (what
+ * bf_ballsys_step does with [integrator] events = yes). */
+bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
+                                bf_err *err);
 
 /* Through the integrator's generic step (what bf_ballsys_step does when
  * there is no specialised one). */
@@ -68,6 +91,8 @@ bf_status bf_ballsys_advance_generic(bf_ballsys *s, long n0, long k,
 static inline bf_status bf_ballsys_step(bf_ballsys *s, double t, double dt,
                                         bf_err *err)
 {
+    if (s->split)
+        return bf_ballsys_step_split(s, t, dt, err);
     if (s->fast_step && s->ode.accel == bf_ballsys_accel)
         return s->fast_step(s->it, &s->ode, &s->forces, t, dt, err);
     return bf_ballsys_step_generic(s, t, dt, err);
