@@ -75,7 +75,7 @@ static void film_run(bf_film *f, double dt, long steps)
 {
     bf_err err = {0};
     for (long s = 0; s < steps; s++)
-        ck_assert_msg(bf_film_step_invariant(f, dt, &err) == BF_OK,
+        ck_assert_msg(bf_film_step_invariant(f, dt, NULL, &err) == BF_OK,
                       "step %ld: %s", s + 1, err.msg);
 }
 
@@ -353,7 +353,7 @@ static void check_sharp(double dx, prof_fn psi, const char *what, double lo,
     bf_err err = {0};
     bf_status st = BF_OK;
     for (long s = 0; s < 2000 && !st; s++)
-        st = bf_film_step_invariant(f, 1.05 * lim, &err);
+        st = bf_film_step_invariant(f, 1.05 * lim, NULL, &err);
     ck_assert_msg(st == BF_EUNSTABLE, "1.05 x the limit did not blow up");
     ck_assert_msg(strstr(err.msg, "node"), "%s", err.msg);
     bf_film_free(f);

@@ -44,7 +44,10 @@ double bf_filmsys_kink_error(const bf_filmsys *fs);
 /* Largest relative change of either phase total since t = 0. */
 double bf_filmsys_mass_drift(const bf_filmsys *fs);
 
-bf_status bf_filmsys_step(bf_filmsys *fs, double dt, bf_err *err);
+/* One film step of dt with the coupling's mu_cpl (nodes 0..N; NULL:
+ * none), bf_film_step_invariant. */
+bf_status bf_filmsys_step(bf_filmsys *fs, double dt, const double *mu_cpl,
+                          bf_err *err);
 
 bf_status bf_filmsys_output_open(bf_filmsys *fs, bf_out *out, bf_err *err);
 bf_status bf_filmsys_output_row(bf_filmsys *fs, long n, double t, bf_err *err);

@@ -1,6 +1,6 @@
 /* film.c: the invariant (Lax-Wendroff-type) scheme for the two-phase
  * shallow-water film, Yasuda 2010 eqs 3.15-3.16 (see film.h for the model
- * and ../shared/spec/film-scheme.md for the term-by-term reconstruction).
+ * and docs/models/film.md for the term-by-term reconstruction).
  *
  * For each phase k (s_d = +1, s_c = -1), with A = alpha_k h, u = u_k,
  * Q = P + s_k mu, everything on the right at level n:
@@ -28,7 +28,7 @@
  *         added once, explicitly.
  *
  * The one term the garbled print leaves in doubt is how mu enters the
- * dt^2/2 part of (3.16) (spec, uncertain point 1).  The exact Taylor term
+ * dt^2/2 part of (3.16) (docs/models/film.md).  The exact Taylor term
  * is -(1/rho_k) d/dx(dQ/dt).  For the hydrostatic part dP/dt = -(P u_m)_x
  * exactly, so W = P u_m.  For mu the print puts mu into W = (P +- mu) u_m,
  * but dmu/dt is not -(mu u_m)_x.  Linearised about a uniform mixture
@@ -103,7 +103,7 @@ struct bf_film {
     size_t len;  /* allocated length of each array (N + 3) */
     double *mem;
     double *v[V_COUNT]; /* each points at index 0 (ghost at -1) */
-    double *mucpl;      /* the coupling's mu (zero without one) */
+    double *zero;       /* mu_cpl of a step given none: zeros */
     unsigned long long lim_steps, lim_faces;
 };
 
@@ -141,10 +141,10 @@ bf_status bf_film_create(bf_film **out, const bf_film_params *p, bf_err *err)
     size_t len = ((size_t)f->N + 1 + 8 + 16) & ~(size_t)7;
     f->len = len;
     f->mem = alloc_block(len * V_COUNT);
-    f->mucpl = alloc_block(len);
-    if (!f->mem || !f->mucpl) {
+    f->zero = alloc_block(len);
+    if (!f->mem || !f->zero) {
         free(f->mem);
-        free(f->mucpl);
+        free(f->zero);
         free(f);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
@@ -170,7 +170,7 @@ void bf_film_free(bf_film *f)
     if (!f)
         return;
     free(f->mem);
-    free(f->mucpl);
+    free(f->zero);
     free(f);
 }
 
@@ -183,8 +183,6 @@ const double *bf_film_u_d(const bf_film *f) { return ARR(f, V_UD); }
 const double *bf_film_u_c(const bf_film *f) { return ARR(f, V_UC); }
 const double *bf_film_ah_d(const bf_film *f) { return ARR(f, V_AD); }
 const double *bf_film_ah_c(const bf_film *f) { return ARR(f, V_AC); }
-
-double *bf_film_mu_cpl(bf_film *f) { return f->mucpl + 8; }
 
 /* h, psi from A_d, A_c on nodes lo..hi (one definition: the step and
  * set_state/load must produce the same bits). */
@@ -405,12 +403,13 @@ HOT void node_loop(int variant, long lo, long hi, double a, double b,
                const double *restrict ad, const double *restrict ac,
                const double *restrict ud, const double *restrict uc,
                const double *restrict psi, const double *restrict mc,
-               double *restrict mu, double *restrict wd, double *restrict wc)
+               long moff, double *restrict mu, double *restrict wd,
+               double *restrict wc)
 {
     for (long i = lo; i <= hi; i++) {
         double ps = psi[i];
         double m = ps * (b * ps * ps - a) -
-                   gl * ((psi[i + 1] - ps) - (ps - psi[i - 1])) + mc[i];
+                   gl * ((psi[i + 1] - ps) - (ps - psi[i - 1])) + mc[i + moff];
         mu[i] = m;
         if (variant == BF_FILM_MU_UM) {
             double md = rd * ad[i], mcc = rc * ac[i], pp = g * (md + mcc);
@@ -428,11 +427,14 @@ HOT void node_loop(int variant, long lo, long hi, double a, double b,
 /* the densities, or the constant 1 in the unit-density sweep (see sweep) */
 #define RHO(unit, r) ((unit) ? 1.0 : (r))
 
-HOT void node_pass(const step_ctx *c, int variant, int unit, long lo, long hi)
+/* moff: mu_cpl is read at node i + moff (the caller's array has no ghost
+ * nodes: its mirror image at a wall ghost is two nodes inwards) */
+HOT void node_pass(const step_ctx *c, int variant, int unit, long lo, long hi,
+                   long moff)
 {
     node_loop(variant, lo, hi, c->a, c->b, c->gl, c->g, RHO(unit, c->rd),
-              RHO(unit, c->rc), c->ad,
-              c->ac, c->ud, c->uc, c->psi, c->mc, c->mu, c->wd, c->wc);
+              RHO(unit, c->rc), c->ad, c->ac, c->ud, c->uc, c->psi, c->mc,
+              moff, c->mu, c->wd, c->wc);
 }
 
 /* Face fluxes F of (3.15) and G of (3.16) at faces i+1/2, i = lo..hi (of
@@ -638,9 +640,11 @@ HOT int sweep(bf_film *f, step_ctx *c, int variant, int unit)
     /* one pass after the other over the whole film (see "Speed"); the
      * vector loops start at index 0 (64-byte aligned) so that their stores
      * do not straddle cache lines: the ghost node -1 and face -1 go first
-     * on their own, and the velocities of nodes 1..7 */
-    node_pass(c, variant, unit, -1, -1);
-    node_pass(c, variant, unit, 0, N + 1);
+     * on their own, and the velocities of nodes 1..7; the ghost nodes read
+     * mu_cpl at their mirror images 1 and N - 1 */
+    node_pass(c, variant, unit, -1, -1, 2);
+    node_pass(c, variant, unit, 0, N, 0);
+    node_pass(c, variant, unit, N + 1, N + 1, -2);
     face_pass(c, variant, unit, -1, -1);
     face_pass(c, variant, unit, 0, N);
     int bad = update_pass(c, 0, N);
@@ -676,7 +680,8 @@ HOT int sweep(bf_film *f, step_ctx *c, int variant, int unit)
 #if defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
-bf_status bf_film_step_invariant(bf_film *f, double dt, bf_err *err)
+bf_status bf_film_step_invariant(bf_film *f, double dt, const double *mu_cpl,
+                                 bf_err *err)
 {
     const bf_film_params *p = &f->p;
     const long N = f->N;
@@ -696,7 +701,7 @@ bf_status bf_film_step_invariant(bf_film *f, double dt, bf_err *err)
         .va = p->vanish,
         .ad = ARR(f, V_AD), .ac = ARR(f, V_AC),
         .ud = ARR(f, V_UD), .uc = ARR(f, V_UC),
-        .psi = ARR(f, V_PSI), .mc = f->mucpl + 8,
+        .psi = ARR(f, V_PSI), .mc = mu_cpl ? mu_cpl : f->zero + 8,
         .mu = ARR(f, V_MU),
         .wd = ARR(f, V_WD), .wc = ARR(f, V_WC),
         .Fd = ARR(f, V_FD), .Fc = ARR(f, V_FC),
@@ -708,16 +713,16 @@ bf_status bf_film_step_invariant(bf_film *f, double dt, bf_err *err)
         .kd = ARR(f, V_KD), .kc = ARR(f, V_KC),
         .kd1 = ARR(f, V_KD1), .kc1 = ARR(f, V_KC1),
     };
-    /* ghosts of level n: psi and mu_cpl need two (mu on -1..N+1) */
+    /* ghosts of level n: psi needs two (mu on -1..N+1); mu_cpl none (the
+     * node pass reads it at the ghosts' mirror images) */
     ghost_even(ARR(f, V_AD), N);
     ghost_even(ARR(f, V_AC), N);
     ghost_odd(ARR(f, V_UD), N);
     ghost_odd(ARR(f, V_UC), N);
-    double *psi = ARR(f, V_PSI), *mc = f->mucpl + 8;
+    double *psi = ARR(f, V_PSI);
     ghost_even(psi, N);
     psi[-2] = psi[2];
     psi[N + 2] = psi[N - 2];
-    ghost_even(mc, N);
 
     int bad;
     const int unit = p->rho_d == 1.0 && p->rho_c == 1.0;

@@ -161,7 +161,7 @@ typedef struct coupled_model {
     long every;
     size_t nb, map_ball, map_pivot, peak_ball;
     double probe;
-    double *mucpl;          /* the film's mu_cpl array */
+    double *mucpl;          /* mu_cpl (3.11) handed to the film step */
     double *x0, *v0;        /* ball state at the start of the step */
     double sym_t[NSYM];     /* first time the ball symmetry error exceeded */
     double cpu[3];          /* wall s: balls, film, coupling (timing) */
@@ -189,6 +189,7 @@ static void coupled_destroy(void *self)
     bf_ballsys_free(m->sys);
     bf_coupling_free(m->cpl);
     bf_filmsys_free(m->fs);
+    free(m->mucpl);
     free(m->x0);
     free(m->v0);
     free(m);
@@ -446,12 +447,16 @@ static bf_status coupled_build(coupled_model **self, const bf_scene *sc,
         coupled_destroy(m);
         return st;
     }
-    m->mucpl = bf_film_mu_cpl(bf_filmsys_film(m->fs));
     if (m->dynamic)
         bf_coupling_prepare(m->cpl, m->nb, m->sys->b.x);
     m->x0 = calloc(m->nb, sizeof(double));
     m->v0 = calloc(m->nb, sizeof(double));
-    if (!m->x0 || !m->v0) {
+    /* 64-byte aligned, as the film's arrays (its vector loops read it) */
+    size_t bytes = (nn * sizeof(double) + 63) & ~(size_t)63;
+    m->mucpl = aligned_alloc(64, bytes);
+    if (m->mucpl)
+        memset(m->mucpl, 0, bytes);
+    if (!m->x0 || !m->v0 || !m->mucpl) {
         coupled_destroy(m);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
@@ -605,7 +610,8 @@ static bf_status coupled_step(void *self, long n, double t, double dt,
     if (m->timing)
         c2 = wall_now();
     if (m->dynamic && (n + 1) % m->every == 0) {
-        if ((st = bf_filmsys_step(m->fs, (double)m->every * dt, err)))
+        if ((st = bf_filmsys_step(m->fs, (double)m->every * dt, m->mucpl,
+                                   err)))
             return st;
         if (m->sym) {
             /* before the coupling's refresh reads the film */

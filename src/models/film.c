@@ -25,7 +25,7 @@ static bf_status film_step(void *self, long n, double t, double dt, bf_err *err)
 {
     (void)n;
     (void)t;
-    return bf_filmsys_step(self, dt, err);
+    return bf_filmsys_step(self, dt, NULL, err);
 }
 
 static bf_status film_output_open(void *self, bf_out *out, bf_err *err)

@@ -315,9 +315,10 @@ bf_status bf_filmsys_create(bf_filmsys **out, const bf_scene *sc,
     return BF_OK;
 }
 
-bf_status bf_filmsys_step(bf_filmsys *fs, double dt, bf_err *err)
+bf_status bf_filmsys_step(bf_filmsys *fs, double dt, const double *mu_cpl,
+                          bf_err *err)
 {
-    return bf_film_step_invariant(fs->film, dt, err);
+    return bf_film_step_invariant(fs->film, dt, mu_cpl, err);
 }
 
 double bf_filmsys_kink_error(const bf_filmsys *fs)
