@@ -34,9 +34,9 @@
 #include <string.h>
 
 #include "ballfilm/coupling.h"
-#include "ballfilm/filmsys.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/run.h"
+#include "models/filmsys.h"
 #include "testutil.h"
 
 static const double R0 = 0.5;

@@ -28,9 +28,9 @@
 #include <string.h>
 
 #include "ballfilm/film.h"
-#include "ballfilm/filmsys.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/run.h"
+#include "models/filmsys.h"
 #include "testutil.h"
 
 static bf_film_params params(double L, double dx)

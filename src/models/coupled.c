@@ -104,9 +104,9 @@
 #include "models/ballsys.h"
 #include "ballfilm/coupled.h"
 #include "ballfilm/coupling.h"
-#include "ballfilm/filmsys.h"
 #include "diag/lyapsum.h"
 #include "ballfilm/model.h"
+#include "models/filmsys.h"
 
 enum { NSYM = 4 };
 static const double sym_levels[NSYM] = {1e-12, 1e-9, 1e-6, 1e-3};
@@ -399,8 +399,9 @@ static bf_status coupled_build(coupled_model **self, const bf_scene *sc,
     m->timing = bf_scene_bool(sc, "coupled", "timing");
     m->sym = bf_scene_bool(sc, "coupled", "symmetrize");
     m->probe = bf_scene_real(sc, "coupled", "probe");
-    bf_status st = bf_filmsys_create(&m->fs, sc, m->dynamic ? m->every : 0,
-                                     err);
+    bf_status st = bf_filmsys_create(
+        &m->fs, bf_setup_get(setup, &bf_filmsys_spec, NULL), &setup->run,
+        m->dynamic ? m->every : 0, err);
     if (st) {
         free(m);
         return st;
@@ -637,6 +638,13 @@ static bf_status coupled_step(void *self, long n, double t, double dt,
     if (!st && m->ly)
         st = shadow_step(m, n, t, dt, err);
     return st;
+}
+
+/* The film's stable step, for its step of film_every x dt (filmsys.h). */
+static void coupled_stable_dt(const void *self, bf_dt_limit *lim)
+{
+    const coupled_model *m = self;
+    bf_filmsys_stable_dt(m->fs, lim);
 }
 
 static void coupled_energy(const void *self, double t, double *kin,
@@ -888,6 +896,7 @@ const bf_model_type bf_model_coupled = {
     .specs = coupled_specs,
     .create_scene = coupled_create,
     .destroy = coupled_destroy,
+    .stable_dt = coupled_stable_dt,
     .step = coupled_step,
     .energy = coupled_energy,
     .output_open = coupled_output_open,

@@ -1,7 +1,7 @@
-/* filmsys.h: a film built from a scene's [film] section, with its output
- * and diagnostics.  This is the component shared by the "film" model (the
- * kink, Yasuda sec. 3.4) and the coupled ball-film model (sec. 3.5), as
- * ballsys.h is for balls.
+/* filmsys.h: a film built from the keys of [film], with its initial
+ * state, output and diagnostics (private to the models).  This is the
+ * component shared by the "film" model (the kink, Yasuda sec. 3.4) and the
+ * coupled ball-film model (sec. 3.5), as ballsys.h is for balls.
  *
  * Output (HDF5):
  *   /film/x [nodes]                         node positions, once
@@ -23,18 +23,50 @@
 #include "ballfilm/checkpoint.h"
 #include "ballfilm/film.h"
 #include "ballfilm/h5out.h"
-#include "ballfilm/scene.h"
+#include "ballfilm/model.h"
+#include "ballfilm/params.h"
 
-typedef struct bf_filmsys bf_filmsys;
+/* The keys of [film]. */
+typedef struct bf_film_keys {
+    double length, dx;   /* cm */
+    double h0;           /* cm */
+    double rho_d, rho_c; /* g/cm^3 */
+    double nu;           /* cm^2/s */
+    double g;            /* cm/s^2 */
+    double a, b;         /* g/(cm s^2) */
+    double gamma;        /* g cm/s^2 */
+    int initial;         /* 0 kink, 1 uniform, 2 file */
+    double center;       /* cm */
+    double psi0;
+    const char *file;
+    double perturbation;
+    int perturbation_mode; /* 0 positive, 1 signed */
+    long seed;
+    int mu_taylor;  /* 0 midpoint, 1 um, 2 uk (bf_film_mu_taylor) */
+    int positivity; /* 0 limit, 1 stop */
+    double vanish;
+    int force_dt;
+    bf_interval profile_every;
+} bf_film_keys;
 
 extern const bf_section_spec bf_filmsys_spec; /* [film] */
 
-/* Build the film of the scene and its initial state.  The film will step
- * by film_every x [scene] dt (0: never, a static film); that step is
- * refused if above the stable limit unless [film] force_dt is set. */
-bf_status bf_filmsys_create(bf_filmsys **out, const bf_scene *sc,
-                            long film_every, bf_err *err);
+typedef struct bf_filmsys bf_filmsys;
+
+/* Build the film of the keys and its initial state, for the run `run`
+ * (its dt, length and output interval).  The film will step by
+ * film_every x dt (0: never, a static film).  Bad keys are named
+ * (bf_fail_key). */
+bf_status bf_filmsys_create(bf_filmsys **out, const bf_film_keys *k,
+                            const bf_run_ctx *run, long film_every,
+                            bf_err *err);
 void bf_filmsys_free(bf_filmsys *fs);
+
+/* The largest [scene] dt the film's step allows (model.h's stable_dt):
+ * film_every x dt must not exceed the film's stable limit of its initial
+ * state; with film_every > 1 the limit names [coupled] film_every.  No
+ * limit for a static film or with [film] force_dt. */
+void bf_filmsys_stable_dt(const bf_filmsys *fs, bf_dt_limit *lim);
 
 bf_film *bf_filmsys_film(bf_filmsys *fs);
 /* Whether the scene started from the analytic kink, and its centre (cm). */
