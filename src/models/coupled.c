@@ -111,44 +111,53 @@
 enum { NSYM = 4 };
 static const double sym_levels[NSYM] = {1e-12, 1e-9, 1e-6, 1e-3};
 
+/* The keys of [coupled]. */
+typedef struct coupled_keys {
+    int film;        /* 0 dynamic, 1 static */
+    long film_every; /* steps */
+    double probe;    /* cm */
+    long map_ball, map_pivot, peak_ball; /* 1-based; 0: the default */
+    int symmetrize, timing;
+} coupled_keys;
+
 static const bf_param coupled_params[] = {
-    {"film", BF_ENUM, 0, "", "dynamic",
+    {"film", BF_AT(coupled_keys, film, BF_ENUM), "", "dynamic",
      "dynamic: the film is solved and feels the balls (sec. 3.5); static: "
      "the balls move in the potential of the initial film (sec. 3.4)",
      0, 0, 0, "dynamic|static"},
-    {"film_every", BF_INT, 0, "steps", "1",
+    {"film_every", BF_AT(coupled_keys, film_every, BF_INT), "steps", "1",
      "multirate: the film takes one step of film_every x dt every "
      "film_every ball steps (1: the paper's single rate)",
      BF_MIN, 1, 0, NULL},
-    {"probe", BF_REAL, 0, "cm", "0.3",
+    {"probe", BF_AT(coupled_keys, probe, BF_REAL), "cm", "0.3",
      "position of the psi probe /coupled/psi_probe (Fig. 8C)", 0, 0, 0,
      NULL},
-    {"map_ball", BF_INT, 0, "", "0",
+    {"map_ball", BF_AT(coupled_keys, map_ball, BF_INT), "", "0",
      "ball recorded in the return map (0: the last)", BF_NONNEG, 0, 0, NULL},
-    {"map_pivot", BF_INT, 0, "", "0",
+    {"map_pivot", BF_AT(coupled_keys, map_pivot, BF_INT), "", "0",
      "ball whose closest approach to the origin, while touching its inner "
      "neighbour, triggers the return map (0: ball n/2 + 1)",
      BF_NONNEG, 0, 0, NULL},
-    {"peak_ball", BF_INT, 0, "", "0",
+    {"peak_ball", BF_AT(coupled_keys, peak_ball, BF_INT), "", "0",
      "ball whose position maxima are recorded in /coupled/peaks (0: the "
      "last)",
      BF_NONNEG, 0, 0, NULL},
-    {"symmetrize", BF_BOOL, 0, "", "no",
+    {"symmetrize", BF_AT(coupled_keys, symmetrize, BF_BOOL), "", "no",
      "yes: after each step project balls and film onto the mirror-symmetric "
      "states (x -> -x, psi -> -psi; ball i <-> ball n+1-i), removing the "
      "round-off that breaks the symmetry (needs a symmetric set-up); "
      "/coupled/sym_correction records the largest change. no: the paper's "
      "scheme",
      0, 0, 0, NULL},
-    {"timing", BF_BOOL, 0, "", "false",
+    {"timing", BF_AT(coupled_keys, timing, BF_BOOL), "", "false",
      "measure the wall time of balls, film and coupling separately (bench)",
      BF_HIDDEN, 0, 0, NULL},
     {0},
 };
 
-static const bf_section_spec coupled_spec = {
-    "coupled", "balls coupled to the film (Yasuda sec. 3.4-3.5)",
-    coupled_params, 0};
+static const bf_section_spec coupled_spec =
+    BF_SECTION("coupled", "balls coupled to the film (Yasuda sec. 3.4-3.5)",
+               coupled_params, coupled_keys);
 
 typedef struct coupled_model {
     bf_filmsys *fs;
@@ -209,27 +218,27 @@ static int differ(double a, double b)
 
 /* Refuse symmetrize = yes unless the set-up is mirror symmetric (see the
  * file comment), naming the key that breaks it. */
-static bf_status check_symmetric(const coupled_model *m, const bf_scene *sc,
-                                 bf_err *err)
+static bf_status check_symmetric(const coupled_model *m,
+                                 const bf_film_keys *fk, bf_err *err)
 {
     const bf_ballsys *s = m->sys;
     for (size_t k = 0; k < s->neff; k++)
         if (!(s->eff[k].type->flags & BF_EFFECT_MIRROR_ODD))
-            return bf_scene_fail(sc, err, "scene", "effects",
-                                 "[coupled] symmetrize = yes: effect '%s' is "
-                                 "not known to be mirror symmetric (only "
-                                 "coupling and contact are)",
-                                 s->eff[k].type->name);
+            return bf_fail_key(err, BF_EINPUT, "scene", "effects",
+                               "[coupled] symmetrize = yes: effect '%s' is "
+                               "not known to be mirror symmetric (only "
+                               "coupling and contact are)",
+                               s->eff[k].type->name);
     if (bf_coupling_params_of(m->cpl)->psi_s != 0)
-        return bf_scene_fail(sc, err, "coupling", "psi_s",
-                             "[coupled] symmetrize = yes needs psi_s = 0 "
-                             "(psi -> -psi maps psi_s to -psi_s)");
+        return bf_fail_key(err, BF_EINPUT, "coupling", "psi_s",
+                           "[coupled] symmetrize = yes needs psi_s = 0 "
+                           "(psi -> -psi maps psi_s to -psi_s)");
     const bf_film *f = bf_filmsys_film(m->fs);
     const bf_film_params *fp = bf_film_params_of(f);
     if (fp->rho_d != fp->rho_c)
-        return bf_scene_fail(sc, err, "film", "rho_c",
-                             "[coupled] symmetrize = yes needs rho_d = rho_c "
-                             "(the mirror image exchanges the phases)");
+        return bf_fail_key(err, BF_EINPUT, "film", "rho_c",
+                           "[coupled] symmetrize = yes needs rho_d = rho_c "
+                           "(the mirror image exchanges the phases)");
     const bf_balls *b = &s->b;
     size_t n = b->n;
     for (size_t i = 0; i < (n + 1) / 2; i++) {
@@ -242,28 +251,28 @@ static bf_status check_symmetric(const coupled_model *m, const bf_scene *sc,
                           : differ(b->R[j], b->R[i])  ? "radius"
                                                       : NULL;
         if (key)
-            return bf_scene_fail(sc, err, sec, key,
-                                 "[coupled] symmetrize = yes: ball %zu is not "
-                                 "the mirror image of ball %zu (needs x_%zu "
-                                 "= -x_%zu, v_%zu = -v_%zu, equal masses and "
-                                 "radii)",
-                                 j + 1, i + 1, j + 1, i + 1, j + 1, i + 1);
+            return bf_fail_key(err, BF_EINPUT, sec, key,
+                               "[coupled] symmetrize = yes: ball %zu is not "
+                               "the mirror image of ball %zu (needs x_%zu "
+                               "= -x_%zu, v_%zu = -v_%zu, equal masses and "
+                               "radii)",
+                               j + 1, i + 1, j + 1, i + 1, j + 1, i + 1);
     }
     double c[2];
     bf_film_mirror(bf_filmsys_film(m->fs), 0, c);
     if (c[0] > sym_tol || c[1] > sym_tol) {
         double x0;
-        const char *key = bf_scene_real(sc, "film", "perturbation") > 0
+        const char *key = fk->perturbation > 0
                               ? "perturbation"
                           : bf_filmsys_has_kink(m->fs, &x0) && x0 != 0
                               ? "center"
                               : "initial";
-        return bf_scene_fail(sc, err, "film", key,
-                             "[coupled] symmetrize = yes: the initial film is "
-                             "not mirror symmetric (psi odd, h even, u odd "
-                             "needed): relative distance %.3g in alpha h, "
-                             "%.3g in u",
-                             c[0], c[1]);
+        return bf_fail_key(err, BF_EINPUT, "film", key,
+                           "[coupled] symmetrize = yes: the initial film is "
+                           "not mirror symmetric (psi odd, h even, u odd "
+                           "needed): relative distance %.3g in alpha h, "
+                           "%.3g in u",
+                           c[0], c[1]);
     }
     return BF_OK;
 }
@@ -293,23 +302,22 @@ static void keep_max(double *acc, const double *c, int k)
     }
 }
 
-/* a 1-based ball index key (0: default) */
-static bf_status ball_key(const bf_scene *sc, const char *key, size_t nb,
-                          size_t def, size_t *out, bf_err *err)
+/* a 1-based ball index k of [coupled] key (0: default) */
+static bf_status ball_key(long k, const char *key, size_t nb, size_t def,
+                          size_t *out, bf_err *err)
 {
-    long k = bf_scene_int(sc, "coupled", key);
     if (k == 0) {
         *out = def;
         return BF_OK;
     }
     if ((size_t)k > nb)
-        return bf_scene_fail(sc, err, "coupled", key,
-                             "ball %ld does not exist (%zu balls)", k, nb);
+        return bf_fail_key(err, BF_EINPUT, "coupled", key,
+                           "ball %ld does not exist (%zu balls)", k, nb);
     *out = (size_t)k - 1;
     return BF_OK;
 }
 
-static bf_status coupled_build(coupled_model **self, const bf_scene *sc,
+static bf_status coupled_build(coupled_model **self,
                                const bf_model_setup *setup, int with_shadow,
                                bf_err *err);
 
@@ -350,8 +358,8 @@ static void displace_shadow_balls(coupled_model *m)
 
 /* [lyapunov]: the running sum and the shadow, its balls displaced (see the
  * file comment). */
-static bf_status shadow_create(coupled_model *m, const bf_scene *sc,
-                               const bf_model_setup *setup, bf_err *err)
+static bf_status shadow_create(coupled_model *m, const bf_model_setup *setup,
+                               bf_err *err)
 {
     m->ly = malloc(sizeof *m->ly);
     if (!m->ly)
@@ -361,7 +369,7 @@ static bf_status shadow_create(coupled_model *m, const bf_scene *sc,
         m->ly, bf_setup_get(setup, &bf_lyap_spec, NULL), setup->run.dt, m->nb,
         t->flags & BF_INT_ADAPTIVE ? t->name : NULL, err);
     if (!st)
-        st = coupled_build(&m->shadow, sc, setup, 0, err);
+        st = coupled_build(&m->shadow, setup, 0, err);
     if (st)
         return st;
     displace_shadow_balls(m);
@@ -369,11 +377,11 @@ static bf_status shadow_create(coupled_model *m, const bf_scene *sc,
     return BF_OK;
 }
 
-static bf_status coupled_create(void **self, const bf_scene *sc,
-                                const bf_model_setup *setup, bf_err *err)
+static bf_status coupled_create(void **self, const bf_model_setup *setup,
+                                bf_err *err)
 {
     coupled_model *m = NULL;
-    bf_status st = coupled_build(&m, sc, setup, 1, err);
+    bf_status st = coupled_build(&m, setup, 1, err);
     *self = m;
     return st;
 }
@@ -387,21 +395,22 @@ static const bf_coupling_keys *coupling_keys(const bf_model_setup *setup)
     return NULL;
 }
 
-static bf_status coupled_build(coupled_model **self, const bf_scene *sc,
+static bf_status coupled_build(coupled_model **self,
                                const bf_model_setup *setup, int with_shadow,
                                bf_err *err)
 {
+    const coupled_keys *k = bf_setup_get(setup, &coupled_spec, NULL);
+    const bf_film_keys *fk = bf_setup_get(setup, &bf_filmsys_spec, NULL);
     coupled_model *m = calloc(1, sizeof *m);
     if (!m)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    m->dynamic = bf_scene_enum(sc, "coupled", "film") == 0;
-    m->every = bf_scene_int(sc, "coupled", "film_every");
-    m->timing = bf_scene_bool(sc, "coupled", "timing");
-    m->sym = bf_scene_bool(sc, "coupled", "symmetrize");
-    m->probe = bf_scene_real(sc, "coupled", "probe");
-    bf_status st = bf_filmsys_create(
-        &m->fs, bf_setup_get(setup, &bf_filmsys_spec, NULL), &setup->run,
-        m->dynamic ? m->every : 0, err);
+    m->dynamic = k->film == 0;
+    m->every = k->film_every;
+    m->timing = k->timing;
+    m->sym = k->symmetrize;
+    m->probe = k->probe;
+    bf_status st = bf_filmsys_create(&m->fs, fk, &setup->run,
+                                     m->dynamic ? m->every : 0, err);
     if (st) {
         free(m);
         return st;
@@ -411,9 +420,9 @@ static bf_status coupled_build(coupled_model **self, const bf_scene *sc,
     bf_setup_get(setup, &bf_ballsys_ball_spec, &nballs);
     if (!ck) {
         coupled_destroy(m);
-        return bf_scene_fail(sc, err, "scene", "effects",
-                             "model coupled needs the effect 'coupling' (and "
-                             "usually 'contact')");
+        return bf_fail_key(err, BF_EINPUT, "scene", "effects",
+                           "model coupled needs the effect 'coupling' (and "
+                           "usually 'contact')");
     }
     bf_coupling_params cp = bf_coupling_params_from_keys(ck);
     if ((st = bf_coupling_create(&m->cpl, &cp, bf_filmsys_film(m->fs), nballs,
@@ -432,19 +441,20 @@ static bf_status coupled_build(coupled_model **self, const bf_scene *sc,
     double xa = x[0], xb = x[nn - 1];
     if (m->probe < xa || m->probe > xb) {
         coupled_destroy(m);
-        return bf_scene_fail(sc, err, "coupled", "probe",
-                             "probe at %g cm lies outside the film [%g, %g]",
-                             bf_scene_real(sc, "coupled", "probe"), xa, xb);
+        return bf_fail_key(err, BF_EINPUT, "coupled", "probe",
+                           "probe at %g cm lies outside the film [%g, %g]",
+                           k->probe, xa, xb);
     }
-    if ((st = ball_key(sc, "map_ball", m->nb, m->nb - 1, &m->map_ball, err)) ||
-        (st = ball_key(sc, "map_pivot", m->nb, m->nb / 2, &m->map_pivot,
+    if ((st = ball_key(k->map_ball, "map_ball", m->nb, m->nb - 1, &m->map_ball,
                        err)) ||
-        (st = ball_key(sc, "peak_ball", m->nb, m->nb - 1, &m->peak_ball,
-                       err))) {
+        (st = ball_key(k->map_pivot, "map_pivot", m->nb, m->nb / 2,
+                       &m->map_pivot, err)) ||
+        (st = ball_key(k->peak_ball, "peak_ball", m->nb, m->nb - 1,
+                       &m->peak_ball, err))) {
         coupled_destroy(m);
         return st;
     }
-    if (m->sym && (st = check_symmetric(m, sc, err))) {
+    if (m->sym && (st = check_symmetric(m, fk, err))) {
         coupled_destroy(m);
         return st;
     }
@@ -465,7 +475,7 @@ static bf_status coupled_build(coupled_model **self, const bf_scene *sc,
         m->sym_t[k] = NAN;
     const bf_lyap_keys *lk = bf_setup_get(setup, &bf_lyap_spec, NULL);
     if (with_shadow && lk->enabled &&
-        (st = shadow_create(m, sc, setup, err))) {
+        (st = shadow_create(m, setup, err))) {
         coupled_destroy(m);
         return st;
     }
@@ -894,7 +904,7 @@ const bf_model_type bf_model_coupled = {
            "film (Yasuda sec. 3.4-3.5)",
     .flags = BF_MODEL_INTEGRATOR | BF_MODEL_EFFECTS,
     .specs = coupled_specs,
-    .create_scene = coupled_create,
+    .create = coupled_create,
     .destroy = coupled_destroy,
     .stable_dt = coupled_stable_dt,
     .step = coupled_step,
