@@ -33,9 +33,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/coupling.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/run.h"
+#include "coupling/coupling.h"
+#include "coupling/mu_cpl.h"
 #include "models/filmsys.h"
 #include "testutil.h"
 

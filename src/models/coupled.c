@@ -103,9 +103,11 @@
 
 #include "models/ballsys.h"
 #include "ballfilm/coupled.h"
-#include "ballfilm/coupling.h"
 #include "diag/lyapsum.h"
 #include "ballfilm/model.h"
+#include "coupling/coupling.h"
+#include "coupling/force.h"
+#include "coupling/mu_cpl.h"
 #include "models/filmsys.h"
 
 enum { NSYM = 4 };
