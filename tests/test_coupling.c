@@ -439,6 +439,29 @@ static bf_sim *run(const char *scene, const char *const *sets, bf_scene **scp)
     return sim;
 }
 
+/* A film step of film_every x dt beyond the film's limit is refused,
+ * naming [coupled] film_every; a static film has no limit. */
+START_TEST(multirate_film_step_beyond_the_limit_refused)
+{
+    const char *path = tu_repo("runs/coupled_fig8.ini");
+    char *errout = NULL;
+    int rc = tu_run(NULL, &errout, "run", path, "-o", tu_tmp("mr.h5"), "-q",
+                    "--set", "scene.dt=1e-3", "--set", "coupled.film_every=5",
+                    NULL);
+    ck_assert_msg(rc == 2 && strstr(errout, "[coupled] film_every") &&
+                      strstr(errout, "the film step 5 x dt = 0.005 s "
+                                     "exceeds the film's stable limit"),
+                  "exit %d: %s", rc, errout);
+    free(errout);
+    errout = NULL;
+    rc = tu_run(NULL, &errout, "run", path, "-o", tu_tmp("mr.h5"), "-q",
+                "--set", "scene.dt=1e-2", "--set", "scene.t_end=0.05",
+                "--set", "coupled.film=static", NULL);
+    ck_assert_msg(rc == 0, "exit %d: %s", rc, errout);
+    free(errout);
+}
+END_TEST
+
 START_TEST(static_kink_energy_and_peaks)
 {
     /* 10 s of Fig. 6A: energy conserved to the integrator's accuracy; the
@@ -572,6 +595,7 @@ Suite *suite_coupling(void)
     tcase_add_test(tc, integral_equals_quadrature_of_the_interpolant);
     suite_add_tcase(s, tc);
     tc = tu_tcase("scenes");
+    tcase_add_test(tc, multirate_film_step_beyond_the_limit_refused);
     tcase_add_test(tc, static_kink_energy_and_peaks);
     tcase_add_test(tc, dynamic_film_conserves_and_refreshes_forces);
     tcase_add_test(tc, restart_bit_identical_static_and_dynamic);

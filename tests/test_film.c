@@ -374,6 +374,42 @@ START_TEST(stable_dt_estimate_is_sharp_for_phase_separation)
 }
 END_TEST
 
+/* The models' step limit (filmsys): [scene] dt below the film's limit for
+ * film_every = 1; for film_every = K the largest dt whose film step K dt
+ * does not exceed it, naming [coupled] film_every; none for a static film
+ * or with force_dt. */
+START_TEST(film_step_limit_of_the_models)
+{
+    bf_film_keys k;
+    bf_err err = {0};
+    ck_assert(bf_params_defaults(&bf_filmsys_spec, &k, &err) == BF_OK);
+    const bf_run_ctx run = {1e-3, 1.0, 1000, 1};
+    const long every[] = {1, 3, 7, 0};
+    for (int q = 0; q < 5; q++) {
+        k.force_dt = q == 4;
+        const long K = q == 4 ? 1 : every[q];
+        bf_filmsys *fs;
+        ck_assert(bf_filmsys_create(&fs, &k, &run, K, &err) == BF_OK);
+        double L = bf_film_stable_dt(bf_filmsys_film(fs), NULL, 0);
+        bf_dt_limit lim = {0};
+        bf_filmsys_stable_dt(fs, &lim);
+        if (K == 0 || k.force_dt) {
+            ck_assert(lim.dt_max == 0);
+        } else {
+            const double d = lim.dt_max, up = nextafter(d, 1.0);
+            ck_assert_msg((double)K * d <= L && (double)K * up > L,
+                          "K = %ld: %.17g", K, d);
+            ck_assert_str_eq(lim.section, K > 1 ? "coupled" : "");
+            ck_assert_str_eq(lim.key, K > 1 ? "film_every" : "");
+            ck_assert_msg(strstr(lim.why, "film's stable limit") &&
+                              (K == 1 || strstr(lim.why, "film step")),
+                          "%s", lim.why);
+        }
+        bf_filmsys_free(fs);
+    }
+}
+END_TEST
+
 static const char *kink_scene =
     "[scene]\nmodel = film\ndt = 1e-3\nt_end = 1\noutput_every = 0.5 s\n"
     "[film]\nperturbation = 1e-4\n";
@@ -653,6 +689,7 @@ Suite *suite_film(void)
     suite_add_tcase(s, tc);
     tc = tu_tcase("scenes");
     tcase_add_test(tc, large_dt_refused_or_stopped);
+    tcase_add_test(tc, film_step_limit_of_the_models);
     tcase_add_test(tc, fractions_stay_in_range_with_large_perturbations);
     tcase_add_test(tc, unhandled_fraction_goes_negative_in_stop_mode);
     tcase_add_test(tc, perturbed_kink_stays_converged_past_300s);
