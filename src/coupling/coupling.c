@@ -46,15 +46,15 @@
  * exp() values of the prepared anchors from here (bf_coupling_grid_of,
  * bf_coupling_prepared_exp).
  *
- * Bits.  The anchors prepared ahead and the interleaved series (mk2,
- * mk_series8) give the numbers of the plain sequence of operations bit for
- * bit: work is only interleaved where it is independent (never inside a
- * sum), and values are reused only where they come from the same operands
- * by the same operations; a moment's sum does not depend on which rows are
- * summed with it (dotg4).  The moments by rows are the quantities of the
- * earlier spline-then-cells-then-sums in another order of summation: they
- * differ from those in round-off only (tested against GSL's spline and a
- * quadrature of the interpolant).
+ * Bits.  The anchors prepared ahead and the interleaved series (bf_mk2,
+ * bf_mk_series8 of mk.c) give the numbers of the plain sequence of
+ * operations bit for bit: work is only interleaved where it is
+ * independent (never inside a sum), and values are reused only where they
+ * come from the same operands by the same operations; a moment's sum
+ * does not depend on which rows are summed with it (dotg4).  The moments
+ * by rows are the quantities of the earlier spline-then-cells-then-sums in
+ * another order of summation: they differ from those in round-off only
+ * (tested against GSL's spline and a quadrature of the interpolant).
  */
 #include "coupling/coupling.h"
 
@@ -547,7 +547,7 @@ static void spline_taylor(const bf_coupling *c, long j, double M0, double M1,
 /* An exact evaluation inside the film in three parts, shared by the
  * single evaluation (exact_lr) and the anchors of all balls at once
  * (prepare_anchors): lr_begin (the cell's moments and the spline's Taylor
- * coefficients at t), the m_k series (mk2 or mk_series8), lr_end. */
+ * coefficients at t), the m_k series (bf_mk2 or bf_mk_series8), lr_end. */
 typedef struct lr_part {
     long j;
     double t, ml, mr, e[4];
@@ -719,7 +719,7 @@ static void prepare_anchors(bf_coupling *c, size_t nb, const double *x)
             if (!in[q])
                 continue;
             for (int s = 0; s < 2; s++)
-                if (!(z[2 * q + s] < 0.5)) /* the recursion, as mk */
+                if (!(z[2 * q + s] < 0.5)) /* the recursion, as bf_mk */
                     bf_mk(&c->mk, z[2 * q + s], m[2 * q + s]);
             const size_t p = p0 + q;
             double el = exp(-c->grid.kappa * w[q].t),

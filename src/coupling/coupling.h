@@ -25,7 +25,8 @@
  *
  * The folder src/coupling holds one job per file: this header and
  * coupling.c, the quadrature of F and dF/dr (the bf_coupling object: cell
- * and row moments, the integral, the Taylor anchors, its checkpoint);
+ * and row moments, the integral, the Taylor anchors, its checkpoint), with
+ * mk.h, the kernel's moments m_k(z) it integrates with;
  * mu_cpl.h, the chemical potential (3.11) the balls add to the film;
  * force.h, the effect "coupling" that applies -M dF/dr to the ball system
  * (its `self` is the bf_coupling), with the keys of [coupling].  Both use

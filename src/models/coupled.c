@@ -243,8 +243,8 @@ static bf_status coupled_build(coupled_model **self,
         bf_coupling_prepare(m->cpl, m->nb, m->sys->b.x);
     m->x0 = calloc(m->nb, sizeof(double));
     m->v0 = calloc(m->nb, sizeof(double));
-    /* 64-byte aligned, as the film's arrays (its vector loops read it) */
     m->nodes = nn;
+    /* 64-byte aligned, as the film's arrays (its vector loops read it) */
     size_t bytes = (nn * sizeof(double) + 63) & ~(size_t)63;
     m->mucpl = aligned_alloc(64, bytes);
     if (m->mucpl)
@@ -253,8 +253,8 @@ static bf_status coupled_build(coupled_model **self,
         coupled_destroy(m);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
-    for (int k = 0; k < BF_COUPLED_NSYM; k++)
-        m->sym_t[k] = NAN;
+    for (int q = 0; q < BF_COUPLED_NSYM; q++)
+        m->sym_t[q] = NAN;
     const bf_lyap_keys *lk = bf_setup_get(setup, &bf_lyap_spec, NULL);
     if (with_shadow && lk->enabled &&
         (st = shadow_create(m, setup, err))) {
