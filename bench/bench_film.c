@@ -50,7 +50,7 @@ static double bench(long cells, bf_film_mu_taylor v)
     for (int r = 0; r < 5; r++) {
         double t0 = cpu_now();
         for (long s = 0; s < steps; s++)
-            if (bf_film_step_invariant(f, 1e-3, &err)) {
+            if (bf_film_step_invariant(f, 1e-3, NULL, &err)) {
                 fprintf(stderr, "%s\n", err.msg);
                 exit(1);
             }

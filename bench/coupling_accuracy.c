@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "ballfilm/coupling.h"
+#include "coupling/coupling.h"
 
 static const double R0 = 0.5;
 

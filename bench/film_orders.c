@@ -47,7 +47,7 @@ static bf_film *run(double dx, double dt, double nu, int variant)
     free(b);
     long steps = lround(0.5 / dt);
     for (long s = 0; s < steps; s++)
-        if (bf_film_step_invariant(f, dt, &err)) {
+        if (bf_film_step_invariant(f, dt, NULL, &err)) {
             fprintf(stderr, "%s\n", err.msg);
             exit(1);
         }

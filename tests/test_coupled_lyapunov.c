@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/coupled.h"
+#include "models/coupled.h"
 #include "ballfilm/h5out.h"
 #include "diag/lyapsum.h"
 #include "testutil.h"

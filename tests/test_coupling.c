@@ -33,10 +33,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ballfilm/coupling.h"
-#include "ballfilm/filmsys.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/run.h"
+#include "coupling/coupling.h"
+#include "coupling/mu_cpl.h"
+#include "models/filmsys.h"
 #include "testutil.h"
 
 static const double R0 = 0.5;
@@ -323,12 +324,14 @@ START_TEST(integral_equals_quadrature_of_the_interpolant)
     const double xb[4] = {-0.53, -0.21, 0.23, 0.47}, Rb[4] = {0.1, 0.1, 0.15, 0.1};
     bf_err err = {0};
     bf_coupling *c0 = make_cpl(f, BF_COUPLING_SPLINE, 0);
-    for (int s = 0; s < 40; s++) { /* an uneven g */
-        bf_coupling_mu(c0, 4, xb, Rb, bf_film_mu_cpl(f));
-        ck_assert(bf_film_step_invariant(f, 1e-4, &err) == BF_OK);
-    }
-    bf_coupling_free(c0);
     const size_t n = bf_film_nodes(f);
+    double *mu = malloc(n * sizeof *mu);
+    for (int s = 0; s < 40; s++) { /* an uneven g */
+        bf_coupling_mu(c0, 4, xb, Rb, mu);
+        ck_assert(bf_film_step_invariant(f, 1e-4, mu, &err) == BF_OK);
+    }
+    free(mu);
+    bf_coupling_free(c0);
     const double *x = bf_film_x(f);
     gsl_integration_glfixed_table *gl = gsl_integration_glfixed_table_alloc(20);
     gsl_interp_accel *acc = gsl_interp_accel_alloc();
@@ -380,8 +383,8 @@ START_TEST(prepared_anchors_equal_lazy_ones)
     bf_coupling *cl = make_cpl(f, BF_COUPLING_SPLINE, 2e-3 * R0);
     double *mp = malloc(n * sizeof *mp), *ml = malloc(n * sizeof *ml);
     for (int s = 0; s < 30; s++) {
-        bf_coupling_mu(cp, 4, x, R, bf_film_mu_cpl(f));
-        ck_assert(bf_film_step_invariant(f, 1e-4, &err) == BF_OK);
+        bf_coupling_mu(cp, 4, x, R, mp);
+        ck_assert(bf_film_step_invariant(f, 1e-4, mp, &err) == BF_OK);
     }
     bf_coupling_refresh(cp);
     bf_coupling_refresh(cl);
@@ -435,6 +438,29 @@ static bf_sim *run(const char *scene, const char *const *sets, bf_scene **scp)
     *scp = sc;
     return sim;
 }
+
+/* A film step of film_every x dt beyond the film's limit is refused,
+ * naming [coupled] film_every; a static film has no limit. */
+START_TEST(multirate_film_step_beyond_the_limit_refused)
+{
+    const char *path = tu_repo("runs/coupled_fig8.ini");
+    char *errout = NULL;
+    int rc = tu_run(NULL, &errout, "run", path, "-o", tu_tmp("mr.h5"), "-q",
+                    "--set", "scene.dt=1e-3", "--set", "coupled.film_every=5",
+                    NULL);
+    ck_assert_msg(rc == 2 && strstr(errout, "[coupled] film_every") &&
+                      strstr(errout, "the film step 5 x dt = 0.005 s "
+                                     "exceeds the film's stable limit"),
+                  "exit %d: %s", rc, errout);
+    free(errout);
+    errout = NULL;
+    rc = tu_run(NULL, &errout, "run", path, "-o", tu_tmp("mr.h5"), "-q",
+                "--set", "scene.dt=1e-2", "--set", "scene.t_end=0.05",
+                "--set", "coupled.film=static", NULL);
+    ck_assert_msg(rc == 0, "exit %d: %s", rc, errout);
+    free(errout);
+}
+END_TEST
 
 START_TEST(static_kink_energy_and_peaks)
 {
@@ -569,6 +595,7 @@ Suite *suite_coupling(void)
     tcase_add_test(tc, integral_equals_quadrature_of_the_interpolant);
     suite_add_tcase(s, tc);
     tc = tu_tcase("scenes");
+    tcase_add_test(tc, multirate_film_step_beyond_the_limit_refused);
     tcase_add_test(tc, static_kink_energy_and_peaks);
     tcase_add_test(tc, dynamic_film_conserves_and_refreshes_forces);
     tcase_add_test(tc, restart_bit_identical_static_and_dynamic);

@@ -28,9 +28,9 @@
 #include <string.h>
 
 #include "ballfilm/film.h"
-#include "ballfilm/filmsys.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/run.h"
+#include "models/filmsys.h"
 #include "testutil.h"
 
 static bf_film_params params(double L, double dx)
@@ -75,7 +75,7 @@ static void film_run(bf_film *f, double dt, long steps)
 {
     bf_err err = {0};
     for (long s = 0; s < steps; s++)
-        ck_assert_msg(bf_film_step_invariant(f, dt, &err) == BF_OK,
+        ck_assert_msg(bf_film_step_invariant(f, dt, NULL, &err) == BF_OK,
                       "step %ld: %s", s + 1, err.msg);
 }
 
@@ -353,7 +353,7 @@ static void check_sharp(double dx, prof_fn psi, const char *what, double lo,
     bf_err err = {0};
     bf_status st = BF_OK;
     for (long s = 0; s < 2000 && !st; s++)
-        st = bf_film_step_invariant(f, 1.05 * lim, &err);
+        st = bf_film_step_invariant(f, 1.05 * lim, NULL, &err);
     ck_assert_msg(st == BF_EUNSTABLE, "1.05 x the limit did not blow up");
     ck_assert_msg(strstr(err.msg, "node"), "%s", err.msg);
     bf_film_free(f);
@@ -371,6 +371,42 @@ START_TEST(stable_dt_estimate_is_sharp_for_phase_separation)
     /* at dx = 0.025 the separation mode at the kink centre decides
      * (dt <= dx sqrt(rho/(2 beta m)) = 3.1e-4 s < dx/sqrt(g h) = 8e-4 s) */
     check_sharp(0.025, kink, "phase-separation", 3.0e-4, 3.2e-4, 0.95, 5000);
+}
+END_TEST
+
+/* The models' step limit (filmsys): [scene] dt below the film's limit for
+ * film_every = 1; for film_every = K the largest dt whose film step K dt
+ * does not exceed it, naming [coupled] film_every; none for a static film
+ * or with force_dt. */
+START_TEST(film_step_limit_of_the_models)
+{
+    bf_film_keys k;
+    bf_err err = {0};
+    ck_assert(bf_params_defaults(&bf_filmsys_spec, &k, &err) == BF_OK);
+    const bf_run_ctx run = {1e-3, 1.0, 1000, 1};
+    const long every[] = {1, 3, 7, 0};
+    for (int q = 0; q < 5; q++) {
+        k.force_dt = q == 4;
+        const long K = q == 4 ? 1 : every[q];
+        bf_filmsys *fs;
+        ck_assert(bf_filmsys_create(&fs, &k, &run, K, &err) == BF_OK);
+        double L = bf_film_stable_dt(bf_filmsys_film(fs), NULL, 0);
+        bf_dt_limit lim = {0};
+        bf_filmsys_stable_dt(fs, &lim);
+        if (K == 0 || k.force_dt) {
+            ck_assert(lim.dt_max == 0);
+        } else {
+            const double d = lim.dt_max, up = nextafter(d, 1.0);
+            ck_assert_msg((double)K * d <= L && (double)K * up > L,
+                          "K = %ld: %.17g", K, d);
+            ck_assert_str_eq(lim.section, K > 1 ? "coupled" : "");
+            ck_assert_str_eq(lim.key, K > 1 ? "film_every" : "");
+            ck_assert_msg(strstr(lim.why, "film's stable limit") &&
+                              (K == 1 || strstr(lim.why, "film step")),
+                          "%s", lim.why);
+        }
+        bf_filmsys_free(fs);
+    }
 }
 END_TEST
 
@@ -653,6 +689,7 @@ Suite *suite_film(void)
     suite_add_tcase(s, tc);
     tc = tu_tcase("scenes");
     tcase_add_test(tc, large_dt_refused_or_stopped);
+    tcase_add_test(tc, film_step_limit_of_the_models);
     tcase_add_test(tc, fractions_stay_in_range_with_large_perturbations);
     tcase_add_test(tc, unhandled_fraction_goes_negative_in_stop_mode);
     tcase_add_test(tc, perturbed_kink_stays_converged_past_300s);

@@ -4,8 +4,9 @@
  *
  * One job: hold the state of one film and advance it by one step; report
  * the largest stable step for the current state.  The film knows nothing
- * of balls: a coupling adds its chemical potential through the array of
- * bf_film_mu_cpl() and reads the film through bf_film_psi()/bf_film_h().
+ * of balls: a coupling hands its chemical potential to each step
+ * (bf_film_step_invariant's mu_cpl) and reads the film through
+ * bf_film_psi()/bf_film_h().
  *
  * Model (phase k = d, c; s_d = +1, s_c = -1; CGS units):
  *   (3.1-3.2)  d/dt(alpha_k h) + d/dx(alpha_k h u_k) = 0
@@ -20,7 +21,7 @@
  * (sec. 3.4), by one mirrored ghost node on each side.
  *
  * The scheme and the choices it leaves open are documented in
- * src/film/film.c and in ../shared/spec/film-scheme.md.
+ * src/film/film.c and in docs/models/film.md.
  */
 #ifndef BALLFILM_FILM_H
 #define BALLFILM_FILM_H
@@ -88,20 +89,18 @@ const double *bf_film_u_c(const bf_film *f);
 const double *bf_film_ah_d(const bf_film *f);
 const double *bf_film_ah_c(const bf_film *f);
 
-/* The coupling chemical potential (eq. 3.11) on the nodes 0..N, in the
- * units of mu (g/(cm s^2)); zero until a coupling writes it before a
- * step. */
-double *bf_film_mu_cpl(bf_film *f);
-
 /* Largest stable step for the current state (s), and a short text naming
  * the limit that decides it (`why` may be NULL). */
 double bf_film_stable_dt(const bf_film *f, char *why, size_t cap);
 
-/* Advance by dt with the invariant scheme (3.15)-(3.16).  Fails with
- * BF_EUNSTABLE, naming the node and the value, at the first non-finite or
- * out-of-range value (alpha outside [0, 1], h <= 0); the film is then left
- * at the failed state. */
-bf_status bf_film_step_invariant(bf_film *f, double dt, bf_err *err);
+/* Advance by dt with the invariant scheme (3.15)-(3.16).  mu_cpl: the
+ * coupling chemical potential (eq. 3.11) on the nodes 0..N, in the units
+ * of mu (g/(cm s^2)), added to mu during this step; NULL: none (zero).
+ * Fails with BF_EUNSTABLE, naming the node and the value, at the first
+ * non-finite or out-of-range value (alpha outside [0, 1], h <= 0); the
+ * film is then left at the failed state. */
+bf_status bf_film_step_invariant(bf_film *f, double dt, const double *mu_cpl,
+                                 bf_err *err);
 
 /* Phase totals integral(alpha_k h) dx (cm^2), trapezoid weights: conserved
  * to round-off by the scheme. */

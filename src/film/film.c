@@ -1,6 +1,6 @@
 /* film.c: the invariant (Lax-Wendroff-type) scheme for the two-phase
  * shallow-water film, Yasuda 2010 eqs 3.15-3.16 (see film.h for the model
- * and ../shared/spec/film-scheme.md for the term-by-term reconstruction).
+ * and docs/models/film.md for the term-by-term reconstruction).
  *
  * For each phase k (s_d = +1, s_c = -1), with A = alpha_k h, u = u_k,
  * Q = P + s_k mu, everything on the right at level n:
@@ -28,7 +28,7 @@
  *         added once, explicitly.
  *
  * The one term the garbled print leaves in doubt is how mu enters the
- * dt^2/2 part of (3.16) (spec, uncertain point 1).  The exact Taylor term
+ * dt^2/2 part of (3.16) (docs/models/film.md).  The exact Taylor term
  * is -(1/rho_k) d/dx(dQ/dt).  For the hydrostatic part dP/dt = -(P u_m)_x
  * exactly, so W = P u_m.  For mu the print puts mu into W = (P +- mu) u_m,
  * but dmu/dt is not -(mu u_m)_x.  Linearised about a uniform mixture
@@ -75,7 +75,11 @@
  * Layout: every node array has one ghost each side (index -1..N+1), face
  * arrays hold face i+1/2 at index i (-1..N).  One allocation; no
  * allocation per step; the loops are plain and branch-free so that GCC
- * vectorises them at -O2.
+ * vectorises them at -O2 (the storage: film_impl.h).
+ *
+ * This file is the scheme (create, state, stable step, step); the
+ * diagnostics are in film_diag.c, the mirror projection in film_mirror.c,
+ * the state arrays and the checkpoint in film_state.c.
  */
 #include "ballfilm/film.h"
 
@@ -86,28 +90,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum {
-    /* node arrays */
-    V_X, V_AD, V_AC, V_UD, V_UC, V_H, V_PSI, V_MU, V_WD, V_WC,
-    V_AD1, V_AC1, V_UD1, V_UC1, V_H1, V_PSI1, V_MU1,
-    /* round-off compensation of alpha_k h (see update_loop), old and new */
-    V_KD, V_KC, V_KD1, V_KC1,
-    /* face arrays */
-    V_FD, V_FC, V_GD, V_GC,
-    V_COUNT
-};
-
-struct bf_film {
-    bf_film_params p;
-    long N;      /* intervals; nodes 0..N */
-    size_t len;  /* allocated length of each array (N + 3) */
-    double *mem;
-    double *v[V_COUNT]; /* each points at index 0 (ghost at -1) */
-    double *mucpl;      /* the coupling's mu (zero without one) */
-    unsigned long long lim_steps, lim_faces;
-};
-
-#define ARR(f, k) ((f)->v[k])
+#include "film/film_impl.h"
 
 static double *alloc_block(size_t n)
 {
@@ -141,10 +124,10 @@ bf_status bf_film_create(bf_film **out, const bf_film_params *p, bf_err *err)
     size_t len = ((size_t)f->N + 1 + 8 + 16) & ~(size_t)7;
     f->len = len;
     f->mem = alloc_block(len * V_COUNT);
-    f->mucpl = alloc_block(len);
-    if (!f->mem || !f->mucpl) {
+    f->zero = alloc_block(len);
+    if (!f->mem || !f->zero) {
         free(f->mem);
-        free(f->mucpl);
+        free(f->zero);
         free(f);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
@@ -170,7 +153,7 @@ void bf_film_free(bf_film *f)
     if (!f)
         return;
     free(f->mem);
-    free(f->mucpl);
+    free(f->zero);
     free(f);
 }
 
@@ -184,8 +167,6 @@ const double *bf_film_u_c(const bf_film *f) { return ARR(f, V_UC); }
 const double *bf_film_ah_d(const bf_film *f) { return ARR(f, V_AD); }
 const double *bf_film_ah_c(const bf_film *f) { return ARR(f, V_AC); }
 
-double *bf_film_mu_cpl(bf_film *f) { return f->mucpl + 8; }
-
 /* h, psi from A_d, A_c on nodes lo..hi (one definition: the step and
  * set_state/load must produce the same bits). */
 static void derive(long lo, long hi, const double *restrict ad,
@@ -197,6 +178,11 @@ static void derive(long lo, long hi, const double *restrict ad,
         h[i] = hh;
         psi[i] = (ad[i] - ac[i]) / hh;
     }
+}
+
+void bf_film_state_changed(bf_film *f)
+{
+    derive(0, f->N, ARR(f, V_AD), ARR(f, V_AC), ARR(f, V_H), ARR(f, V_PSI));
 }
 
 /* mirror ghosts: even for scalars, odd for velocities */
@@ -405,12 +391,13 @@ HOT void node_loop(int variant, long lo, long hi, double a, double b,
                const double *restrict ad, const double *restrict ac,
                const double *restrict ud, const double *restrict uc,
                const double *restrict psi, const double *restrict mc,
-               double *restrict mu, double *restrict wd, double *restrict wc)
+               long moff, double *restrict mu, double *restrict wd,
+               double *restrict wc)
 {
     for (long i = lo; i <= hi; i++) {
         double ps = psi[i];
         double m = ps * (b * ps * ps - a) -
-                   gl * ((psi[i + 1] - ps) - (ps - psi[i - 1])) + mc[i];
+                   gl * ((psi[i + 1] - ps) - (ps - psi[i - 1])) + mc[i + moff];
         mu[i] = m;
         if (variant == BF_FILM_MU_UM) {
             double md = rd * ad[i], mcc = rc * ac[i], pp = g * (md + mcc);
@@ -428,11 +415,14 @@ HOT void node_loop(int variant, long lo, long hi, double a, double b,
 /* the densities, or the constant 1 in the unit-density sweep (see sweep) */
 #define RHO(unit, r) ((unit) ? 1.0 : (r))
 
-HOT void node_pass(const step_ctx *c, int variant, int unit, long lo, long hi)
+/* moff: mu_cpl is read at node i + moff (the caller's array has no ghost
+ * nodes: its mirror image at a wall ghost is two nodes inwards) */
+HOT void node_pass(const step_ctx *c, int variant, int unit, long lo, long hi,
+                   long moff)
 {
     node_loop(variant, lo, hi, c->a, c->b, c->gl, c->g, RHO(unit, c->rd),
-              RHO(unit, c->rc), c->ad,
-              c->ac, c->ud, c->uc, c->psi, c->mc, c->mu, c->wd, c->wc);
+              RHO(unit, c->rc), c->ad, c->ac, c->ud, c->uc, c->psi, c->mc,
+              moff, c->mu, c->wd, c->wc);
 }
 
 /* Face fluxes F of (3.15) and G of (3.16) at faces i+1/2, i = lo..hi (of
@@ -638,9 +628,11 @@ HOT int sweep(bf_film *f, step_ctx *c, int variant, int unit)
     /* one pass after the other over the whole film (see "Speed"); the
      * vector loops start at index 0 (64-byte aligned) so that their stores
      * do not straddle cache lines: the ghost node -1 and face -1 go first
-     * on their own, and the velocities of nodes 1..7 */
-    node_pass(c, variant, unit, -1, -1);
-    node_pass(c, variant, unit, 0, N + 1);
+     * on their own, and the velocities of nodes 1..7; the ghost nodes read
+     * mu_cpl at their mirror images 1 and N - 1 */
+    node_pass(c, variant, unit, -1, -1, 2);
+    node_pass(c, variant, unit, 0, N, 0);
+    node_pass(c, variant, unit, N + 1, N + 1, -2);
     face_pass(c, variant, unit, -1, -1);
     face_pass(c, variant, unit, 0, N);
     int bad = update_pass(c, 0, N);
@@ -676,7 +668,8 @@ HOT int sweep(bf_film *f, step_ctx *c, int variant, int unit)
 #if defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
-bf_status bf_film_step_invariant(bf_film *f, double dt, bf_err *err)
+bf_status bf_film_step_invariant(bf_film *f, double dt, const double *mu_cpl,
+                                 bf_err *err)
 {
     const bf_film_params *p = &f->p;
     const long N = f->N;
@@ -696,7 +689,7 @@ bf_status bf_film_step_invariant(bf_film *f, double dt, bf_err *err)
         .va = p->vanish,
         .ad = ARR(f, V_AD), .ac = ARR(f, V_AC),
         .ud = ARR(f, V_UD), .uc = ARR(f, V_UC),
-        .psi = ARR(f, V_PSI), .mc = f->mucpl + 8,
+        .psi = ARR(f, V_PSI), .mc = mu_cpl ? mu_cpl : f->zero + 8,
         .mu = ARR(f, V_MU),
         .wd = ARR(f, V_WD), .wc = ARR(f, V_WC),
         .Fd = ARR(f, V_FD), .Fc = ARR(f, V_FC),
@@ -708,16 +701,16 @@ bf_status bf_film_step_invariant(bf_film *f, double dt, bf_err *err)
         .kd = ARR(f, V_KD), .kc = ARR(f, V_KC),
         .kd1 = ARR(f, V_KD1), .kc1 = ARR(f, V_KC1),
     };
-    /* ghosts of level n: psi and mu_cpl need two (mu on -1..N+1) */
+    /* ghosts of level n: psi needs two (mu on -1..N+1); mu_cpl none (the
+     * node pass reads it at the ghosts' mirror images) */
     ghost_even(ARR(f, V_AD), N);
     ghost_even(ARR(f, V_AC), N);
     ghost_odd(ARR(f, V_UD), N);
     ghost_odd(ARR(f, V_UC), N);
-    double *psi = ARR(f, V_PSI), *mc = f->mucpl + 8;
+    double *psi = ARR(f, V_PSI);
     ghost_even(psi, N);
     psi[-2] = psi[2];
     psi[N + 2] = psi[N - 2];
-    ghost_even(mc, N);
 
     int bad;
     const int unit = p->rho_d == 1.0 && p->rho_c == 1.0;
@@ -759,177 +752,3 @@ bf_status bf_film_step_invariant(bf_film *f, double dt, bf_err *err)
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC pop_options
 #endif
-
-/* ------------------------------------------------------------ diagnostics */
-
-/* Neumaier-compensated trapezoid sum of a[0..N] times dx, so that the
- * diagnostic itself does not add round-off to the conservation check. */
-static double trapezoid(const double *a, long N, double dx)
-{
-    double s = 0.0, c = 0.0;
-    for (long i = 0; i <= N; i++) {
-        double v = (i == 0 || i == N) ? 0.5 * a[i] : a[i];
-        double t = s + v;
-        if (fabs(s) >= fabs(v))
-            c += (s - t) + v;
-        else
-            c += (v - t) + s;
-        s = t;
-    }
-    return (s + c) * dx;
-}
-
-void bf_film_totals(const bf_film *f, double *mass_d, double *mass_c)
-{
-    *mass_d = trapezoid(ARR(f, V_AD), f->N, f->p.dx);
-    *mass_c = trapezoid(ARR(f, V_AC), f->N, f->p.dx);
-}
-
-double bf_film_max_speed(const bf_film *f)
-{
-    const double *ud = ARR(f, V_UD), *uc = ARR(f, V_UC);
-    double m = 0.0;
-    for (long i = 0; i <= f->N; i++)
-        m = fmax(m, fmax(fabs(ud[i]), fabs(uc[i])));
-    return m;
-}
-
-double bf_film_min_alpha(const bf_film *f)
-{
-    const double *ad = ARR(f, V_AD), *ac = ARR(f, V_AC);
-    double m = 1.0;
-    for (long i = 0; i <= f->N; i++) {
-        double h = ad[i] + ac[i];
-        m = fmin(m, fmin(ad[i] / h, ac[i] / h));
-    }
-    return m;
-}
-
-void bf_film_limiter_counts(const bf_film *f, unsigned long long *steps,
-                            unsigned long long *faces)
-{
-    *steps = f->lim_steps;
-    *faces = f->lim_faces;
-}
-
-/* ------------------------------------------------------------ symmetry */
-
-/* The mean of a and b as 0.5 fl(a + b), exact but for the rounding error
- * of the sum, returned in *e (Knuth's TwoSum: a + b = s + e exactly). */
-static double mean2(double a, double b, double *e)
-{
-    double s = a + b, bb = s - a;
-    *e = (a - (s - bb)) + (b - bb);
-    return 0.5 * s;
-}
-
-/* One pass over the pairs (i, N - i), i <= N - i.  The maxima by
- * comparisons into separate accumulators, not fmax (a library call per
- * value at -O2); h and psi of the pair from the projected contents with
- * the bits derive() gives (h is a sum, even; psi at N - i is exactly
- * -psi at i), one division per pair.  Costs about 0.8 of a film step
- * (scalar; measured with perf on the Fig. 8 scene). */
-void bf_film_mirror(bf_film *f, int apply, double corr[2])
-{
-    const long N = f->N;
-    double *ad = ARR(f, V_AD), *ac = ARR(f, V_AC);
-    double *ud = ARR(f, V_UD), *uc = ARR(f, V_UC);
-    double *kd = ARR(f, V_KD), *kc = ARR(f, V_KC);
-    double *h = ARR(f, V_H), *psi = ARR(f, V_PSI);
-    double da = 0.0, du = 0.0, hmax = 0.0, umax = 0.0;
-#define KEEP_MAX(m, v) ((m) = (v) > (m) ? (v) : (m))
-    for (long i = 0; i <= N - i; i++) {
-        long j = N - i;
-        /* distance from the mirror image: d at i against c at j, c at i
-         * against d at j (the same pair twice when i = j) */
-        KEEP_MAX(da, fabs(ad[i] - ac[j]));
-        KEEP_MAX(da, fabs(ac[i] - ad[j]));
-        KEEP_MAX(du, fabs(ud[i] + uc[j]));
-        KEEP_MAX(du, fabs(uc[i] + ud[j]));
-        KEEP_MAX(hmax, ad[i] + ac[i]);
-        KEEP_MAX(hmax, ad[j] + ac[j]);
-        double ua = fabs(ud[i]) > fabs(uc[i]) ? fabs(ud[i]) : fabs(uc[i]);
-        double ub = fabs(ud[j]) > fabs(uc[j]) ? fabs(ud[j]) : fabs(uc[j]);
-        KEEP_MAX(umax, ua > ub ? ua : ub);
-        if (!apply)
-            continue;
-        double e1, e2;
-        /* phase d at i with phase c at j, and phase c at i with phase d
-         * at j (the same pair when i = j) */
-        double a1 = mean2(ad[i], ac[j], &e1), k1 = 0.5 * ((kd[i] + kc[j]) + e1);
-        double a2 = mean2(ac[i], ad[j], &e2), k2 = 0.5 * ((kc[i] + kd[j]) + e2);
-        double u1 = 0.5 * (ud[i] - uc[j]), u2 = 0.5 * (uc[i] - ud[j]);
-        ad[i] = ac[j] = a1;
-        kd[i] = kc[j] = k1;
-        ac[i] = ad[j] = a2;
-        kc[i] = kd[j] = k2;
-        ud[i] = u1;
-        uc[j] = -u1;
-        uc[i] = u2;
-        ud[j] = -u2;
-        double hh = a1 + a2, ps = (a1 - a2) / hh;
-        h[i] = h[j] = hh;
-        psi[j] = 0.0 - ps; /* +0 for psi = 0, as derive() gives */
-        psi[i] = ps;
-    }
-#undef KEEP_MAX
-    corr[0] = hmax > 0 ? 0.5 * da / hmax : 0.5 * da;
-    corr[1] = umax > 0 ? 0.5 * du / umax : 0.5 * du;
-}
-
-/* ------------------------------------------------------------ checkpoint */
-
-static const int ckpt_vars[] = {V_AD, V_AC, V_UD, V_UC, V_KD, V_KC};
-static const char *const ckpt_names[] = {"ah_d", "ah_c", "u_d", "u_c",
-                                         "ah_d_rounding", "ah_c_rounding"};
-enum { NCKPT = sizeof ckpt_vars / sizeof ckpt_vars[0] };
-_Static_assert((int)NCKPT == (int)BF_FILM_NSTATE, "film state arrays");
-
-size_t bf_film_state(bf_film *f, double *arr[BF_FILM_NSTATE])
-{
-    for (int k = 0; k < NCKPT; k++)
-        arr[k] = ARR(f, ckpt_vars[k]);
-    return (size_t)f->N + 1;
-}
-
-void bf_film_state_changed(bf_film *f)
-{
-    derive(0, f->N, ARR(f, V_AD), ARR(f, V_AC), ARR(f, V_H), ARR(f, V_PSI));
-}
-
-bf_status bf_film_save(const bf_film *f, bf_ckpt *ck, const char *prefix,
-                       bf_err *err)
-{
-    char name[256];
-    bf_status st;
-    for (int k = 0; k < NCKPT; k++) {
-        snprintf(name, sizeof name, "%s.%s", prefix, ckpt_names[k]);
-        if ((st = bf_ckpt_put(ck, name, ARR(f, ckpt_vars[k]),
-                              (size_t)f->N + 1, err)))
-            return st;
-    }
-    int64_t c[2] = {(int64_t)f->lim_steps, (int64_t)f->lim_faces};
-    snprintf(name, sizeof name, "%s.limiter", prefix);
-    return bf_ckpt_put_i64(ck, name, c, 2, err);
-}
-
-bf_status bf_film_load(bf_film *f, const bf_ckpt *ck, const char *prefix,
-                       bf_err *err)
-{
-    char name[256];
-    bf_status st;
-    for (int k = 0; k < NCKPT; k++) {
-        snprintf(name, sizeof name, "%s.%s", prefix, ckpt_names[k]);
-        if ((st = bf_ckpt_get(ck, name, ARR(f, ckpt_vars[k]), (size_t)f->N + 1,
-                              err)))
-            return st;
-    }
-    int64_t c[2];
-    snprintf(name, sizeof name, "%s.limiter", prefix);
-    if ((st = bf_ckpt_get_i64(ck, name, c, 2, err)))
-        return st;
-    f->lim_steps = (unsigned long long)c[0];
-    f->lim_faces = (unsigned long long)c[1];
-    bf_film_state_changed(f);
-    return BF_OK;
-}

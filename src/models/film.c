@@ -4,15 +4,15 @@
  */
 #include <stdlib.h>
 
-#include "ballfilm/filmsys.h"
 #include "ballfilm/model.h"
+#include "models/filmsys.h"
 
-static bf_status film_create(void **self, const bf_scene *sc,
-                          const bf_model_setup *setup, bf_err *err)
+static bf_status film_create(void **self, const bf_model_setup *setup,
+                             bf_err *err)
 {
-    (void)setup;
     bf_filmsys *fs;
-    bf_status st = bf_filmsys_create(&fs, sc, 1, err);
+    bf_status st = bf_filmsys_create(
+        &fs, bf_setup_get(setup, &bf_filmsys_spec, NULL), &setup->run, 1, err);
     if (!st)
         *self = fs;
     return st;
@@ -20,12 +20,17 @@ static bf_status film_create(void **self, const bf_scene *sc,
 
 static void film_destroy(void *self) { bf_filmsys_free(self); }
 
+static void film_stable_dt(const void *self, bf_dt_limit *lim)
+{
+    bf_filmsys_stable_dt(self, lim);
+}
+
 
 static bf_status film_step(void *self, long n, double t, double dt, bf_err *err)
 {
     (void)n;
     (void)t;
-    return bf_filmsys_step(self, dt, err);
+    return bf_filmsys_step(self, dt, NULL, err);
 }
 
 static bf_status film_output_open(void *self, bf_out *out, bf_err *err)
@@ -67,8 +72,9 @@ const bf_model_type bf_model_film = {
            "separation, invariant scheme (Yasuda sec. 3.1-3.4)",
     .flags = 0,
     .specs = film_specs,
-    .create_scene = film_create,
+    .create = film_create,
     .destroy = film_destroy,
+    .stable_dt = film_stable_dt,
     .step = film_step,
     .output_open = film_output_open,
     .output_row = film_output_row,

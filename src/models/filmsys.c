@@ -19,74 +19,77 @@
  * The random numbers come from GSL's mt19937 seeded with [film] seed, drawn
  * node by node (eps_d then eps_c): same seed, same bits.
  */
-#include "ballfilm/filmsys.h"
-
 #include <gsl/gsl_rng.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "models/filmsys.h"
+
 enum { INIT_KINK, INIT_UNIFORM, INIT_FILE };
 enum { PERT_POSITIVE, PERT_SIGNED };
 
 static const bf_param film_params[] = {
-    {"length", BF_REAL, 0, "cm", "50", "film length L (walls at -L/2 and L/2)",
-     BF_POS, 0, 0, NULL},
-    {"dx", BF_REAL, 0, "cm", "0.1", "node spacing; L/dx must be a whole number",
-     BF_POS, 0, 0, NULL},
-    {"h0", BF_REAL, 0, "cm", "1", "initial height (kink and uniform)", BF_POS, 0,
-     0, NULL},
-    {"rho_d", BF_REAL, 0, "g/cm^3", "1", "density of the minor phase d", BF_POS,
-     0, 0, NULL},
-    {"rho_c", BF_REAL, 0, "g/cm^3", "1", "density of the major phase c", BF_POS,
-     0, 0, NULL},
-    {"nu", BF_REAL, 0, "cm^2/s", "0.01", "lateral viscosity (sec. 3.4)",
-     BF_NONNEG, 0, 0, NULL},
-    {"g", BF_REAL, 0, "cm/s^2", "980", "gravitational acceleration", BF_NONNEG,
-     0, 0, NULL},
-    {"a", BF_REAL, 0, "g/(cm s^2)", "1", "Ginzburg-Landau constant a", BF_POS, 0,
-     0, NULL},
-    {"b", BF_REAL, 0, "g/(cm s^2)", "1",
+    {"length", BF_AT(bf_film_keys, length, BF_REAL), "cm", "50",
+     "film length L (walls at -L/2 and L/2)", BF_POS, 0, 0, NULL},
+    {"dx", BF_AT(bf_film_keys, dx, BF_REAL), "cm", "0.1",
+     "node spacing; L/dx must be a whole number", BF_POS, 0, 0, NULL},
+    {"h0", BF_AT(bf_film_keys, h0, BF_REAL), "cm", "1",
+     "initial height (kink and uniform)", BF_POS, 0, 0, NULL},
+    {"rho_d", BF_AT(bf_film_keys, rho_d, BF_REAL), "g/cm^3", "1",
+     "density of the minor phase d", BF_POS, 0, 0, NULL},
+    {"rho_c", BF_AT(bf_film_keys, rho_c, BF_REAL), "g/cm^3", "1",
+     "density of the major phase c", BF_POS, 0, 0, NULL},
+    {"nu", BF_AT(bf_film_keys, nu, BF_REAL), "cm^2/s", "0.01",
+     "lateral viscosity (sec. 3.4)", BF_NONNEG, 0, 0, NULL},
+    {"g", BF_AT(bf_film_keys, g, BF_REAL), "cm/s^2", "980",
+     "gravitational acceleration", BF_NONNEG, 0, 0, NULL},
+    {"a", BF_AT(bf_film_keys, a, BF_REAL), "g/(cm s^2)", "1",
+     "Ginzburg-Landau constant a", BF_POS, 0, 0, NULL},
+    {"b", BF_AT(bf_film_keys, b, BF_REAL), "g/(cm s^2)", "1",
      "Ginzburg-Landau constant b (b >= a keeps |psi_e| <= 1)", BF_POS, 0, 0,
      NULL},
-    {"gamma", BF_REAL, 0, "g cm/s^2", "1", "Ginzburg-Landau gradient constant",
-     BF_POS, 0, 0, NULL},
-    {"initial", BF_ENUM, 0, "", "kink",
+    {"gamma", BF_AT(bf_film_keys, gamma, BF_REAL), "g cm/s^2", "1",
+     "Ginzburg-Landau gradient constant", BF_POS, 0, 0, NULL},
+    {"initial", BF_AT(bf_film_keys, initial, BF_ENUM), "", "kink",
      "initial psi: kink (eq. 3.17), uniform (psi0), or file (last profile "
      "of an earlier run's output)",
      0, 0, 0, "kink|uniform|file"},
-    {"center", BF_REAL, 0, "cm", "0", "kink centre x0", 0, 0, 0, NULL},
-    {"psi0", BF_REAL, 0, "1", "0", "order parameter of the uniform film",
-     BF_MIN | BF_MAX, -1, 1, NULL},
-    {"file", BF_STR, 0, "", "", "HDF5 output of an earlier run (initial = file)",
-     0, 0, 0, NULL},
-    {"perturbation", BF_REAL, 0, "1", "0",
+    {"center", BF_AT(bf_film_keys, center, BF_REAL), "cm", "0",
+     "kink centre x0", 0, 0, 0, NULL},
+    {"psi0", BF_AT(bf_film_keys, psi0, BF_REAL), "1", "0",
+     "order parameter of the uniform film", BF_MIN | BF_MAX, -1, 1, NULL},
+    {"file", BF_AT(bf_film_keys, file, BF_STR), "", "",
+     "HDF5 output of an earlier run (initial = file)", 0, 0, 0, NULL},
+    {"perturbation", BF_AT(bf_film_keys, perturbation, BF_REAL), "1", "0",
      "amplitude of the random perturbation of the volume fractions",
      BF_MIN | BF_MAX, 0, 0.5, NULL},
-    {"perturbation_mode", BF_ENUM, 0, "", "positive",
+    {"perturbation_mode", BF_AT(bf_film_keys, perturbation_mode, BF_ENUM), "",
+     "positive",
      "positive: alpha_k += [0, amp) then renormalised; signed: alpha_d += "
      "[-amp, amp), clipped to [0, 1]",
      0, 0, 0, "positive|signed"},
-    {"seed", BF_INT, 0, "", "1", "seed of the GSL mt19937 generator", BF_NONNEG,
-     0, 0, NULL},
-    {"mu_taylor", BF_ENUM, 0, "", "midpoint",
+    {"seed", BF_AT(bf_film_keys, seed, BF_INT), "", "1",
+     "seed of the GSL mt19937 generator", BF_NONNEG, 0, 0, NULL},
+    {"mu_taylor", BF_AT(bf_film_keys, mu_taylor, BF_ENUM), "", "midpoint",
      "how mu enters the dt^2/2 term of (3.16): midpoint (consistent, "
      "2nd order), um (as printed: W = (P +- mu) u_m), uk (W = (P +- mu) u_k)",
      0, 0, 0, "midpoint|um|uk"},
-    {"positivity", BF_ENUM, 0, "", "limit",
+    {"positivity", BF_AT(bf_film_keys, positivity, BF_ENUM), "", "limit",
      "negative volume fractions: limit (flux limiter keeps alpha >= 0, "
      "conservative) or stop (the run stops at the first one)",
      0, 0, 0, "limit|stop"},
-    {"vanish", BF_REAL, 0, "1", "1e-8",
+    {"vanish", BF_AT(bf_film_keys, vanish, BF_REAL), "1", "1e-8",
      "where a volume fraction is below this, that phase's velocity is set to "
      "the mixture velocity after each step (0: never)",
      BF_MIN | BF_MAX, 0, 0.5, NULL},
-    {"force_dt", BF_BOOL, 0, "", "false",
+    {"force_dt", BF_AT(bf_film_keys, force_dt, BF_BOOL), "", "false",
      "run even if [scene] dt exceeds the stable limit (stops at the first "
      "bad value)",
      0, 0, 0, NULL},
-    {"profile_every", BF_INTERVAL, 0, "steps | s", "0",
+    {"profile_every", BF_AT(bf_film_keys, profile_every, BF_INTERVAL),
+     "steps | s", "0",
      "interval of the profile output /film/h, /film/psi, ... ('N' steps or "
      "'T s'; 0: at every [scene] output_every row); the first and last "
      "states are always written",
@@ -94,16 +97,18 @@ static const bf_param film_params[] = {
     {0},
 };
 
-const bf_section_spec bf_filmsys_spec = {
+const bf_section_spec bf_filmsys_spec = BF_SECTION(
     "film",
     "two-phase shallow-water film with Ginzburg-Landau phase separation "
     "(Yasuda sec. 3.1-3.4)",
-    film_params, 0};
+    film_params, bf_film_keys);
 
 struct bf_filmsys {
     bf_film *film;
     size_t n;
     double dt, film_dt; /* [scene] dt; the film's own step (0: static) */
+    long every;         /* film steps every `every` steps (0: static) */
+    int force_dt;       /* [film] force_dt: no stable-step limit */
     long prof_every, last_step;
     int kink;
     double x0;
@@ -134,23 +139,14 @@ void bf_filmsys_free(bf_filmsys *fs)
     free(fs);
 }
 
-static long interval_steps(bf_interval iv, double dt)
-{
-    if (!iv.in_time)
-        return iv.steps;
-    double k = floor(iv.time / dt + 0.5);
-    return iv.time > 0 && k < 1 ? 1 : (long)k;
-}
-
 /* The last profile row of an earlier run. */
-static bf_status read_file(bf_filmsys *fs, const bf_scene *sc, double *h,
+static bf_status read_file(bf_filmsys *fs, const char *path, double *h,
                            double *psi, double *ud, double *uc, bf_err *err)
 {
-    const char *path = bf_scene_str(sc, "film", "file");
     if (!*path)
-        return bf_scene_fail(sc, err, "film", "file",
-                             "initial = file needs the HDF5 file of an "
-                             "earlier run");
+        return bf_fail_key(err, BF_EINPUT, "film", "file",
+                           "initial = file needs the HDF5 file of an "
+                           "earlier run");
     const char *names[4] = {"/film/h", "/film/psi", "/film/u_d", "/film/u_c"};
     double *dst[4] = {h, psi, ud, uc};
     for (int k = 0; k < 4; k++) {
@@ -158,13 +154,13 @@ static bf_status read_file(bf_filmsys *fs, const bf_scene *sc, double *h,
         size_t n0, n1;
         bf_err e2 = {0};
         if (bf_h5_read(path, names[k], &d, &n0, &n1, &e2))
-            return bf_scene_fail(sc, err, "film", "file", "%s", e2.msg);
+            return bf_fail_key(err, BF_EINPUT, "film", "file", "%s", e2.msg);
         if (n1 != fs->n || n0 < 1) {
             free(d);
-            return bf_scene_fail(sc, err, "film", "file",
-                                 "%s: %s has %zu x %zu values; this film has "
-                                 "%zu nodes (same length and dx needed)",
-                                 path, names[k], n0, n1, fs->n);
+            return bf_fail_key(err, BF_EINPUT, "film", "file",
+                               "%s: %s has %zu x %zu values; this film has "
+                               "%zu nodes (same length and dx needed)",
+                               path, names[k], n0, n1, fs->n);
         }
         memcpy(dst[k], d + (n0 - 1) * n1, fs->n * sizeof(double));
         free(d);
@@ -172,7 +168,8 @@ static bf_status read_file(bf_filmsys *fs, const bf_scene *sc, double *h,
     return BF_OK;
 }
 
-static bf_status initial_state(bf_filmsys *fs, const bf_scene *sc, bf_err *err)
+static bf_status initial_state(bf_filmsys *fs, const bf_film_keys *k,
+                               bf_err *err)
 {
     bf_film *f = fs->film;
     const bf_film_params *p = bf_film_params_of(f);
@@ -183,31 +180,28 @@ static bf_status initial_state(bf_filmsys *fs, const bf_scene *sc, bf_err *err)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     double *h = buf, *psi = buf + n, *ud = buf + 2 * n, *uc = buf + 3 * n;
     bf_status st = BF_OK;
-    int init = bf_scene_enum(sc, "film", "initial");
-    double h0 = bf_scene_real(sc, "film", "h0");
-    fs->kink = init == INIT_KINK;
-    fs->x0 = bf_scene_real(sc, "film", "center");
-    if (init == INIT_FILE) {
-        st = read_file(fs, sc, h, psi, ud, uc, err);
+    fs->kink = k->initial == INIT_KINK;
+    fs->x0 = k->center;
+    if (k->initial == INIT_FILE) {
+        st = read_file(fs, k->file, h, psi, ud, uc, err);
     } else {
-        double psi0 = bf_scene_real(sc, "film", "psi0");
         for (size_t i = 0; i < n; i++) {
-            h[i] = h0;
-            psi[i] = init == INIT_KINK ? bf_film_kink(p, fs->x0, x[i]) : psi0;
+            h[i] = k->h0;
+            psi[i] = k->initial == INIT_KINK ? bf_film_kink(p, fs->x0, x[i])
+                                             : k->psi0;
         }
     }
-    double amp = bf_scene_real(sc, "film", "perturbation");
+    double amp = k->perturbation;
     if (!st && amp > 0) {
         gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
         if (!r) {
             free(buf);
             return bf_fail(err, BF_EINTERNAL, "out of memory");
         }
-        gsl_rng_set(r, (unsigned long)bf_scene_int(sc, "film", "seed"));
-        int mode = bf_scene_enum(sc, "film", "perturbation_mode");
+        gsl_rng_set(r, (unsigned long)k->seed);
         for (size_t i = 0; i < n; i++) {
             double ad = 0.5 * (1.0 + psi[i]), ac = 0.5 * (1.0 - psi[i]);
-            if (mode == PERT_POSITIVE) {
+            if (k->perturbation_mode == PERT_POSITIVE) {
                 ad += amp * gsl_rng_uniform(r);
                 ac += amp * gsl_rng_uniform(r);
                 double s = ad + ac;
@@ -225,51 +219,52 @@ static bf_status initial_state(bf_filmsys *fs, const bf_scene *sc, bf_err *err)
     if (!st) {
         bf_err e2 = {0};
         if (bf_film_set_state(f, h, psi, ud, uc, &e2))
-            st = bf_scene_fail(sc, err, "film", "initial", "%s", e2.msg);
+            st = bf_fail_key(err, BF_EINPUT, "film", "initial", "%s", e2.msg);
     }
     free(buf);
     return st;
 }
 
-bf_status bf_filmsys_create(bf_filmsys **out, const bf_scene *sc,
-                            long film_every, bf_err *err)
+bf_status bf_filmsys_create(bf_filmsys **out, const bf_film_keys *k,
+                            const bf_run_ctx *run, long film_every,
+                            bf_err *err)
 {
     *out = NULL;
-    bf_film_params p = {
-        .length = bf_scene_real(sc, "film", "length"),
-        .dx = bf_scene_real(sc, "film", "dx"),
-        .rho_d = bf_scene_real(sc, "film", "rho_d"),
-        .rho_c = bf_scene_real(sc, "film", "rho_c"),
-        .nu = bf_scene_real(sc, "film", "nu"),
-        .g = bf_scene_real(sc, "film", "g"),
-        .a = bf_scene_real(sc, "film", "a"),
-        .b = bf_scene_real(sc, "film", "b"),
-        .gamma = bf_scene_real(sc, "film", "gamma"),
-    };
     static const bf_film_mu_taylor mt[] = {BF_FILM_MU_MIDPOINT, BF_FILM_MU_UM,
                                            BF_FILM_MU_UK};
-    p.mu_taylor = mt[bf_scene_enum(sc, "film", "mu_taylor")];
-    p.limit_positive = bf_scene_enum(sc, "film", "positivity") == 0;
-    p.vanish = bf_scene_real(sc, "film", "vanish");
-    if (bf_scene_enum(sc, "film", "initial") == INIT_KINK && p.a > p.b)
-        return bf_scene_fail(sc, err, "film", "b",
-                             "the kink's far field psi_e = sqrt(a/b) = %g "
-                             "exceeds 1 (volume fractions outside [0, 1]): "
-                             "use b >= a",
-                             sqrt(p.a / p.b));
+    bf_film_params p = {
+        .length = k->length,
+        .dx = k->dx,
+        .rho_d = k->rho_d,
+        .rho_c = k->rho_c,
+        .nu = k->nu,
+        .g = k->g,
+        .a = k->a,
+        .b = k->b,
+        .gamma = k->gamma,
+        .mu_taylor = mt[k->mu_taylor],
+        .limit_positive = k->positivity == 0,
+        .vanish = k->vanish,
+    };
+    if (k->initial == INIT_KINK && p.a > p.b)
+        return bf_fail_key(err, BF_EINPUT, "film", "b",
+                           "the kink's far field psi_e = sqrt(a/b) = %g "
+                           "exceeds 1 (volume fractions outside [0, 1]): "
+                           "use b >= a",
+                           sqrt(p.a / p.b));
     bf_filmsys *fs = calloc(1, sizeof *fs);
     if (!fs)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     bf_err e2 = {0};
     if (bf_film_create(&fs->film, &p, &e2)) {
         free(fs);
-        return bf_scene_fail(sc, err, "film", "dx", "%s", e2.msg);
+        return bf_fail_key(err, BF_EINPUT, "film", "dx", "%s", e2.msg);
     }
     fs->n = bf_film_nodes(fs->film);
     fs->tmp = calloc(fs->n, sizeof(double));
     fs->kink0 = calloc(fs->n, sizeof(double));
     bf_status st = fs->tmp && fs->kink0
-                       ? initial_state(fs, sc, err)
+                       ? initial_state(fs, k, err)
                        : bf_fail(err, BF_EINTERNAL, "out of memory");
     for (size_t i = 0; !st && i < fs->n; i++)
         fs->kink0[i] = bf_film_kink(&p, fs->x0, bf_film_x(fs->film)[i]);
@@ -277,37 +272,14 @@ bf_status bf_filmsys_create(bf_filmsys **out, const bf_scene *sc,
         bf_filmsys_free(fs);
         return st;
     }
-    fs->dt = bf_scene_real(sc, "scene", "dt");
+    fs->dt = run->dt;
+    fs->every = film_every;
     fs->film_dt = (double)film_every * fs->dt;
-    char why[256];
-    double lim = bf_film_stable_dt(fs->film, why, sizeof why);
-    if (film_every > 0 && fs->film_dt > lim &&
-        !bf_scene_bool(sc, "film", "force_dt")) {
-        if (film_every == 1)
-            st = bf_scene_fail(sc, err, "scene", "dt",
-                               "dt = %g s exceeds the film's stable limit "
-                               "%.4g s (%s); use a smaller dt, or set [film] "
-                               "force_dt = true to run anyway",
-                               fs->dt, lim, why);
-        else
-            st = bf_scene_fail(sc, err, "coupled", "film_every",
-                               "the film step %ld x dt = %g s exceeds the "
-                               "film's stable limit %.4g s (%s); use a "
-                               "smaller film_every, or set [film] force_dt = "
-                               "true to run anyway",
-                               film_every, fs->film_dt, lim, why);
-        bf_filmsys_free(fs);
-        return st;
-    }
-    double t_end = bf_scene_real(sc, "scene", "t_end");
-    fs->last_step = (long)ceil(t_end / fs->dt * (1.0 - 1e-12));
-    fs->prof_every = interval_steps(bf_scene_interval(sc, "film",
-                                                      "profile_every"),
-                                    fs->dt);
+    fs->force_dt = k->force_dt;
+    fs->last_step = run->nsteps;
+    fs->prof_every = bf_interval_steps(k->profile_every, fs->dt);
     if (fs->prof_every < 1)
-        fs->prof_every = interval_steps(bf_scene_interval(sc, "scene",
-                                                          "output_every"),
-                                        fs->dt);
+        fs->prof_every = run->output_every;
     if (fs->prof_every < 1)
         fs->prof_every = 1;
     bf_film_totals(fs->film, &fs->m0[0], &fs->m0[1]);
@@ -315,9 +287,51 @@ bf_status bf_filmsys_create(bf_filmsys **out, const bf_scene *sc,
     return BF_OK;
 }
 
-bf_status bf_filmsys_step(bf_filmsys *fs, double dt, bf_err *err)
+/* The largest dt whose film step K dt (in floating point) does not exceed
+ * lim, so that refusing dt > it is refusing K dt > lim exactly. */
+static double largest_dt(double lim, long K)
 {
-    return bf_film_step_invariant(fs->film, dt, err);
+    double d = lim / (double)K;
+    while ((double)K * d > lim)
+        d = nextafter(d, 0.0);
+    for (double up = nextafter(d, INFINITY); (double)K * up <= lim;
+         up = nextafter(d, INFINITY))
+        d = up;
+    return d;
+}
+
+void bf_filmsys_stable_dt(const bf_filmsys *fs, bf_dt_limit *lim)
+{
+    char why[256];
+    if (fs->every < 1 || fs->force_dt)
+        return;
+    double L = bf_film_stable_dt(fs->film, why, sizeof why);
+    if (!(L > 0 && L < INFINITY))
+        return; /* nothing limits it (a film at rest without gravity) */
+    lim->dt_max = largest_dt(L, fs->every);
+    if (fs->every == 1) {
+        snprintf(lim->why, sizeof lim->why,
+                 "the film's stable limit %.4g s (%s)", L, why);
+        snprintf(lim->advice, sizeof lim->advice,
+                 "use a smaller dt, or set [film] force_dt = true to run "
+                 "anyway");
+        return;
+    }
+    snprintf(lim->why, sizeof lim->why,
+             "%.4g s = 1/%ld of the film's stable limit: the film step %ld x "
+             "dt = %g s exceeds the film's stable limit %.4g s (%s)",
+             lim->dt_max, fs->every, fs->every, fs->film_dt, L, why);
+    snprintf(lim->advice, sizeof lim->advice,
+             "use a smaller film_every, or set [film] force_dt = true to run "
+             "anyway");
+    snprintf(lim->section, sizeof lim->section, "coupled");
+    snprintf(lim->key, sizeof lim->key, "film_every");
+}
+
+bf_status bf_filmsys_step(bf_filmsys *fs, double dt, const double *mu_cpl,
+                          bf_err *err)
+{
+    return bf_film_step_invariant(fs->film, dt, mu_cpl, err);
 }
 
 double bf_filmsys_kink_error(const bf_filmsys *fs)
@@ -436,37 +450,32 @@ void bf_filmsys_report(const bf_filmsys *fs, FILE *out)
                 bf_filmsys_kink_error(fs));
 }
 
-/* checkpoint names: prefix + "film" (the film's arrays), + ".m0", +
- * ".drift" */
-typedef struct filmsys_names {
-    char film[96], m0[104], drift[104];
-} filmsys_names;
-
-static filmsys_names names_of(const char *prefix)
-{
-    filmsys_names n;
-    snprintf(n.film, sizeof n.film, "%sfilm", prefix);
-    snprintf(n.m0, sizeof n.m0, "%s.m0", n.film);
-    snprintf(n.drift, sizeof n.drift, "%s.drift", n.film);
-    return n;
-}
+/* Checkpoint: the film's arrays (film_state.c) and the totals at t = 0 and
+ * the drift seen, all under prefix + "film" (entries film.ah_d, ...,
+ * film.m0, film.drift). */
+static const bf_field filmsys_fields[] = {
+    BF_FIELD_ARRAY(bf_filmsys, m0, BF_F_DOUBLE, "cm^2"),
+    BF_FIELD(bf_filmsys, drift, BF_F_DOUBLE, "1"),
+};
 
 bf_status bf_filmsys_save(const bf_filmsys *fs, bf_ckpt *ck,
                           const char *prefix, bf_err *err)
 {
-    filmsys_names n = names_of(prefix);
-    bf_status st = bf_film_save(fs->film, ck, n.film, err);
-    if (!st)
-        st = bf_ckpt_put(ck, n.m0, fs->m0, 2, err);
-    return st ? st : bf_ckpt_put_real(ck, n.drift, fs->drift, err);
+    char name[96];
+    snprintf(name, sizeof name, "%sfilm", prefix);
+    bf_status st = bf_film_save(fs->film, ck, name, err);
+    return st ? st
+              : bf_ckpt_put_fields(ck, name, filmsys_fields,
+                                   BF_NFIELDS(filmsys_fields), fs, err);
 }
 
 bf_status bf_filmsys_load(bf_filmsys *fs, const bf_ckpt *ck,
                           const char *prefix, bf_err *err)
 {
-    filmsys_names n = names_of(prefix);
-    bf_status st = bf_film_load(fs->film, ck, n.film, err);
-    if (!st)
-        st = bf_ckpt_get(ck, n.m0, fs->m0, 2, err);
-    return st ? st : bf_ckpt_get_real(ck, n.drift, &fs->drift, err);
+    char name[96];
+    snprintf(name, sizeof name, "%sfilm", prefix);
+    bf_status st = bf_film_load(fs->film, ck, name, err);
+    return st ? st
+              : bf_ckpt_get_fields(ck, name, filmsys_fields,
+                                   BF_NFIELDS(filmsys_fields), fs, err);
 }

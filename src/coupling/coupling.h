@@ -1,5 +1,6 @@
 /* coupling.h: balls coupled to the film through a free energy (Yasuda
- * 2010, eqs 3.10-3.12).  For a ball p at r_p with radius R_p:
+ * 2010, eqs 3.10-3.12), private to the library.  For a ball p at r_p with
+ * radius R_p:
  *
  *   (3.10)  F_p = 4 pi R_p^2 V0 I(r_p),
  *           I(r) = integral h(x) (psi(x) - psi_s)^2 exp(-|x - r|/r0) dx
@@ -22,17 +23,22 @@
  * (bf_coupling_refresh) and, lazily, the moments at the cells holding
  * balls; a force evaluation then costs O(1).
  *
- * The effect "coupling" (src/effects/coupling.c) wraps this for the ball
- * system; its `self` is the bf_coupling.  The same code serves the static
- * kink (film never stepped) and the dynamic film.
+ * The folder src/coupling holds one job per file: this header and
+ * coupling.c, the quadrature of F and dF/dr (the bf_coupling object: cell
+ * and row moments, the integral, the Taylor anchors, its checkpoint), with
+ * mk.h, the kernel's moments m_k(z) it integrates with;
+ * mu_cpl.h, the chemical potential (3.11) the balls add to the film;
+ * force.h, the effect "coupling" that applies -M dF/dr to the ball system
+ * (its `self` is the bf_coupling), with the keys of [coupling].  Both use
+ * this file only.  The same code serves the static kink (film never
+ * stepped) and the dynamic film.
  */
-#ifndef BALLFILM_COUPLING_H
-#define BALLFILM_COUPLING_H
+#ifndef BALLFILM_COUPLING_COUPLING_H
+#define BALLFILM_COUPLING_COUPLING_H
 
 #include <stddef.h>
 
 #include "ballfilm/checkpoint.h"
-#include "ballfilm/effect.h"
 #include "ballfilm/error.h"
 #include "ballfilm/film.h"
 
@@ -53,25 +59,50 @@ typedef struct bf_coupling_params {
     double taylor_radius; /* cm */
 } bf_coupling_params;
 
-/* The keys of [coupling] (the coupling effect's section). */
-typedef struct bf_coupling_keys {
-    double V0, r0, mobility, psi_s;
-    int quadrature; /* 0 spline, 1 linear */
-    int taylor;
-} bf_coupling_keys;
-extern const bf_section_spec bf_coupling_spec;
-bf_coupling_params bf_coupling_params_from_keys(const bf_coupling_keys *k);
-
 typedef struct bf_coupling bf_coupling;
-
-/* The effect applying -M dF/dr to the balls; its env hands over the
- * coupling (effect.h). */
-extern const bf_effect_type bf_effect_coupling;
 
 bf_status bf_coupling_create(bf_coupling **c, const bf_coupling_params *p,
                              const bf_film *film, size_t nballs, bf_err *err);
 void bf_coupling_free(bf_coupling *c);
 const bf_coupling_params *bf_coupling_params_of(const bf_coupling *c);
+/* The film it reads (its current level). */
+const bf_film *bf_coupling_film(const bf_coupling *c);
+
+/* The film's grid as the kernel sees it, and the kernel's tables (fixed
+ * at creation; read by mu_cpl.c). */
+typedef struct bf_coupling_grid {
+    long N;          /* intervals: nodes 0..N */
+    long K;          /* E^K < 2^-64 (E = exp(-kappa)): farther cells count
+                        for nothing */
+    double x0, dx;   /* first node and spacing, cm */
+    double kappa;    /* dx / r0 */
+    double *pw, *pwr; /* E^k (k = 0..N) and E^(N-1-k) (k < N), flushed to
+                         zero below 1e-300; owned by the coupling */
+} bf_coupling_grid;
+const bf_coupling_grid *bf_coupling_grid_of(const bf_coupling *c);
+
+/* The cell j of r (0 <= j < N) and its local coordinate t = (r - x_j)/dx,
+ * in [0, 1] inside the film (t < 0 left of it, t > 1 right of it). */
+static inline long bf_coupling_locate(const bf_coupling_grid *g, double r,
+                                      double *t)
+{
+    double u = (r - g->x0) / g->dx;
+    /* truncation instead of floor() (a library call here): the same for
+     * u >= 0, and for u < 0 both are clamped to 0 */
+    long j = (long)u;
+    if (j < 0)
+        j = 0;
+    if (j > g->N - 1)
+        j = g->N - 1;
+    *t = u - (double)j;
+    return j;
+}
+
+/* exp(-kappa t) and exp(-kappa (1 - t)) of ball p as the last
+ * bf_coupling_prepare computed them, if it was at x then (returns 1; 0:
+ * not prepared there). */
+int bf_coupling_prepared_exp(const bf_coupling *c, size_t p, double x,
+                             double *el, double *er);
 
 /* Rebuild everything that depends on the film's current level (call after
  * each film step; the ball integrator's force cache must be invalidated by
@@ -92,10 +123,6 @@ void bf_coupling_integral(bf_coupling *c, double r, double *I, double *dI);
 void bf_coupling_integral_ball(bf_coupling *c, size_t p, double r, double *I,
                                double *dI);
 
-/* mu_cpl (3.11) of balls at x (radii R) on the nodes 0..N, written to mu. */
-void bf_coupling_mu(const bf_coupling *c, size_t nb, const double *x,
-                    const double *R, double *mu);
-
 /* Natural cubic spline second derivatives of the current g (for tests;
  * computed on demand). */
 const double *bf_coupling_spline_m(bf_coupling *c);
@@ -105,9 +132,9 @@ const double *bf_coupling_g(const bf_coupling *c);
 void bf_coupling_counts(const bf_coupling *c, unsigned long long *exact,
                         unsigned long long *taylor);
 
-/* Checkpoint: the per-ball Taylor anchors (everything else is rebuilt from
- * the film by bf_coupling_refresh), under the name prefix +
- * "coupling.state". */
+/* Checkpoint: the per-ball Taylor anchors and the counters (everything
+ * else is rebuilt from the film by bf_coupling_refresh; load after the
+ * film), under names starting with prefix + "coupling". */
 bf_status bf_coupling_save(const bf_coupling *c, bf_ckpt *ck,
                            const char *prefix, bf_err *err);
 bf_status bf_coupling_load(bf_coupling *c, const bf_ckpt *ck,

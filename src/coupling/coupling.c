@@ -1,6 +1,6 @@
-/* coupling.c: the ball-film coupling, Yasuda eqs 3.10-3.12 (see
- * coupling.h for the formulas), and the effect "coupling" that applies
- * -M dF/dr_p to the balls with potential energy m_p M F_p.
+/* coupling.c: the quadrature of the ball-film coupling, F and dF/dr of
+ * Yasuda eq. 3.10 (see coupling.h for the formulas); mu_cpl (3.11) is in
+ * mu_cpl.c, the force on the balls (3.12) in force.c.
  *
  * Quadrature.  g_i = h_i (psi_i - psi_s)^2 on the nodes; on cell
  * [x_j, x_j+1] (t = (x - x_j)/dx) the natural cubic spline is
@@ -42,22 +42,23 @@
  * latencies of their serial parts; the numbers are those of the lazy
  * anchor (tested).
  *
- * mu_cpl (3.11): exp(-|x_i - r|/r0) = exp(-kappa t_r) E^(j-i) left of the
- * ball and exp(-kappa (1 - t_r)) E^(i-j-1) right of it, from a table of
- * powers of E (no exp per node; the two exp() per ball are those of the
- * anchors when the ball has not moved since prepare).
+ * mu_cpl (mu_cpl.c) takes the table of powers of E (pw, pwr) and the
+ * exp() values of the prepared anchors from here (bf_coupling_grid_of,
+ * bf_coupling_prepared_exp).
  *
- * Bits.  The anchors prepared ahead and the interleaved series (mk2,
- * mk_series8) give the numbers of the plain sequence of operations bit for
- * bit: work is only interleaved where it is independent (never inside a
- * sum), and values are reused only where they come from the same operands
- * by the same operations; a moment's sum does not depend on which rows are
- * summed with it (dotg4).  The moments by rows are the quantities of the
- * earlier spline-then-cells-then-sums in another order of summation: they
- * differ from those in round-off only (tested against GSL's spline and a
- * quadrature of the interpolant).
+ * Bits.  The anchors prepared ahead and the interleaved series (bf_mk2,
+ * bf_mk_series8 of mk.c) give the numbers of the plain sequence of
+ * operations bit for bit: work is only interleaved where it is
+ * independent (never inside a sum), and values are reused only where they
+ * come from the same operands by the same operations; a moment's sum
+ * does not depend on which rows are summed with it (dotg4).  The moments
+ * by rows are the quantities of the earlier spline-then-cells-then-sums in
+ * another order of summation: they differ from those in round-off only
+ * (tested against GSL's spline and a quadrature of the interpolant).
  */
-#include "ballfilm/coupling.h"
+#include "coupling/coupling.h"
+
+#include "coupling/mk.h"
 
 #include <float.h>
 #include <math.h>
@@ -66,14 +67,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-
-enum { NCACHE = 16, NSER = 20, NROW = 96 };
+enum { NCACHE = 16, NROW = 96 };
 enum { ROW_L, ROW_R, ROW_M }; /* rows of ML_n, MR_n, M_n */
 /* nodes beyond which the spline's influence lambda^d (lambda = 2 - sqrt 3)
  * is below 2^-64 * 1e-3: 64 ln 2 / ln(1/lambda) = 33.7, plus margin */
 enum { ROW_SPREAD = 40 };
-
-static const double PI = 3.14159265358979323846;
 
 typedef struct cell_moments {
     long j;         /* cell, -1: empty */
@@ -102,10 +100,9 @@ typedef struct anchor {
 struct bf_coupling {
     bf_coupling_params p;
     const bf_film *film;
-    long N;
-    double dx, x0, kappa, E; /* E = exp(-kappa), kappa = dx/r0 */
+    bf_coupling_grid grid;    /* nodes, kernel reach, powers of E */
     double w_g0, w_g1, w_m0, w_m1; /* LC weights (times dx) */
-    double *g, *m, *lc, *rc, *pw, *pwr, *tl, *tw, *tmp;
+    double *g, *m, *lc, *rc, *tl, *tw, *tmp;
     row_entry rows[NROW];     /* the rows built (a pool) */
     double *rowmem;           /* their storage, NROW x n8 */
     long n8;                  /* N + 1 rounded up to a multiple of 8 */
@@ -113,9 +110,7 @@ struct bf_coupling {
     double *zrow;             /* n8 zeros */
     int *row_of;              /* [kind][node] -> pool entry or -1 */
     unsigned long long row_clock;
-    long K;                   /* E^K < 2^-64: farther cells are dropped */
-    double mkc[NSER][4];      /* series coefficients of m_k(z), z < 0.5 */
-    int nser;                 /* terms needed for z <= min(kappa, 0.5) */
+    bf_mk_table mk;           /* m_k(z) for z <= min(kappa, 0.5) (mk.h) */
     cell_moments cache[NCACHE];
     int ncache;
     anchor *anc;
@@ -125,80 +120,6 @@ struct bf_coupling {
     size_t nballs;
     unsigned long long n_exact, n_taylor;
 };
-
-/* ---------------------------------------------------------------- m_k(z) */
-
-/* m_k(z) = integral_0^1 s^k exp(-z s) ds for k = 0..3, z >= 0: for
- * z < 0.5 the series sum_n (-z)^n / (n! (n + k + 1)) by Horner (the
- * coefficients are set up once; 0.5^20/20! < 1e-24), above it the upward
- * recursion m_k = (k m_(k-1) - exp(-z))/z (error growth k/z <= 6). */
-static void mk_coefficients(double c[NSER][4])
-{
-    double f = 1.0; /* (-1)^n / n! */
-    for (int n = 0; n < NSER; n++) {
-        for (int k = 0; k < 4; k++)
-            c[n][k] = f / (double)(n + k + 1);
-        f *= -1.0 / (double)(n + 1);
-    }
-}
-
-static void mk(const double c[NSER][4], int ns, double z, double m[4])
-{
-    if (z < 0.5) {
-        double a0 = c[ns - 1][0], a1 = c[ns - 1][1], a2 = c[ns - 1][2],
-               a3 = c[ns - 1][3];
-        for (int n = ns - 2; n >= 0; n--) {
-            a0 = a0 * z + c[n][0];
-            a1 = a1 * z + c[n][1];
-            a2 = a2 * z + c[n][2];
-            a3 = a3 * z + c[n][3];
-        }
-        m[0] = a0;
-        m[1] = a1;
-        m[2] = a2;
-        m[3] = a3;
-        return;
-    }
-    double e = exp(-z);
-    m[0] = -expm1(-z) / z;
-    for (int k = 1; k < 4; k++)
-        m[k] = ((double)k * m[k - 1] - e) / z;
-}
-
-/* m_k at two arguments (the two sides of a ball): the same operations as
- * two calls of mk, with the series' eight Horner chains interleaved so that
- * their latencies overlap (the chains are ~17 dependent steps long). */
-static void mk2(const double c[NSER][4], int ns, double zl, double zr,
-                double ml[4], double mr[4])
-{
-    if (!(zl < 0.5 && zr < 0.5)) {
-        mk(c, ns, zl, ml);
-        mk(c, ns, zr, mr);
-        return;
-    }
-    const double *e = c[ns - 1];
-    double a0 = e[0], a1 = e[1], a2 = e[2], a3 = e[3];
-    double b0 = e[0], b1 = e[1], b2 = e[2], b3 = e[3];
-    for (int n = ns - 2; n >= 0; n--) {
-        e = c[n];
-        a0 = a0 * zl + e[0];
-        a1 = a1 * zl + e[1];
-        a2 = a2 * zl + e[2];
-        a3 = a3 * zl + e[3];
-        b0 = b0 * zr + e[0];
-        b1 = b1 * zr + e[1];
-        b2 = b2 * zr + e[2];
-        b3 = b3 * zr + e[3];
-    }
-    ml[0] = a0;
-    ml[1] = a1;
-    ml[2] = a2;
-    ml[3] = a3;
-    mr[0] = b0;
-    mr[1] = b1;
-    mr[2] = b2;
-    mr[3] = b3;
-}
 
 /* ---------------------------------------------------------------- set-up */
 
@@ -226,12 +147,11 @@ bf_status bf_coupling_create(bf_coupling **out, const bf_coupling_params *p,
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     c->p = *p;
     c->film = film;
-    c->N = (long)bf_film_nodes(film) - 1;
-    c->dx = bf_film_params_of(film)->dx;
-    c->x0 = bf_film_x(film)[0];
-    c->kappa = c->dx / p->r0;
-    c->E = exp(-c->kappa);
-    const size_t n = (size_t)c->N + 1;
+    c->grid.N = (long)bf_film_nodes(film) - 1;
+    c->grid.dx = bf_film_params_of(film)->dx;
+    c->grid.x0 = bf_film_x(film)[0];
+    c->grid.kappa = c->grid.dx / p->r0;
+    const size_t n = (size_t)c->grid.N + 1;
     /* g and the rows: 64-byte aligned, zero up to a multiple of 8 (the
      * row sums run over whole blocks of eight, see dotg4) */
     c->n8 = ((long)n + 7) & ~7L;
@@ -239,8 +159,8 @@ bf_status bf_coupling_create(bf_coupling **out, const bf_coupling_params *p,
     c->m = xcalloc(n);
     c->lc = xcalloc(n);
     c->rc = xcalloc(n);
-    c->pw = xcalloc(n);
-    c->pwr = xcalloc(n);
+    c->grid.pw = xcalloc(n);
+    c->grid.pwr = xcalloc(n);
     c->tl = xcalloc(n);
     c->tw = xcalloc(n);
     c->tmp = xcalloc(n);
@@ -252,44 +172,37 @@ bf_status bf_coupling_create(bf_coupling **out, const bf_coupling_params *p,
     c->rowmem = alloc64((size_t)NROW * (size_t)c->n8);
     c->row_of = malloc(3 * n * sizeof *c->row_of);
     c->zrow = alloc64((size_t)c->n8);
-    if (!c->g || !c->m || !c->lc || !c->rc || !c->pw || !c->pwr || !c->tl ||
-        !c->tw || !c->tmp || !c->anc || !c->xe || !c->ele || !c->ere ||
-        !c->rowmem || !c->row_of || !c->zrow) {
+    if (!c->g || !c->m || !c->lc || !c->rc || !c->grid.pw || !c->grid.pwr ||
+        !c->tl || !c->tw || !c->tmp || !c->anc || !c->xe || !c->ele ||
+        !c->ere || !c->rowmem || !c->row_of || !c->zrow) {
         bf_coupling_free(c);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
     /* powers of E, flushed to zero below 1e-300 (no subnormals):
      * pw[k] = E^k, pwr[k] = E^(N-1-k) */
-    for (long k = 0; k <= c->N; k++) {
-        double v = exp(-c->kappa * (double)k);
-        c->pw[k] = v < 1e-300 ? 0.0 : v;
+    for (long k = 0; k <= c->grid.N; k++) {
+        double v = exp(-c->grid.kappa * (double)k);
+        c->grid.pw[k] = v < 1e-300 ? 0.0 : v;
     }
-    for (long k = 0; k < c->N; k++)
-        c->pwr[k] = c->pw[c->N - 1 - k];
+    for (long k = 0; k < c->grid.N; k++)
+        c->grid.pwr[k] = c->grid.pw[c->grid.N - 1 - k];
     /* cell weights */
-    mk_coefficients(c->mkc);
-    c->K = (long)ceil(64.0 * log(2.0) / c->kappa);
-    /* z^n/n! < 1e-24 for z <= min(kappa, 0.5) (the series is used only
-     * there: z = kappa T with T <= 1) */
-    double zm = fmin(c->kappa, 0.5), term = 1.0;
-    c->nser = 1;
-    while (c->nser < NSER && term > 1e-24) {
-        term *= zm / (double)c->nser;
-        c->nser++;
-    }
+    c->grid.K = (long)ceil(64.0 * log(2.0) / c->grid.kappa);
+    /* the series is used only for z = kappa T <= min(kappa, 0.5), T <= 1 */
+    bf_mk_init(&c->mk, fmin(c->grid.kappa, 0.5));
     double m[4];
-    mk(c->mkc, c->nser, c->kappa, m);
-    const double h = c->dx, h26 = h * h / 6.0;
+    bf_mk(&c->mk, c->grid.kappa, m);
+    const double h = c->grid.dx, h26 = h * h / 6.0;
     c->w_g0 = h * m[1];
     c->w_g1 = h * (m[0] - m[1]);
     c->w_m0 = h * h26 * (m[3] - m[1]);
     c->w_m1 = h * h26 * (3.0 * m[2] - 2.0 * m[1] - m[3]);
     /* Thomas factors of the natural spline system, rows 1..N-1:
      * M_i-1 + 4 M_i + M_i+1 = d_i, M_0 = M_N = 0 */
-    if (c->N >= 2) {
+    if (c->grid.N >= 2) {
         double w = 4.0;
         c->tw[1] = 1.0 / w;
-        for (long i = 2; i < c->N; i++) {
+        for (long i = 2; i < c->grid.N; i++) {
             c->tl[i] = 1.0 / w;
             w = 4.0 - c->tl[i];
             c->tw[i] = 1.0 / w;
@@ -299,12 +212,12 @@ bf_status bf_coupling_create(bf_coupling **out, const bf_coupling_params *p,
         c->xe[p] = NAN;
     /* rows: the kernel's K cells (ML, MR) and ROW_SPREAD nodes on each side
      * for the spline's reach (see build_row); M alone: the spread */
-    c->len_lr = c->K + 2 * ROW_SPREAD + 1;
+    c->len_lr = c->grid.K + 2 * ROW_SPREAD + 1;
     c->len_m = 2 * ROW_SPREAD + 3;
-    if (c->len_lr > c->N + 1)
-        c->len_lr = c->N + 1;
-    if (c->len_m > c->N + 1)
-        c->len_m = c->N + 1;
+    if (c->len_lr > c->grid.N + 1)
+        c->len_lr = c->grid.N + 1;
+    if (c->len_m > c->grid.N + 1)
+        c->len_m = c->grid.N + 1;
     for (size_t i = 0; i < 3 * n; i++)
         c->row_of[i] = -1;
     for (int q = 0; q < NROW; q++) {
@@ -324,8 +237,8 @@ void bf_coupling_free(bf_coupling *c)
     free(c->m);
     free(c->lc);
     free(c->rc);
-    free(c->pw);
-    free(c->pwr);
+    free(c->grid.pw);
+    free(c->grid.pwr);
     free(c->tl);
     free(c->tw);
     free(c->tmp);
@@ -342,6 +255,21 @@ void bf_coupling_free(bf_coupling *c)
 const bf_coupling_params *bf_coupling_params_of(const bf_coupling *c)
 {
     return &c->p;
+}
+const bf_film *bf_coupling_film(const bf_coupling *c) { return c->film; }
+const bf_coupling_grid *bf_coupling_grid_of(const bf_coupling *c)
+{
+    return &c->grid;
+}
+
+int bf_coupling_prepared_exp(const bf_coupling *c, size_t p, double x,
+                             double *el, double *er)
+{
+    if (!(p < c->nballs && x == c->xe[p]))
+        return 0;
+    *el = c->ele[p];
+    *er = c->ere[p];
+    return 1;
 }
 const double *bf_coupling_g(const bf_coupling *c) { return c->g; }
 
@@ -407,56 +335,10 @@ static void dotg4(long lo, long hi, const double *const w[4],
     }
 }
 
-/* kernel weights of mu_cpl added for one ball: k[i] += cl E^(j-i) for
- * i <= j, cr E^(i-j-1) for i > j */
-HOT void mu_pass(long N, long K, long j, double cl, double cr,
-                    const double *restrict pw, const double *restrict pwr,
-                    double *restrict k)
-{
-    /* E^(j-i) = pwr[N-1-j+i] for i = i0..j (j <= N-1); nodes with
-     * E^(j-i) < 2^-64 get nothing */
-    const long i0 = j - K > 0 ? j - K : 0, i1 = j + 1 + K < N ? j + 1 + K : N;
-    const double *restrict wl = pwr + (N - 1 - j);
-    for (long i = i0; i <= j; i++)
-        k[i] += cl * wl[i];
-    const double *restrict wr = pw - (j + 1);
-    for (long i = j + 1; i <= i1; i++)
-        k[i] += cr * wr[i];
-}
-
-/* mu_cpl left of cell jmin (CL E^(jmin-i)) and right of cell jmax
- * (CR E^(i-jmax-1)), zero where the kernel is below 2^-64; the cells in
- * between are the caller's */
-HOT void mu_sides(long N, long K, long jmin, long jmax, double CL, double CR,
-                  double psis, const double *restrict pw,
-                  const double *restrict pwr, const double *restrict psi,
-                  double *restrict mu)
-{
-    const long i0 = jmin - K > 0 ? jmin - K : 0;
-    const long i1 = jmax + 1 + K < N ? jmax + 1 + K : N;
-    for (long i = 0; i < i0; i++)
-        mu[i] = 0.0;
-    const double *restrict wl = pwr + (N - 1 - jmin);
-    for (long i = i0; i <= jmin; i++)
-        mu[i] = CL * wl[i] * (psi[i] - psis);
-    const double *restrict wr = pw - (jmax + 1);
-    for (long i = jmax + 1; i <= i1; i++)
-        mu[i] = CR * wr[i] * (psi[i] - psis);
-    for (long i = i1 + 1; i <= N; i++)
-        mu[i] = 0.0;
-}
-
-HOT void mu_final(long n, double psis, const double *restrict psi,
-                     const double *restrict k, double *restrict mu)
-{
-    for (long i = 0; i < n; i++)
-        mu[i] = k[i] * (psi[i] - psis);
-}
-
 BF_SPLINE_CLONES
 void bf_coupling_refresh(bf_coupling *c)
 {
-    const long N = c->N;
+    const long N = c->grid.N;
     g_pass(N + 1, c->p.psi_s, bf_film_h(c->film), bf_film_psi(c->film), c->g);
     c->ncache = 0;
     for (size_t p = 0; p < c->nballs; p++)
@@ -486,7 +368,7 @@ void bf_coupling_refresh(bf_coupling *c)
 /* the row of kind `kind` at node n into the pool entry `e` */
 static void build_row(bf_coupling *c, int kind, long n, row_entry *e)
 {
-    const long N = c->N, K = c->K;
+    const long N = c->grid.N, K = c->grid.K;
     double *al = c->lc, *be = c->rc, *y = c->tmp; /* scratch, N + 1 each */
     for (long i = 0; i <= N; i++)
         al[i] = be[i] = 0.0;
@@ -502,7 +384,7 @@ static void build_row(bf_coupling *c, int kind, long n, row_entry *e)
         const double g0 = left ? c->w_g0 : c->w_g1, g1 = left ? c->w_g1 : c->w_g0;
         const double m0 = left ? c->w_m0 : c->w_m1, m1 = left ? c->w_m1 : c->w_m0;
         for (long k = k0; k < k1; k++) {
-            const double ck = c->pw[left ? n - 1 - k : k - n];
+            const double ck = c->grid.pw[left ? n - 1 - k : k - n];
             al[k] += g0 * ck;
             al[k + 1] += g1 * ck;
             be[k] += m0 * ck;
@@ -519,7 +401,7 @@ static void build_row(bf_coupling *c, int kind, long n, row_entry *e)
         y[last] *= c->tw[last];
         for (long i = last - 1; i >= 1; i--)
             y[i] = (y[i] - y[i + 1]) * c->tw[i];
-        const double s = 6.0 / (c->dx * c->dx);
+        const double s = 6.0 / (c->grid.dx * c->grid.dx);
         for (long k = 0; k <= N; k++) {
             double ym = k > 0 ? y[k - 1] : 0.0, yp = k < N ? y[k + 1] : 0.0;
             al[k] += s * ((ym - 2.0 * y[k]) + yp);
@@ -546,7 +428,7 @@ static void build_row(bf_coupling *c, int kind, long n, row_entry *e)
  * other) */
 static const row_entry *row(bf_coupling *c, int kind, long n)
 {
-    int *slot = &c->row_of[kind * (c->N + 1) + n];
+    int *slot = &c->row_of[kind * (c->grid.N + 1) + n];
     if (*slot >= 0) {
         c->rows[*slot].used = ++c->row_clock;
         return &c->rows[*slot];
@@ -557,7 +439,7 @@ static const row_entry *row(bf_coupling *c, int kind, long n)
             q = k;
     row_entry *e = &c->rows[q];
     if (e->kind >= 0)
-        c->row_of[e->kind * (c->N + 1) + e->n] = -1;
+        c->row_of[e->kind * (c->grid.N + 1) + e->n] = -1;
     build_row(c, kind, n, e);
     e->used = ++c->row_clock;
     *slot = q;
@@ -576,7 +458,7 @@ static double row_dot(const bf_coupling *c, const row_entry *e)
 /* the spline's M on all nodes (for tests: N + 1 rows) */
 const double *bf_coupling_spline_m(bf_coupling *c)
 {
-    for (long n = 0; n <= c->N; n++)
+    for (long n = 0; n <= c->grid.N; n++)
         c->m[n] = row_dot(c, row(c, ROW_M, n));
     return c->m;
 }
@@ -592,7 +474,7 @@ static void moments_batch(bf_coupling *c, const long *j, int nc)
         const double *w[4][4];
         long lo[4], hi[4];
         for (int k = 0; k < 4; k++) {
-            lo[k] = c->N;
+            lo[k] = c->grid.N;
             hi[k] = 0;
         }
         for (int q = 0; q < 4; q++) {
@@ -641,26 +523,17 @@ static const cell_moments *moments(bf_coupling *c, long j)
     return cm;
 }
 
-/* cell of r and its local coordinate t in [0, 1] (clamped to the film) */
+/* cell of r and its local coordinate t (coupling.h) */
 static long locate(const bf_coupling *c, double r, double *t)
 {
-    double u = (r - c->x0) / c->dx;
-    /* truncation instead of floor() (a library call here): the same for
-     * u >= 0, and for u < 0 both are clamped to 0 */
-    long j = (long)u;
-    if (j < 0)
-        j = 0;
-    if (j > c->N - 1)
-        j = c->N - 1;
-    *t = u - (double)j;
-    return j;
+    return bf_coupling_locate(&c->grid, r, t);
 }
 
 /* spline Taylor coefficients e_k = S^(k)(t)/k! (t in cell units) */
 static void spline_taylor(const bf_coupling *c, long j, double M0, double M1,
                           double t, double e[4])
 {
-    const double h26 = c->dx * c->dx / 6.0;
+    const double h26 = c->grid.dx * c->grid.dx / 6.0;
     const double g0 = c->g[j], g1 = c->g[j + 1];
     const double c1 = (g1 - g0) - h26 * (2.0 * M0 + M1);
     const double c2 = 3.0 * h26 * M0;
@@ -674,7 +547,7 @@ static void spline_taylor(const bf_coupling *c, long j, double M0, double M1,
 /* An exact evaluation inside the film in three parts, shared by the
  * single evaluation (exact_lr) and the anchors of all balls at once
  * (prepare_anchors): lr_begin (the cell's moments and the spline's Taylor
- * coefficients at t), the m_k series (mk2 or mk_series8), lr_end. */
+ * coefficients at t), the m_k series (bf_mk2 or bf_mk_series8), lr_end. */
 typedef struct lr_part {
     long j;
     double t, ml, mr, e[4];
@@ -707,8 +580,8 @@ static void lr_end(const bf_coupling *c, const lr_part *w, const double mL[4],
         tl *= TL;
         tr *= TR;
     }
-    *L = el * w->ml + c->dx * pl;
-    *R = er * w->mr + c->dx * pr;
+    *L = el * w->ml + c->grid.dx * pl;
+    *R = er * w->mr + c->grid.dx * pr;
 }
 
 /* L and R at r (exact for the interpolant); also the cell and t, and the
@@ -725,9 +598,10 @@ static void exact_lr(bf_coupling *c, double r, long *jo, double *to, double *L,
          * seen from the film's end */
         if (t < 0.0) {
             *L = 0.0;
-            *R = exp(c->kappa * t) * row_dot(c, row(c, ROW_R, 0));
+            *R = exp(c->grid.kappa * t) * row_dot(c, row(c, ROW_R, 0));
         } else {
-            *L = exp(-c->kappa * (t - 1.0)) * row_dot(c, row(c, ROW_L, c->N));
+            *L = exp(-c->grid.kappa * (t - 1.0)) *
+                 row_dot(c, row(c, ROW_L, c->grid.N));
             *R = 0.0;
         }
         return;
@@ -735,8 +609,8 @@ static void exact_lr(bf_coupling *c, double r, long *jo, double *to, double *L,
     double mL[4], mR[4];
     lr_begin(c, j, t, w);
     const double TL = t, TR = 1.0 - t;
-    mk2(c->mkc, c->nser, c->kappa * TL, c->kappa * TR, mL, mR);
-    double el = exp(-c->kappa * TL), er = exp(-c->kappa * TR);
+    bf_mk2(&c->mk, c->grid.kappa * TL, c->grid.kappa * TR, mL, mR);
+    double el = exp(-c->grid.kappa * TL), er = exp(-c->grid.kappa * TR);
     lr_end(c, w, mL, mR, el, er, L, R);
 }
 
@@ -762,7 +636,7 @@ static void anchor_from(bf_coupling *c, anchor *a, double r, const lr_part *w,
     a->L[0] = L;
     a->R[0] = R;
     const double *e = w->e;
-    const double h = c->dx, ir = 1.0 / c->p.r0;
+    const double h = c->grid.dx, ir = 1.0 / c->p.r0;
     /* g and its x-derivatives at r; g'''' = 0 within the cell */
     const double gd[5] = {e[0], e[1] / h, 2.0 * e[2] / (h * h),
                           6.0 * e[3] / (h * h * h), 0.0};
@@ -794,46 +668,6 @@ static void set_anchor(bf_coupling *c, anchor *a, double r)
         return;
     anchor_from(c, a, r, &w, L, R);
 }
-
-/* Hot loop again (see refresh) */
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC push_options
-#pragma GCC optimize("vect-cost-model=cheap")
-#endif
-
-/* the series of m_k (see mk) at eight arguments z, as eight lanes: the
- * same operations as mk's series for each lane */
-BF_SPLINE_CLONES
-static void mk_series8(const double c[NSER][4], int ns, const double z[8],
-                       double m[8][4])
-{
-    double a0[8], a1[8], a2[8], a3[8];
-    for (int q = 0; q < 8; q++) {
-        a0[q] = c[ns - 1][0];
-        a1[q] = c[ns - 1][1];
-        a2[q] = c[ns - 1][2];
-        a3[q] = c[ns - 1][3];
-    }
-    for (int n = ns - 2; n >= 0; n--) {
-        const double c0 = c[n][0], c1 = c[n][1], c2 = c[n][2], c3 = c[n][3];
-        for (int q = 0; q < 8; q++) {
-            a0[q] = a0[q] * z[q] + c0;
-            a1[q] = a1[q] * z[q] + c1;
-            a2[q] = a2[q] * z[q] + c2;
-            a3[q] = a3[q] * z[q] + c3;
-        }
-    }
-    for (int q = 0; q < 8; q++) {
-        m[q][0] = a0[q];
-        m[q][1] = a1[q];
-        m[q][2] = a2[q];
-        m[q][3] = a3[q];
-    }
-}
-
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC pop_options
-#endif
 
 /* Anchors of the balls at x, computed when the film level is prepared.
  * The first force evaluation of the level comes at the same positions (the
@@ -877,19 +711,19 @@ static void prepare_anchors(bf_coupling *c, size_t nb, const double *x)
             if (!in[q])
                 continue; /* outside the film: always exact */
             lr_begin(c, j, t, &w[q]);
-            z[2 * q] = c->kappa * t;
-            z[2 * q + 1] = c->kappa * (1.0 - t);
+            z[2 * q] = c->grid.kappa * t;
+            z[2 * q + 1] = c->grid.kappa * (1.0 - t);
         }
-        mk_series8(c->mkc, c->nser, z, m);
+        bf_mk_series8(&c->mk, z, m);
         for (size_t q = 0; q < ng; q++) {
             if (!in[q])
                 continue;
             for (int s = 0; s < 2; s++)
-                if (!(z[2 * q + s] < 0.5)) /* the recursion, as mk */
-                    mk(c->mkc, c->nser, z[2 * q + s], m[2 * q + s]);
+                if (!(z[2 * q + s] < 0.5)) /* the recursion, as bf_mk */
+                    bf_mk(&c->mk, z[2 * q + s], m[2 * q + s]);
             const size_t p = p0 + q;
-            double el = exp(-c->kappa * w[q].t),
-                   er = exp(-c->kappa * (1.0 - w[q].t));
+            double el = exp(-c->grid.kappa * w[q].t),
+                   er = exp(-c->grid.kappa * (1.0 - w[q].t));
             double L, R;
             lr_end(c, &w[q], m[2 * q], m[2 * q + 1], el, er, &L, &R);
             anchor_from(c, &c->anc[p], x[p], &w[q], L, R);
@@ -947,84 +781,6 @@ void bf_coupling_integral_ball(bf_coupling *c, size_t p, double r, double *I,
     bf_coupling_integral(c, r, I, dI);
 }
 
-/* ---------------------------------------------------------------- mu_cpl */
-
-BF_SPLINE_CLONES
-void bf_coupling_mu(const bf_coupling *c, size_t nb, const double *x,
-                    const double *R, double *mu)
-{
-    const long N = c->N;
-    const double psis = c->p.psi_s, *psi = bf_film_psi(c->film);
-    enum { MAXB = 64 };
-    long jb[MAXB];
-    double cl[MAXB], cr[MAXB];
-    int inside = nb > 0 && nb <= MAXB;
-    long jmin = N, jmax = 0;
-    for (size_t p = 0; inside && p < nb; p++) {
-        double t;
-        jb[p] = locate(c, x[p], &t);
-        inside = t >= 0.0 && t <= 1.0;
-        double a = 8.0 * PI * R[p] * R[p] * c->p.V0;
-        /* exp(-(r - x_j)/r0) and exp(-(x_j+1 - r)/r0), from prepare if
-         * the ball is where it was then (the same numbers) */
-        double el, er;
-        if (p < c->nballs && x[p] == c->xe[p]) {
-            el = c->ele[p];
-            er = c->ere[p];
-        } else {
-            el = exp(-c->kappa * t);
-            er = exp(-c->kappa * (1.0 - t));
-        }
-        cl[p] = a * el;
-        cr[p] = a * er;
-        jmin = jb[p] < jmin ? jb[p] : jmin;
-        jmax = jb[p] > jmax ? jb[p] : jmax;
-    }
-    if (inside) {
-        /* all balls in the film: left of the leftmost ball's cell the
-         * kernels add up to CL E^(jmin-i), right of the rightmost to
-         * CR E^(i-jmax-1); between them, ball by ball */
-        double CL = 0.0, CR = 0.0;
-        for (size_t p = 0; p < nb; p++) {
-            CL += cl[p] * c->pw[jb[p] - jmin];
-            CR += cr[p] * c->pw[jmax - jb[p]];
-        }
-        mu_sides(N, c->K, jmin, jmax, CL, CR, psis, c->pw, c->pwr, psi, mu);
-        for (long i = jmin + 1; i <= jmax; i++) {
-            double k = 0.0;
-            for (size_t p = 0; p < nb; p++)
-                k += i <= jb[p] ? cl[p] * c->pw[jb[p] - i]
-                                : cr[p] * c->pw[i - jb[p] - 1];
-            mu[i] = k * (psi[i] - psis);
-        }
-        return;
-    }
-    /* a ball outside the film (or very many balls): ball by ball */
-    double *k = c->tmp; /* scratch */
-    for (long i = 0; i <= N; i++)
-        k[i] = 0.0;
-    for (size_t p = 0; p < nb; p++) {
-        double t;
-        long j = locate(c, x[p], &t);
-        double a = 8.0 * PI * R[p] * R[p] * c->p.V0;
-        if (t < 0.0) {
-            /* left of the film: exp(-(x_i - r)/r0) = exp(kappa t) E^i */
-            double e = a * exp(c->kappa * t);
-            for (long i = 0; i <= N; i++)
-                k[i] += e * c->pw[i];
-        } else if (t > 1.0) {
-            /* right of it: exp(-(r - x_i)/r0) = exp(-kappa (t-1)) E^(N-i) */
-            double e = a * exp(-c->kappa * (t - 1.0));
-            for (long i = 0; i <= N; i++)
-                k[i] += e * c->pw[N - i];
-        } else {
-            mu_pass(N, c->K, j, a * exp(-c->kappa * t),
-                    a * exp(-c->kappa * (1.0 - t)), c->pw, c->pwr, k);
-        }
-    }
-    mu_final(N + 1, psis, psi, k, mu);
-}
-
 #undef HOT
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC pop_options
@@ -1032,31 +788,58 @@ void bf_coupling_mu(const bf_coupling *c, size_t nb, const double *x,
 
 /* ---------------------------------------------------------------- checkpoint */
 
-/* One array: the anchor positions, 1/0 for valid, the two evaluation
- * counters, and room for cached moments (none are saved: a moment is a
- * function of g, which the film's state gives, so a continued run computes
- * the same bits again).  Counts are exact in a double. */
+/* What a checkpoint keeps (a table of fields, checkpoint.h): the anchor
+ * positions and whether each is set, and the two evaluation counters.
+ * Nothing else: g, the rows and the cached moments are functions of the
+ * film's state and the grid, so a continued run computes the same bits
+ * again.  A fresh anchor (prepare_anchors) is saved as none: after a
+ * restart the first evaluation computes the same anchor lazily. */
+typedef struct coupling_ckpt {
+    size_t n;               /* balls */
+    double *anchor_r;       /* cm */
+    uint8_t *anchor_valid;  /* 1: the anchor at anchor_r is set */
+    unsigned long long n_exact, n_taylor;
+} coupling_ckpt;
+
+static const bf_field coupling_fields[] = {
+    BF_FIELD_PTR(coupling_ckpt, anchor_r, BF_F_DOUBLE, n, "cm"),
+    BF_FIELD_PTR(coupling_ckpt, anchor_valid, BF_F_U8, n, "1"),
+    BF_FIELD(coupling_ckpt, n_exact, BF_F_ULL, "1"),
+    BF_FIELD(coupling_ckpt, n_taylor, BF_F_ULL, "1"),
+};
+
+/* the table's arrays for n balls (ckpt_free after, also on failure) */
+static int ckpt_alloc(coupling_ckpt *k, size_t n)
+{
+    k->n = n;
+    k->anchor_r = calloc(n ? n : 1, sizeof *k->anchor_r);
+    k->anchor_valid = calloc(n ? n : 1, sizeof *k->anchor_valid);
+    return k->anchor_r && k->anchor_valid;
+}
+
+static void ckpt_free(coupling_ckpt *k)
+{
+    free(k->anchor_r);
+    free(k->anchor_valid);
+}
+
 bf_status bf_coupling_save(const bf_coupling *c, bf_ckpt *ck,
                            const char *prefix, bf_err *err)
 {
     char name[128];
-    snprintf(name, sizeof name, "%scoupling.state", prefix);
-    const size_t n = c->nballs, len = 2 * n + 3 + 3 * NCACHE;
-    double *a = xcalloc(len);
-    if (!a)
+    snprintf(name, sizeof name, "%scoupling", prefix);
+    coupling_ckpt k = {.n_exact = c->n_exact, .n_taylor = c->n_taylor};
+    if (!ckpt_alloc(&k, c->nballs)) {
+        ckpt_free(&k);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    /* a fresh anchor (prepare_anchors) is saved as none: after a restart
-     * the first evaluation computes the same anchor lazily */
-    for (size_t p = 0; p < n; p++) {
-        a[p] = c->anc[p].r;
-        a[n + p] = c->anc[p].valid && !c->anc[p].fresh;
     }
-    double *q = a + 2 * n;
-    q[0] = (double)c->n_exact;
-    q[1] = (double)c->n_taylor;
-    q[2] = 0; /* no cached moments: see above */
-    bf_status st = bf_ckpt_put(ck, name, a, len, err);
-    free(a);
+    for (size_t p = 0; p < k.n; p++) {
+        k.anchor_r[p] = c->anc[p].r;
+        k.anchor_valid[p] = c->anc[p].valid && !c->anc[p].fresh;
+    }
+    bf_status st = bf_ckpt_put_fields(ck, name, coupling_fields,
+                                      BF_NFIELDS(coupling_fields), &k, err);
+    ckpt_free(&k);
     return st;
 }
 
@@ -1064,118 +847,23 @@ bf_status bf_coupling_load(bf_coupling *c, const bf_ckpt *ck,
                            const char *prefix, bf_err *err)
 {
     char name[128];
-    snprintf(name, sizeof name, "%scoupling.state", prefix);
-    const size_t n = c->nballs, len = 2 * n + 3 + 3 * NCACHE;
-    double *a = xcalloc(len);
-    if (!a)
+    snprintf(name, sizeof name, "%scoupling", prefix);
+    coupling_ckpt k = {0};
+    if (!ckpt_alloc(&k, c->nballs)) {
+        ckpt_free(&k);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    bf_status st = bf_ckpt_get(ck, name, a, len, err);
+    }
+    bf_status st = bf_ckpt_get_fields(ck, name, coupling_fields,
+                                      BF_NFIELDS(coupling_fields), &k, err);
     if (!st) {
         /* the film is loaded: g, then the anchors */
         bf_coupling_refresh(c);
-        const double *q = a + 2 * n;
-        for (size_t p = 0; p < n; p++)
-            if (a[n + p] != 0.0)
-                set_anchor(c, &c->anc[p], a[p]);
-        c->n_exact = (unsigned long long)q[0];
+        for (size_t p = 0; p < k.n; p++)
+            if (k.anchor_valid[p])
+                set_anchor(c, &c->anc[p], k.anchor_r[p]);
+        c->n_exact = k.n_exact;
+        c->n_taylor = k.n_taylor;
     }
-    free(a);
+    ckpt_free(&k);
     return st;
 }
-
-/* ---------------------------------------------------------------- effect */
-
-static const bf_param coupling_params[] = {
-    {"V0", BF_AT(bf_coupling_keys, V0, BF_REAL), "g/(cm^3 s^2)", "0.01",
-     "strength V0 of V(s) = V0 exp(-|s|/r0) (eq. 3.10)", BF_NONNEG, 0, 0,
-     NULL},
-    {"r0", BF_AT(bf_coupling_keys, r0, BF_REAL), "cm", "0.5",
-     "range r0 of V(s)", BF_POS, 0, 0, NULL},
-    {"mobility", BF_AT(bf_coupling_keys, mobility, BF_REAL), "1/g", "1e5",
-     "ball mobility M (eq. 3.12)", BF_NONNEG, 0, 0, NULL},
-    {"psi_s", BF_AT(bf_coupling_keys, psi_s, BF_REAL), "1", "0",
-     "order parameter of the ball surface", BF_MIN | BF_MAX, -1, 1, NULL},
-    {"quadrature", BF_AT(bf_coupling_keys, quadrature, BF_ENUM), "", "spline",
-     "interpolation of g = h (psi - psi_s)^2 for the integral (3.10): "
-     "spline (natural cubic, the paper's) or linear",
-     0, 0, 0, "spline|linear"},
-    {"taylor", BF_AT(bf_coupling_keys, taylor, BF_BOOL), "", "true",
-     "reuse a 5th-order expansion of the integral around each ball's first "
-     "position per film level (exact to 1e-17 within 2e-3 r0)",
-     0, 0, 0, NULL},
-    {0},
-};
-
-const bf_section_spec bf_coupling_spec = BF_SECTION(
-    "coupling",
-    "balls coupled to the film by the free energy F (Yasuda eqs 3.10-3.12)",
-    coupling_params, bf_coupling_keys);
-
-bf_coupling_params bf_coupling_params_from_keys(const bf_coupling_keys *k)
-{
-    bf_coupling_params p = {
-        .V0 = k->V0,
-        .r0 = k->r0,
-        .M = k->mobility,
-        .psi_s = k->psi_s,
-        .quad = (bf_coupling_quad)k->quadrature,
-    };
-    p.taylor_radius = k->taylor ? 2e-3 * p.r0 : 0.0;
-    return p;
-}
-
-/* The coupling itself belongs to the model that couples balls and film
- * (it creates it from this effect's keys and the film); the effect only
- * applies its force. */
-static bf_status coupling_effect_create(void **self, const void *params,
-                                        const bf_balls *b,
-                                        const bf_effect_env *env, bf_err *err)
-{
-    (void)params;
-    (void)b;
-    if (!env || !env->coupling)
-        return bf_fail_key(err, BF_EINPUT, "scene", "effects",
-                           "the coupling effect needs a film: use model = "
-                           "coupled (with film = static for a fixed kink)");
-    *self = env->coupling;
-    return BF_OK;
-}
-
-static int coupling_accel(const void *self, const bf_balls *b, double t,
-                          const double *x, double *acc)
-{
-    (void)t;
-    bf_coupling *c = (bf_coupling *)self; /* caches are not state */
-    const double k = 4.0 * PI * c->p.V0 * c->p.M;
-    for (size_t i = 0; i < b->n; i++) {
-        double I, dI;
-        bf_coupling_integral_ball(c, i, x[i], &I, &dI);
-        acc[i] -= k * b->R[i] * b->R[i] * dI;
-    }
-    return 0;
-}
-
-static double coupling_potential(const void *self, const bf_balls *b,
-                                 double t, const double *x)
-{
-    (void)t;
-    bf_coupling *c = (bf_coupling *)self;
-    const double k = 4.0 * PI * c->p.V0 * c->p.M;
-    double u = 0.0;
-    for (size_t i = 0; i < b->n; i++) {
-        double I, dI;
-        bf_coupling_integral(c, x[i], &I, &dI);
-        u += b->m[i] * k * b->R[i] * b->R[i] * I;
-    }
-    return u;
-}
-
-const bf_effect_type bf_effect_coupling = {
-    .name = "coupling",
-    .doc = "ball-film coupling: -M dF/dr with F of eq. 3.10 (model coupled)",
-    .spec = &bf_coupling_spec,
-    .flags = BF_EFFECT_MIRROR_ODD,
-    .create = coupling_effect_create,
-    .accel = coupling_accel,
-    .potential = coupling_potential,
-};

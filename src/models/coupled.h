@@ -1,12 +1,12 @@
 /* coupled.h: the "coupled" model (balls in the two-phase film, Yasuda sec.
- * 3.4-3.5) as seen by drivers and tests: its analysis results and, with
- * [lyapunov] enabled, its shadow system. */
+ * 3.4-3.5) as seen by tests (private to the library): its parts and, with
+ * [lyapunov] enabled, those of its shadow system. */
 #ifndef BALLFILM_COUPLED_H
 #define BALLFILM_COUPLED_H
 
-#include "models/ballsys.h"
 #include "ballfilm/film.h"
 #include "ballfilm/sim.h"
+#include "models/ballsys.h"
 
 /* The parts of a coupled system: its balls, its film and the film's
  * coupling chemical potential mu_cpl (eq. 3.11, nodes 0..N). */

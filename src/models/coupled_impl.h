@@ -1,0 +1,83 @@
+/* coupled_impl.h: what the files of the coupled model share (private to
+ * src/models): its state, and the functions of coupled_symmetry.c (the
+ * forced mirror symmetry), coupled_events.c (peaks, return map, symmetry
+ * break) and coupled_lyapunov.c (the Lyapunov shadow).  coupled.c
+ * composes the model and its step and calls them; they call nothing of
+ * coupled.c, and coupled_events.c only the symmetry error of
+ * coupled_symmetry.c.
+ */
+#ifndef BALLFILM_MODELS_COUPLED_IMPL_H
+#define BALLFILM_MODELS_COUPLED_IMPL_H
+
+#include <stddef.h>
+
+#include "ballfilm/h5out.h"
+#include "ballfilm/model.h"
+#include "coupling/coupling.h"
+#include "diag/lyapsum.h"
+#include "models/ballsys.h"
+#include "models/filmsys.h"
+
+/* the levels of the balls' symmetry error whose first crossing is kept
+ * (cm; coupled_events.c) */
+enum { BF_COUPLED_NSYM = 4 };
+extern const double bf_coupled_sym_levels[BF_COUPLED_NSYM];
+
+/* One coupled system (the run, or its Lyapunov shadow). */
+typedef struct coupled_model {
+    bf_filmsys *fs;
+    /* [lyapunov]: the running sum and the shadow system (NULL: off) */
+    bf_lyap_sum *ly;
+    struct coupled_model *shadow;
+    bf_ballsys *sys;
+    bf_coupling *cpl;
+    int dynamic, timing, sym;
+    long every;
+    size_t nb, map_ball, map_pivot, peak_ball;
+    double probe;
+    double *mucpl;          /* mu_cpl (3.11) handed to the film step */
+    double *x0, *v0;        /* ball state at the start of the step */
+    size_t nodes;           /* the film's nodes (mucpl's length) */
+    double sym_t[BF_COUPLED_NSYM]; /* first time the ball symmetry error
+                                      exceeded each level */
+    double cpu[3];          /* wall s: balls, film, coupling (timing) */
+    /* symmetrize: largest relative corrections (film A, film u, ball x,
+     * ball v) since the last row [0..3] and over the run [4..7] */
+    double sym_correction[8];
+    long nmap, npeak;
+    bf_series *pos, *vel, *probe_s, *symb, *symf, *map, *peaks, *symc_s;
+} coupled_model;
+
+/* ---- coupled_symmetry.c ---- */
+
+/* Refuse [coupled] symmetrize = yes unless the set-up is mirror symmetric,
+ * naming the key that breaks it (fk: the [film] keys). */
+bf_status bf_coupled_check_symmetric(const coupled_model *m,
+                                     const bf_film_keys *fk, bf_err *err);
+/* Project n positions (or velocities) onto the odd states; the largest
+ * change relative to max |a|. */
+double bf_coupled_mirror_odd(double *a, size_t n);
+/* Keep the larger corrections c[0..k-1] in acc[q] and acc[q + 4]. */
+void bf_coupled_keep_max(double *acc, const double *c, int k);
+/* max_i |x_i + x_(n-1-i)|, cm */
+double bf_coupled_symmetry_error(const double *x, size_t n);
+
+/* ---- coupled_events.c ---- */
+
+/* The events of the step t -> t + dt (peaks, return map, symmetry break),
+ * from m->x0, m->v0 (the start) and the balls (the end). */
+bf_status bf_coupled_events(coupled_model *m, double t, double dt,
+                            bf_err *err);
+
+/* ---- coupled_lyapunov.c ---- */
+
+/* The running sum of [lyapunov] (m->ly) for the run m. */
+bf_status bf_coupled_lyap_init(coupled_model *m, const bf_model_setup *setup,
+                               bf_err *err);
+/* The shadow m->shadow, freshly built, gets its initial displacement. */
+void bf_coupled_lyap_seed(coupled_model *m);
+/* After run and shadow took step n (t -> t + dt): renormalise when due. */
+bf_status bf_coupled_lyap_renormalise(coupled_model *m, long n, double t,
+                                      double dt, bf_err *err);
+
+#endif
