@@ -54,7 +54,7 @@ LIB       := $(BUILD)/libballfilm.a
 PROG      := $(BINDIR)/ballfilm
 RUNNER    := $(BUILD)/tests/runner
 
-.PHONY: all run test check figures bench clean deps deps-plot test-run \
+.PHONY: all run test check figures bench clean deps deps-plot test-run test-static \
         build-tests fig1 fuzz valgrind mpi stratres mac-checks fig2 fig3 \
         fig4 converge-figures survey-mass survey-length fig5 kink-dx2 \
         film-orders fig6 fig8 fig9 fig8-sym fig9-sym sym-divergence \
@@ -550,9 +550,18 @@ test-run: build-tests
 
 test:
 	@$(MAKE) --no-print-directory deps
+	@$(MAKE) --no-print-directory test-static
 	@$(MAKE) --no-print-directory test-run
 	@$(MAKE) --no-print-directory test-movies
 	@$(MAKE) --no-print-directory test-xdmf
+
+# The code's layering against docs/architecture.md (include directions,
+# circles, public headers, file sizes, who reads scenes) and the docs'
+# links (every relative link resolves; nothing tracked points outside the
+# repository).
+test-static:
+	$(PY) tests/check_architecture.py
+	$(PY) tests/check_docs.py
 
 # Movies of every model (ffprobe counts frames and sizes; the GIF fallback
 # without ffmpeg) and the XDMF sidecars in ParaView (pvpython against

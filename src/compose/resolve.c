@@ -7,16 +7,26 @@
 #include "ballfilm/sim.h"
 #include "compose.h"
 
-static void list_names(char *buf, size_t cap, const char *const *names, size_t n)
+/* A name the catalog does not have: the message lists what it has.  The
+ * catalog's entries of every kind start with their name (const char *),
+ * so the list is read through that first member. */
+static bf_status unknown(const bf_scene *sc, bf_err *err, const char *key,
+                         const char *kind, const char *name,
+                         const void *const *list, size_t n)
 {
+    char names[1024];
     size_t used = 0;
-    buf[0] = '\0';
+    names[0] = '\0';
     for (size_t k = 0; k < n; k++) {
-        int w = snprintf(buf + used, cap - used, "%s%s", k ? ", " : "", names[k]);
-        if (w < 0 || (size_t)w >= cap - used)
-            return;
+        const char *nk = *(const char *const *)list[k];
+        int w = snprintf(names + used, sizeof names - used, "%s%s",
+                         k ? ", " : "", nk);
+        if (w < 0 || (size_t)w >= sizeof names - used)
+            break;
         used += (size_t)w;
     }
+    return bf_scene_fail(sc, err, "scene", key, "unknown %s '%s' (%ss: %s)",
+                         kind, name, kind, names);
 }
 
 static bf_status add_spec(const bf_section_spec **specs, size_t cap, size_t *n,
@@ -36,20 +46,12 @@ static bf_status select_specs(const bf_scene *sc, const bf_section_spec **specs,
                               bf_err *err)
 {
     const bf_catalog *cat = ctx;
-    char names[1024];
-    const char *tmp[64];
     *n = 0;
     const char *model = bf_scene_str(sc, "scene", "model");
     const bf_model_type *mt = bf_catalog_model(cat, model);
-    if (!mt) {
-        size_t nm;
-        const bf_model_type *const *all = bf_catalog_models(cat, &nm);
-        for (size_t k = 0; k < nm && k < 64; k++)
-            tmp[k] = all[k]->name;
-        list_names(names, sizeof names, tmp, nm);
-        return bf_scene_fail(sc, err, "scene", "model",
-                             "unknown model '%s' (models: %s)", model, names);
-    }
+    if (!mt)
+        return unknown(sc, err, "model", "model", model,
+                       (const void *const *)cat->models, cat->nmodels);
     bf_status st;
     for (const bf_section_spec *const *s = mt->specs; s && *s; s++)
         if ((st = add_spec(specs, cap, n, *s, err)))
@@ -62,17 +64,10 @@ static bf_status select_specs(const bf_scene *sc, const bf_section_spec **specs,
     if (mt->flags & BF_MODEL_INTEGRATOR) {
         const char *iname = bf_scene_str(sc, "scene", "integrator");
         const bf_integrator_type *it = bf_catalog_integrator(cat, iname);
-        if (!it) {
-            size_t ni;
-            const bf_integrator_type *const *all =
-                bf_catalog_integrators(cat, &ni);
-            for (size_t k = 0; k < ni && k < 64; k++)
-                tmp[k] = all[k]->name;
-            list_names(names, sizeof names, tmp, ni);
-            return bf_scene_fail(sc, err, "scene", "integrator",
-                                 "unknown integrator '%s' (integrators: %s)",
-                                 iname, names);
-        }
+        if (!it)
+            return unknown(sc, err, "integrator", "integrator", iname,
+                           (const void *const *)cat->integrators,
+                           cat->nintegrators);
         if (it->spec && (st = add_spec(specs, cap, n, it->spec, err)))
             return st;
     } else if (bf_scene_given(sc, "scene", "integrator")) {
@@ -88,16 +83,9 @@ static bf_status select_specs(const bf_scene *sc, const bf_section_spec **specs,
                              "model '%s' takes no ball effects", model);
     for (size_t k = 0; k < ne; k++) {
         const bf_effect_type *et = bf_catalog_effect(cat, eff[k]);
-        if (!et) {
-            size_t na;
-            const bf_effect_type *const *all = bf_catalog_effects(cat, &na);
-            for (size_t j = 0; j < na && j < 64; j++)
-                tmp[j] = all[j]->name;
-            list_names(names, sizeof names, tmp, na);
-            return bf_scene_fail(sc, err, "scene", "effects",
-                                 "unknown effect '%s' (effects: %s)", eff[k],
-                                 names);
-        }
+        if (!et)
+            return unknown(sc, err, "effects", "effect", eff[k],
+                           (const void *const *)cat->effects, cat->neffects);
         if (et->spec && (st = add_spec(specs, cap, n, et->spec, err)))
             return st;
     }
