@@ -390,8 +390,8 @@ START_TEST(interrupted_sweep_stops_its_workers)
         int fd = open(part, O_RDWR);
         if (fd < 0)
             continue;
-        ck_assert_msg(flock(fd, LOCK_EX | LOCK_NB) == 0,
-                      "%s is still locked by a worker", part);
+        ck_assert_msg(tu_part_unlocked(fd), "%s is still locked by a worker",
+                      part);
         close(fd);
     }
 }

@@ -1,5 +1,6 @@
 /* params.c: parsing and storing typed parameter values (see params.h). */
 #include "ballfilm/params.h"
+#include "base/xalloc.h"
 
 #include <errno.h>
 #include <math.h>
@@ -94,22 +95,12 @@ static int choice_index(const char *choices, const char *word)
     return -1;
 }
 
-static void *xrealloc(void *p, size_t n)
-{
-    void *q = realloc(p, n ? n : 1);
-    if (!q) {
-        fprintf(stderr, "ballfilm: out of memory\n");
-        abort();
-    }
-    return q;
-}
-
 /* Split on commas and blanks.  Returns the number of tokens; *toks is a
  * malloc'd array of malloc'd strings. */
 static size_t split_list(const char *text, char ***toks)
 {
     size_t n = 0, cap = 8;
-    char **t = xrealloc(NULL, cap * sizeof *t);
+    char **t = bf_xrealloc(NULL, cap * sizeof *t);
     const char *p = text;
     for (;;) {
         while (*p == ',' || *p == ' ' || *p == '\t' || *p == '\n' || *p == '\r')
@@ -122,9 +113,9 @@ static size_t split_list(const char *text, char ***toks)
             q++;
         if (n == cap) {
             cap *= 2;
-            t = xrealloc(t, cap * sizeof *t);
+            t = bf_xrealloc(t, cap * sizeof *t);
         }
-        t[n] = xrealloc(NULL, (size_t)(q - p) + 1);
+        t[n] = bf_xrealloc(NULL, (size_t)(q - p) + 1);
         memcpy(t[n], p, (size_t)(q - p));
         t[n][q - p] = '\0';
         n++;
@@ -219,7 +210,7 @@ static int parse_reals(const bf_param *p, const char *text, bf_value *v,
 {
     char **t;
     size_t n = split_list(text, &t);
-    v->reals = xrealloc(NULL, (n ? n : 1) * sizeof *v->reals);
+    v->reals = bf_xrealloc(NULL, (n ? n : 1) * sizeof *v->reals);
     v->nreals = n;
     char range[128];
     for (size_t k = 0; k < n; k++) {

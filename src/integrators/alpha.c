@@ -35,6 +35,7 @@
 #include <stdlib.h>
 
 #include "ballfilm/integrator.h"
+#include "fixed_step.h"
 
 enum { A0, AH, XH, NVEC };
 enum { POS_VERLET, POS_TRAPEZOID };
@@ -67,14 +68,9 @@ static const bf_section_spec alpha_spec = BF_SECTION(
 static bf_status alpha_init(bf_integrator *it, const void *params,
                             bf_err *err)
 {
-    alpha_priv *p = malloc(sizeof *p);
-    if (!p)
-        return bf_fail(err, BF_EINTERNAL, "out of memory");
-    *p = *(const alpha_priv *)params;
-    it->priv = p;
-    it->split_events = p->events;
-    it->split_zone = p->events_zone;
-    return bf_integrator_alloc_work(it, NVEC, err);
+    const alpha_priv *p = params;
+    return bf_fixed_step_init_copy(it, p, sizeof *p, p->events,
+                                   p->events_zone, NVEC, err);
 }
 
 static void alpha_free(bf_integrator *it) { free(it->priv); }

@@ -174,24 +174,23 @@ typedef struct bf_run_mark {
     double cache_x[2], cache_a[2];
 } bf_run_mark;
 
-BF_ALWAYS_INLINE void bf_run_mark_set(bf_run_mark *m, const bf_integrator *it,
-                                      size_t n)
+/* to_mark: copy what a run changes from the integrator into the mark;
+ * otherwise back from the mark (undo).  One function for both directions,
+ * so the two cannot drift apart; to_mark is a constant at every call. */
+BF_ALWAYS_INLINE void bf_run_mark_copy(bf_run_mark *m, bf_integrator *it,
+                                       size_t n, int to_mark)
 {
-    m->count = it->count;
-    m->cache_valid = it->cache_valid;
-    m->cache_epoch = it->cache_epoch;
-    bf_vec_copy(m->cache_x, it->cache_x, n);
-    bf_vec_copy(m->cache_a, it->cache_a, n);
-}
-
-static inline void bf_run_mark_undo(const bf_run_mark *m, bf_integrator *it,
-                                    size_t n)
-{
-    it->count = m->count;
-    it->cache_valid = m->cache_valid;
-    it->cache_epoch = m->cache_epoch;
-    bf_vec_copy(it->cache_x, m->cache_x, n);
-    bf_vec_copy(it->cache_a, m->cache_a, n);
+    bf_counters *count[2] = {&it->count, &m->count};
+    int *valid[2] = {&it->cache_valid, &m->cache_valid};
+    unsigned long *epoch[2] = {&it->cache_epoch, &m->cache_epoch};
+    double *cx[2] = {it->cache_x, m->cache_x};
+    double *ca[2] = {it->cache_a, m->cache_a};
+    const int to = to_mark ? 1 : 0, from = 1 - to;
+    *count[to] = *count[from];
+    *valid[to] = *valid[from];
+    *epoch[to] = *epoch[from];
+    bf_vec_copy(cx[to], cx[from], n);
+    bf_vec_copy(ca[to], ca[from], n);
 }
 
 /* k steps one at a time (what every advance falls back to) */
@@ -227,13 +226,17 @@ static inline bf_status bf_ball_steps(bf_ball_step_fn step, bf_integrator *it,
         return bf_balls_not_finite(f->b, err);                                 \
     }
 
-/* A run of a fixed shape: in local copies, finiteness at the end (see
- * above); STEP is the shape's one-step function. */
-#define BF_BALL_ADVANCE_FIXED(NAME, RUN, NWORK, ACCEL, N, STEP)                \
+/* the signature of every generated advance (bf_ball_advance_fn) */
+#define BF_BALL_ADVANCE_SIGNATURE(NAME)                                        \
     BF_BALL_HOT static bf_status NAME(bf_integrator *it, const bf_ode *ode,   \
                                       const bf_ball_forces *f, long n0,       \
                                       long k, double dt, long *done,          \
-                                      bf_err *err)                            \
+                                      bf_err *err)
+
+/* A run of a fixed shape: in local copies, finiteness at the end (see
+ * above); STEP is the shape's one-step function. */
+#define BF_BALL_ADVANCE_FIXED(NAME, RUN, NWORK, ACCEL, N, STEP)                \
+    BF_BALL_ADVANCE_SIGNATURE(NAME)                                           \
     {                                                                         \
         if (k == 1)                                                           \
             return bf_ball_steps(STEP, it, ode, f, n0, k, dt, done, err);     \
@@ -242,13 +245,13 @@ static inline bf_status bf_ball_steps(bf_ball_step_fn step, bf_integrator *it,
         double w[NWORK * N] = {0}, x[N], v[N];                                \
         long j;                                                               \
         bf_fixed_setup(&F, f, N);                                             \
-        bf_run_mark_set(&mark, it, N);                                        \
+        bf_run_mark_copy(&mark, it, N, 1);                                    \
         bf_vec_copy(x, f->b->x, N);                                           \
         bf_vec_copy(v, f->b->v, N);                                           \
         bf_status st = RUN(it, ode, ACCEL, &F, bf_never_stop, N, w, n0, k,    \
                            dt, x, v, &j, err);                                \
         if (!bf_vec_finite(x, v, N)) {                                        \
-            bf_run_mark_undo(&mark, it, N);                                   \
+            bf_run_mark_copy(&mark, it, N, 0);                                \
             return bf_ball_steps(STEP, it, ode, f, n0, k, dt, done, err);     \
         }                                                                     \
         bf_vec_copy(f->b->x, x, N);                                           \
@@ -275,10 +278,7 @@ static inline bf_status bf_ball_steps(bf_ball_step_fn step, bf_integrator *it,
 /* Runs of any effects, any n: in place, finiteness checked after every
  * step (the run stops there; that step failed). */
 #define BF_BALL_ADVANCE_ANY(NAME, RUN, STEP)                                   \
-    BF_BALL_HOT static bf_status NAME(bf_integrator *it, const bf_ode *ode,   \
-                                      const bf_ball_forces *f, long n0,       \
-                                      long k, double dt, long *done,          \
-                                      bf_err *err)                            \
+    BF_BALL_ADVANCE_SIGNATURE(NAME)                                           \
     {                                                                         \
         if (k == 1)                                                           \
             return bf_ball_steps(STEP, it, ode, f, n0, k, dt, done, err);     \

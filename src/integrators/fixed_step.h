@@ -17,5 +17,11 @@ extern const bf_section_spec bf_fixed_step_spec;
 /* Take the keys (it->split_events) and allocate nvec work vectors. */
 bf_status bf_fixed_step_init(bf_integrator *it, const void *params,
                              size_t nvec, bf_err *err);
+/* For a type with keys of its own: keep a copy of them (`size` bytes) as
+ * it->priv (freed by the type's free), take its event keys and allocate
+ * nvec work vectors. */
+bf_status bf_fixed_step_init_copy(bf_integrator *it, const void *params,
+                                  size_t size, int events, double events_zone,
+                                  size_t nvec, bf_err *err);
 
 #endif

@@ -42,6 +42,7 @@
 #include <stdlib.h>
 
 #include "ballfilm/integrator.h"
+#include "fixed_step.h"
 
 enum { AB, XN, VP, VN, XM, NVEC };
 
@@ -73,16 +74,12 @@ static const bf_section_spec g73_spec = BF_SECTION(
     "integrator", "parameters of Greenspan's energy-conserving scheme",
     g73_params, g73_priv);
 
-static bf_status g73_init(bf_integrator *it, const void *params, bf_err *err)
+static bf_status g73_init(bf_integrator *it, const void *params,
+                          bf_err *err)
 {
-    g73_priv *p = malloc(sizeof *p);
-    if (!p)
-        return bf_fail(err, BF_EINTERNAL, "out of memory");
-    *p = *(const g73_priv *)params;
-    it->priv = p;
-    it->split_events = p->events;
-    it->split_zone = p->events_zone;
-    return bf_integrator_alloc_work(it, NVEC, err);
+    const g73_priv *p = params;
+    return bf_fixed_step_init_copy(it, p, sizeof *p, p->events,
+                                   p->events_zone, NVEC, err);
 }
 
 static void g73_free(bf_integrator *it) { free(it->priv); }

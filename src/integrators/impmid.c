@@ -23,6 +23,7 @@
 #include <stdlib.h>
 
 #include "ballfilm/integrator.h"
+#include "fixed_step.h"
 
 enum { A, XM, VM, VN, NVEC };
 
@@ -53,14 +54,9 @@ static const bf_section_spec impmid_spec =
 static bf_status impmid_init(bf_integrator *it, const void *params,
                              bf_err *err)
 {
-    impmid_priv *p = malloc(sizeof *p);
-    if (!p)
-        return bf_fail(err, BF_EINTERNAL, "out of memory");
-    *p = *(const impmid_priv *)params;
-    it->priv = p;
-    it->split_events = p->events;
-    it->split_zone = p->events_zone;
-    return bf_integrator_alloc_work(it, NVEC, err);
+    const impmid_priv *p = params;
+    return bf_fixed_step_init_copy(it, p, sizeof *p, p->events,
+                                   p->events_zone, NVEC, err);
 }
 
 static void impmid_free(bf_integrator *it) { free(it->priv); }

@@ -86,6 +86,20 @@ bf_status bf_fixed_step_init(bf_integrator *it, const void *params,
     return bf_integrator_alloc_work(it, nvec, err);
 }
 
+bf_status bf_fixed_step_init_copy(bf_integrator *it, const void *params,
+                                  size_t size, int events, double events_zone,
+                                  size_t nvec, bf_err *err)
+{
+    void *copy = malloc(size);
+    if (!copy)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    memcpy(copy, params, size);
+    it->priv = copy;
+    it->split_events = events;
+    it->split_zone = events_zone;
+    return bf_integrator_alloc_work(it, nvec, err);
+}
+
 void bf_integrator_set_monitor(bf_integrator *it, bf_monitor_fn fn, void *ctx)
 {
     it->monitor = fn;

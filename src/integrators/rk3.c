@@ -21,26 +21,6 @@ static const bf_erk_tableau rk3 = {
     .c = {0, 0.5, 1},
 };
 
-static bf_status rk3_init(bf_integrator *it, const void *params,
-                          bf_err *err)
-{
-    return bf_erk_init(it, params, rk3.s, err);
-}
-
-static bf_status rk3_step(bf_integrator *it, const bf_ode *ode, double t,
-                          double h, double *x, double *v, bf_err *err)
-{
-    return bf_erk_step(&rk3, it, ode, t, h, x, v, err);
-}
-
-const bf_integrator_type bf_integrator_rk3 = {
-    .name = "rk3",
-    .doc = "Kutta's third-order Runge-Kutta (the paper's RK32), order 3, 3 "
-           "force evaluations per step",
-    .order = 3,
-    .evals_per_step = 3,
-    .flags = 0,
-    .spec = &bf_fixed_step_spec,
-    .init = rk3_init,
-    .step = rk3_step,
-};
+BF_ERK_INTEGRATOR(rk3, rk3, 3, 3,
+                  "Kutta's third-order Runge-Kutta (the paper's RK32), order 3, 3 "
+                  "force evaluations per step");

@@ -22,26 +22,6 @@ static const bf_erk_tableau rk4 = {
     .c = {0, 0.5, 0.5, 1},
 };
 
-static bf_status rk4_init(bf_integrator *it, const void *params,
-                          bf_err *err)
-{
-    return bf_erk_init(it, params, rk4.s, err);
-}
-
-static bf_status rk4_step(bf_integrator *it, const bf_ode *ode, double t,
-                          double h, double *x, double *v, bf_err *err)
-{
-    return bf_erk_step(&rk4, it, ode, t, h, x, v, err);
-}
-
-const bf_integrator_type bf_integrator_rk4 = {
-    .name = "rk4",
-    .doc = "classical Runge-Kutta (the paper's RK41), order 4, 4 force "
-           "evaluations per step",
-    .order = 4,
-    .evals_per_step = 4,
-    .flags = 0,
-    .spec = &bf_fixed_step_spec,
-    .init = rk4_init,
-    .step = rk4_step,
-};
+BF_ERK_INTEGRATOR(rk4, rk4, 4, 4,
+                  "classical Runge-Kutta (the paper's RK41), order 4, 4 force "
+                  "evaluations per step");

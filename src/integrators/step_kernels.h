@@ -74,6 +74,18 @@ BF_ALWAYS_INLINE void bf_vec_copy(double *dst, const double *src, size_t n)
  * end, see ballsys.c). */
 typedef int (*bf_stop_fn)(const double *x, const double *v, size_t n);
 
+/* The parameters every one-step kernel and every run kernel takes (the
+ * same for all methods, so that ball_steps.h instantiates them alike). */
+#define BF_STEP_KERNEL_PARAMS                                                 \
+    bf_integrator *it, const bf_ode *ode, bf_accel_fn accel, void *ctx,       \
+        size_t n, double *restrict work, double t, double dt,                 \
+        double *restrict x, double *restrict v, bf_err *err
+#define BF_RUN_KERNEL_PARAMS                                                  \
+    bf_integrator *it, const bf_ode *ode, bf_accel_fn accel, void *ctx,       \
+        bf_stop_fn stop, size_t n, double *restrict work, long n0, long k,    \
+        double dt, double *restrict x, double *restrict v, long *done,        \
+        bf_err *err
+
 /* ---- velocity Verlet ---- */
 
 /* a0 = a(x) from the first-same-as-last cache (integrator.h); 1 if found */
@@ -123,13 +135,7 @@ BF_ALWAYS_INLINE int bf_verlet_core(bf_accel_fn accel, void *ctx, size_t n,
 }
 
 /* One step with the force cache; work holds 3n doubles. */
-BF_ALWAYS_INLINE bf_status bf_verlet_kernel(bf_integrator *it,
-                                            const bf_ode *ode,
-                                            bf_accel_fn accel, void *ctx,
-                                            size_t n, double *restrict work,
-                                            double t, double dt,
-                                            double *restrict x,
-                                            double *restrict v, bf_err *err)
+BF_ALWAYS_INLINE bf_status bf_verlet_kernel(BF_STEP_KERNEL_PARAMS)
 {
     double *a0 = work, *a1 = work + n, *xn = work + 2 * n;
     if (!bf_verlet_cache_get(it, ode, n, x, a0)) {
@@ -148,13 +154,7 @@ BF_ALWAYS_INLINE bf_status bf_verlet_kernel(bf_integrator *it,
 /* k >= 0 steps from t = n0 dt (see above); work holds 3n doubles.  *done:
  * steps taken, the one after which `stop` ended the run included.  If the
  * force fails in step j, *done = j and x, v are those after step j - 1. */
-BF_ALWAYS_INLINE bf_status bf_verlet_run(bf_integrator *it, const bf_ode *ode,
-                                         bf_accel_fn accel, void *ctx,
-                                         bf_stop_fn stop, size_t n,
-                                         double *restrict work, long n0,
-                                         long k, double dt, double *restrict x,
-                                         double *restrict v, long *done,
-                                         bf_err *err)
+BF_ALWAYS_INLINE bf_status bf_verlet_run(BF_RUN_KERNEL_PARAMS)
 {
     double *a0 = work, *a1 = work + n, *xn = work + 2 * n;
     unsigned long long evals = 0;
@@ -227,12 +227,7 @@ BF_ALWAYS_INLINE int bf_mv2m_core(bf_accel_fn accel, void *ctx, size_t n,
 }
 
 /* One step; work holds 5n doubles. */
-BF_ALWAYS_INLINE bf_status bf_mv2m_kernel(bf_integrator *it, const bf_ode *ode,
-                                          bf_accel_fn accel, void *ctx,
-                                          size_t n, double *restrict work,
-                                          double t, double dt,
-                                          double *restrict x,
-                                          double *restrict v, bf_err *err)
+BF_ALWAYS_INLINE bf_status bf_mv2m_kernel(BF_STEP_KERNEL_PARAMS)
 {
     (void)ode;
     unsigned long long evals = 0;
@@ -246,13 +241,7 @@ BF_ALWAYS_INLINE bf_status bf_mv2m_kernel(bf_integrator *it, const bf_ode *ode,
 
 /* k >= 0 steps from t = n0 dt, as bf_verlet_run (no cache: MV2M evaluates
  * no force at x^{n+1}); work holds 5n doubles. */
-BF_ALWAYS_INLINE bf_status bf_mv2m_run(bf_integrator *it, const bf_ode *ode,
-                                       bf_accel_fn accel, void *ctx,
-                                       bf_stop_fn stop, size_t n,
-                                       double *restrict work, long n0, long k,
-                                       double dt, double *restrict x,
-                                       double *restrict v, long *done,
-                                       bf_err *err)
+BF_ALWAYS_INLINE bf_status bf_mv2m_run(BF_RUN_KERNEL_PARAMS)
 {
     (void)ode;
     unsigned long long evals = 0;
@@ -336,12 +325,7 @@ BF_ALWAYS_INLINE int bf_rkn6_core(bf_accel_fn accel, void *ctx, size_t n,
 }
 
 /* One step with the force cache; work holds 7n doubles. */
-BF_ALWAYS_INLINE bf_status bf_rkn6_kernel(bf_integrator *it, const bf_ode *ode,
-                                          bf_accel_fn accel, void *ctx,
-                                          size_t n, double *restrict work,
-                                          double t, double dt,
-                                          double *restrict x,
-                                          double *restrict v, bf_err *err)
+BF_ALWAYS_INLINE bf_status bf_rkn6_kernel(BF_STEP_KERNEL_PARAMS)
 {
     unsigned long long evals = 0;
     if (!bf_verlet_cache_get(it, ode, n, x, work)) {
@@ -361,13 +345,7 @@ BF_ALWAYS_INLINE bf_status bf_rkn6_kernel(bf_integrator *it, const bf_ode *ode,
 }
 
 /* k >= 0 steps from t = n0 dt, as bf_verlet_run; work holds 7n doubles. */
-BF_ALWAYS_INLINE bf_status bf_rkn6_run(bf_integrator *it, const bf_ode *ode,
-                                       bf_accel_fn accel, void *ctx,
-                                       bf_stop_fn stop, size_t n,
-                                       double *restrict work, long n0, long k,
-                                       double dt, double *restrict x,
-                                       double *restrict v, long *done,
-                                       bf_err *err)
+BF_ALWAYS_INLINE bf_status bf_rkn6_run(BF_RUN_KERNEL_PARAMS)
 {
     unsigned long long evals = 0;
     long j = 0;

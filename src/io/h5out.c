@@ -1,8 +1,10 @@
 /* h5out.c: buffered, extendible HDF5 series (see h5out.h for the design).
  *
  * Owning the output path.  A run writes PATH.part, which it holds under an
- * exclusive lock (flock on its own descriptor, taken before anything is
- * truncated; HDF5's own locking is off, so that it does not fight ours),
+ * exclusive lock (a record lock on its own descriptor, taken before
+ * anything is truncated, see lock_part; the writer's HDF5 locking is off,
+ * so that it does not fight ours, and readers may open the file while it
+ * is written),
  * and renames it over PATH only when it commits: a previous result at
  * PATH survives until the new one exists, and a second run on the same
  * path is refused instead of truncating the first one's file.  The lock
@@ -25,7 +27,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/file.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -99,6 +100,25 @@ static hid_t fapl_unlocked(void)
     return fapl;
 }
 
+/* The writer's lock on PATH.part: a write lock on the whole file, held
+ * by this open file description (Linux OFD locks; POSIX record locks
+ * elsewhere).  Not flock(2): HDF5 (1.10 and later) takes flock(LOCK_SH)
+ * when a reader opens a file, and an exclusive flock would keep h5py and
+ * `ballfilm xdmf` from reading a run while it is written.  Record locks
+ * and flock locks do not conflict on Linux.  Returns 0 or an errno. */
+static int lock_part(int fd)
+{
+    struct flock lk = {.l_type = F_WRLCK, .l_whence = SEEK_SET};
+#ifdef F_OFD_SETLK
+    if (!fcntl(fd, F_OFD_SETLK, &lk))
+        return 0;
+#else
+    if (!fcntl(fd, F_SETLK, &lk))
+        return 0;
+#endif
+    return errno == EACCES ? EAGAIN : errno;
+}
+
 /* Open and lock PATH.part; fails with BF_EIO when another run holds it. */
 static bf_status claim(bf_out *o, const char *path, bf_err *err)
 {
@@ -113,10 +133,10 @@ static bf_status claim(bf_out *o, const char *path, bf_err *err)
     if (fd < 0)
         return bf_fail(err, BF_EIO, "%s: cannot create %s: %s", path, o->part,
                        strerror(errno));
-    if (flock(fd, LOCK_EX | LOCK_NB)) {
-        int e = errno;
+    int e = lock_part(fd);
+    if (e) {
         close(fd);
-        if (e == EWOULDBLOCK)
+        if (e == EAGAIN)
             return bf_fail(err, BF_EIO, "%s is in use: another run is writing "
                            "it (%s is locked); wait for it to end or choose "
                            "another output file",
@@ -138,10 +158,10 @@ static void release(bf_out *o)
     free(o);
 }
 
-bf_status bf_out_create(bf_out **out, const char *path, bf_err *err)
+/* Claim PATH (its lock) and create PATH.part, or open it to continue. */
+static bf_status open_part(bf_out **out, const char *path, int append,
+                           bf_err *err)
 {
-    quiet_hdf5();
-    *out = NULL;
     bf_out *o = calloc(1, sizeof *o);
     if (!o)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
@@ -151,18 +171,32 @@ bf_status bf_out_create(bf_out **out, const char *path, bf_err *err)
         return st;
     }
     hid_t fapl = fapl_unlocked();
-    o->file = H5Fcreate(o->part, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+    o->file = append ? H5Fopen(o->part, H5F_ACC_RDWR, fapl)
+                     : H5Fcreate(o->part, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
     H5Pclose(fapl);
     if (o->file < 0) {
-        st = bf_fail(err, BF_EIO, "%s: cannot create the HDF5 file %s", path,
-                     o->part);
-        unlink(o->part);
+        if (append)
+            st = bf_fail(err, BF_EIO, "%s: cannot open the run's HDF5 file "
+                         "%s to continue it", path, o->part);
+        else {
+            st = bf_fail(err, BF_EIO, "%s: cannot create the HDF5 file %s",
+                         path, o->part);
+            unlink(o->part);
+        }
         release(o);
         return st;
     }
+    o->append = append;
     o->last_flush = bf_wall_time();
     *out = o;
     return BF_OK;
+}
+
+bf_status bf_out_create(bf_out **out, const char *path, bf_err *err)
+{
+    quiet_hdf5();
+    *out = NULL;
+    return open_part(out, path, 0, err);
 }
 
 bf_status bf_out_open_append(bf_out **out, const char *path, bf_err *err)
@@ -175,27 +209,7 @@ bf_status bf_out_open_append(bf_out **out, const char *path, bf_err *err)
     if (access(part, F_OK) && !access(path, F_OK) && rename(path, part))
         return bf_fail(err, BF_EIO, "%s: cannot move it to %s to continue it: "
                        "%s", path, part, strerror(errno));
-    bf_out *o = calloc(1, sizeof *o);
-    if (!o)
-        return bf_fail(err, BF_EINTERNAL, "out of memory");
-    bf_status st = claim(o, path, err);
-    if (st) {
-        release(o);
-        return st;
-    }
-    hid_t fapl = fapl_unlocked();
-    o->file = H5Fopen(o->part, H5F_ACC_RDWR, fapl);
-    H5Pclose(fapl);
-    if (o->file < 0) {
-        st = bf_fail(err, BF_EIO, "%s: cannot open the run's HDF5 file %s to "
-                     "continue it", path, o->part);
-        release(o);
-        return st;
-    }
-    o->append = 1;
-    o->last_flush = bf_wall_time();
-    *out = o;
-    return BF_OK;
+    return open_part(out, path, 1, err);
 }
 
 const char *bf_out_path(const bf_out *out) { return out->path; }
@@ -700,15 +714,27 @@ bf_status bf_h5_read(const char *file, const char *path, double **data,
     return st;
 }
 
+/* Open FILE read-only (*f) and its attribute NAME on OBJ (*a, negative if
+ * it has none); an error only if the file cannot be opened. */
+static bf_status open_attr(const char *file, const char *obj, const char *name,
+                           hid_t *f, hid_t *a, bf_err *err)
+{
+    quiet_hdf5();
+    *a = -1;
+    *f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (*f < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", file);
+    *a = H5Aopen_by_name(*f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+    return BF_OK;
+}
+
 bf_status bf_h5_read_attr_real(const char *file, const char *obj,
                                const char *name, double *value, bf_err *err)
 {
-    quiet_hdf5();
-    hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
-    if (f < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", file);
-    bf_status st = BF_OK;
-    hid_t a = H5Aopen_by_name(f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t f, a;
+    bf_status st = open_attr(file, obj, name, &f, &a, err);
+    if (st)
+        return st;
     if (a < 0 || H5Aread(a, H5T_NATIVE_DOUBLE, value) < 0)
         st = bf_fail(err, BF_EIO, "%s: no numeric attribute %s on %s", file,
                      name, obj);
@@ -721,13 +747,11 @@ bf_status bf_h5_read_attr_real(const char *file, const char *obj,
 bf_status bf_h5_read_attr_str(const char *file, const char *obj,
                               const char *name, char **value, bf_err *err)
 {
-    quiet_hdf5();
     *value = NULL;
-    hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
-    if (f < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", file);
-    bf_status st = BF_OK;
-    hid_t a = H5Aopen_by_name(f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t f, a;
+    bf_status st = open_attr(file, obj, name, &f, &a, err);
+    if (st)
+        return st;
     if (a < 0) {
         st = bf_fail(err, BF_EIO, "%s: no attribute %s on %s", file, name, obj);
     } else {

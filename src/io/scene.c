@@ -6,6 +6,7 @@
  * and can refuse over-long lines instead of letting inih split them.
  */
 #include "ballfilm/scene.h"
+#include "base/xalloc.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -52,26 +53,6 @@ struct bf_scene {
 
 /* ---------------------------------------------------------------- helpers */
 
-static char *xstrdup(const char *s)
-{
-    char *d = strdup(s ? s : "");
-    if (!d) {
-        fprintf(stderr, "ballfilm: out of memory\n");
-        abort();
-    }
-    return d;
-}
-
-static void *xrealloc(void *p, size_t n)
-{
-    void *q = realloc(p, n ? n : 1);
-    if (!q) {
-        fprintf(stderr, "ballfilm: out of memory\n");
-        abort();
-    }
-    return q;
-}
-
 static void entry_free(entry *e)
 {
     free(e->section);
@@ -85,7 +66,7 @@ static entry *push_entry(entry **arr, size_t *n, size_t *cap)
 {
     if (*n == *cap) {
         *cap = *cap ? 2 * *cap : 32;
-        *arr = xrealloc(*arr, *cap * sizeof **arr);
+        *arr = bf_xrealloc(*arr, *cap * sizeof **arr);
     }
     entry *e = &(*arr)[(*n)++];
     memset(e, 0, sizeof *e);
@@ -114,9 +95,9 @@ static void add_sect(bf_scene *sc, const char *name, int line)
         return;
     if (sc->nsects == sc->capsects) {
         sc->capsects = sc->capsects ? 2 * sc->capsects : 16;
-        sc->sects = xrealloc(sc->sects, sc->capsects * sizeof *sc->sects);
+        sc->sects = bf_xrealloc(sc->sects, sc->capsects * sizeof *sc->sects);
     }
-    sc->sects[sc->nsects].name = xstrdup(name);
+    sc->sects[sc->nsects].name = bf_xstrdup(name);
     sc->sects[sc->nsects].line = line;
     sc->nsects++;
 }
@@ -219,7 +200,7 @@ static int on_key(void *user, const char *section, const char *name,
         !strcmp(r->last_key, name)) {
         /* continuation of a multi-line value: join with a blank */
         size_t a = strlen(old->text), b = strlen(value);
-        old->text = xrealloc(old->text, a + b + 2);
+        old->text = bf_xrealloc(old->text, a + b + 2);
         old->text[a] = ' ';
         memcpy(old->text + a + 1, value, b + 1);
         return 1;
@@ -232,10 +213,10 @@ static int on_key(void *user, const char *section, const char *name,
         return 0;
     }
     entry *e = push_entry(&sc->raw, &sc->nraw, &sc->capraw);
-    e->section = xstrdup(section);
-    e->key = xstrdup(name);
-    e->text = xstrdup(value);
-    e->origin = xstrdup(sc->path);
+    e->section = bf_xstrdup(section);
+    e->key = bf_xstrdup(name);
+    e->text = bf_xstrdup(value);
+    e->origin = bf_xstrdup(sc->path);
     e->line = r->line;
     e->given = 1;
     snprintf(r->last_section, sizeof r->last_section, "%s", section);
@@ -250,8 +231,8 @@ bf_status bf_scene_load_string(bf_scene **out, const char *name,
     bf_scene *sc = calloc(1, sizeof *sc);
     if (!sc)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    sc->path = xstrdup(name);
-    sc->text = xstrdup(text);
+    sc->path = bf_xstrdup(name);
+    sc->text = bf_xstrdup(text);
     if (strlen(text) != strlen(sc->text) || memchr(text, '\0', strlen(text))) {
         /* unreachable for C strings; kept for clarity */
     }
@@ -287,7 +268,7 @@ bf_status bf_scene_load(bf_scene **out, const char *path, bf_err *err)
         return bf_fail(err, BF_EINPUT, "%s: error: cannot open scene file: %s",
                        path, strerror(errno));
     size_t cap = 4096, n = 0;
-    char *buf = xrealloc(NULL, cap);
+    char *buf = bf_xrealloc(NULL, cap);
     size_t got;
     while ((got = fread(buf + n, 1, cap - n - 1, f)) > 0) {
         n += got;
@@ -299,7 +280,7 @@ bf_status bf_scene_load(bf_scene **out, const char *path, bf_err *err)
                                "%s: error: scene file larger than 64 MiB", path);
             }
             cap *= 2;
-            buf = xrealloc(buf, cap);
+            buf = bf_xrealloc(buf, cap);
         }
     }
     int bad = ferror(f);
@@ -361,22 +342,22 @@ bf_scene *bf_scene_clone(const bf_scene *sc)
     bf_scene *c = calloc(1, sizeof *c);
     if (!c)
         return NULL;
-    c->path = xstrdup(sc->path);
-    c->text = xstrdup(sc->text);
+    c->path = bf_xstrdup(sc->path);
+    c->text = bf_xstrdup(sc->text);
     for (size_t k = 0; k < sc->nraw; k++) {
         entry *e = push_entry(&c->raw, &c->nraw, &c->capraw);
-        e->section = xstrdup(sc->raw[k].section);
-        e->key = xstrdup(sc->raw[k].key);
-        e->text = xstrdup(sc->raw[k].text);
-        e->origin = xstrdup(sc->raw[k].origin);
+        e->section = bf_xstrdup(sc->raw[k].section);
+        e->key = bf_xstrdup(sc->raw[k].key);
+        e->text = bf_xstrdup(sc->raw[k].text);
+        e->origin = bf_xstrdup(sc->raw[k].origin);
         e->line = sc->raw[k].line;
         e->given = 1;
     }
     for (size_t k = 0; k < sc->nsects; k++)
         add_sect(c, sc->sects[k].name, sc->sects[k].line);
     for (size_t k = 0; k < sc->nsets; k++) {
-        c->sets = xrealloc(c->sets, (c->nsets + 1) * sizeof *c->sets);
-        c->sets[c->nsets++] = xstrdup(sc->sets[k]);
+        c->sets = bf_xrealloc(c->sets, (c->nsets + 1) * sizeof *c->sets);
+        c->sets[c->nsets++] = bf_xstrdup(sc->sets[k]);
     }
     return c;
 }
@@ -427,25 +408,25 @@ bf_status bf_scene_set(bf_scene *sc, const char *assignment, const char *origin,
     const char *v = eq + 1;
     while (*v == ' ' || *v == '\t')
         v++;
-    char *val = xstrdup(v);
+    char *val = bf_xstrdup(v);
     for (size_t n = strlen(val); n && (val[n - 1] == ' ' || val[n - 1] == '\t');)
         val[--n] = '\0';
     entry *e = find_raw(sc, section, key);
     if (!e) {
         e = push_entry(&sc->raw, &sc->nraw, &sc->capraw);
-        e->section = xstrdup(section);
-        e->key = xstrdup(key);
+        e->section = bf_xstrdup(section);
+        e->key = bf_xstrdup(key);
     } else {
         free(e->text);
         free(e->origin);
     }
     e->text = val;
-    e->origin = xstrdup(origin);
+    e->origin = bf_xstrdup(origin);
     e->line = 0;
     e->given = 1;
     add_sect(sc, section, 0);
-    sc->sets = xrealloc(sc->sets, (sc->nsets + 1) * sizeof *sc->sets);
-    sc->sets[sc->nsets++] = xstrdup(assignment);
+    sc->sets = bf_xrealloc(sc->sets, (sc->nsets + 1) * sizeof *sc->sets);
+    sc->sets[sc->nsets++] = bf_xstrdup(assignment);
     free_resolved(sc);
     return BF_OK;
 }
@@ -566,18 +547,18 @@ static bf_status resolve_sections(bf_scene *sc, const bf_section_spec *const *sp
             }
             for (const bf_param *p = s->params; p && p->key; p++) {
                 entry *e = push_entry(&sc->res, &sc->nres, &sc->capres);
-                e->section = xstrdup(secname);
-                e->key = xstrdup(p->key);
+                e->section = bf_xstrdup(secname);
+                e->key = bf_xstrdup(p->key);
                 e->param = p;
                 const entry *r = find_raw(sc, secname, p->key);
                 if (r) {
-                    e->text = xstrdup(r->text);
-                    e->origin = xstrdup(r->origin);
+                    e->text = bf_xstrdup(r->text);
+                    e->origin = bf_xstrdup(r->origin);
                     e->line = r->line;
                     e->given = 1;
                 } else if (p->def) {
-                    e->text = xstrdup(p->def);
-                    e->origin = xstrdup(sc->path);
+                    e->text = bf_xstrdup(p->def);
+                    e->origin = bf_xstrdup(sc->path);
                     e->given = 0;
                 } else {
                     const sect *se = find_sect(sc, secname);

@@ -731,30 +731,46 @@ static const bf_field mac_counts[] = {
     BF_FIELD(bf_mac_counts, max_gs_du, BF_F_DOUBLE, "W"),
 };
 
+/* The state, its counters and the markers under prefix, prefix.counts and
+ * prefix.markers: written (save) or read back, one list for both. */
+static bf_status mac_ckpt(bf_mac *m, bf_ckpt *ck, const char *prefix,
+                          int save, bf_err *err)
+{
+    const struct {
+        const char *suffix;
+        const bf_field *fields;
+        size_t nfields;
+        void *obj;
+    } parts[] = {
+        {"", mac_state, BF_NFIELDS(mac_state), m},
+        {".counts", mac_counts, BF_NFIELDS(mac_counts), &m->cnt},
+    };
+    char name[256];
+    bf_status st = BF_OK;
+    for (size_t k = 0; k < sizeof parts / sizeof parts[0] && !st; k++) {
+        snprintf(name, sizeof name, "%s%s", prefix, parts[k].suffix);
+        st = save ? bf_ckpt_put_fields(ck, name, parts[k].fields,
+                                       parts[k].nfields, parts[k].obj, err)
+                  : bf_ckpt_get_fields(ck, name, parts[k].fields,
+                                       parts[k].nfields, parts[k].obj, err);
+    }
+    snprintf(name, sizeof name, "%s.markers", prefix);
+    if (st)
+        return st;
+    return save ? bf_particles_save(&m->part, ck, name, err)
+                : bf_particles_load(&m->part, ck, name, err);
+}
+
 bf_status bf_mac_save(const bf_mac *m, bf_ckpt *ck, const char *prefix,
                       bf_err *err)
 {
-    char name[256];
-    bf_status st = bf_ckpt_put_fields(ck, prefix, mac_state,
-                                      BF_NFIELDS(mac_state), m, err);
-    snprintf(name, sizeof name, "%s.counts", prefix);
-    if (!st)
-        st = bf_ckpt_put_fields(ck, name, mac_counts, BF_NFIELDS(mac_counts),
-                                &m->cnt, err);
-    snprintf(name, sizeof name, "%s.markers", prefix);
-    return st ? st : bf_particles_save(&m->part, ck, name, err);
+    /* saving reads m only */
+    return mac_ckpt((bf_mac *)m, ck, prefix, 1, err);
 }
 
 bf_status bf_mac_load(bf_mac *m, const bf_ckpt *ck, const char *prefix,
                       bf_err *err)
 {
-    char name[256];
-    bf_status st = bf_ckpt_get_fields(ck, prefix, mac_state,
-                                      BF_NFIELDS(mac_state), m, err);
-    snprintf(name, sizeof name, "%s.counts", prefix);
-    if (!st)
-        st = bf_ckpt_get_fields(ck, name, mac_counts, BF_NFIELDS(mac_counts),
-                                &m->cnt, err);
-    snprintf(name, sizeof name, "%s.markers", prefix);
-    return st ? st : bf_particles_load(&m->part, ck, name, err);
+    /* loading reads ck only */
+    return mac_ckpt(m, (bf_ckpt *)ck, prefix, 0, err);
 }
