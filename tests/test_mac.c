@@ -145,7 +145,7 @@ START_TEST(rest_tank_consistent_stays_at_rest)
             step(m, 0.05);
             worst = fmax(worst, max_face_speed(m));
         }
-        fprintf(stderr, "mac rest tank, %s update, direct solve: max |u|,|v| "
+        tu_ref("mac", "mac rest tank, %s update, direct solve: max |u|,|v| "
                 "over 200 steps = %.3e\n",
                 k ? "original" : "consistent", worst);
         ck_assert_msg(worst < 1e-12, "max face speed %g", worst);
@@ -197,7 +197,7 @@ START_TEST(rest_tank_printed_update_moves)
             double vc = v[bf_mac_index(m, i, j)];
             worst_rel = fmax(worst_rel, fabs(vc - vform[j]) / vmax);
         }
-    fprintf(stderr, "mac rest tank, printed update: first-step |v| up to "
+    tu_ref("mac", "mac rest tank, printed update: first-step |v| up to "
             "%.4e, code vs closed form: max relative difference %.2e\n",
             vmax, worst_rel);
     ck_assert_msg(vmax > 1e-4, "closed form predicts only %g", vmax);
@@ -209,7 +209,7 @@ START_TEST(rest_tank_printed_update_moves)
     }
     double um, vm, dm;
     bf_mac_extremes(m, &um, &vm, &dm, NULL, NULL);
-    fprintf(stderr, "mac rest tank, printed update, direct solve: after 200 "
+    tu_ref("mac", "mac rest tank, printed update, direct solve: after 200 "
             "steps max |u| %.3e, max |v| %.3e, max |div| %.3e; max over the "
             "run %.3e\n", um, vm, dm, worst);
     ck_assert(vm > 0.5 * vmax && worst < 10 * vmax);
@@ -247,7 +247,7 @@ START_TEST(rest_tank_relaxation_deviation_reported)
             step(m, 0.05);
             worst = fmax(worst, max_face_speed(m));
         }
-        fprintf(stderr, "mac rest tank, %s update, relaxation (crude .0003, "
+        tu_ref("mac", "mac rest tank, %s update, relaxation (crude .0003, "
                 "fine .0002): max |u|,|v| over 200 steps = %.3e\n",
                 k ? "printed" : "consistent", worst);
         double bound = 0.05 / 0.1 * 100 * p.fine_tol * 0.98 * 1.4;
@@ -293,7 +293,7 @@ START_TEST(uniform_stream_stays_uniform)
             step(m, 0.05);
             stream_deviation(m, p.u0, &du, &dv);
         }
-        fprintf(stderr, "mac uniform stream, %s update: max |u - u0| %.3e, "
+        tu_ref("mac", "mac uniform stream, %s update: max |u - u0| %.3e, "
                 "max |v| %.3e over 200 steps\n",
                 k ? "original" : "consistent", du, dv);
         ck_assert_msg(du < 1e-12 && dv < 1e-12, "du %g dv %g", du, dv);
@@ -328,7 +328,7 @@ START_TEST(uniform_stream_face_coincidences_and_printed)
             stream_deviation(m, p.u0, &du, &dv);
         }
         double worst = fmax(du, dv);
-        fprintf(stderr, "mac uniform stream u0 = 0.1, %s update: max "
+        tu_ref("mac", "mac uniform stream u0 = 0.1, %s update: max "
                 "deviation %.3e\n", k ? "printed" : "consistent", worst);
         if (!k)
             ck_assert_msg(worst < 1e-5, "deviation %g", worst);
@@ -357,7 +357,7 @@ START_TEST(relaxation_converges_to_direct_solution)
         for (int n = 0; n < 10; n++)
             step(m, 0.05);
         const bf_mac_counts *c = bf_mac_get_counts(m);
-        fprintf(stderr, "mac reservoir, %s, relaxation to 1e-13 vs direct: "
+        tu_ref("mac", "mac reservoir, %s, relaxation to 1e-13 vs direct: "
                 "max |dP|/|rho g D| %.2e, max |du| %.2e\n",
                 k ? "consistent" : "printed", c->max_gs_dp, c->max_gs_du);
         ck_assert_msg(c->max_gs_dp < 1e-9, "%g", c->max_gs_dp);
@@ -370,7 +370,7 @@ START_TEST(relaxation_converges_to_direct_solution)
     for (int n = 0; n < 40; n++)
         step(m, 0.05);
     const bf_mac_counts *c = bf_mac_get_counts(m);
-    fprintf(stderr, "mac reservoir, listing tolerances (fine .0002), 40 steps: "
+    tu_ref("mac", "mac reservoir, listing tolerances (fine .0002), 40 steps: "
             "relaxation vs exact max |dP|/|rho g D| %.2e, max |du| %.2e\n",
             c->max_gs_dp, c->max_gs_du);
     ck_assert(c->max_gs_dp > 0 && c->max_gs_dp < 1);
@@ -418,7 +418,7 @@ START_TEST(reservoir_divergence_free_except_inflow_column)
             step(m, 0.05);
             divergence(m, &inner, &col2);
         }
-        fprintf(stderr, "mac reservoir, %s update, direct: max |div w| in "
+        tu_ref("mac", "mac reservoir, %s update, direct: max |div w| in "
                 "FULL cells %.2e (column 2: %.2e), 60 steps\n", nm[k], inner,
                 col2);
         if (k < 2)
@@ -471,7 +471,7 @@ START_TEST(reservoir_markers_and_mass_balance)
     double m1 = bf_mac_fluid_mass(m);
     double bal = (m1 - m0) - (c->mass_in - c->mass_out - c->mass_back -
                               c->mass_lost);
-    fprintf(stderr, "mac reservoir to t = 10: entered %lld, into the sink "
+    tu_ref("mac", "mac reservoir to t = 10: entered %lld, into the sink "
             "%lld, backflow %lld, lost %lld, held at walls %lld; mass in "
             "%.5f out %.5f, balance %.1e\n",
             (long long)c->entered, (long long)c->left_out,
@@ -488,7 +488,7 @@ START_TEST(reservoir_markers_and_mass_balance)
     m = make(&p, 0.05);
     for (int n = 0; n < 200; n++)
         step(m, 0.05);
-    fprintf(stderr, "mac reservoir, wall_markers = remove (listing): lost "
+    tu_ref("mac", "mac reservoir, wall_markers = remove (listing): lost "
             "%lld\n", (long long)bf_mac_get_counts(m)->lost);
     ck_assert(bf_mac_get_counts(m)->lost > 0);
     bf_mac_free(m);
@@ -532,14 +532,14 @@ START_TEST(reservoir_refined_x2_x4)
     const bf_mac_counts *c;
     bf_mac *m;
     run_refined(2, 0, &st, msg, &um, &c, &m);
-    fprintf(stderr, "mac reservoir x2: status %d, max speed %.3f, lost %lld\n",
+    tu_ref("mac", "mac reservoir x2: status %d, max speed %.3f, lost %lld\n",
             st, um, (long long)c->lost);
     ck_assert_msg(st == BF_OK, "%s", msg);
     ck_assert_int_eq(c->lost, 0);
     ck_assert(um < 0.5);
     bf_mac_free(m);
     run_refined(4, 0, &st, msg, &um, &c, &m);
-    fprintf(stderr, "mac reservoir x4, listing voids: status %d: %s\n", st, msg);
+    tu_ref("mac", "mac reservoir x4, listing voids: status %d: %s\n", st, msg);
     if (st) {
         ck_assert_int_eq(st, BF_EUNSTABLE);
         ck_assert_msg(strstr(msg, "cell (") && strstr(msg, "void_fix"), "%s",
@@ -549,7 +549,7 @@ START_TEST(reservoir_refined_x2_x4)
     }
     bf_mac_free(m);
     run_refined(4, 1, &st, msg, &um, &c, &m);
-    fprintf(stderr, "mac reservoir x4, void_fix: status %d, max speed %.3f, "
+    tu_ref("mac", "mac reservoir x4, void_fix: status %d, max speed %.3f, "
             "voids filled %lld, lost %lld\n",
             st, um, (long long)c->voids, (long long)c->lost);
     ck_assert_msg(st == BF_OK, "%s", msg);

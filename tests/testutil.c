@@ -1,6 +1,7 @@
 /* testutil.c: see testutil.h. */
 #include "testutil.h"
 
+#include <ctype.h>
 #include <fcntl.h>
 #include <math.h>
 #include <poll.h>
@@ -428,4 +429,121 @@ void tu_stop_restart_same(const char *scene, const char *full,
                   err ? err : "");
     free(err);
     tu_same_datasets(full, part);
+}
+
+int tu_part_unlocked(int fd)
+{
+    struct flock lk = {.l_type = F_WRLCK, .l_whence = SEEK_SET};
+#ifdef F_OFD_GETLK
+    if (fcntl(fd, F_OFD_GETLK, &lk))
+        return 0;
+#else
+    if (fcntl(fd, F_GETLK, &lk))
+        return 0;
+#endif
+    return lk.l_type == F_UNLCK;
+}
+
+/* ---- golden lines ---- */
+
+/* Does a number start at p (not inside a word such as "x2")? */
+static int number_at(const char *line, const char *p)
+{
+    if (p > line && (isalnum((unsigned char)p[-1]) || p[-1] == '_' ||
+                     p[-1] == '.'))
+        return 0;
+    const char *q = p;
+    if (*q == '-' || *q == '+')
+        q++;
+    if (*q == '.')
+        q++;
+    return isdigit((unsigned char)*q);
+}
+
+/* The line with every number replaced by '#' (into key), and the numbers
+ * (at most max). */
+static size_t ref_split(const char *line, char *key, size_t cap,
+                        double *num, size_t max)
+{
+    size_t nk = 0, nn = 0;
+    for (const char *p = line; *p && nk + 1 < cap;) {
+        if (number_at(line, p)) {
+            char *end;
+            double v = strtod(p, &end);
+            if (end > p) {
+                if (nn < max)
+                    num[nn] = v;
+                nn++;
+                key[nk++] = '#';
+                p = end;
+                continue;
+            }
+        }
+        key[nk++] = *p++;
+    }
+    key[nk] = '\0';
+    return nn;
+}
+
+void tu_ref(const char *name, const char *fmt, ...)
+{
+    char line[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(line, sizeof line, fmt, ap);
+    va_end(ap);
+    line[strcspn(line, "\n")] = '\0';
+    fprintf(stderr, "%s\n", line);
+
+    char path[256];
+    snprintf(path, sizeof path, "tests/ref/%.200s.ref", name);
+    const char *file = tu_repo(path);
+    FILE *f = fopen(file, "r");
+    ck_assert_msg(f, "%s: cannot open the reference file", file);
+    enum { MAXN = 64 };
+    char key[1024], rkey[1024], buf[1024];
+    double num[MAXN], rnum[MAXN];
+    const size_t n = ref_split(line, key, sizeof key, num, MAXN);
+    ck_assert_msg(n <= MAXN, "too many numbers in '%s'", line);
+    double rtol = -1, atol = -1;
+    int found = 0;
+    while (!found && fgets(buf, sizeof buf, f)) {
+        buf[strcspn(buf, "\n")] = '\0';
+        if (buf[0] == '#') {
+            const char *t = strstr(buf, "tolerance:");
+            if (t && sscanf(t, "tolerance: rtol=%lf atol=%lf", &rtol, &atol) !=
+                         2)
+                ck_abort_msg("%s: bad tolerance line '%s'", file, buf);
+            continue;
+        }
+        if (ref_split(buf, rkey, sizeof rkey, rnum, MAXN) != n ||
+            strcmp(key, rkey))
+            continue;
+        found = 1;
+        ck_assert_msg(rtol >= 0 && atol >= 0,
+                      "%s: no '# tolerance: rtol=R atol=A' line before the "
+                      "lines", file);
+        for (size_t k = 0; k < n; k++) {
+            const double d = fabs(num[k] - rnum[k]);
+            ck_assert_msg(d <= rtol * fmax(fabs(num[k]), fabs(rnum[k])) + atol,
+                          "%s: number %zu differs beyond rtol=%g atol=%g:\n"
+                          "  got      %s\n  expected %s",
+                          file, k + 1, rtol, atol, line, buf);
+        }
+    }
+    fclose(f);
+    if (found)
+        return;
+    const char *update = getenv("BALLFILM_REF_UPDATE");
+    if (update && !strcmp(update, "1")) {
+        char newpath[600];
+        snprintf(newpath, sizeof newpath, "%s.new", file);
+        FILE *o = fopen(newpath, "a");
+        ck_assert_msg(o, "%s: cannot write", newpath);
+        fprintf(o, "%s\n", line);
+        fclose(o);
+        return;
+    }
+    ck_abort_msg("%s has no line like\n  %s\n(run with BALLFILM_REF_UPDATE=1 "
+                 "to collect the new lines in %s.new)", file, line, file);
 }

@@ -81,4 +81,19 @@ int tu_accel_harmonic(void *ctx, double t, const double *x, const double *v,
 /* Standard test case with a generous timeout. */
 TCase *tu_tcase(const char *name);
 
+/* 1 if no process holds the writer's lock (h5out.c, lock_part) on the
+ * open file fd. */
+int tu_part_unlocked(int fd);
+
+/* Golden lines (Basilisk's .ref habit).  Format a line, print it on
+ * stderr and compare it with the line of tests/ref/NAME.ref that has the
+ * same text once every number is masked: the numbers must agree within the
+ * file's tolerance, stated on its first line as
+ *   # tolerance: rtol=R atol=A     (|a - b| <= R max(|a|, |b|) + A)
+ * with the reason.  A line missing from the file fails the test; with
+ * BALLFILM_REF_UPDATE=1 in the environment it is appended to
+ * tests/ref/NAME.ref.new instead, for review. */
+void tu_ref(const char *name, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
 #endif
