@@ -21,7 +21,6 @@
 #include "ballfilm/h5out.h"
 #include "ballfilm/integrator.h"
 #include "ballfilm/params.h"
-#include "ballfilm/scene.h"
 
 enum {
     BF_MODEL_INTEGRATOR = 1u << 0,    /* uses [scene] integrator */
@@ -114,10 +113,6 @@ typedef struct bf_model_type {
      * ranges) with failures that name the key (bf_fail_key). */
     bf_status (*create)(void **self, const bf_model_setup *setup,
                         bf_err *err);
-    /* Transitional (until every model takes a setup): build from the
-     * resolved scene and the setup. */
-    bf_status (*create_scene)(void **self, const bf_scene *sc,
-                              const bf_model_setup *setup, bf_err *err);
     void (*destroy)(void *self);
     /* The largest stable step of the model as set up (bf_dt_limit; leave
      * lim->dt_max 0 for none).  The loop asks once, when the run is

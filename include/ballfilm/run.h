@@ -40,6 +40,24 @@ const bf_integrator_type *const *bf_catalog_integrators(const bf_catalog *c,
 const bf_effect_type *const *bf_catalog_effects(const bf_catalog *c,
                                                 size_t *n);
 
+/* A catalog of a program's own: a copy of `base` (the built-in catalog,
+ * another catalog, or NULL for an empty one) to which it adds its
+ * descriptors; a scene resolved and built against it may name them like
+ * the library's own.  The descriptors are kept by pointer (they are
+ * usually static constants) and must outlive the catalog and every run
+ * built with it.  NULL when out of memory. */
+bf_catalog *bf_catalog_new(const bf_catalog *base);
+/* Refuse (BF_EINPUT) a name the catalog already has for that kind, and the
+ * built-in catalog itself. */
+bf_status bf_catalog_add_model(bf_catalog *c, const bf_model_type *t,
+                               bf_err *err);
+bf_status bf_catalog_add_integrator(bf_catalog *c,
+                                    const bf_integrator_type *t, bf_err *err);
+bf_status bf_catalog_add_effect(bf_catalog *c, const bf_effect_type *t,
+                                bf_err *err);
+/* Free a catalog of bf_catalog_new (the built-in one is left alone). */
+void bf_catalog_free(bf_catalog *c);
+
 /* Validate a scene against the catalog: which sections it may contain is
  * decided by its [scene] section (model, integrator, effects); unknown
  * sections and keys are errors naming file and line. */

@@ -1,6 +1,7 @@
 /* catalog.c: the built-in models, integrators and effects: one table, one
  * line per entry.  Adding a model, an integrator or an effect is one new
  * file and one line here. */
+#include <stdlib.h>
 #include <string.h>
 
 #include "ballfilm/run.h"
@@ -62,7 +63,7 @@ static const bf_analysis_type *const analyses[] = {
 
 static const bf_catalog builtin = {
     models,  COUNT(models),  integrators, COUNT(integrators),
-    effects, COUNT(effects), analyses,    COUNT(analyses),
+    effects, COUNT(effects), analyses,    COUNT(analyses),  0,
 };
 
 const bf_catalog *bf_catalog_builtin(void) { return &builtin; }
@@ -116,4 +117,102 @@ size_t bf_catalog_analyses_of(const bf_catalog *c, const bf_model_type *mt,
 {
     *list = c->analyses;
     return mt->flags & BF_MODEL_BALL_ANALYSES ? c->nanalyses : 0;
+}
+
+/* ---- catalogs of a program's own ---- */
+
+/* a copy of n pointers, room for one more */
+static const void **copy_list(const void *const *list, size_t n)
+{
+    const void **c = malloc((n + 1) * sizeof *c);
+    if (c && n)
+        memcpy(c, list, n * sizeof *c);
+    return c;
+}
+
+bf_catalog *bf_catalog_new(const bf_catalog *base)
+{
+    static const bf_catalog empty = {0};
+    if (!base)
+        base = &empty;
+    bf_catalog *c = calloc(1, sizeof *c);
+    if (!c)
+        return NULL;
+    c->owned = 1;
+    c->nmodels = base->nmodels;
+    c->nintegrators = base->nintegrators;
+    c->neffects = base->neffects;
+    c->nanalyses = base->nanalyses;
+    c->models = (const bf_model_type *const *)copy_list(
+        (const void *const *)base->models, base->nmodels);
+    c->integrators = (const bf_integrator_type *const *)copy_list(
+        (const void *const *)base->integrators, base->nintegrators);
+    c->effects = (const bf_effect_type *const *)copy_list(
+        (const void *const *)base->effects, base->neffects);
+    c->analyses = (const bf_analysis_type *const *)copy_list(
+        (const void *const *)base->analyses, base->nanalyses);
+    if (!c->models || !c->integrators || !c->effects || !c->analyses) {
+        bf_catalog_free(c);
+        return NULL;
+    }
+    return c;
+}
+
+void bf_catalog_free(bf_catalog *c)
+{
+    if (!c || !c->owned)
+        return;
+    free((void *)c->models);
+    free((void *)c->integrators);
+    free((void *)c->effects);
+    free((void *)c->analyses);
+    free(c);
+}
+
+/* Append entry (named `name`) to *list of *n, refusing a name the kind
+ * already has: a scene names entries, so two with one name would make
+ * which one runs depend on the order. */
+static bf_status add_entry(bf_catalog *c, const void *const **list, size_t *n,
+                           const void *entry, const char *kind,
+                           const char *name, int taken, bf_err *err)
+{
+    if (!c->owned)
+        return bf_fail(err, BF_EINPUT, "cannot add the %s '%s' to the "
+                       "built-in catalog: add it to one of bf_catalog_new",
+                       kind, name ? name : "(null)");
+    if (!name || !*name)
+        return bf_fail(err, BF_EINPUT, "a %s without a name", kind);
+    if (taken)
+        return bf_fail(err, BF_EINPUT, "the catalog already has a %s named "
+                       "'%s'", kind, name);
+    const void **grown = realloc((void *)*list, (*n + 2) * sizeof *grown);
+    if (!grown)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    grown[(*n)++] = entry;
+    *list = grown;
+    return BF_OK;
+}
+
+bf_status bf_catalog_add_model(bf_catalog *c, const bf_model_type *t,
+                               bf_err *err)
+{
+    return add_entry(c, (const void *const **)&c->models, &c->nmodels, t,
+                     "model", t->name, bf_catalog_model(c, t->name) != NULL,
+                     err);
+}
+
+bf_status bf_catalog_add_integrator(bf_catalog *c,
+                                    const bf_integrator_type *t, bf_err *err)
+{
+    return add_entry(c, (const void *const **)&c->integrators,
+                     &c->nintegrators, t, "integrator", t->name,
+                     bf_catalog_integrator(c, t->name) != NULL, err);
+}
+
+bf_status bf_catalog_add_effect(bf_catalog *c, const bf_effect_type *t,
+                                bf_err *err)
+{
+    return add_entry(c, (const void *const **)&c->effects, &c->neffects, t,
+                     "effect", t->name, bf_catalog_effect(c, t->name) != NULL,
+                     err);
 }

@@ -14,6 +14,7 @@ struct bf_catalog {
     size_t neffects;
     const bf_analysis_type *const *analyses;
     size_t nanalyses;
+    int owned; /* 1: made by bf_catalog_new, the arrays are its own */
 };
 
 /* The analyses of balls a model takes (none unless it has

@@ -192,8 +192,7 @@ bf_status bf_setup_build_model(const bf_setup *s, const bf_scene *sc,
                                void **model, bf_err *err)
 {
     *model = NULL;
-    bf_status st = s->mt->create ? s->mt->create(model, &s->pub, err)
-                                 : s->mt->create_scene(model, sc, &s->pub, err);
+    bf_status st = s->mt->create(model, &s->pub, err);
     if (st)
         bf_scene_locate(sc, err);
     return st;
