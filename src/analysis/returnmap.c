@@ -1,16 +1,10 @@
 /* returnmap.c: first-return maps of falling balls (see returnmap.h for the
  * definition, the interpolation and how several minima in one contact are
  * counted).
- *
- * Cubic Hermite basis on theta in [0, 1] for a step of length dt:
- *   p(theta) = h00 p0 + h10 dt p0' + h01 p1 + h11 dt p1'
- *   h00 = 2th^3 - 3th^2 + 1, h10 = th^3 - 2th^2 + th,
- *   h01 = -2th^3 + 3th^2,    h11 = th^3 - th^2.
- * Its derivative divided by dt is the quadratic
- *   q(theta) = 6 th (1 - th) D + (1 - th)(1 - 3th) p0' + th (3th - 2) p1',
- * D = (p1 - p0)/dt, with q(0) = p0' and q(1) = p1'.
+ * The interpolant inside a step is diag/hermite.h's.
  */
 #include "returnmap.h"
+#include "diag/hermite.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -19,7 +13,8 @@
 
 static const bf_param retmap_params[] = {
     {"enabled", BF_AT(bf_retmap_keys, enabled, BF_BOOL), "", "no",
-     "record the first-return map (see README): the recorded ball's (z, v) "
+     "record the first-return map (docs/models/balls.md): the recorded "
+     "ball's (z, v) "
      "at each lowest point of the trigger ball on the floor",
      0, 0, 0, NULL},
     {"trigger", BF_AT(bf_retmap_keys, trigger, BF_INT), "1", "1",
@@ -54,23 +49,6 @@ struct bf_retmap {
     bf_ball_view view; /* the balls, their forces and integrator */
     bf_series *s_t, *s_z, *s_v, *s_zt, *s_min;
 };
-
-static void cubic_hermite(double th, double dt, double p0, double d0, double p1,
-                          double d1, double *p)
-{
-    double t2 = th * th, t3 = t2 * th;
-    *p = (2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + th) * dt * d0 +
-         (-2 * t3 + 3 * t2) * p1 + (t3 - t2) * dt * d1;
-}
-
-/* derivative of the interpolant / dt */
-static double hermite_slope(double th, double dt, double p0, double d0,
-                            double p1, double d1)
-{
-    double D = (p1 - p0) / dt;
-    return 6 * th * (1 - th) * D + (1 - th) * (1 - 3 * th) * d0 +
-           th * (3 * th - 2) * d1;
-}
 
 /* A minimum of the trigger ball at time t with the recorded ball at
  * (z, v): keep it if it is the deepest of this contact. */
@@ -235,7 +213,7 @@ static bf_status retmap_after_step(void *self, long n_done, double t,
         double lo = 0, hi = 1;
         for (int k = 0; k < 60; k++) {
             double mid = 0.5 * (lo + hi);
-            if (hermite_slope(mid, dt, z0, u0, z1, u1) < 0)
+            if (bf_hermite_slope(mid, dt, z0, u0, z1, u1) < 0)
                 lo = mid;
             else
                 hi = mid;
@@ -246,9 +224,9 @@ static bf_status retmap_after_step(void *self, long n_done, double t,
             ode->accel(ode->ctx, t + dt, x1, v1, rm->a1))
             return bf_fail(err, BF_EUNSTABLE, "return map: force undefined");
         double zt, z, v;
-        cubic_hermite(th, dt, z0, u0, z1, u1, &zt);
-        cubic_hermite(th, dt, rm->x0[r], rm->v0[r], x1[r], v1[r], &z);
-        cubic_hermite(th, dt, rm->v0[r], rm->a0[r], v1[r], rm->a1[r], &v);
+        zt = bf_hermite(th, dt, z0, u0, z1, u1);
+        z = bf_hermite(th, dt, rm->x0[r], rm->v0[r], x1[r], v1[r]);
+        v = bf_hermite(th, dt, rm->v0[r], rm->a0[r], v1[r], rm->a1[r]);
         candidate(rm, t + th * dt, zt, z, v);
     }
     /* the contact is over once the trigger ball is off the floor */

@@ -10,6 +10,7 @@
  */
 #include "models/ballsys.h"
 
+#include "diag/hermite.h"
 #include "effects/effect_kernels.h"
 
 #include <float.h>
@@ -250,9 +251,8 @@ static double hermite_root(double g0, double g1, double d0, double d1)
 {
     double lo = 0, hi = 1;
     for (int k = 0; k < 40; k++) {
-        double th = 0.5 * (lo + hi), u = 1 - th;
-        double h = g0 * (1 + 2 * th) * u * u + d0 * th * u * u +
-                   g1 * th * th * (3 - 2 * th) - d1 * th * th * u;
+        double th = 0.5 * (lo + hi);
+        double h = bf_hermite(th, 1.0, g0, d0, g1, d1);
         if (side(h) == side(g0))
             lo = th;
         else

@@ -6,25 +6,15 @@
  * (/coupled/symmetry_break).
  * Events are located inside the step: the time by linear interpolation of
  * the velocity's zero, the state there by the cubic Hermite interpolant of
- * the step's end states (and linear for v).  (This cubic Hermite
- * function is the model's own: src/analysis/returnmap.c has another with
- * other arithmetic.)
+ * the step's end states (diag/hermite.h; linear for v).
  */
 #include <math.h>
 
+#include "diag/hermite.h"
 #include "models/coupled_impl.h"
 
 const double bf_coupled_sym_levels[BF_COUPLED_NSYM] = {1e-12, 1e-9, 1e-6,
                                                        1e-3};
-
-/* the cubic Hermite interpolant of (x0, v0) -> (x1, v1) over dt at s */
-static double hermite(double x0, double v0, double x1, double v1, double dt,
-                      double s)
-{
-    double h00 = (1 + 2 * s) * (1 - s) * (1 - s), h10 = s * (1 - s) * (1 - s);
-    double h01 = s * s * (3 - 2 * s), h11 = s * s * (s - 1);
-    return h00 * x0 + h10 * dt * v0 + h01 * x1 + h11 * dt * v1;
-}
 
 /* After the step t -> t + dt (the state at its start in m->x0, m->v0). */
 bf_status bf_coupled_events(coupled_model *m, double t, double dt, bf_err *err)
@@ -36,7 +26,7 @@ bf_status bf_coupled_events(coupled_model *m, double t, double dt, bf_err *err)
     if (v0[q] > 0 && v1[q] <= 0) {
         double s = v0[q] / (v0[q] - v1[q]);
         double row[2] = {t + s * dt,
-                         hermite(x0[q], v0[q], x1[q], v1[q], dt, s)};
+                         bf_hermite(s, dt, x0[q], v0[q], x1[q], v1[q])};
         if (m->peaks && bf_series_append(m->peaks, row))
             return bf_fail(err, BF_EINTERNAL, "out of memory");
         m->npeak++;
@@ -56,7 +46,7 @@ bf_status bf_coupled_events(coupled_model *m, double t, double dt, bf_err *err)
                 double s = s0 / (s0 - s1);
                 size_t r = m->map_ball;
                 double row[3] = {t + s * dt,
-                                 hermite(x0[r], v0[r], x1[r], v1[r], dt, s),
+                                 bf_hermite(s, dt, x0[r], v0[r], x1[r], v1[r]),
                                  v0[r] + s * (v1[r] - v0[r])};
                 if (m->map && bf_series_append(m->map, row))
                     return bf_fail(err, BF_EINTERNAL, "out of memory");

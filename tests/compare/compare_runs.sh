@@ -13,6 +13,10 @@
 #   !differs NAME: why (the commit that changed it on purpose)
 # (a change of results made by its own commit, not by a refactor); such a
 # case is listed as "expected" and, if it turns out the same, as that.
+# A line
+#   !ulps N DATASET...: why (the commit)
+# lets the named datasets of every case differ by at most N units in the
+# last place (h5same.py --ulps): a change of rounding only, declared.
 set -u
 if [ $# -lt 2 ]; then
     echo "usage: $0 BIN_A BIN_B [WORKDIR] [NAME-REGEX]" >&2
@@ -55,6 +59,14 @@ wait $pid
 ncase=0
 ndiff=0
 nexpect=0
+# the --ulps arguments of h5same.py from the !ulps lines
+ULPS=()
+while IFS= read -r line; do
+    spec=${line#!ulps }
+    spec=${spec%%:*}
+    read -r n names <<< "$spec"
+    for d in $names; do ULPS+=(--ulps "$d=$n"); done
+done < <(grep '^!ulps ' "$HERE/cases.txt")
 # expected NAME: the reason declared in cases.txt, or nothing
 expected() {
     sed -n "s/^!differs $1: //p" "$HERE/cases.txt"
@@ -74,7 +86,7 @@ for rcfile in "$W"/a/*.rc; do
     for f in "${files[@]}"; do
         if [ ! -f "$W/b/$f" ]; then
             msg="$msg; $f missing"
-        elif ! out=$($PY "$HERE/h5same.py" "$W/a/$f" "$W/b/$f"); then
+        elif ! out=$($PY "$HERE/h5same.py" "$W/a/$f" "$W/b/$f" "${ULPS[@]}"); then
             msg="$msg; $f:"$'\n'"$out"
         fi
     done

@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""h5same.py A.h5 B.h5: exit 0 if both files hold the same datasets with the
+"""h5same.py A.h5 B.h5 [--ulps DATASET=N ...]: exit 0 if both files hold
+the same datasets with the
 same bits (dtype, shape and raw bytes, so NaN payloads and -0.0 count) and
 the same root attributes; print every difference otherwise.
 
@@ -13,6 +14,11 @@ A scene key that only B records, at its default (B's "KEY.default" is 1),
 is a key that B's program added: its record (KEY, KEY.unit, KEY.default)
 is not a difference (it is printed as a note).  What the key does at its
 default is checked by the datasets like everything else.
+
+--ulps DATASET=N: a change declared on purpose (compare_runs.sh, cases.txt
+"!ulps"): DATASET may differ by at most N units in the last place in each
+element (same dtype and shape, floating point); the largest difference is
+printed as a note.  Anything beyond N is a difference like any other.
 """
 import sys
 
@@ -62,7 +68,19 @@ def new_default_key(attrs, other, k):
     return base not in other and flag is not None and int(flag) == 1
 
 
-def main(a, b):
+def ulps_apart(x, y):
+    """the largest distance in units in the last place, element by element"""
+    x = np.asarray(x, dtype=np.float64)
+    y = np.asarray(y, dtype=np.float64)
+    if x.size == 0:
+        return 0.0
+    if not (np.isfinite(x).all() and np.isfinite(y).all()):
+        return np.inf if not np.array_equal(x, y, equal_nan=True) else 0.0
+    scale = np.spacing(np.maximum(np.abs(x), np.abs(y)))
+    return float(np.max(np.abs(x - y) / scale))
+
+
+def main(a, b, ulps):
     bad, notes = [], []
     with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
         da, db = datasets(fa), datasets(fb)
@@ -72,7 +90,18 @@ def main(a, b):
             if k not in da or k not in db:
                 bad.append(f"dataset {k}: only in {a if k in da else b}")
             elif raw(da[k]) != raw(db[k]):
-                bad.append(f"dataset {k}: differs")
+                ra, rb = raw(da[k]), raw(db[k])
+                if (k in ulps and ra[:2] == rb[:2] and
+                        da[k].dtype.kind == "f"):
+                    u = ulps_apart(da[k][()], db[k][()])
+                    if u <= ulps[k]:
+                        notes.append(f"dataset {k}: {u:g} ulps apart "
+                                     f"(declared: at most {ulps[k]})")
+                        continue
+                    bad.append(f"dataset {k}: differs by {u:g} ulps "
+                               f"(declared: at most {ulps[k]})")
+                else:
+                    bad.append(f"dataset {k}: differs")
         ka, kb = set(fa.attrs), set(fb.attrs)
         for k in sorted(ka | kb):
             if k in SKIP_ATTRS or k.endswith("wall"):
@@ -97,6 +126,15 @@ def main(a, b):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit("usage: h5same.py A.h5 B.h5")
-    sys.exit(main(sys.argv[1], sys.argv[2]))
+    args = sys.argv[1:]
+    files, ulps = [], {}
+    while args:
+        x = args.pop(0)
+        if x == "--ulps" and args:
+            name, _, n = args.pop(0).partition("=")
+            ulps[name] = float(n)
+        else:
+            files.append(x)
+    if len(files) != 2:
+        sys.exit("usage: h5same.py A.h5 B.h5 [--ulps DATASET=N ...]")
+    sys.exit(main(files[0], files[1], ulps))

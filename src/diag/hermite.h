@@ -1,0 +1,35 @@
+/* hermite.h: the cubic Hermite interpolant of one step, for locating
+ * events between the end states of a step (return maps, the coupled
+ * model's peaks, contact onsets and releases).  Private to the library.
+ *
+ * On theta in [0, 1] over a step of length dt, from value p0 and
+ * derivative d0 (per unit time) at its start to p1, d1 at its end:
+ *   p(theta) = h00 p0 + h10 dt d0 + h01 p1 + h11 dt d1,
+ *   h00 = 2th^3 - 3th^2 + 1, h10 = th^3 - 2th^2 + th,
+ *   h01 = -2th^3 + 3th^2,    h11 = th^3 - th^2.
+ * Its derivative divided by dt is the quadratic
+ *   q(theta) = 6 th (1 - th) D + (1 - th)(1 - 3th) d0 + th (3th - 2) d1,
+ * D = (p1 - p0)/dt, with q(0) = d0 and q(1) = d1.  Third order: the error
+ * in p is O(dt^4) for a smooth trajectory.  Derivatives per unit theta
+ * are those per unit time with dt = 1. */
+#ifndef BALLFILM_DIAG_HERMITE_H
+#define BALLFILM_DIAG_HERMITE_H
+
+static inline double bf_hermite(double th, double dt, double p0, double d0,
+                                double p1, double d1)
+{
+    const double t2 = th * th, t3 = t2 * th;
+    return (2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + th) * dt * d0 +
+           (-2 * t3 + 3 * t2) * p1 + (t3 - t2) * dt * d1;
+}
+
+/* the interpolant's derivative over dt (per unit time) */
+static inline double bf_hermite_slope(double th, double dt, double p0,
+                                      double d0, double p1, double d1)
+{
+    const double D = (p1 - p0) / dt;
+    return 6 * th * (1 - th) * D + (1 - th) * (1 - 3 * th) * d0 +
+           th * (3 * th - 2) * d1;
+}
+
+#endif
