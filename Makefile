@@ -4,7 +4,7 @@
 #                  draw its figure (out/)
 #   make test      build and run the test suite
 #   make check     the test suite under AddressSanitizer + UBSan
-#   make figures   every paper figure (long runs; see README)
+#   make figures   every paper figure (long runs; docs/gallery.md lists them)
 #   make bench     performance measurements (ratios measured in one run)
 #   make clean
 #
@@ -177,7 +177,7 @@ fig1: $(PROG) | deps deps-plot
 
 # Thesis (MAC) Fig. 5: the stratified reservoir with a point sink to t = 10,
 # and the same at 2x and 4x the grid (4x traps empty cells inside the fluid;
-# void_fix fills them, see README).
+# void_fix fills them, see docs/models/mac.md).
 stratres: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) run runs/stratres.ini -q -o out/stratres.h5
@@ -212,7 +212,7 @@ mac-checks: $(PROG) | deps deps-plot
 
 # Yasuda Fig. 2: first-return maps, lower ball 1.2 g (A) and 0.8 g (B),
 # MV2M for 1000 s with the Lyapunov estimate; first at the paper's
-# dt = 1e-4 s, then at 1e-5 s (see README for why both).  About 1 min.
+# dt = 1e-4 s, then at 1e-5 s (docs/models/balls.md says why both).  About 1 min.
 FIG2_SET := --set lyapunov.enabled=yes
 fig2: $(PROG) | deps deps-plot
 	@mkdir -p out
@@ -325,7 +325,7 @@ fig9: $(PROG) | deps deps-plot
 	$(PY) plots/fig8_coupled.py out/coupled_fig9.h5 -o out/fig9_coupled.png
 
 # The same with [coupled] symmetrize = yes (forced mirror symmetry), the
-# test of the README's explanation of the scattered maps (~1.6x the cost).
+# test of docs/models/coupled.md's explanation of the scattered maps (~1.6x the cost).
 fig8-sym: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) run runs/coupled_fig8_sym.ini -q -o out/coupled_fig8_sym.h5
@@ -368,7 +368,7 @@ multirate: $(PROG) | deps deps-plot
 	  echo "film_every=$$k out/mr_$$k.h5 $$w" >> out/multirate_times.txt; done
 	$(PY) plots/multirate.py out/multirate_times.txt -o out/multirate.png
 
-# Observed orders of the film scheme in dx and in dt (README).
+# Observed orders of the film scheme in dx and in dt (docs/models/film.md).
 film-orders: $(BUILD)/bench/film_orders
 	$(BUILD)/bench/film_orders
 # Greenspan 1972, Example 1 (Figs 3.1-3.9) and the heights of the heavy
@@ -394,6 +394,7 @@ fig-g72-ex1-ensemble: $(PROG) | deps deps-plot
 	    --set greenspan72.output=diagnostics --set scene.output_every=10 \
 	    --set repulsion.cutoff=40 --set walls.rule=fortran \
 	    --set support.eps=1e-3 >/dev/null || exit 1; \
+	done
 	$(PY) plots/g72_ensemble.py out/g72_ens/text_*.h5 --label "(text)" \
 	    -o out/fig_g72_ex1_ensemble_text.png \
 	    --table out/g72_ex1_ensemble_text.txt
@@ -520,9 +521,9 @@ survey-mass: $(PROG) | deps deps-plot
 	    --label "lower/upper mass ratio"
 
 # Survey of the coupled film: the fourth ball's return map and the largest
-# Lyapunov exponent (shadow coupled system, README) over film lengths
+# Lyapunov exponent (shadow coupled system, docs/models/coupled.md) over film lengths
 # 49.5..50.5 cm (11 points), 50 s each with the multirate option (film step
-# every 30 ball steps, which passed its accuracy check: README, multirate).
+# every 30 ball steps, which passed its accuracy check: docs/models/coupled.md, Multirate).
 # SURVEY_T: simulated seconds per length (50 s is the paper's Figs 8-9;
 # the Lyapunov estimates need longer to settle).
 SURVEY_T ?= 200

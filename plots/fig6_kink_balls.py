@@ -4,8 +4,8 @@
 (B) the same at dt = 8e-4 s; (C) the right ball's peaks (largest position
 between collisions) against time for dt = 1e-4, 5.5e-4, 8e-4 s, with the
 ensemble of slightly shifted starts at the two large steps; (D) one ball
-from -0.2 cm, 500 s at dt = 8e-4 s.  Prints the peak numbers quoted in the
-README.
+from -0.2 cm, 500 s at dt = 8e-4 s.  Prints the peak numbers quoted in
+docs/models/coupled.md.
 
 usage: fig6_kink_balls.py A.h5 B.h5 C55.h5 D.h5 [ENSEMBLE.h5 ...]
        -o fig6_kink_balls.png"""

@@ -7,7 +7,7 @@ third and fourth balls over 40-50 s; (C) psi(0.3, t) - psi(0.3, 0) over
 change of the film's phase totals, against time (and, for a run with
 [coupled] symmetrize = yes, the largest relative change of the symmetry
 projection per output interval).  Prints the statistics compared with the
-paper in the README, among them the return map's fill fraction (the share
+paper in docs/models/coupled.md, among them the return map's fill fraction (the share
 of its bounding box visited on a grid of about four points per bin, the
 definition of bf_sweep_map_fill in src/sweep/sweep.c).
 

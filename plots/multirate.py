@@ -5,7 +5,7 @@ dt = 1e-5 s); the scene's tolerance is the single-rate run's own time error,
 the distance between dt = 1e-5 s and dt = 5e-6 s.  Each multirate run
 (film step film_every x dt, balls sub-cycled at dt) is compared with the
 reference: max over the window of max_i |x_i - x_i,ref| (cm, at the common
-output rows).  Prints the table quoted in the README.
+output rows).  Prints the table quoted in docs/models/coupled.md (Multirate coupling).
 
 usage: multirate.py TIMES.txt -o multirate.png
 TIMES.txt: lines "label file.h5 wall_seconds" (the first: the reference,

@@ -44,7 +44,7 @@ bf_status bf_lyap_sum_init(bf_lyap_sum *ls, const bf_lyap_keys *k, double dt,
                            "needs a fixed-step integrator: with '%s' the two "
                            "trajectories take different internal steps and "
                            "their difference measures the error control, "
-                           "not the dynamics (README)",
+                           "not the dynamics (docs/models/balls.md)",
                            adaptive);
     bf_interval iv = k->renormalise_every;
     /* less than half a step would round to none */

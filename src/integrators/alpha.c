@@ -55,7 +55,8 @@ static const bf_param alpha_params[] = {
      BF_MIN | BF_MAX, 0, 1, NULL},
     {"position", BF_AT(alpha_priv, position, BF_ENUM), "", "verlet",
      "position update: verlet (x += dt v + dt^2/2 a(x^n)) or trapezoid "
-     "(x += dt (v^n + v^{n+1})/2); see README for their stability",
+     "(x += dt (v^n + v^{n+1})/2); docs/integrators.md compares their "
+     "stability",
      0, 0, 0, "verlet|trapezoid"},
     BF_EVENTS_PARAMS(alpha_priv),
     {0},

@@ -241,7 +241,7 @@ static const bf_param adaptive_params[] = {
      "ARKODE_DORMAND_PRINCE_7_4_5",
      "ERK Butcher table with an embedding (ARKODE name; KNOTH_WOLKE_3_3 has "
      "none and is refused; FEHLBERG_13_7_8's error estimate does not see "
-     "contacts, README)",
+     "contacts, docs/integrators.md)",
      0, 0, 0, TABLE_CHOICES},
     {"rtol", BF_AT(ark_keys, rtol, BF_REAL), "1", "1e-8", "relative tolerance of the local error",
      BF_POS, 0, 0, NULL},

@@ -3,7 +3,7 @@
  * and the symmetry error of the balls.
  *
  * Forced mirror symmetry ([coupled] symmetrize = yes, a test of the
- * README's explanation of Figs 8-9, not part of the paper's scheme).  The
+ * explanation of Figs 8-9 in docs/models/coupled.md, not part of the paper's scheme).  The
  * set-up is symmetric under x -> -x, psi -> -psi: ball i <-> ball n+1-i
  * with x -> -x, v -> -v, and the film map of bf_film_mirror (A_d(i) <->
  * A_c(N-i), u_d(i) <-> -u_c(N-i)).  The equations map this subspace

@@ -5,7 +5,7 @@
  * stratified reservoir with a point sink of PROGRAM STRATRES, the tank at
  * rest, the uniform stream), the velocity update and pressure solver, and
  * every uncertain reading of the listing (defaults: the listing's most
- * likely reading; see README).  The explicit terms limit [scene] dt
+ * likely reading; docs/models/mac.md lists them).  The explicit terms limit [scene] dt
  * (stable_dt).
  *
  * Output (one row per output time):
