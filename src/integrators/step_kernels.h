@@ -185,6 +185,27 @@ BF_ALWAYS_INLINE bf_status bf_verlet_run(BF_RUN_KERNEL_PARAMS)
     return st;
 }
 
+/* The loop of a run kernel whose core takes (accel, ctx, n, t, dt, x, v,
+ * work, &evals) and counts its own evaluations (MV2M, RKN6): steps j = 0..k-1
+ * from t = (n0 + j) dt while st is BF_OK, ending after a step that `stop`
+ * flags; then the counters.  A macro, not a function of a core pointer,
+ * so that the core is inlined for certain. */
+#define BF_CORE_RUN_LOOP(CORE)                                                \
+    do {                                                                      \
+        while (!st && j < k) {                                                \
+            if (CORE(accel, ctx, n, (double)(n0 + j) * dt, dt, x, v, work,    \
+                     &evals)) {                                               \
+                st = bf_ode_eval_failed(err);                                 \
+                break;                                                        \
+            }                                                                 \
+            j++;                                                              \
+            if (stop(x, v, n))                                                \
+                break;                                                        \
+        }                                                                     \
+        it->count.evals += evals;                                             \
+        it->count.steps += (unsigned long long)j;                             \
+    } while (0)
+
 /* ---- MV2M ---- */
 
 /* One step (eqs 2.19-2.21, 2.24; increments formed first, see mv2m.c):
@@ -247,18 +268,7 @@ BF_ALWAYS_INLINE bf_status bf_mv2m_run(BF_RUN_KERNEL_PARAMS)
     unsigned long long evals = 0;
     long j = 0;
     bf_status st = BF_OK;
-    while (j < k) {
-        if (bf_mv2m_core(accel, ctx, n, (double)(n0 + j) * dt, dt, x, v, work,
-                         &evals)) {
-            st = bf_ode_eval_failed(err);
-            break;
-        }
-        j++;
-        if (stop(x, v, n))
-            break;
-    }
-    it->count.evals += evals;
-    it->count.steps += (unsigned long long)j;
+    BF_CORE_RUN_LOOP(bf_mv2m_core);
     *done = j;
     return st;
 }
@@ -355,18 +365,7 @@ BF_ALWAYS_INLINE bf_status bf_rkn6_run(BF_RUN_KERNEL_PARAMS)
         if (accel(ctx, (double)n0 * dt, x, v, work))
             st = bf_ode_eval_failed(err);
     }
-    while (!st && j < k) {
-        if (bf_rkn6_core(accel, ctx, n, (double)(n0 + j) * dt, dt, x, v, work,
-                         &evals)) {
-            st = bf_ode_eval_failed(err);
-            break;
-        }
-        j++;
-        if (stop(x, v, n))
-            break;
-    }
-    it->count.evals += evals;
-    it->count.steps += (unsigned long long)j;
+    BF_CORE_RUN_LOOP(bf_rkn6_core);
     if (j > 0)
         bf_verlet_cache_put(it, ode, n, x, work);
     *done = j;
