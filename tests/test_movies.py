@@ -6,6 +6,13 @@ For each model a short run is rendered to 10 frames at 320x240; ffprobe
 same with ffmpeg taken off PATH: the movie must come out as a GIF of 10
 frames through Pillow, and stderr must say why.
 
+Memory: a 200704-particle run (runs/greenspan72_large.ini) with its
+positions at every one of 400 steps (401 rows, 1.29 GB of positions) is
+rendered to 100 frames; the renderer's peak resident memory must stay
+under 1 GiB.  Loading the rows instead of reading them one frame at a
+time would need more than the 1.29 GB, so this fails if the thinning is
+lost.  The file is removed afterwards.
+
 usage: test_movies.py BIN/ballfilm WORKDIR   (make test-movies)
 Ends with the line 'movies: N passed, N failed'; exit 1 on a failure."""
 import json
@@ -44,6 +51,42 @@ def probe(path):
         return None
     s = json.loads(r.stdout)["streams"][0]
     return int(s["nb_read_frames"]), int(s["width"]), int(s["height"])
+
+
+LARGE_ROWS, LARGE_FRAMES, GIB = 400, 100, 1 << 30
+
+# peak resident memory (bytes) of a command, as its parent sees it
+PEAK_RSS = ("import resource, subprocess, sys\n"
+            "r = subprocess.run(sys.argv[1:])\n"
+            "print(r.returncode, "
+            "resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024)")
+
+
+def large_movie(prog, work):
+    """the 200704-particle render stays under 1 GiB"""
+    h5 = os.path.join(work, "large.h5")
+    r = run_scene(prog, "runs/greenspan72_large.ini", h5,
+                  ["scene.t_end=%g" % (LARGE_ROWS * 1e-2),
+                   "scene.output_every=1", "greenspan72.particles_every=1"])
+    check(r.returncode == 0, "large: run of 200704 particles", r.stderr)
+    if r.returncode:
+        return
+    size = os.path.getsize(h5)
+    mp4 = os.path.join(work, "large.mp4")
+    r = run([sys.executable, "-c", PEAK_RSS, prog, "animate", h5, "-o", mp4,
+             "--frames", str(LARGE_FRAMES), "-q"])
+    try:
+        status, peak = (int(x) for x in r.stdout.split()[-2:])
+    except ValueError:
+        status, peak = -1, -1
+    os.remove(h5)
+    check(status == 0, "large: animate", r.stderr[-2000:])
+    check(0 < peak < GIB and size > GIB,
+          "large: %d frames of a %.2f GB file in %.0f MiB (limit 1024 MiB)"
+          % (LARGE_FRAMES, size / 1e9, peak / 2**20))
+    got = probe(mp4) if status == 0 else None
+    check(got is not None and got[0] == LARGE_FRAMES,
+          "large: MP4 has %d frames" % LARGE_FRAMES, "ffprobe says %s" % (got,))
 
 
 def main(prog, work):
@@ -91,6 +134,7 @@ def main(prog, work):
         got = str(e)
     check(got == (FRAMES, W, H), "fallback: GIF has %d frames of %dx%d"
           % (FRAMES, W, H), "got %s" % (got,))
+    large_movie(prog, work)
     return CK.done()
 
 
