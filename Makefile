@@ -36,6 +36,23 @@ LDLIBS   = $(shell pkg-config --libs hdf5-serial 2>/dev/null) -lhdf5_hl \
            -lsundials_arkode -lsundials_nvecserial -linih \
            $(shell pkg-config --libs gsl 2>/dev/null) -lm -fopenmp
 LDFLAGS  = $(SANITIZE)
+# The program links the libraries it uses statically when their archives
+# are installed (Debian's -dev packages ship them): Debian's shared HDF5
+# pulls in curl, TLS and Kerberos (42 shared objects in all), whose
+# loading was most of the start-up of a small run; the archives bring only
+# the objects ballfilm calls.  Same code, same results; `make bench`
+# (bench/startup.sh) prints the start-up time and memory.
+ARCHIVE_DIRS := /usr/lib/x86_64-linux-gnu/hdf5/serial /usr/lib/x86_64-linux-gnu \
+                /usr/lib/$(shell gcc -print-multiarch 2>/dev/null)
+STATIC_LIBS  := hdf5_hl hdf5 sundials_arkode sundials_nvecserial inih gsl \
+                gslcblas sz aec z
+STATIC_FOUND := $(foreach l,$(STATIC_LIBS),$(firstword $(wildcard \
+                  $(foreach d,$(ARCHIVE_DIRS),$(d)/lib$(l).a))))
+ifeq ($(words $(STATIC_FOUND)),$(words $(STATIC_LIBS)))
+PROG_LDLIBS = $(STATIC_FOUND) -lm -fopenmp -ldl
+else
+PROG_LDLIBS = $(LDLIBS)
+endif
 CHECK_CFLAGS = $(shell pkg-config --cflags check 2>/dev/null)
 CHECK_LIBS   = $(shell pkg-config --libs check 2>/dev/null)
 
@@ -86,7 +103,7 @@ $(LIB): $(LIB_OBJ)
 
 $(PROG): $(CLI_OBJ) $(LIB)
 	@mkdir -p $(dir $@)
-	$(CC) $(LDFLAGS) -o $@ $(CLI_OBJ) $(LIB) $(LDLIBS)
+	$(CC) $(LDFLAGS) -o $@ $(CLI_OBJ) $(LIB) $(PROG_LDLIBS)
 
 # The MPI front end: the same CLI compiled with mpicc and -DBF_MPI (only the
 # sweep command uses MPI), linked with the same library.

@@ -80,6 +80,24 @@ static char *default_output(const char *scene)
 
 /* Detect at the start what can be detected: an output that will not fit
  * on its file system. */
+/* The process's peak resident memory (VmHWM of /proc/self/status: this
+ * program's own, not the memory of whatever exec'ed it; getrusage's
+ * ru_maxrss would count the parent's image before the exec). */
+static void print_peak_memory(FILE *f)
+{
+    FILE *st = fopen("/proc/self/status", "r");
+    if (!st)
+        return;
+    char line[256];
+    long kib = -1;
+    while (fgets(line, sizeof line, st))
+        if (sscanf(line, "VmHWM: %ld kB", &kib) == 1)
+            break;
+    fclose(st);
+    if (kib >= 0)
+        fprintf(f, "peak memory:       %.1f MiB (resident)\n", kib / 1024.0);
+}
+
 static void warn_disk_space(const bf_sim *sim, const char *out_path)
 {
     char dir[4096];
@@ -237,6 +255,7 @@ run:;
     bf_err cerr = {0};
     bf_status close_st = bf_sim_close_output(sim, run_st, &err, &cerr);
     bf_sim_summary(sim, stdout);
+    print_peak_memory(stdout);
     if (run_st == BF_INTERRUPTED) {
         fprintf(stderr, "ballfilm: %s\n", err.msg);
         st = run_st;

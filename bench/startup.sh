@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# bench/startup.sh: what a small run costs before and around its first
+# step.  A one-ball scene of 10 steps with its output file is run 30 times;
+# prints the shortest wall time and the peak resident memory (goal: under
+# 10 ms and 10 MiB, issue 21), and the shared objects the program loads.
+# Absolute times depend on the machine: the CPU model and the load are
+# printed with them.  Run by make bench.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tmp=$(mktemp -d /tmp/ballfilm-bench-startup.XXXXXX)
+trap 'rm -rf "$tmp"' EXIT
+cat > "$tmp/tiny.ini" <<'INI'
+[scene]
+effects = gravity floor
+dt = 1e-4
+t_end = 1e-3
+[ball.1]
+position = 1
+INI
+/usr/bin/python3 - bin/ballfilm "$tmp" <<'PY'
+import os, subprocess, sys, time
+prog, tmp = sys.argv[1], sys.argv[2]
+cmd = [prog, "run", os.path.join(tmp, "tiny.ini"), "-q", "-o",
+       os.path.join(tmp, "tiny.h5")]
+best, peak = float("inf"), 0.0
+for _ in range(30):
+    t0 = time.perf_counter()
+    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    best = min(best, time.perf_counter() - t0)
+    if r.returncode:
+        sys.exit("startup: the run failed: " + r.stderr.decode())
+    # the program's own peak (VmHWM), from its summary
+    for line in r.stdout.decode().splitlines():
+        if line.startswith("peak memory:"):
+            peak = max(peak, float(line.split()[2]))
+libs = subprocess.run(["ldd", prog], capture_output=True, text=True).stdout
+nlib = sum(1 for l in libs.splitlines() if "=>" in l or l.strip().startswith("/"))
+cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo")
+            if l.startswith("model name")), "unknown CPU")
+load = open("/proc/loadavg").read().split()[0]
+print("start-up of a small run (1 ball, 10 steps, output file), 30 runs")
+print("  shortest wall time: %6.1f ms   (goal < 10 ms)" % (best * 1e3))
+print("  peak resident set:  %6.1f MiB  (goal < 10 MiB)" % peak)
+print("  shared objects loaded: %d" % nlib)
+print("  machine: %s, %d cores, load average %s" % (cpu, os.cpu_count(), load))
+PY
