@@ -43,6 +43,7 @@ struct bf_retmap {
     /* recorded points, one array per column */
     double *col[NCOL];
     size_t npts, cap;
+    size_t nmem; /* points held in col[] (all without an output file, else 0) */
     size_t multi;
     bf_events ev;
     int dir;
@@ -82,13 +83,19 @@ static bf_status reserve(bf_retmap *rm, size_t need, bf_err *err)
     return BF_OK;
 }
 
+/* A point goes to the output's series when there is an output (streamed:
+ * memory does not grow with the run), else into col[] for the caller
+ * (bf_retmap_points). */
 static bf_status emit(bf_retmap *rm, bf_err *err)
 {
-    bf_status st = reserve(rm, rm->npts + 1, err);
-    if (st)
-        return st;
-    for (int c = 0; c < NCOL; c++)
-        rm->col[c][rm->npts] = rm->cand[c];
+    if (!rm->s_t) {
+        bf_status st = reserve(rm, rm->nmem + 1, err);
+        if (st)
+            return st;
+        for (int c = 0; c < NCOL; c++)
+            rm->col[c][rm->nmem] = rm->cand[c];
+        rm->nmem++;
+    }
     rm->npts++;
     if (rm->cand[P_MIN] > 1)
         rm->multi++;
@@ -274,6 +281,9 @@ static bf_status retmap_output_close(void *self, bf_out *out, bf_err *err)
     return st;
 }
 
+/* The checkpoint holds the counts and the pending candidate; the points
+ * themselves are rows of the output (a checkpoint needs one), which a
+ * restart truncates to the counts stored by the loop. */
 static bf_status retmap_save(const void *self, bf_ckpt *ck, bf_err *err)
 {
     const bf_retmap *rm = self;
@@ -281,11 +291,6 @@ static bf_status retmap_save(const void *self, bf_ckpt *ck, bf_err *err)
     bf_status st = bf_ckpt_put_i64(ck, "return_map.meta", meta, 3, err);
     if (!st)
         st = bf_ckpt_put(ck, "return_map.candidate", rm->cand, NCOL, err);
-    for (int c = 0; c < NCOL && !st; c++) {
-        char name[64];
-        snprintf(name, sizeof name, "return_map.column%d", c);
-        st = bf_ckpt_put(ck, name, rm->col[c], rm->npts, err);
-    }
     return st;
 }
 
@@ -298,26 +303,17 @@ static bf_status retmap_load(void *self, const bf_ckpt *ck, bf_err *err)
         st = bf_ckpt_get(ck, "return_map.candidate", rm->cand, NCOL, err);
     if (st)
         return st;
-    /* the stored count must be the columns' length (never trusted to size
-     * an allocation by itself) */
-    size_t n = (size_t)meta[0], have = 0;
-    if (!bf_ckpt_data(ck, "return_map.column0", &have) || meta[0] < 0 ||
-        have != n || meta[1] < 0 || meta[1] > meta[0] || meta[2] < 0 ||
+    if (meta[0] < 0 || meta[1] < 0 || meta[1] > meta[0] || meta[2] < 0 ||
         meta[2] > 1)
         return bf_fail(err, BF_EINPUT, "checkpoint: the return map's counts "
-                       "(%lld points, %zu stored) are inconsistent",
-                       (long long)meta[0], have);
-    if ((st = reserve(rm, n, err)))
-        return st;
-    for (int c = 0; c < NCOL; c++) {
-        char name[64];
-        snprintf(name, sizeof name, "return_map.column%d", c);
-        if ((st = bf_ckpt_get(ck, name, rm->col[c], n, err)))
-            return st;
-    }
-    rm->npts = n;
+                       "(%lld points, %lld with several minima, pending %lld) "
+                       "are inconsistent",
+                       (long long)meta[0], (long long)meta[1],
+                       (long long)meta[2]);
+    rm->npts = (size_t)meta[0];
     rm->multi = (size_t)meta[1];
     rm->pending = (int)meta[2];
+    rm->nmem = 0;
     return BF_OK;
 }
 
@@ -333,7 +329,7 @@ size_t bf_retmap_points(const bf_retmap *rm, const double **t,
         *v = rm->col[P_V];
     if (z_trigger)
         *z_trigger = rm->col[P_ZT];
-    return rm->npts;
+    return rm->nmem;
 }
 
 size_t bf_retmap_multi_minima(const bf_retmap *rm) { return rm->multi; }
@@ -352,8 +348,8 @@ static void retmap_results(const void *self, bf_results *r)
     r->has_return_map = 1;
     r->map_points = rm->npts;
     r->map_multi_minima = rm->multi;
-    r->map_z = rm->col[P_Z];
-    r->map_v = rm->col[P_V];
+    r->map_z = rm->nmem ? rm->col[P_Z] : NULL;
+    r->map_v = rm->nmem ? rm->col[P_V] : NULL;
 }
 
 const bf_observer_type bf_retmap_observer = {

@@ -57,8 +57,11 @@ typedef struct bf_retmap bf_retmap;
 extern const bf_analysis_type bf_retmap_analysis; /* [return_map] */
 extern const bf_observer_type bf_retmap_observer;
 
-/* The points recorded so far (arrays of length return value; any pointer
- * may be NULL). */
+/* The points held in memory (arrays of length return value; any pointer
+ * may be NULL): every point of a run without an output file.  With an
+ * output file the points are streamed to /return_map/... as they are found
+ * and none is kept (the run's memory does not grow with its length): read
+ * them from the file. */
 size_t bf_retmap_points(const bf_retmap *rm, const double **t,
                         const double **z, const double **v,
                         const double **z_trigger);

@@ -31,7 +31,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#define FLUSH_BYTES (8u << 20) /* flush when this much is buffered */
+#define FLUSH_BYTES (1u << 19) /* flush when this much is buffered: at most
+                                  * 512 KiB of rows in memory, so the memory of
+                                  * a run does not grow with its length */
 
 struct bf_series {
     hid_t dset;
@@ -324,8 +326,15 @@ bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
         rows = 8192;
     hsize_t chunk[2] = {rows, ncols};
     s->rpc = rows;
+    /* A series is appended to: only its last, partial chunk is ever
+     * written again, so the chunk cache holds one chunk (HDF5's default,
+     * 1 MiB per dataset, filled up with finished chunks and made a long
+     * run's memory grow with its length), finished chunks evicted first. */
+    hid_t dapl = H5Pcreate(H5P_DATASET_ACCESS);
+    H5Pset_chunk_cache(dapl, 7, rows * 8 * ncols + 64, 1.0);
     if (out->append && H5Lexists(out->file, path, H5P_DEFAULT) > 0) {
-        s->dset = H5Dopen2(out->file, path, H5P_DEFAULT);
+        s->dset = H5Dopen2(out->file, path, dapl);
+        H5Pclose(dapl);
         hid_t fsp = s->dset >= 0 ? H5Dget_space(s->dset) : -1;
         hsize_t have[2] = {0, 0};
         int hrank = fsp >= 0 ? H5Sget_simple_extent_ndims(fsp) : -1;
@@ -350,7 +359,8 @@ bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
     hid_t lcpl = lcpl_intermediate();
     s->dset = H5Dcreate2(out->file, path,
                          is_int ? H5T_STD_I64LE : H5T_IEEE_F64LE, sp, lcpl, dcpl,
-                         H5P_DEFAULT);
+                         dapl);
+    H5Pclose(dapl);
     H5Pclose(lcpl);
     H5Pclose(dcpl);
     H5Sclose(sp);
