@@ -12,7 +12,9 @@
 #include <string.h>
 
 #include "models/ballsys.h"
+#include "ballfilm/h5out.h"
 #include "ballfilm/run.h"
+#include "ballfilm/sim.h"
 #include "testutil.h"
 
 /* Scenes covering every path of ballsys.c: the two fixed effect lists of
@@ -97,7 +99,7 @@ START_TEST(advance_matches_steps)
                                                   dt, &err) == BF_OK,
                                   "%s: %s", what, err.msg);
                 long done = -1;
-                ck_assert_msg(bf_ballsys_advance(run, n, chunks[c], dt, &done,
+                ck_assert_msg(bf_ballsys_advance(run, n, chunks[c], dt, NULL, &done,
                                                  &err) == BF_OK,
                               "%s: %s", what, err.msg);
                 ck_assert_int_eq(done, chunks[c]);
@@ -106,7 +108,7 @@ START_TEST(advance_matches_steps)
             }
             /* k = 0 changes nothing */
             long done = -1;
-            ck_assert(bf_ballsys_advance(run, n, 0, dt, &done, &err) == BF_OK);
+            ck_assert(bf_ballsys_advance(run, n, 0, dt, NULL, &done, &err) == BF_OK);
             ck_assert_int_eq(done, 0);
             assert_same(ref, run, what, n);
             /* every step counted once (1.46 s: floor and ball contacts) */
@@ -140,7 +142,7 @@ START_TEST(advance_with_callers_force)
         for (long j = 0; j < 300; j++)
             ck_assert(bf_ballsys_step(ref, (double)j * 1e-2, 1e-2, &err) == 0);
         long done;
-        ck_assert(bf_ballsys_advance(run, 0, 300, 1e-2, &done, &err) == 0);
+        ck_assert(bf_ballsys_advance(run, 0, 300, 1e-2, NULL, &done, &err) == 0);
         ck_assert_int_eq(done, 300);
         assert_same(ref, run, methods[mi], 300);
         bf_ballsys_free(ref);
@@ -175,7 +177,7 @@ static void blowup(const scene_case *body, const char *method, double dt,
     long done = -1, first = fail > 3 ? 3 : 0;
     for (long j = 0; j < first; j++)
         ck_assert(bf_ballsys_step(run, (double)j * dt, dt, &erun) == BF_OK);
-    bf_status st = bf_ballsys_advance(run, first, 100000, dt, &done, &erun);
+    bf_status st = bf_ballsys_advance(run, first, 100000, dt, NULL, &done, &erun);
     ck_assert_int_eq(st, BF_EUNSTABLE);
     ck_assert_int_eq(first + done, fail - 1);
     ck_assert_str_eq(erun.msg, eref.msg);
@@ -200,10 +202,12 @@ START_TEST(advance_stops_at_the_failing_step)
 }
 END_TEST
 
-/* Through the program: energy_every = 1 makes the loop take one step at a
- * time; energy checks only at rows let it hand the model runs of steps up
- * to each row.  Same datasets (positions, velocities, energies at rows,
- * times and steps of the rows) and the same force evaluations. */
+/* Through the program: with energy_every = 1 the runs of steps make the
+ * energy check after every step themselves (watched runs); with energy
+ * checks only at rows the loop hands the model plain runs up to each row.
+ * Same datasets (positions, velocities, energies at rows, times and steps
+ * of the rows) and the same force evaluations.  (Against one step per
+ * call: watched_runs_are_steps below.) */
 static void same_through_loop(const char *method)
 {
     char a[512], b[512], seta[64];
@@ -240,8 +244,9 @@ START_TEST(loop_runs_same_datasets)
 }
 END_TEST
 
-/* A blow-up inside a run of the loop: the same step, time and message as
- * with one step per call (Verlet, dt = 1e-3: step 7744). */
+/* A blow-up inside a run of the loop: the same step, time and message in
+ * a watched run (energy every step) and a plain one (Verlet, dt = 1e-3:
+ * step 7744). */
 START_TEST(loop_run_fails_at_the_same_step)
 {
     const char *scene = tu_repo("runs/two_balls_B.ini");
@@ -266,6 +271,88 @@ START_TEST(loop_run_fails_at_the_same_step)
 }
 END_TEST
 
+/* The program's run of a scene (text) with the return map and the energy
+ * after every step, one step per call (step_by_step) or in watched runs;
+ * its datasets in `out`, its status and message returned. */
+static bf_status run_scene_file(const char *text, int step_by_step,
+                                const char *out, char *msg, size_t cap)
+{
+    bf_scene *sc;
+    bf_err err = {0};
+    ck_assert(bf_scene_load_string(&sc, "watch.ini", text, &err) == BF_OK);
+    ck_assert_msg(bf_catalog_resolve(bf_catalog_builtin(), sc, &err) == BF_OK,
+                  "%s", err.msg);
+    bf_sim_opts opts = {.step_by_step = step_by_step};
+    bf_sim *sim;
+    ck_assert_msg(bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, &opts,
+                                    &err) == BF_OK, "%s", err.msg);
+    ck_assert(bf_sim_open_output(sim, out, &err) == BF_OK);
+    bf_status st = bf_sim_run(sim, &err);
+    bf_err cerr = {0};
+    ck_assert(bf_sim_close_output(sim, st, &err, &cerr) == BF_OK);
+    snprintf(msg, cap, "%s", st ? err.msg : "");
+    bf_sim_free(sim);
+    bf_scene_free(sc);
+    return st;
+}
+
+/* Watched runs (integrator.h, bf_ball_watch): the energy check after every
+ * step and the return map's events made inside runs of steps give the
+ * datasets of one step per call bit for bit (return-map points, energies,
+ * states, the run's largest energy error), and a run that exceeds the
+ * energy bound or blows up stops at the same step with the same message.
+ * Every path: the fixed shapes (one ball; two balls, MV2M and Verlet), any
+ * effects (three balls; a spring), a method without runs of its own (RK4). */
+START_TEST(watched_runs_are_steps)
+{
+    static const struct {
+        const char *method, *dt, *bound, *t_end;
+        int scene;
+    } cases[] = {
+        {"mv2m", "1e-4", "0.5", "30", 1},   {"verlet", "1e-4", "0.5", "30", 1},
+        {"mv2m", "1e-4", "0.5", "20", 0},   {"mv2m", "1e-4", "0.5", "20", 2},
+        {"verlet", "1e-4", "0.5", "20", 3}, {"rk4", "1e-4", "0.5", "10", 1},
+        /* the energy bound stops these */
+        {"verlet", "1e-3", "1e-3", "30", 1}, {"mv2m", "2e-3", "0.05", "30", 2},
+        /* and these blow up (no bound) */
+        {"verlet", "1e-3", "0", "30", 1},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        char text[1536], a[600], b[600], ma[BF_ERR_MSG], mb[BF_ERR_MSG];
+        snprintf(text, sizeof text,
+                 "[scene]\nintegrator = %s\ndt = %s\nt_end = %s\n"
+                 "effects = %s\noutput_every = 997\nenergy_every = 1\n"
+                 "max_energy_error = %s\n[return_map]\nenabled = yes\n"
+                 "record = %d\n%s",
+                 cases[c].method, cases[c].dt, cases[c].t_end,
+                 scenes[cases[c].scene].effects, cases[c].bound,
+                 cases[c].scene ? 2 : 1, scenes[cases[c].scene].balls);
+        snprintf(a, sizeof a, "%s%zu.h5", tu_tmp("watch_steps"), c);
+        snprintf(b, sizeof b, "%s%zu.h5", tu_tmp("watch_runs"), c);
+        bf_status sa = run_scene_file(text, 1, a, ma, sizeof ma);
+        bf_status sb = run_scene_file(text, 0, b, mb, sizeof mb);
+        ck_assert_msg(sa == sb, "case %zu: status %d by steps, %d in runs",
+                      c, sa, sb);
+        ck_assert_msg(!strcmp(ma, mb), "case %zu:\n%s\n%s", c, ma, mb);
+        if (c >= 6)
+            ck_assert_msg(sa == BF_EUNSTABLE, "case %zu: status %d", c, sa);
+        tu_same_datasets(a, b);
+        /* the run's largest energy error, an attribute (every step's) */
+        double ea = -1, eb = -2;
+        bf_err e = {0};
+        ck_assert(bf_h5_read_attr_real(tu_result(a), "/",
+                                       "max_relative_energy_error", &ea,
+                                       &e) == BF_OK);
+        ck_assert(bf_h5_read_attr_real(tu_result(b), "/",
+                                       "max_relative_energy_error", &eb,
+                                       &e) == BF_OK);
+        ck_assert_msg(!memcmp(&ea, &eb, sizeof ea),
+                      "case %zu: max energy error %.17g by steps, %.17g in "
+                      "runs", c, ea, eb);
+    }
+}
+END_TEST
+
 Suite *suite_advance(void)
 {
     Suite *s = suite_create("advance");
@@ -275,6 +362,7 @@ Suite *suite_advance(void)
     tcase_add_test(tc, advance_stops_at_the_failing_step);
     tcase_add_test(tc, loop_runs_same_datasets);
     tcase_add_test(tc, loop_run_fails_at_the_same_step);
+    tcase_add_test(tc, watched_runs_are_steps);
     suite_add_tcase(s, tc);
     return s;
 }

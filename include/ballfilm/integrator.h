@@ -112,10 +112,37 @@ typedef struct bf_ball_forces {
 typedef bf_status (*bf_ball_step_fn)(bf_integrator *it, const bf_ode *ode,
                                      const bf_ball_forces *f, double t,
                                      double dt, bf_err *err);
+/* What a run of ball steps checks after each of its steps, so that the
+ * time loop's energy check and the events an analysis waits for need no
+ * call per step (NULL: nothing).  The checks are those the loop and the
+ * analysis would make after each step, with the same arithmetic: the run
+ * gives the same bits as the steps taken one at a time. */
+typedef struct bf_ball_watch {
+    /* energy: after every step E = K + V (K = sum of m v^2/2, then V =
+     * the effects' potentials in order, as bf_ballsys_energy), its
+     * relative error against e0 (diag/energy.h: NaN counts as infinite)
+     * raises max_rel and sets last_rel; the run ends after a step whose
+     * error is not <= bound (bound 0: never). */
+    int energy;
+    double e0, bound;      /* erg; 1 */
+    double max_rel, last_rel; /* in and out */
+    /* events: the run ends after a step in which v[low] went from < 0 to
+     * >= 0 (low >= 0), or that ends with x[above] >= above_x (above >= 0) */
+    long low, above;
+    double above_x; /* cm */
+    /* out: what ended the run (BF_WATCH_* bits, 0: it took its k steps),
+     * and then the state at the start of its last step: n values each in
+     * arrays the model provides (bf_ballsys_advance points them at its
+     * own); the run also uses them as scratch */
+    unsigned fired;
+    double *x_start, *v_start;
+} bf_ball_watch;
+enum { BF_WATCH_ENERGY = 1u, BF_WATCH_LOW = 2u, BF_WATCH_ABOVE = 4u };
+
 typedef bf_status (*bf_ball_advance_fn)(bf_integrator *it, const bf_ode *ode,
                                         const bf_ball_forces *f, long n0,
-                                        long k, double dt, long *done,
-                                        bf_err *err);
+                                        long k, double dt, bf_ball_watch *w,
+                                        long *done, bf_err *err);
 typedef struct bf_ball_stepper {
     /* the specialised step and run for these effects and this many balls
      * (fixed shapes where the stepper has them) */

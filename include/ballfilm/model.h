@@ -25,8 +25,10 @@
 enum {
     BF_MODEL_INTEGRATOR = 1u << 0,    /* uses [scene] integrator */
     BF_MODEL_EFFECTS = 1u << 1,       /* uses [scene] effects */
-    BF_MODEL_BALL_ANALYSES = 1u << 2  /* shows its balls (ball_view) to the
+    BF_MODEL_BALL_ANALYSES = 1u << 2, /* shows its balls (ball_view) to the
                                          analyses of balls (sim.h) */
+    BF_MODEL_WATCH = 1u << 3          /* its advance honours a watch
+                                         (integrator.h, bf_ball_watch) */
 };
 
 /* The run a model is built for. */
@@ -149,9 +151,14 @@ typedef struct bf_model_type {
      * failed step, as with step).  The loop hands such a model the runs of
      * steps between the events it owns (output rows, energy checks,
      * checkpoints, stop conditions), so that a step of a few nanoseconds
-     * does not pay for a call and the loop's bookkeeping. */
-    bf_status (*advance)(void *self, long n, long k, double dt, long *done,
-                         bf_err *err);
+     * does not pay for a call and the loop's bookkeeping.  A model with
+     * BF_MODEL_WATCH takes a watch w (else w is NULL): the run then makes
+     * the loop's energy check and the analyses' event checks after every
+     * step itself and ends after the first step at which one fires
+     * (integrator.h, bf_ball_watch), with the bits of the steps taken one
+     * at a time. */
+    bf_status (*advance)(void *self, long n, long k, double dt,
+                         bf_ball_watch *w, long *done, bf_err *err);
     /* Optional: models whose state is balls on a line fill *v (analyses
      * observe them through it) and return 1. */
     int (*ball_view)(void *self, bf_ball_view *v);

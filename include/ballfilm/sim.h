@@ -65,6 +65,9 @@ typedef struct bf_sim_opts {
     /* Keep OUT.ckpt when the run ends normally (it is removed otherwise:
      * a finished run needs no restart). */
     int keep_checkpoint;
+    /* Take every step one at a time, never runs of steps (model.h,
+     * advance): the same results, slower; for the tests that show it. */
+    int step_by_step;
 } bf_sim_opts;
 
 /* Where the run comes from, for the output's provenance and for
@@ -110,6 +113,18 @@ typedef struct bf_observer_type {
                              bf_err *err);
     bf_status (*after_step)(void *self, long n_done, double t, double dt,
                             bf_err *err);
+    /* Optional, for observers with BF_OBS_STEPS of a model with
+     * BF_MODEL_WATCH: the observer needs its step hooks only at the steps
+     * where a check of the ball state fires.  `watch` fills the events of
+     * w (low, above, above_x) for the next run of steps and returns 1, or
+     * returns 0 when it needs every step for now; after a run that ended
+     * on an event the loop calls `watched` with the run's watch (the state
+     * at the start of the last step in w->x_start, w->v_start) in place of
+     * before_step/after_step around that step.  At most one observer of a
+     * run is watched this way (more: every step is taken one at a time). */
+    int (*watch)(void *self, bf_ball_watch *w);
+    bf_status (*watched)(void *self, const bf_ball_watch *w, long n_done,
+                         double t, double dt, bf_err *err);
     bf_status (*output_open)(void *self, bf_out *out, bf_err *err);
     bf_status (*output_row)(void *self, long n, double t, bf_err *err);
     bf_status (*output_close)(void *self, bf_out *out, bf_err *err);

@@ -218,9 +218,10 @@ static bf_status retmap_after_step(void *self, long n_done, double t,
         const double z0 = rm->x0[i], u0 = rm->v0[i], z1 = x1[i], u1 = v1[i];
         /* the upward zero of the quadratic slope in [0, 1] */
         double lo = 0, hi = 1;
+        const double D = (z1 - z0) / dt;
         for (int k = 0; k < 60; k++) {
             double mid = 0.5 * (lo + hi);
-            if (bf_hermite_slope(mid, dt, z0, u0, z1, u1) < 0)
+            if (bf_hermite_slope_mean(mid, D, u0, u1) < 0)
                 lo = mid;
             else
                 hi = mid;
@@ -240,6 +241,35 @@ static bf_status retmap_after_step(void *self, long n_done, double t,
     if (rm->pending && x1[i] >= rm->R)
         return emit(rm, err);
     return BF_OK;
+}
+
+/* Runs of steps may find the map's events themselves (sim.h, watch): a
+ * lowest point of the trigger ball (its velocity from < 0 to >= 0) and,
+ * while a candidate is pending, the end of its floor contact.  Not with an
+ * integrator that locates the lowest points inside its steps (BF_INT_ROOTS):
+ * its candidates arrive during a step. */
+static int retmap_watch(void *self, bf_ball_watch *w)
+{
+    const bf_retmap *rm = self;
+    if (rm->view.it->type->flags & BF_INT_ROOTS)
+        return 0;
+    w->low = (long)rm->trig;
+    if (rm->pending) {
+        w->above = (long)rm->trig;
+        w->above_x = rm->R;
+    }
+    return 1;
+}
+
+/* after a run that ended on an event: the step's start from the run, then
+ * what after_step does */
+static bf_status retmap_watched(void *self, const bf_ball_watch *w,
+                                long n_done, double t, double dt, bf_err *err)
+{
+    bf_retmap *rm = self;
+    memcpy(rm->x0, w->x_start, rm->n * sizeof *rm->x0);
+    memcpy(rm->v0, w->v_start, rm->n * sizeof *rm->v0);
+    return retmap_after_step(self, n_done, t, dt, err);
 }
 
 static bf_status retmap_output_open(void *self, bf_out *out, bf_err *err)
@@ -357,6 +387,8 @@ const bf_observer_type bf_retmap_observer = {
     .flags = BF_OBS_STEPS,
     .before_step = retmap_before_step,
     .after_step = retmap_after_step,
+    .watch = retmap_watch,
+    .watched = retmap_watched,
     .output_open = retmap_output_open,
     .output_close = retmap_output_close,
     .report = retmap_report,

@@ -405,13 +405,14 @@ enum { RUN_MAX = 1024 };
 
 static long min_long(long a, long b) { return a < b ? a : b; }
 
-/* Steps from s->n to the next event the loop must see: an energy check,
+/* Steps from s->n to the next event the loop must see: an energy check
+ * (unless the run makes it, energy_in_run),
  * an output row, a checkpoint, the end, the --stop-after limit, a multiple
  * of RUN_MAX (progress line, interruption flag).  At least 1. */
-static long run_length(const bf_sim *s)
+static long run_length(const bf_sim *s, int energy_in_run)
 {
     const long n = s->n;
-    const int energy = s->has_energy && s->energy_every;
+    const int energy = s->has_energy && s->energy_every && !energy_in_run;
     long k = min_long(s->nsteps - n, RUN_MAX - (n & (RUN_MAX - 1)));
     k = min_long(k, s->out_every - n % s->out_every);
     if (energy)
@@ -439,6 +440,80 @@ static bf_status one_step(bf_sim *s, bf_err *err, long *done)
     return st;
 }
 
+/* The run's relative energy error rel exceeds the bound: the failure. */
+static bf_status energy_exceeded(const bf_sim *s, double rel, bf_err *err)
+{
+    return bf_fail(err, BF_EUNSTABLE,
+                   "step %ld (t = %.9g s): relative energy error %.3g "
+                   "exceeds [scene] max_energy_error = %g; the time "
+                   "step is too large for this integrator",
+                   s->n, (double)s->n * s->dt, rel, s->energy_bound);
+}
+
+/* Can runs of steps make the per-step checks themselves (model.h,
+ * BF_MODEL_WATCH; integrator.h, bf_ball_watch)?  Every observer with step
+ * hooks must offer a watch, and at most one may: *watcher is its index
+ * (-1: none). */
+static int watch_plan(const bf_sim *s, long *watcher)
+{
+    *watcher = -1;
+    if (!(s->mt->flags & BF_MODEL_WATCH) || !s->mt->advance)
+        return 0;
+    for (size_t k = 0; k < s->nobs; k++) {
+        const bf_observer_type *t = s->obs[k].t;
+        if (!(t->flags & BF_OBS_STEPS))
+            continue;
+        if (!t->watch || !t->watched || *watcher >= 0)
+            return 0;
+        *watcher = (long)k;
+    }
+    return 1;
+}
+
+/* A run of k > 1 steps that makes the per-step checks itself: the energy
+ * check of the loop (energy_in_run) and the events of the watching
+ * observer.  Returns 0 without stepping (*done = 0) when the observer
+ * wants every step for now.  *named: the failure's message already names
+ * its step (the energy bound's, as in the loop). */
+static int watched_run(bf_sim *s, long watcher, int energy_in_run, long k,
+                       long *done, bf_status *st, int *named, bf_err *err)
+{
+    *named = 0;
+    bf_ball_watch w = {0};
+    w.low = w.above = -1;
+    w.energy = energy_in_run;
+    w.e0 = s->en.e0;
+    w.bound = s->energy_bound;
+    w.max_rel = s->en.max_rel;
+    w.last_rel = s->en.last_rel;
+    const observer *o = watcher >= 0 ? &s->obs[watcher] : NULL;
+    *done = 0;
+    if (o && !o->t->watch(o->self, &w))
+        return 0;
+    *st = s->mt->advance(s->model, s->n, k, s->dt, &w, done, err);
+    if (energy_in_run) {
+        s->en.max_rel = w.max_rel;
+        s->en.last_rel = w.last_rel;
+    }
+    s->n += *done;
+    s->steps_this_run += *done;
+    if (*st)
+        return 1;
+    if (o && (w.fired & (BF_WATCH_LOW | BF_WATCH_ABOVE)) &&
+        (*st = o->t->watched(o->self, &w, s->n, (double)(s->n - 1) * s->dt,
+                             s->dt, err))) {
+        /* as one_step: a failing observer fails its step */
+        s->n--;
+        s->steps_this_run--;
+        return 1;
+    }
+    if (w.fired & BF_WATCH_ENERGY) {
+        *st = energy_exceeded(s, w.last_rel, err);
+        *named = 1;
+    }
+    return 1;
+}
+
 bf_status bf_sim_run(bf_sim *s, bf_err *err)
 {
     bf_status st = BF_OK;
@@ -447,10 +522,17 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
     if (s->n == 0 && (st = write_row(s, err)))
         return st;
     const long every = s->out_every, eevery = s->energy_every;
-    /* runs of more than one step are possible at all (energy checks or
-     * rows every step leave none) */
-    const int runs = s->mt->advance && every > 1 && !s->obs_steps &&
-                     !(s->has_energy && eevery == 1);
+    /* Runs of more than one step: a model with advance, rows not every
+     * step, and no check the loop must make after every step (energy
+     * every step, observers' step hooks), unless the run makes them
+     * itself (watch_plan). */
+    long watcher = -1;
+    const int energy_every_step = s->has_energy && eevery == 1;
+    const int watchable = every > 1 && watch_plan(s, &watcher) &&
+                          !s->opts.step_by_step;
+    const int plain_runs = s->mt->advance && every > 1 && !s->obs_steps &&
+                           !energy_every_step && !s->opts.step_by_step;
+    const int energy_in_run = watchable && !plain_runs && energy_every_step;
     s->steps_this_run = 0;
     while (s->n < s->nsteps) {
         if ((s->opts.stop_flag && *s->opts.stop_flag) ||
@@ -459,26 +541,33 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
             break;
         }
         /* a run of steps up to the next event, or one step */
-        long k = runs ? run_length(s) : 1, done = 1;
-        if (k > 1)
-            st = s->mt->advance(s->model, s->n, k, s->dt, &done, err);
-        else
+        long k = plain_runs || watchable ? run_length(s, energy_in_run) : 1;
+        long done = 1;
+        int energy_checked = 0, named = 0;
+        if (k > 1 && plain_runs) {
+            st = s->mt->advance(s->model, s->n, k, s->dt, NULL, &done, err);
+            s->n += done;
+            s->steps_this_run += done;
+        } else if (k > 1 && watched_run(s, watcher, energy_in_run, k, &done,
+                                        &st, &named, err)) {
+            energy_checked = energy_in_run;
+        } else {
             st = one_step(s, err, &done);
-        s->n += done;
-        s->steps_this_run += done;
+            s->n += done;
+            s->steps_this_run += done;
+        }
         if (st) {
-            bf_err_prefix(err, "step %ld (t = %.9g s to %.9g s)", s->n + 1,
-                          (double)s->n * s->dt, (double)(s->n + 1) * s->dt);
+            if (!named)
+                bf_err_prefix(err, "step %ld (t = %.9g s to %.9g s)",
+                              s->n + 1, (double)s->n * s->dt,
+                              (double)(s->n + 1) * s->dt);
             break;
         }
-        if (s->has_energy && eevery && s->n % eevery == 0) {
+        if (!energy_checked && s->has_energy && eevery &&
+            s->n % eevery == 0) {
             double rel = check_energy(s);
             if (s->energy_bound > 0 && !(rel <= s->energy_bound)) {
-                st = bf_fail(err, BF_EUNSTABLE,
-                             "step %ld (t = %.9g s): relative energy error %.3g "
-                             "exceeds [scene] max_energy_error = %g; the time "
-                             "step is too large for this integrator",
-                             s->n, (double)s->n * s->dt, rel, s->energy_bound);
+                st = energy_exceeded(s, rel, err);
                 break;
             }
         }

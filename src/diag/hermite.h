@@ -23,11 +23,11 @@ static inline double bf_hermite(double th, double dt, double p0, double d0,
            (-2 * t3 + 3 * t2) * p1 + (t3 - t2) * dt * d1;
 }
 
-/* the interpolant's derivative over dt (per unit time) */
-static inline double bf_hermite_slope(double th, double dt, double p0,
-                                      double d0, double p1, double d1)
+/* the interpolant's derivative over dt (per unit time), from the mean
+ * slope D = (p1 - p0)/dt (formed once by a search along the step) */
+static inline double bf_hermite_slope_mean(double th, double D, double d0,
+                                           double d1)
 {
-    const double D = (p1 - p0) / dt;
     return 6 * th * (1 - th) * D + (1 - th) * (1 - 3 * th) * d0 +
            th * (3 * th - 2) * d1;
 }

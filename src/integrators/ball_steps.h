@@ -36,6 +36,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "diag/energy.h"
 #include "effects/effect_kernels.h"
 #include "step_kernels.h"
 
@@ -141,9 +142,10 @@ BF_ALWAYS_INLINE int bf_vec_finite(const double *x, const double *v, size_t n)
 }
 
 /* the runs of the "any" steppers stop at the first non-finite state */
-BF_ALWAYS_INLINE int bf_stop_not_finite(const double *x, const double *v,
-                                        size_t n)
+BF_ALWAYS_INLINE int bf_stop_not_finite(void *ctx, const double *x,
+                                        const double *v, size_t n)
 {
+    (void)ctx;
     return !bf_vec_finite(x, v, n);
 }
 
@@ -158,12 +160,231 @@ BF_ALWAYS_INLINE int bf_stop_not_finite(const double *x, const double *v,
  * in local copies; counters and force cache are restored) and taken again
  * step by step, which stops at the failing step with the state, counters
  * and message of one step at a time. */
-BF_ALWAYS_INLINE int bf_never_stop(const double *x, const double *v, size_t n)
+BF_ALWAYS_INLINE int bf_never_stop(void *ctx, const double *x,
+                                   const double *v, size_t n)
 {
+    (void)ctx;
     (void)x;
     (void)v;
     (void)n;
     return 0;
+}
+
+/* a[i] (0 <= i < n) read without indexing by a variable: with n a
+ * compile-time constant the loop unrolls to selects, so that a state kept
+ * in registers need not go to memory to be indexed */
+BF_ALWAYS_INLINE double bf_vec_pick(const double *a, long i, size_t n)
+{
+    double r = 0.0;
+    BF_UNROLL
+    for (size_t k = 0; k < n; k++)
+        if ((long)k == i)
+            r = a[k];
+    return r;
+}
+
+/* ---- watched runs (integrator.h, bf_ball_watch) ----
+ * After every step of a watched run, the checks of bf_ball_watch on the
+ * step's start (xs, vs) and end (x, v): the time loop's energy check, with
+ * its arithmetic (K summed over the balls from 0, then K + V; the relative
+ * error of diag/energy.h), and the events an analysis waits for (vs: the
+ * velocities at the step's start).  Returns the BF_WATCH_* bits that
+ * fired. */
+BF_ALWAYS_INLINE unsigned bf_watch_check(bf_ball_watch *w, const double *m,
+                                         double pot, const double *vs,
+                                         const double *x, const double *v,
+                                         size_t n)
+{
+    unsigned fired = 0;
+    if (w->energy) {
+        double kin = 0.0;
+        BF_UNROLL
+        for (size_t i = 0; i < n; i++)
+            kin += 0.5 * m[i] * v[i] * v[i];
+        const double rel = bf_rel_error(kin + pot, w->e0);
+        if (!(rel <= w->max_rel))
+            w->max_rel = isnan(rel) ? INFINITY : rel;
+        w->last_rel = rel;
+        if (w->bound > 0 && !(rel <= w->bound))
+            fired |= BF_WATCH_ENERGY;
+    }
+    if (w->low >= 0 && bf_vec_pick(vs, w->low, n) < 0 &&
+        bf_vec_pick(v, w->low, n) >= 0)
+        fired |= BF_WATCH_LOW;
+    if (w->above >= 0 && bf_vec_pick(x, w->above, n) >= w->above_x)
+        fired |= BF_WATCH_ABOVE;
+    return fired;
+}
+
+/* A watched run of a fixed shape works on a copy of the watch (and keeps
+ * the step's start) in a local object, which the compiler keeps in
+ * registers: the watch itself is written back when the run ends
+ * (bf_watch_fixed_done). */
+typedef struct bf_watch_fixed {
+    bf_ball_watch w;
+    const bf_fixed_forces *F;
+    double xs[2], vs[2];
+    double mg[2]; /* m_i g, g cm/s^2: gravity's potential is sum mg_i x_i */
+} bf_watch_fixed;
+
+BF_ALWAYS_INLINE void bf_watch_fixed_begin(bf_watch_fixed *r,
+                                          const bf_ball_watch *w,
+                                          const bf_fixed_forces *F,
+                                          const double *x, const double *v,
+                                          size_t n)
+{
+    r->w = *w;
+    r->w.fired = 0;
+    r->F = F;
+    for (size_t i = 0; i < n; i++)
+        r->mg[i] = F->b.m[i] * F->gravity->g;
+    bf_vec_copy(r->xs, x, n);
+    bf_vec_copy(r->vs, v, n);
+}
+
+/* the run is over: what it found, into the watch */
+BF_ALWAYS_INLINE void bf_watch_fixed_done(const bf_watch_fixed *r,
+                                         bf_ball_watch *w, size_t n)
+{
+    w->max_rel = r->w.max_rel;
+    w->last_rel = r->w.last_rel;
+    w->fired = r->w.fired;
+    if (w->fired) {
+        bf_vec_copy(w->x_start, r->xs, n);
+        bf_vec_copy(w->v_start, r->vs, n);
+    }
+}
+
+BF_ALWAYS_INLINE int bf_watch_fixed_end(bf_watch_fixed *r, double pot,
+                                        const double *x, const double *v,
+                                        size_t n)
+{
+    unsigned fired = bf_watch_check(&r->w, r->F->b.m, pot, r->vs, x, v, n);
+    if (fired) {
+        r->w.fired = fired;
+        return 1;
+    }
+    bf_vec_copy(r->xs, x, n);
+    bf_vec_copy(r->vs, v, n);
+    return 0;
+}
+
+/* gravity's potential for a fixed shape: bf_gravity_potential's sum of
+ * m_i g x_i, from 0, with the products m_i g formed once per run (the same
+ * numbers: m_i g x_i is (m_i g) x_i) so that x is read as scalars (the
+ * vectorised form loaded x, just stored as two scalars, as one pair and
+ * stalled on the store forwarding) */
+BF_ALWAYS_INLINE double bf_watch_gravity(const bf_watch_fixed *r,
+                                         const double *x, size_t n)
+{
+    double u = 0.0;
+    for (size_t i = 0; i < n; i++)
+        u += r->mg[i] * x[i];
+    return u;
+}
+
+/* the potentials of the fixed shapes, summed as
+ * bf_effects_potential_inline sums them (from 0, in the scene's order) */
+BF_ALWAYS_INLINE int bf_watch_stop_gf(void *ctx, const double *x,
+                                      const double *v, size_t n)
+{
+    bf_watch_fixed *r = ctx;
+    double pot = 0.0;
+    if (r->w.energy) {
+        pot += bf_watch_gravity(r, x, n);
+        pot += bf_floor_potential(r->F->floor, &r->F->b, x);
+    }
+    return bf_watch_fixed_end(r, pot, x, v, n);
+}
+
+BF_ALWAYS_INLINE int bf_watch_stop_gfc(void *ctx, const double *x,
+                                       const double *v, size_t n)
+{
+    bf_watch_fixed *r = ctx;
+    double pot = 0.0;
+    if (r->w.energy) {
+        pot += bf_watch_gravity(r, x, n);
+        pot += bf_floor_potential(r->F->floor, &r->F->b, x);
+        pot += bf_contact_potential(r->F->contact, &r->F->b, x);
+    }
+    return bf_watch_fixed_end(r, pot, x, v, n);
+}
+
+/* A watched run of any effects keeps the step's start in the watch's
+ * arrays (n values) and the time of the step's end (for the potentials of
+ * time-dependent effects). */
+typedef struct bf_watch_any {
+    bf_ball_watch *w;
+    const bf_ball_forces *f;
+    long next; /* the step count at the end of the next step */
+    double dt;
+} bf_watch_any;
+
+/* the watch's check on the state after the step from f's state at the
+ * step's start (in w->x_start, w->v_start) at time t of its end; copies
+ * the end state in when nothing fired */
+static inline unsigned bf_watch_any_end(bf_ball_watch *w,
+                                        const bf_ball_forces *f, double t,
+                                        const double *x, const double *v,
+                                        size_t n)
+{
+    const double pot = w->energy ? bf_effects_potential_inline(
+                                       f->eff, f->neff, f->b, t, x)
+                                 : 0.0;
+    unsigned fired = bf_watch_check(w, f->b->m, pot, w->v_start, x, v, n);
+    w->fired = fired;
+    if (!fired) {
+        bf_vec_copy(w->x_start, x, n);
+        bf_vec_copy(w->v_start, v, n);
+    }
+    return fired;
+}
+
+BF_ALWAYS_INLINE int bf_watch_stop_any(void *ctx, const double *x,
+                                       const double *v, size_t n)
+{
+    bf_watch_any *r = ctx;
+    if (!bf_vec_finite(x, v, n))
+        return 1; /* that step failed (BF_BALL_ADVANCE_ANY) */
+    return bf_watch_any_end(r->w, r->f, (double)r->next++ * r->dt, x, v,
+                            n) != 0;
+}
+
+/* k steps one at a time, each followed by the watch's checks (what a
+ * watched advance falls back to) */
+static inline bf_status bf_ball_steps_watched(bf_ball_step_fn step,
+                                              bf_integrator *it,
+                                              const bf_ode *ode,
+                                              const bf_ball_forces *f,
+                                              long n0, long k, double dt,
+                                              bf_ball_watch *w, long *done,
+                                              bf_err *err)
+{
+    const size_t n = f->b->n;
+    w->fired = 0;
+    for (long j = 0; j < k; j++) {
+        bf_vec_copy(w->x_start, f->b->x, n);
+        bf_vec_copy(w->v_start, f->b->v, n);
+        bf_status st = step(it, ode, f, (double)(n0 + j) * dt, dt, err);
+        if (st) {
+            *done = j;
+            return st;
+        }
+        const double pot = w->energy
+                               ? bf_effects_potential_inline(
+                                     f->eff, f->neff, f->b,
+                                     (double)(n0 + j + 1) * dt, f->b->x)
+                               : 0.0;
+        unsigned fired = bf_watch_check(w, f->b->m, pot, w->v_start, f->b->x,
+                                        f->b->v, n);
+        if (fired) {
+            w->fired = fired;
+            *done = j + 1;
+            return BF_OK;
+        }
+    }
+    *done = k;
+    return BF_OK;
 }
 
 /* what a run changes in the integrator, for undoing it (n <= 2) */
@@ -230,29 +451,48 @@ static inline bf_status bf_ball_steps(bf_ball_step_fn step, bf_integrator *it,
 #define BF_BALL_ADVANCE_SIGNATURE(NAME)                                        \
     BF_BALL_HOT static bf_status NAME(bf_integrator *it, const bf_ode *ode,   \
                                       const bf_ball_forces *f, long n0,       \
-                                      long k, double dt, long *done,          \
-                                      bf_err *err)
+                                      long k, double dt, bf_ball_watch *watch,\
+                                      long *done, bf_err *err)
 
 /* A run of a fixed shape: in local copies, finiteness at the end (see
- * above); STEP is the shape's one-step function. */
-#define BF_BALL_ADVANCE_FIXED(NAME, RUN, NWORK, ACCEL, N, STEP)                \
+ * above); STEP is the shape's one-step function, WATCH_STOP its watched
+ * stop.  A run that ends in a state that is not finite is undone (also
+ * what the watch recorded) and taken again one step at a time. */
+#define BF_BALL_ADVANCE_FIXED(NAME, RUN, NWORK, ACCEL, N, STEP, WATCH_STOP)    \
     BF_BALL_ADVANCE_SIGNATURE(NAME)                                           \
     {                                                                         \
-        if (k == 1)                                                           \
+        if (k == 1 && !watch)                                                 \
             return bf_ball_steps(STEP, it, ode, f, n0, k, dt, done, err);     \
         bf_fixed_forces F;                                                    \
         bf_run_mark mark;                                                     \
+        bf_watch_fixed wf;                                                    \
         double w[NWORK * N] = {0}, x[N], v[N];                                \
         long j;                                                               \
         bf_fixed_setup(&F, f, N);                                             \
         bf_run_mark_copy(&mark, it, N, 1);                                    \
         bf_vec_copy(x, f->b->x, N);                                           \
         bf_vec_copy(v, f->b->v, N);                                           \
-        bf_status st = RUN(it, ode, ACCEL, &F, bf_never_stop, N, w, n0, k,    \
-                           dt, x, v, &j, err);                                \
+        bf_status st;                                                         \
+        double max0 = 0, last0 = 0;                                           \
+        if (watch) {                                                          \
+            max0 = watch->max_rel;                                            \
+            last0 = watch->last_rel;                                          \
+            bf_watch_fixed_begin(&wf, watch, &F, x, v, N);                    \
+            st = RUN(it, ode, ACCEL, &F, WATCH_STOP, &wf, N, w, n0, k, dt, x, \
+                     v, &j, err);                                             \
+            bf_watch_fixed_done(&wf, watch, N);                               \
+        } else {                                                              \
+            st = RUN(it, ode, ACCEL, &F, bf_never_stop, NULL, N, w, n0, k,    \
+                     dt, x, v, &j, err);                                      \
+        }                                                                     \
         if (!bf_vec_finite(x, v, N)) {                                        \
             bf_run_mark_copy(&mark, it, N, 0);                                \
-            return bf_ball_steps(STEP, it, ode, f, n0, k, dt, done, err);     \
+            if (!watch)                                                       \
+                return bf_ball_steps(STEP, it, ode, f, n0, k, dt, done, err); \
+            watch->max_rel = max0;                                            \
+            watch->last_rel = last0;                                          \
+            return bf_ball_steps_watched(STEP, it, ode, f, n0, k, dt, watch,  \
+                                         done, err);                          \
         }                                                                     \
         bf_vec_copy(f->b->x, x, N);                                           \
         bf_vec_copy(f->b->v, v, N);                                           \
@@ -276,17 +516,28 @@ static inline bf_status bf_ball_steps(bf_ball_step_fn step, bf_integrator *it,
     }
 
 /* Runs of any effects, any n: in place, finiteness checked after every
- * step (the run stops there; that step failed). */
+ * step (the run stops there; that step failed), and the watch's checks
+ * after every step of a watched run. */
 #define BF_BALL_ADVANCE_ANY(NAME, RUN, STEP)                                   \
     BF_BALL_ADVANCE_SIGNATURE(NAME)                                           \
     {                                                                         \
-        if (k == 1)                                                           \
+        if (k == 1 && !watch)                                                 \
             return bf_ball_steps(STEP, it, ode, f, n0, k, dt, done, err);     \
         const size_t n = f->b->n;                                             \
         long j;                                                               \
-        bf_status st = RUN(it, ode, bf_ball_accel_any, (void *)f,             \
-                           bf_stop_not_finite, n, it->work, n0, k, dt,        \
-                           f->b->x, f->b->v, &j, err);                        \
+        bf_status st;                                                         \
+        if (watch) {                                                          \
+            bf_watch_any wa = {watch, f, n0 + 1, dt};                         \
+            bf_vec_copy(watch->x_start, f->b->x, n);                          \
+            bf_vec_copy(watch->v_start, f->b->v, n);                          \
+            watch->fired = 0;                                                 \
+            st = RUN(it, ode, bf_ball_accel_any, (void *)f, bf_watch_stop_any,\
+                     &wa, n, it->work, n0, k, dt, f->b->x, f->b->v, &j, err); \
+        } else {                                                              \
+            st = RUN(it, ode, bf_ball_accel_any, (void *)f,                   \
+                     bf_stop_not_finite, NULL, n, it->work, n0, k, dt,        \
+                     f->b->x, f->b->v, &j, err);                              \
+        }                                                                     \
         if (!st && j > 0 && !bf_vec_finite(f->b->x, f->b->v, n)) {            \
             *done = j - 1;                                                    \
             return bf_balls_not_finite(f->b, err);                             \
@@ -301,9 +552,9 @@ static inline bf_status bf_ball_steps(bf_ball_step_fn step, bf_integrator *it,
     BF_BALL_STEP_FIXED(NAME##_step_gfc2, KERNEL, NWORK, bf_accel_gfc, 2)       \
     BF_BALL_STEP_ANY(NAME##_step_any, KERNEL)                                  \
     BF_BALL_ADVANCE_FIXED(NAME##_advance_gf1, RUN, NWORK, bf_accel_gf, 1,      \
-                          NAME##_step_gf1)                                     \
+                          NAME##_step_gf1, bf_watch_stop_gf)                   \
     BF_BALL_ADVANCE_FIXED(NAME##_advance_gfc2, RUN, NWORK, bf_accel_gfc, 2,    \
-                          NAME##_step_gfc2)                                    \
+                          NAME##_step_gfc2, bf_watch_stop_gfc)                 \
     BF_BALL_ADVANCE_ANY(NAME##_advance_any, RUN, NAME##_step_any)              \
     static void NAME##_pick(const bf_ball_forces *f, bf_ball_step_fn *step,    \
                             bf_ball_advance_fn *advance)                      \

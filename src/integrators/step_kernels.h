@@ -69,10 +69,12 @@ BF_ALWAYS_INLINE void bf_vec_copy(double *dst, const double *src, size_t n)
  * keeps the state, the carried force and the counters in locals (registers
  * when n is a compile-time constant and x, v are local arrays) and touches
  * the integrator's memory only at its ends.  After every step it asks
- * `stop(x, v, n)` whether to end the run there (the general runs of the
- * ball system stop at a non-finite state; its fixed runs check once at the
+ * `stop(stop_ctx, x, v, n)` whether to end the run there (the general runs
+ * of the ball system stop at a non-finite state, watched runs at what they
+ * watch, ball_steps.h; the fixed runs check finiteness once at the
  * end, see ballsys.c). */
-typedef int (*bf_stop_fn)(const double *x, const double *v, size_t n);
+typedef int (*bf_stop_fn)(void *ctx, const double *x, const double *v,
+                          size_t n);
 
 /* The parameters every one-step kernel and every run kernel takes (the
  * same for all methods, so that ball_steps.h instantiates them alike). */
@@ -82,9 +84,9 @@ typedef int (*bf_stop_fn)(const double *x, const double *v, size_t n);
         double *restrict x, double *restrict v, bf_err *err
 #define BF_RUN_KERNEL_PARAMS                                                  \
     bf_integrator *it, const bf_ode *ode, bf_accel_fn accel, void *ctx,       \
-        bf_stop_fn stop, size_t n, double *restrict work, long n0, long k,    \
-        double dt, double *restrict x, double *restrict v, long *done,        \
-        bf_err *err
+        bf_stop_fn stop, void *stop_ctx, size_t n, double *restrict work,     \
+        long n0, long k, double dt, double *restrict x, double *restrict v,   \
+        long *done, bf_err *err
 
 /* ---- velocity Verlet ---- */
 
@@ -174,7 +176,7 @@ BF_ALWAYS_INLINE bf_status bf_verlet_run(BF_RUN_KERNEL_PARAMS)
         }
         j++;
         bf_vec_copy(a0, a1, n); /* the next step's a(x^n) */
-        if (stop(x, v, n))
+        if (stop(stop_ctx, x, v, n))
             break;
     }
     it->count.evals += evals;
@@ -199,7 +201,7 @@ BF_ALWAYS_INLINE bf_status bf_verlet_run(BF_RUN_KERNEL_PARAMS)
                 break;                                                        \
             }                                                                 \
             j++;                                                              \
-            if (stop(x, v, n))                                                \
+            if (stop(stop_ctx, x, v, n))                                      \
                 break;                                                        \
         }                                                                     \
         it->count.evals += evals;                                             \

@@ -18,21 +18,46 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct xw {
-    FILE *f;
-    hid_t h5;
-    char *href;       /* the HDF5 file as the sidecar names it (escaped) */
-    size_t max_steps; /* grids per collection at most (0: all) */
-    double dt;        /* [scene] dt, for rows counted in steps */
-} xw;
-
 typedef struct dset {
     int rank; /* 0: absent */
     int is_int;
     size_t n0, n1;
 } dset;
 
+/* What dset_of found, by path: a sidecar names the same datasets in each
+ * of up to max_steps grids, and opening a dataset costs more than the
+ * rest of a grid (it was a third of a short run's time). */
+enum { DSET_CACHE = 64 };
+typedef struct dset_cache {
+    char *path[DSET_CACHE];
+    dset d[DSET_CACHE];
+    size_t n;
+} dset_cache;
+
+typedef struct xw {
+    FILE *f;
+    hid_t h5;
+    char *href;       /* the HDF5 file as the sidecar names it (escaped) */
+    size_t max_steps; /* grids per collection at most (0: all) */
+    double dt;        /* [scene] dt, for rows counted in steps */
+    dset_cache *cache;
+} xw;
+
+static dset dset_read(const xw *x, const char *path);
+
 static dset dset_of(const xw *x, const char *path)
+{
+    dset_cache *c = x->cache;
+    for (size_t k = 0; c && k < c->n; k++)
+        if (!strcmp(c->path[k], path))
+            return c->d[k];
+    dset d = dset_read(x, path);
+    if (c && c->n < DSET_CACHE && (c->path[c->n] = strdup(path)))
+        c->d[c->n++] = d;
+    return d;
+}
+
+static dset dset_read(const xw *x, const char *path)
 {
     dset d = {0, 0, 0, 0};
     if (H5Lexists(x->h5, path, H5P_DEFAULT) <= 0)
@@ -566,7 +591,8 @@ bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
                           size_t max_steps, bf_err *err)
 {
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    xw x = {NULL, -1, NULL, max_steps, 0.0};
+    dset_cache cache = {.n = 0};
+    xw x = {NULL, -1, NULL, max_steps, 0.0, &cache};
     x.h5 = H5Fopen(h5_path, H5F_ACC_RDONLY, H5P_DEFAULT);
     if (x.h5 < 0)
         return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", h5_path);
@@ -587,6 +613,8 @@ bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
         st = bf_fail(err, BF_EIO, "%s: writing the XDMF file failed (disk "
                      "full?)", xmf_path);
     free(x.href);
+    for (size_t k = 0; k < cache.n; k++)
+        free(cache.path[k]);
     H5Fclose(x.h5);
     return st;
 }

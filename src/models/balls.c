@@ -56,9 +56,10 @@ static bf_status balls_step(void *self, long n, double t, double dt, bf_err *err
 }
 
 static bf_status balls_advance(void *self, long n, long k, double dt,
-                               long *done, bf_err *err)
+                               bf_ball_watch *w, long *done, bf_err *err)
 {
-    return bf_ballsys_advance(((balls_model *)self)->sys, n, k, dt, done, err);
+    return bf_ballsys_advance(((balls_model *)self)->sys, n, k, dt, w, done,
+                              err);
 }
 
 static void balls_energy(const void *self, double t, double *kin, double *pot)
@@ -128,7 +129,8 @@ static const bf_section_spec *const balls_specs[] = {&bf_ballsys_ball_spec,
 const bf_model_type bf_model_balls = {
     .name = "balls",
     .doc = "balls on a line under the listed effects (Yasuda sec. 2)",
-    .flags = BF_MODEL_INTEGRATOR | BF_MODEL_EFFECTS | BF_MODEL_BALL_ANALYSES,
+    .flags = BF_MODEL_INTEGRATOR | BF_MODEL_EFFECTS | BF_MODEL_BALL_ANALYSES |
+             BF_MODEL_WATCH,
     .specs = balls_specs,
     .create = balls_create,
     .destroy = balls_destroy,

@@ -11,9 +11,11 @@
 #include "models/ballsys.h"
 
 #include "diag/hermite.h"
+#include "integrators/ball_steps.h"
 #include "effects/effect_kernels.h"
 
 #include <float.h>
+#include <stddef.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -70,9 +72,24 @@ bf_status bf_ballsys_step_generic(bf_ballsys *s, double t, double dt,
     return BF_OK;
 }
 
-bf_status bf_ballsys_advance_generic(bf_ballsys *s, long n0, long k,
-                                     double dt, long *done, bf_err *err)
+/* one step of the ball system whose forces are f, as a bf_ball_step_fn */
+static bf_status step_of_forces(bf_integrator *it, const bf_ode *ode,
+                                const bf_ball_forces *f, double t, double dt,
+                                bf_err *err)
 {
+    (void)it;
+    (void)ode;
+    bf_ballsys *s = (bf_ballsys *)((char *)f - offsetof(bf_ballsys, forces));
+    return bf_ballsys_step(s, t, dt, err);
+}
+
+bf_status bf_ballsys_advance_generic(bf_ballsys *s, long n0, long k,
+                                     double dt, bf_ball_watch *w, long *done,
+                                     bf_err *err)
+{
+    if (w)
+        return bf_ball_steps_watched(step_of_forces, s->it, &s->ode,
+                                     &s->forces, n0, k, dt, w, done, err);
     for (long j = 0; j < k; j++) {
         bf_status st = bf_ballsys_step(s, (double)(n0 + j) * dt, dt, err);
         if (st) {
@@ -97,6 +114,7 @@ void bf_ballsys_free(bf_ballsys *s)
     free(s->effect_types);
     free(s->it_params);
     bf_integrator_free(s->it);
+    free(s->x_start);
     free(s->b.x);
     free(s->b.v);
     free(s->b.m);
@@ -464,7 +482,10 @@ bf_status bf_ballsys_create(bf_ballsys **out, const bf_model_setup *setup,
     s->b.m = calloc(nb, sizeof(double));
     s->b.inv_m = calloc(nb, sizeof(double));
     s->b.R = calloc(nb, sizeof(double));
-    if (!s->b.x || !s->b.v || !s->b.m || !s->b.inv_m || !s->b.R) {
+    s->x_start = calloc(2 * nb, sizeof(double));
+    s->v_start = s->x_start ? s->x_start + nb : NULL;
+    if (!s->b.x || !s->b.v || !s->b.m || !s->b.inv_m || !s->b.R ||
+        !s->x_start) {
         bf_ballsys_free(s);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }

@@ -46,6 +46,9 @@ typedef struct bf_ballsys {
     double *ev_work; /* scratch of the splitting */
     int *ev_side;
     bf_events kinks; /* adaptive integrator with roots: its kinks */
+    /* the state at the start of the last step of a watched run that fired
+     * (bf_ball_watch.x_start; n each) */
+    double *x_start, *v_start;
 } bf_ballsys;
 
 /* Read the balls of the setup, create its effects (env is passed to them)
@@ -80,7 +83,8 @@ bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
 bf_status bf_ballsys_step_generic(bf_ballsys *s, double t, double dt,
                                   bf_err *err);
 bf_status bf_ballsys_advance_generic(bf_ballsys *s, long n0, long k,
-                                     double dt, long *done, bf_err *err);
+                                     double dt, bf_ball_watch *w, long *done,
+                                     bf_err *err);
 
 /* One integrator step; fails with BF_EUNSTABLE, naming the ball, if a
  * position or velocity is not finite afterwards (the state is then that of
@@ -102,14 +106,23 @@ static inline bf_status bf_ballsys_step(bf_ballsys *s, double t, double dt,
  * bits, counters and force cache as k calls of bf_ballsys_step with those
  * times, in one call (for Verlet and MV2M the state stays in registers
  * between steps).  *done receives the number of steps that succeeded; on
- * failure the state is that of the failed step, as with bf_ballsys_step. */
+ * failure the state is that of the failed step, as with bf_ballsys_step.
+ * With a watch (integrator.h, bf_ball_watch; NULL: none) the run also
+ * makes the watch's checks after every step and ends after the first step
+ * at which one fires (*done counts it); w->x_start, w->v_start point to
+ * the system's own arrays. */
 static inline bf_status bf_ballsys_advance(bf_ballsys *s, long n0, long k,
-                                           double dt, long *done, bf_err *err)
+                                           double dt, bf_ball_watch *w,
+                                           long *done, bf_err *err)
 {
+    if (w) {
+        w->x_start = s->x_start;
+        w->v_start = s->v_start;
+    }
     if (s->fast_advance && s->ode.accel == bf_ballsys_accel)
-        return s->fast_advance(s->it, &s->ode, &s->forces, n0, k, dt, done,
+        return s->fast_advance(s->it, &s->ode, &s->forces, n0, k, dt, w, done,
                                err);
-    return bf_ballsys_advance_generic(s, n0, k, dt, done, err);
+    return bf_ballsys_advance_generic(s, n0, k, dt, w, done, err);
 }
 
 /* Checkpoint: positions, velocities and integrator state under names
