@@ -126,18 +126,7 @@ START_TEST(sigkill_leaves_readable_file)
     char marker[600];
     snprintf(marker, sizeof marker, "%s.part", out);
     tu_wait_for_file(marker, 0);
-    size_t seen = 0;
-    for (int k = 0; k < 60000 && seen <= 300; k++) {
-        double *tt;
-        size_t r = 0, r1;
-        bf_err e2 = {0};
-        if (bf_h5_read(marker, "/time", &tt, &r, &r1, &e2) == BF_OK) {
-            free(tt);
-            seen = r;
-        }
-        const struct timespec ms = {0, 1000000};
-        nanosleep(&ms, NULL);
-    }
+    size_t seen = tu_wait_for_rows(marker, "/time", 300);
     /* a run's file is readable while it is written (its lock does not
      * keep HDF5 readers out: h5out.c, lock_part) */
     ck_assert_msg(seen > 300, "the running output never read back");

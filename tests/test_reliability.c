@@ -143,6 +143,7 @@ START_TEST(one_output_path_one_run)
                           "scene.flush_seconds=0.01", NULL};
     pid_t a = start(argv, errf, 0);
     tu_wait_for_file(part, 4096);
+    tu_wait_for_rows(part, "/time", 1);
     /* the second run is refused, exit 5, and names the reason */
     char *err = NULL;
     int rc = tu_run(NULL, &err, "run", tu_repo("runs/harmonic.ini"), "-o", out,

@@ -547,3 +547,24 @@ void tu_ref(const char *name, const char *fmt, ...)
     ck_abort_msg("%s has no line like\n  %s\n(run with BALLFILM_REF_UPDATE=1 "
                  "to collect the new lines in %s.new)", file, line, file);
 }
+
+size_t tu_wait_for_rows(const char *path, const char *dset, size_t rows)
+{
+    const struct timespec ms = {0, 1000000};
+    size_t seen = 0;
+    for (int k = 0; k < 60000; k++) {
+        double *d;
+        size_t n = 0, n1;
+        bf_err e = {0};
+        if (bf_h5_read(path, dset, &d, &n, &n1, &e) == BF_OK) {
+            free(d);
+            seen = n;
+            if (seen > rows)
+                return seen;
+        }
+        nanosleep(&ms, NULL);
+    }
+    ck_abort_msg("%s: %s never had more than %zu rows (%zu seen)", path, dset,
+                 rows, seen);
+    return seen;
+}

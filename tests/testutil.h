@@ -96,4 +96,10 @@ int tu_part_unlocked(int fd);
 void tu_ref(const char *name, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 
+/* Wait (up to a minute) until the HDF5 file at path, while a run writes
+ * it, holds more than `rows` rows of dataset `dset`; fails the test
+ * otherwise.  Returns the rows seen.  (A read in the middle of a flush may
+ * fail; it is retried.) */
+size_t tu_wait_for_rows(const char *path, const char *dset, size_t rows);
+
 #endif
