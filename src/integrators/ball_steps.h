@@ -283,31 +283,34 @@ BF_ALWAYS_INLINE double bf_watch_gravity(const bf_watch_fixed *r,
     return u;
 }
 
-/* the potentials of the fixed shapes, summed as
- * bf_effects_potential_inline sums them (from 0, in the scene's order) */
-BF_ALWAYS_INLINE int bf_watch_stop_gf(void *ctx, const double *x,
-                                      const double *v, size_t n)
+/* the potentials of the fixed shapes (gravity, floor, and with `contact`
+ * the contact), summed as bf_effects_potential_inline sums them (from 0,
+ * in the scene's order); contact is a constant at each use */
+BF_ALWAYS_INLINE int bf_watch_stop_fixed(void *ctx, const double *x,
+                                         const double *v, size_t n,
+                                         int contact)
 {
     bf_watch_fixed *r = ctx;
     double pot = 0.0;
     if (r->w.energy) {
         pot += bf_watch_gravity(r, x, n);
         pot += bf_floor_potential(r->F->floor, &r->F->b, x);
+        if (contact)
+            pot += bf_contact_potential(r->F->contact, &r->F->b, x);
     }
     return bf_watch_fixed_end(r, pot, x, v, n);
+}
+
+BF_ALWAYS_INLINE int bf_watch_stop_gf(void *ctx, const double *x,
+                                      const double *v, size_t n)
+{
+    return bf_watch_stop_fixed(ctx, x, v, n, 0);
 }
 
 BF_ALWAYS_INLINE int bf_watch_stop_gfc(void *ctx, const double *x,
                                        const double *v, size_t n)
 {
-    bf_watch_fixed *r = ctx;
-    double pot = 0.0;
-    if (r->w.energy) {
-        pot += bf_watch_gravity(r, x, n);
-        pot += bf_floor_potential(r->F->floor, &r->F->b, x);
-        pot += bf_contact_potential(r->F->contact, &r->F->b, x);
-    }
-    return bf_watch_fixed_end(r, pot, x, v, n);
+    return bf_watch_stop_fixed(ctx, x, v, n, 1);
 }
 
 /* A watched run of any effects keeps the step's start in the watch's
