@@ -221,6 +221,10 @@ static bf_status retmap_after_step(void *self, long n_done, double t,
         const double D = (z1 - z0) / dt;
         for (int k = 0; k < 60; k++) {
             double mid = 0.5 * (lo + hi);
+            /* lo and hi adjacent: no later halving changes 0.5 (lo + hi),
+             * the point taken below (it is whichever of the two mid is) */
+            if (mid == lo || mid == hi)
+                break;
             if (bf_hermite_slope_mean(mid, D, u0, u1) < 0)
                 lo = mid;
             else
