@@ -61,7 +61,8 @@ RUNNER    := $(BUILD)/tests/runner
         multirate fig-g72-ex1 \
         fig-g72-ex1-ensemble fig-g72-ex2 fig-g72-large fig-g73-hex \
         fig-g73-wall movies deps-movies deps-xdmf test-movies test-xdmf \
-        shared install uninstall man deps-install test-install
+        shared install uninstall man deps-install test-install test-examples \
+        test-python deps-python
 
 all: $(PROG) shared
 
@@ -654,6 +655,9 @@ test:
 	@$(MAKE) --no-print-directory test-run
 	@$(MAKE) --no-print-directory test-movies
 	@$(MAKE) --no-print-directory test-xdmf
+	@$(MAKE) --no-print-directory test-install
+	@$(MAKE) --no-print-directory test-examples
+	@$(MAKE) --no-print-directory test-python
 
 # The code's layering against docs/architecture.md (include directions,
 # circles, public headers, file sizes, who reads scenes) and the docs'
@@ -671,6 +675,35 @@ test-movies: $(PROG) | deps-movies
 
 test-xdmf: $(PROG) | deps-xdmf
 	$(PY) tests/test_xdmf.py $(PROG) build/test-xdmf
+
+# The library as its users get it (docs/library.md): make install into a
+# fresh temporary prefix, an example compiled with pkg-config alone
+# (shared and static), the .so's exports, the installed Python package,
+# make uninstall (tests/test_install.py).
+test-install: $(PROG) $(LIB) $(SHLIB) | deps-install
+	$(PY) tests/test_install.py
+
+# Every example of examples/ built with pkg-config against an install into
+# build/prefix and run briefly (each checks its own trust numbers), and
+# the vibrating floor's return map drawn by its plot script.
+EXAMPLES_RUN := $(BUILD)/examples
+test-examples: $(PROG) $(LIB) $(SHLIB) | deps-install deps-plot
+	@$(MAKE) --no-print-directory install PREFIX=$(CURDIR)/$(BUILD)/prefix >/dev/null
+	rm -rf $(EXAMPLES_RUN)
+	PKG_CONFIG_PATH=$(CURDIR)/$(BUILD)/prefix/lib/pkgconfig \
+	  $(MAKE) --no-print-directory -C examples O=$(CURDIR)/$(EXAMPLES_RUN) run
+	$(PY) plots/vibrating_floor_map.py $(EXAMPLES_RUN)/vibrating_floor.h5 \
+	  -o $(EXAMPLES_RUN)/vibrating_floor_map.png
+
+# The Python package (python/ballfilm) with pytest against the library of
+# this build (tests/python/).
+PY_TEST_PKGS := python3-pytest python3-numpy python3-h5py
+deps-python:
+	$(call need_pkgs,$(PY_TEST_PKGS))
+
+test-python: $(PROG) $(SHLIB) | deps-python
+	BALLFILM_BIN=$(abspath $(PROG)) BALLFILM_LIB=$(abspath $(SHLIB)) \
+	  $(PY) -m pytest -q -p no:cacheprovider tests/python
 
 # ASAN_LEAKS=0 turns off LeakSanitizer only (for containers that forbid
 # the ptrace it needs; .ci/run decides this by a probe and says so).

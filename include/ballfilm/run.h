@@ -155,6 +155,12 @@ const bf_scene *bf_run_scene_of(const bf_run *run);
 bf_status bf_run_open_output(bf_run *run, const char *path, bf_err *err);
 void bf_run_free(bf_run *run);
 
+/* The size of a public struct by its name ("bf_err", "bf_sim_opts",
+ * "bf_state_var", "bf_sweep", "bf_converge_result", ...), 0 for a name it
+ * does not know: foreign-function interfaces (the Python package) check
+ * their mirrors of the structs with it. */
+size_t bf_sizeof(const char *name);
+
 /* ---- scenes written in code ----
  * Start from bf_scene_load_string(&sc, "name", "", err) (an empty scene)
  * or from INI text, then set keys and add balls; bf_run_from_scene

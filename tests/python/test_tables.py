@@ -1,0 +1,45 @@
+"""converge() and sweep() return tables; against the program's own."""
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import ballfilm
+
+
+def test_converge_finds_the_orders(root):
+    t, ref = ballfilm.converge(os.path.join(root, "runs/harmonic.ini"),
+                               ["verlet", "rk4"], dts=[0.02, 0.01, 0.005],
+                               t_end=2)
+    assert list(t["method"]) == ["verlet"] * 3 + ["rk4"] * 3
+    assert set(t["status"]) == {"ok"}
+    v, r = t[t["method"] == "verlet"], t[t["method"] == "rk4"]
+    assert v["order_x"][1:] == pytest.approx([2, 2], abs=0.1)
+    assert r["order_x"][1:] == pytest.approx([4, 4], abs=0.2)
+    assert np.isnan(v["order_x"][0])
+    # the reference is the oscillator's cos t at T = 2 (rtol 1e-12)
+    assert ref["x_ref"][0] == pytest.approx(np.cos(2.0), abs=1e-9)
+
+
+def test_sweep_is_the_program_s_sweep(program, root, tmp_path):
+    scene = os.path.join(root, "runs/two_balls_A.ini")
+    vary = {"ball.1.mass": "0.8:1.2:3"}
+    sets = {"scene.t_end": 5.0, "lyapunov.enabled": True}
+    t = ballfilm.sweep(scene, vary, tmp_path / "py", set=sets)
+    assert list(t["ball.1.mass"]) == [0.8, 1.0, 1.2]
+    assert set(t["status"]) == {"ok"} and list(t["index"]) == [0, 1, 2]
+    p = subprocess.run([program, "sweep", scene, "--vary",
+                        "ball.1.mass=0.8:1.2:3", "--set", "scene.t_end=5",
+                        "--set", "lyapunov.enabled=yes", "-q", "-o",
+                        str(tmp_path / "cli")], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    s = ballfilm.load(tmp_path / "cli" / "summary.h5")
+    assert np.array_equal(s["lyapunov"], t["lyapunov"])
+    assert np.array_equal(s["energy_error"], t["energy_error"])
+    # the finished cases are not run again: their files stay as they were
+    case = tmp_path / "py" / "case_00001.h5"
+    before = os.stat(case).st_mtime_ns
+    again = ballfilm.sweep(scene, vary, tmp_path / "py", set=sets)
+    assert os.stat(case).st_mtime_ns == before
+    assert np.array_equal(again["lyapunov"], t["lyapunov"])
