@@ -298,6 +298,33 @@ def _observers(observer, every):
     return [(ob, every) for ob in obs]
 
 
+class _Call:
+    """What a call that builds a bf_run hands the library: the catalog,
+    the overrides as char **, the options with the run's stop flag, an
+    error to fill and the handle to receive (kept alive together)."""
+
+    def __init__(self, set_, t_end, observer, every, catalog):
+        self.lib = lib = _lib.lib()
+        self.obs = _observers(observer, every)
+        self.cat = catalog._ptr if catalog is not None \
+            else lib.bf_catalog_builtin()
+        self.flag = ctypes.c_int(0)
+        self.opts = _opts(self.flag)
+        self.sets, self.nsets, self._keep = _lib.cstrings(_sets(set_, t_end))
+        self.err = _lib.Err()
+        self.handle = ctypes.c_void_p()
+
+    def args(self):
+        """handle, catalog ... sets, nsets, opts, err around the scene's."""
+        return ((ctypes.byref(self.handle), self.cat),
+                (self.sets, self.nsets, ctypes.byref(self.opts),
+                 ctypes.byref(self.err)))
+
+    def built(self, status):
+        if status:
+            raise from_err(self.err)
+
+
 def run(scene, set=None, t_end=None, output=None, observer=None, every=0,
         initial=None, catalog=None, name="scene"):
     """Run a scene in this process and return its Result (ballfilm.load).
@@ -323,42 +350,29 @@ def run(scene, set=None, t_end=None, output=None, observer=None, every=0,
     checkpoint written when there is an output file; ballfilm.restart
     continues it).
     """
-    lib = _lib.lib()
-    sets = _sets(set, t_end)
-    obs = _observers(observer, every)
-    cat = catalog._ptr if catalog is not None else lib.bf_catalog_builtin()
-    flag = ctypes.c_int(0)
-    opts = _opts(flag)
-    arr, n, keep = _lib.cstrings(sets)
-    err = _lib.Err()
-    handle = ctypes.c_void_p()
+    c = _Call(set, t_end, observer, every, catalog)
+    pre, post = c.args()
     if isinstance(scene, dict):
         scene = scene_text(scene)
     if _is_text(scene):
-        st = lib.bf_run_from_text(ctypes.byref(handle), cat, name.encode(),
-                                  scene.encode(), arr, n, ctypes.byref(opts),
-                                  ctypes.byref(err))
+        c.built(c.lib.bf_run_from_text(*pre, name.encode(), scene.encode(),
+                                       *post))
     elif isinstance(scene, (str, os.PathLike)):
-        st = lib.bf_run_load(ctypes.byref(handle), cat,
-                             os.fspath(scene).encode(), arr, n,
-                             ctypes.byref(opts), ctypes.byref(err))
+        c.built(c.lib.bf_run_load(*pre, os.fspath(scene).encode(), *post))
     else:
         raise TypeError("scene must be a path, INI text or a dict of sections")
-    if st:
-        raise from_err(err)
     tmpdir = None
     try:
         temp = output is None
         if temp:
             tmpdir = tempfile.mkdtemp(prefix="ballfilm-")
             output = os.path.join(tmpdir, "run.h5")
-        return _drive(handle, lib, flag, output, temp, obs, initial)
+        return _drive(c.handle, c.lib, c.flag, output, temp, c.obs, initial)
     except Interrupted:
         tmpdir = None  # the checkpoint lives there: keep it
         raise
     finally:
-        lib.bf_run_free(handle)
-        del keep, opts
+        c.lib.bf_run_free(c.handle)
         if tmpdir:
             shutil.rmtree(tmpdir, ignore_errors=True)
 
@@ -368,22 +382,11 @@ def restart(output, set=None, t_end=None, observer=None, every=0,
     """Continue the run of `output` from its checkpoint (output.ckpt) and
     return its Result; only keys that change when and how often a run
     writes may be set (t_end, output_every, ...)."""
-    lib = _lib.lib()
-    sets = _sets(set, t_end)
-    obs = _observers(observer, every)
-    cat = catalog._ptr if catalog is not None else lib.bf_catalog_builtin()
-    flag = ctypes.c_int(0)
-    opts = _opts(flag)
-    arr, n, keep = _lib.cstrings(sets)
-    err = _lib.Err()
-    handle = ctypes.c_void_p()
-    if lib.bf_run_restart(ctypes.byref(handle), cat,
-                          os.fspath(output).encode(), arr, n,
-                          ctypes.byref(opts), ctypes.byref(err)):
-        raise from_err(err)
+    c = _Call(set, t_end, observer, every, catalog)
+    pre, post = c.args()
+    c.built(c.lib.bf_run_restart(*pre, os.fspath(output).encode(), *post))
     try:
-        return _drive(handle, lib, flag, output, False, obs, None,
+        return _drive(c.handle, c.lib, c.flag, output, False, c.obs, None,
                       opened=True)
     finally:
-        lib.bf_run_free(handle)
-        del keep, opts
+        c.lib.bf_run_free(c.handle)

@@ -8,7 +8,7 @@ import os
 import numpy as np
 
 from . import _lib
-from .errors import BallfilmError, Interrupted, from_err
+from .errors import Interrupted, from_err
 from .runner import _in_thread, _sets
 
 
@@ -154,4 +154,3 @@ def sweep(scene, vary, dir, set=None):
         del vkeep, skeep
 
 
-__all__ = ["converge", "sweep", "BallfilmError"]

@@ -26,6 +26,7 @@
 #include <string.h>
 
 #include "models/filmsys.h"
+#include "models/state_names.h"
 
 enum { INIT_KINK, INIT_UNIFORM, INIT_FILE };
 enum { PERT_POSITIVE, PERT_SIGNED };
@@ -353,9 +354,7 @@ size_t bf_filmsys_state(bf_filmsys *fs, bf_state_var *vars, size_t cap,
 bf_status bf_filmsys_set(bf_filmsys *fs, const char *name, const double *v,
                          size_t n, bf_err *err)
 {
-    size_t k = 0;
-    while (k < 4 && strcmp(name, state_names[k]))
-        k++;
+    const size_t k = bf_state_index(state_names, 4, name);
     if (k == 4 || n != fs->n)
         return bf_fail(err, BF_EINPUT, "%s: not an array of the film's %zu "
                        "nodes", name, fs->n);

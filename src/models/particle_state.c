@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "models/greenspan.h"
+#include "models/state_names.h"
 
 static const char *const names[4] = {"particles/x", "particles/y",
                                      "particles/vx", "particles/vy"};
@@ -22,9 +23,7 @@ bf_status bf_particles_set_var(bf_particles *p, const bf_box *box,
                                const char *name, const double *v, size_t n,
                                bf_err *err)
 {
-    size_t k = 0;
-    while (k < 4 && strcmp(name, names[k]))
-        k++;
+    const size_t k = bf_state_index(names, 4, name);
     if (k == 4 || n != p->n)
         return bf_fail(err, BF_EINPUT, "%s: not an array of the %zu "
                        "particles", name, p->n);
