@@ -29,7 +29,8 @@ def converge(scene, methods, dts=None, tols=None, t_end=None, set=None,
     dt, tol, err_x, err_v, energy_err, order_x, order_v, steps, evals,
     rejected, wall, status, message; reference a dict of the reference
     run's label, rtol, estimated errors, energy error and its final
-    state x_ref, v_ref."""
+    state x_ref, v_ref.  The study has no stop flag: Ctrl-C is held until
+    it ends, then raised as KeyboardInterrupt."""
     lib = _lib.lib()
     if isinstance(methods, str):
         methods = [methods]
@@ -47,10 +48,14 @@ def converge(scene, methods, dts=None, tols=None, t_end=None, set=None,
     out = ctypes.POINTER(_lib.ConvergeResult)()
     err = _lib.Err()
     flag = ctypes.c_int(0)  # converge has no stop flag: Ctrl-C waits
-    st, _ = _in_thread(lambda: lib.bf_converge_file(
+    st, ctrl_c = _in_thread(lambda: lib.bf_converge_file(
         os.fspath(scene).encode(), sarr, ns, ctypes.byref(o),
         ctypes.byref(out), ctypes.byref(err)), flag)
     del mkeep, skeep, dkeep, tkeep
+    if ctrl_c:  # the study cannot stop in the middle: it ran to its end
+        if not st:
+            lib.bf_converge_free(out)
+        raise KeyboardInterrupt("ballfilm.converge ran to its end first")
     if st:
         raise from_err(err)
     r = out.contents

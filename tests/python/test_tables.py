@@ -1,6 +1,8 @@
 """converge() and sweep() return tables; against the program's own."""
 import os
+import signal
 import subprocess
+import threading
 
 import numpy as np
 import pytest
@@ -43,3 +45,24 @@ def test_sweep_is_the_program_s_sweep(program, root, tmp_path):
     again = ballfilm.sweep(scene, vary, tmp_path / "py", set=sets)
     assert os.stat(case).st_mtime_ns == before
     assert np.array_equal(again["lyapunov"], t["lyapunov"])
+
+
+def test_ctrl_c_stops_a_sweep_and_a_rerun_completes_it(root, tmp_path):
+    """SIGINT (from a timer, as a terminal would send it) during a sweep:
+    ballfilm.Interrupted, the running case leaves no .done row; the rerun
+    runs what is missing and gives the table of an uninterrupted sweep."""
+    scene = os.path.join(root, "runs/two_balls_A.ini")
+    vary = {"ball.1.mass": [0.8, 0.9, 1.0, 1.1, 1.2, 1.3]}
+    sets = {"scene.t_end": 100.0, "lyapunov.enabled": True}
+    whole = ballfilm.sweep(scene, vary, tmp_path / "whole", set=sets)
+    timer = threading.Timer(0.5 * np.sum(whole["wall"]),
+                            os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    with pytest.raises(ballfilm.Interrupted):
+        ballfilm.sweep(scene, vary, tmp_path / "cut", set=sets)
+    timer.join()
+    done = sorted(p.name for p in (tmp_path / "cut").glob("case_*.done"))
+    assert 0 < len(done) < 6, done
+    again = ballfilm.sweep(scene, vary, tmp_path / "cut", set=sets)
+    assert np.array_equal(again["lyapunov"], whole["lyapunov"])
+    assert set(again["status"]) == {"ok"}
