@@ -77,9 +77,11 @@ RUNNER    := $(BUILD)/tests/runner
         film-orders fig6 fig8 fig9 fig8-sym fig9-sym sym-divergence \
         multirate fig-g72-ex1 \
         fig-g72-ex1-ensemble fig-g72-ex2 fig-g72-large fig-g73-hex \
-        fig-g73-wall movies deps-movies deps-xdmf test-movies test-xdmf
+        fig-g73-wall movies deps-movies deps-xdmf test-movies test-xdmf \
+        shared install uninstall man deps-install test-install test-examples \
+        test-python deps-python
 
-all: $(PROG)
+all: $(PROG) shared
 
 $(BUILD)/obj/%.o: %.c
 	@mkdir -p $(dir $@)
@@ -104,6 +106,104 @@ $(LIB): $(LIB_OBJ)
 $(PROG): $(CLI_OBJ) $(LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(LDFLAGS) -o $@ $(CLI_OBJ) $(LIB) $(PROG_LDLIBS)
+
+# ---------------------------------------------------------------- shared library
+# libballfilm.so from a second set of objects compiled with -fPIC
+# (build/pic/).  The soname carries the ABI: the major version, and while
+# the major version is 0 also the minor one (every 0.x may change the
+# ABI): libballfilm.so.0.1 for 0.1.0.  Only the functions and variables
+# that the public headers declare are exported (a version script made from
+# the headers, comments stripped, and the objects' symbols); everything
+# else, bf_-prefixed internals included, is local.  The program and the
+# tests link the static library.
+VERSION    := $(shell sed -n 's/^\#define BF_VERSION "\(.*\)"/\1/p' include/ballfilm/version.h)
+VMAJOR     := $(word 1,$(subst ., ,$(VERSION)))
+VMINOR     := $(word 2,$(subst ., ,$(VERSION)))
+ABI        := $(if $(filter 0,$(VMAJOR)),$(VMAJOR).$(VMINOR),$(VMAJOR))
+SONAME     := libballfilm.so.$(ABI)
+SHLIB      := $(BUILD)/libballfilm.so.$(VERSION)
+PUBLIC_H   := $(sort $(wildcard include/ballfilm/*.h))
+PIC_OBJ    := $(LIB_SRC:%.c=$(BUILD)/pic/obj/%.o)
+PIC_OMP    := $(OMP_OBJ:$(BUILD)/obj/%=$(BUILD)/pic/obj/%)
+SHLIB_LIBS := $(shell pkg-config --libs hdf5-serial 2>/dev/null) \
+              -lsundials_arkode -lsundials_nvecserial -linih \
+              $(shell pkg-config --libs gsl 2>/dev/null) -lm -lgomp -lpthread
+
+$(BUILD)/pic/obj/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(CFLAGS) -fPIC -fno-semantic-interposition -c $< -o $@
+$(PIC_OMP): CFLAGS += -fopenmp
+
+$(BUILD)/libballfilm.map: $(PIC_OBJ) $(PUBLIC_H)
+	@for h in $(PUBLIC_H); do $(CC) -fpreprocessed -dD -E -P $$h; done \
+	  | grep -oE '\bbf_[A-Za-z0-9_]+' | sort -u > $@.api
+	@nm -g --defined-only $(PIC_OBJ) | awk 'NF == 3 { print $$3 }' \
+	  | sort -u > $@.defined
+	@{ echo '{ global:'; comm -12 $@.api $@.defined | sed 's/.*/  &;/'; \
+	   echo '  local: *; };'; } > $@.tmp
+	@rm -f $@.api $@.defined
+	@mv $@.tmp $@
+
+$(SHLIB): $(PIC_OBJ) $(BUILD)/libballfilm.map
+	$(CC) -shared -Wl,-soname,$(SONAME) -Wl,--version-script=$(BUILD)/libballfilm.map \
+	  -Wl,--no-undefined -Wl,--as-needed $(LDFLAGS) -o $@ $(PIC_OBJ) $(SHLIB_LIBS)
+	ln -sf $(notdir $@) $(BUILD)/$(SONAME)
+	ln -sf $(SONAME) $(BUILD)/libballfilm.so
+
+shared: $(SHLIB)
+
+# ---------------------------------------------------------------- install
+# make install [PREFIX=/usr/local] [DESTDIR=...]: the program, both
+# libraries, the public headers, ballfilm.pc (pkg-config), the man page
+# (help2man from the program's --help) and the Python package.
+# make uninstall removes exactly those files (same PREFIX and DESTDIR).
+PREFIX     ?= /usr/local
+LIBDIR     ?= $(PREFIX)/lib
+INCLUDEDIR ?= $(PREFIX)/include
+MANDIR     ?= $(PREFIX)/share/man
+PYVER      := $(shell $(PY) -c 'import sys; print("%d.%d" % sys.version_info[:2])' 2>/dev/null)
+PYTHONDIR  ?= $(PREFIX)/lib/python$(PYVER)/dist-packages
+PY_PKG     := $(sort $(wildcard python/ballfilm/*.py))
+MAN        := $(BUILD)/ballfilm.1
+INSTALL_PKGS := help2man
+
+deps-install:
+	$(call need_pkgs,$(INSTALL_PKGS))
+
+$(MAN): $(PROG) | deps-install
+	help2man -N --version-string=$(VERSION) \
+	  -n "balls and particle fluids in thin liquid films" -o $@ $(PROG)
+man: $(MAN)
+
+# The installed package finds the installed library through _install.py.
+install: $(PROG) $(LIB) $(SHLIB) $(MAN)
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(LIBDIR)/pkgconfig \
+	  $(DESTDIR)$(INCLUDEDIR)/ballfilm $(DESTDIR)$(MANDIR)/man1 \
+	  $(DESTDIR)$(PYTHONDIR)/ballfilm
+	install -m 755 $(PROG) $(DESTDIR)$(PREFIX)/bin/ballfilm
+	install -m 644 $(LIB) $(DESTDIR)$(LIBDIR)/libballfilm.a
+	install -m 755 $(SHLIB) $(DESTDIR)$(LIBDIR)/$(notdir $(SHLIB))
+	ln -sf $(notdir $(SHLIB)) $(DESTDIR)$(LIBDIR)/$(SONAME)
+	ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libballfilm.so
+	install -m 644 $(PUBLIC_H) $(DESTDIR)$(INCLUDEDIR)/ballfilm/
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(LIBDIR)|' \
+	    -e 's|@INCLUDEDIR@|$(INCLUDEDIR)|' -e 's|@VERSION@|$(VERSION)|' \
+	    ballfilm.pc.in > $(DESTDIR)$(LIBDIR)/pkgconfig/ballfilm.pc
+	install -m 644 $(MAN) $(DESTDIR)$(MANDIR)/man1/ballfilm.1
+	$(if $(PY_PKG),install -m 644 $(PY_PKG) $(DESTDIR)$(PYTHONDIR)/ballfilm/)
+	printf 'LIBRARY = "%s"\n' $(LIBDIR)/$(SONAME) \
+	  > $(DESTDIR)$(PYTHONDIR)/ballfilm/_install.py
+
+uninstall:
+	rm -f $(DESTDIR)$(PREFIX)/bin/ballfilm $(DESTDIR)$(LIBDIR)/libballfilm.a \
+	  $(DESTDIR)$(LIBDIR)/libballfilm.so $(DESTDIR)$(LIBDIR)/$(SONAME) \
+	  $(DESTDIR)$(LIBDIR)/$(notdir $(SHLIB)) \
+	  $(DESTDIR)$(LIBDIR)/pkgconfig/ballfilm.pc \
+	  $(DESTDIR)$(MANDIR)/man1/ballfilm.1 \
+	  $(addprefix $(DESTDIR)$(INCLUDEDIR)/ballfilm/,$(notdir $(PUBLIC_H))) \
+	  $(addprefix $(DESTDIR)$(PYTHONDIR)/ballfilm/,$(notdir $(PY_PKG)) _install.py)
+	rm -rf $(DESTDIR)$(PYTHONDIR)/ballfilm/__pycache__
+	-rmdir $(DESTDIR)$(INCLUDEDIR)/ballfilm $(DESTDIR)$(PYTHONDIR)/ballfilm 2>/dev/null
 
 # The MPI front end: the same CLI compiled with mpicc and -DBF_MPI (only the
 # sweep command uses MPI), linked with the same library.
@@ -133,7 +233,7 @@ $(BUILD)/bench/%: bench/%.c $(LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -o $@ $< $(LIB) $(LDLIBS)
 
--include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)
+-include $(shell find $(BUILD)/obj $(BUILD)/pic -name '*.d' 2>/dev/null)
 
 # ---------------------------------------------------------------- packages
 # deps: what building and testing needs; deps-plot: what the figures need.
@@ -572,6 +672,9 @@ test:
 	@$(MAKE) --no-print-directory test-run
 	@$(MAKE) --no-print-directory test-movies
 	@$(MAKE) --no-print-directory test-xdmf
+	@$(MAKE) --no-print-directory test-install
+	@$(MAKE) --no-print-directory test-examples
+	@$(MAKE) --no-print-directory test-python
 
 # The code's layering against docs/architecture.md (include directions,
 # circles, public headers, file sizes, who reads scenes) and the docs'
@@ -589,6 +692,35 @@ test-movies: $(PROG) | deps-movies
 
 test-xdmf: $(PROG) | deps-xdmf
 	$(PY) tests/test_xdmf.py $(PROG) build/test-xdmf
+
+# The library as its users get it (docs/library.md): make install into a
+# fresh temporary prefix, an example compiled with pkg-config alone
+# (shared and static), the .so's exports, the installed Python package,
+# make uninstall (tests/test_install.py).
+test-install: $(PROG) $(LIB) $(SHLIB) | deps-install
+	$(PY) tests/test_install.py
+
+# Every example of examples/ built with pkg-config against an install into
+# build/prefix and run briefly (each checks its own trust numbers), and
+# the vibrating floor's return map drawn by its plot script.
+EXAMPLES_RUN := $(BUILD)/examples
+test-examples: $(PROG) $(LIB) $(SHLIB) | deps-install deps-plot
+	@$(MAKE) --no-print-directory install PREFIX=$(CURDIR)/$(BUILD)/prefix >/dev/null
+	rm -rf $(EXAMPLES_RUN)
+	PKG_CONFIG_PATH=$(CURDIR)/$(BUILD)/prefix/lib/pkgconfig \
+	  $(MAKE) --no-print-directory -C examples O=$(CURDIR)/$(EXAMPLES_RUN) run
+	$(PY) plots/vibrating_floor_map.py $(EXAMPLES_RUN)/vibrating_floor.h5 \
+	  -o $(EXAMPLES_RUN)/vibrating_floor_map.png
+
+# The Python package (python/ballfilm) with pytest against the library of
+# this build (tests/python/).
+PY_TEST_PKGS := python3-pytest python3-numpy python3-h5py
+deps-python:
+	$(call need_pkgs,$(PY_TEST_PKGS))
+
+test-python: $(PROG) $(SHLIB) | deps-python
+	BALLFILM_BIN=$(abspath $(PROG)) BALLFILM_LIB=$(abspath $(SHLIB)) \
+	  $(PY) -m pytest -q -p no:cacheprovider tests/python
 
 # ASAN_LEAKS=0 turns off LeakSanitizer only (for containers that forbid
 # the ptrace it needs; .ci/run decides this by a probe and says so).

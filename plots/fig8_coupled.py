@@ -16,8 +16,6 @@ import argparse
 
 import numpy as np
 
-import h5py
-
 from bfplot import attr_str, load, plt, save
 
 ap = argparse.ArgumentParser()
@@ -34,9 +32,8 @@ L = attrs["film.length"]
 sym = attr_str(attrs, "coupled.symmetrize").lower() in ("yes", "true", "on",
                                                          "1")
 if sym:
-    with h5py.File(a.run, "r") as f:
-        corr = f["/coupled/sym_correction"][()]
-        corr_max = f["/coupled/sym_correction_max"][()]
+    (corr, corr_max), _ = load(a.run, "/coupled/sym_correction",
+                               "/coupled/sym_correction_max")
 
 
 def map_fill(z, v):

@@ -8,10 +8,9 @@ usage: survey.py SWEEP_DIR -o survey.png [--label TEXT] [--maps N]"""
 import argparse
 import os
 
-import h5py
 import numpy as np
 
-from bfplot import plt, save
+from bfplot import attr_str, ballfilm, plt, save
 
 ap = argparse.ArgumentParser()
 ap.add_argument("dir")
@@ -20,13 +19,10 @@ ap.add_argument("--label", default=None, help="x-axis label")
 ap.add_argument("--maps", type=int, default=16, help="return maps to show")
 a = ap.parse_args()
 
-with h5py.File(os.path.join(a.dir, "summary.h5"), "r") as f:
-    params = f["/params"][()]
-    keys = f["/params"].attrs["keys"]
-    keys = keys.decode() if isinstance(keys, bytes) else str(keys)
-    lyap = f["/lyapunov"][()]
-    fill = f["/return_map_fill"][()]
-    status = f["/status"][()]
+summary = ballfilm.load(os.path.join(a.dir, "summary.h5"))
+params, lyap = summary["params"], summary["lyapunov"]
+fill, status = summary["return_map_fill"], summary["status"]
+keys = attr_str(summary.attrs_of("params"), "keys")
 x = params[:, 0]
 ok = status == 0
 label = a.label or keys.split(",")[0]
@@ -63,12 +59,12 @@ for n, k in enumerate(pick):
     sub = fig.add_subplot(gs[1 + n // cols, n % cols])
     path = os.path.join(a.dir, "case_%05d.h5" % k)
     try:
-        with h5py.File(path, "r") as f:
-            if "/return_map/z" in f:
-                z, v = f["/return_map/z"][()], f["/return_map/v"][()]
-            else:  # the coupled model: rows (t, x, v)
-                m = f["/coupled/return_map"][()]
-                z, v = m[:, 1], m[:, 2]
+        case = ballfilm.load(path)
+        if "/return_map/z" in case:
+            z, v = case["/return_map/z"], case["/return_map/v"]
+        else:  # the coupled model: rows (t, x, v)
+            m = case["/coupled/return_map"]
+            z, v = m[:, 1], m[:, 2]
         sub.plot(z, v, ",", color="C0" if fill[k] > 0.3 else "C1")
     except (OSError, KeyError):
         sub.text(0.5, 0.5, "no map", ha="center", transform=sub.transAxes)

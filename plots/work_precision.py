@@ -7,28 +7,23 @@ usage: work_precision.py CONVERGE.h5 -o work_precision.png
 (CONVERGE.h5 from `ballfilm converge SCENE.ini --methods ... -o ...`)"""
 import argparse
 
-import h5py
 import numpy as np
 
-from bfplot import plt, save
+from bfplot import attr_str, ballfilm, plt, save
 
 ap = argparse.ArgumentParser()
 ap.add_argument("table")
 ap.add_argument("-o", "--output", default="work_precision.png")
 a = ap.parse_args()
 
-with h5py.File(a.table, "r") as f:
-    c = {k: f["/converge/" + k][()] for k in f["/converge"]}
-    methods = f.attrs["methods"]
-    methods = (methods.decode() if isinstance(methods, bytes)
-               else str(methods)).split(",")
-    scene = f.attrs["scene_file"]
-    scene = scene.decode() if isinstance(scene, bytes) else str(scene)
-    t_end = float(f.attrs["t_end"])
-    ref = f["/reference"]
-    ref_err = float(ref.attrs["estimated_error_x"])
-    ref_name = ref.attrs["method"]
-    ref_name = ref_name.decode() if isinstance(ref_name, bytes) else ref_name
+table = ballfilm.load(a.table)
+c = table.group("converge")
+methods = attr_str(table.attrs, "methods").split(",")
+scene = attr_str(table.attrs, "scene_file")
+t_end = float(table.attrs["t_end"])
+ref = table.attrs_of("reference")
+ref_err = float(ref["estimated_error_x"])
+ref_name = attr_str(ref, "method")
 
 fig, ax = plt.subplots(1, 2, figsize=(12, 5))
 for m, name in enumerate(methods):

@@ -104,4 +104,17 @@ bf_status bf_h5_read_attr_real(const char *file, const char *obj,
 bf_status bf_h5_read_attr_str(const char *file, const char *obj,
                               const char *name, char **value, bf_err *err);
 
+/* What a file holds (`ballfilm info`): every dataset, ordered by path. */
+typedef struct bf_h5_dataset {
+    char path[256];
+    int rank;          /* 0 for a scalar, 1 [n], 2 [n0 x n1] */
+    size_t dims[2];
+    char kind;         /* 'f' float, 'i' integer, 's' string, '?' other */
+    char unit[64];     /* its "unit" attribute ("" if none) */
+    char description[256];
+} bf_h5_dataset;
+/* *list is malloc'd (free it), *n datasets. */
+bf_status bf_h5_list(const char *file, bf_h5_dataset **list, size_t *n,
+                     bf_err *err);
+
 #endif

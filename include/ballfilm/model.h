@@ -104,6 +104,18 @@ typedef struct bf_dt_limit {
     char key[64];        /* [scene] dt) */
 } bf_dt_limit;
 
+/* One array of a model's state (its state hook; sim.h, bf_sim_state),
+ * named like its dataset in the output without the leading slash
+ * ("balls/position", "film/h", "particles/x"). */
+typedef struct bf_state_var {
+    const char *name;
+    const char *unit;
+    size_t n;           /* elements */
+    const double *data; /* the current values: read-only, valid until the
+                           next step */
+    int settable;       /* set_state takes it before the first step */
+} bf_state_var;
+
 typedef struct bf_model_type {
     const char *name;
     const char *doc;
@@ -165,6 +177,17 @@ typedef struct bf_model_type {
     /* Optional: the model's own analysis results (the coupled model's
      * return map and Lyapunov shadow). */
     void (*results)(const void *self, bf_results *r);
+    /* Optional: the arrays of the state, at most cap of them into vars;
+     * returns how many the model has. */
+    size_t (*state)(void *self, bf_state_var *vars, size_t cap);
+    /* Optional: replace the settable array `name` of state by v[0..n-1]
+     * before the first step (initial fields from arrays, where a scene
+     * offers only a few shapes).  The values are checked as the scene's
+     * keys would be (h > 0, |psi| <= 1, balls in order without overlap,
+     * particles inside the box), failures naming the array and the
+     * element; derived state (forces, totals) follows. */
+    bf_status (*set_state)(void *self, const char *name, const double *v,
+                           size_t n, bf_err *err);
 } bf_model_type;
 
 #endif

@@ -129,16 +129,53 @@ bf_status bf_run_load(bf_run **run, const bf_catalog *c,
                       const char *scene_path, const char *const *sets,
                       size_t nsets, const struct bf_sim_opts *opts,
                       bf_err *err);
+/* The same from INI text in memory (`name` stands for the file in
+ * messages: "name:LINE: error: ..."; text NULL: an empty scene that the
+ * overrides fill). */
+bf_status bf_run_from_text(bf_run **run, const bf_catalog *c,
+                           const char *name, const char *text,
+                           const char *const *sets, size_t nsets,
+                           const struct bf_sim_opts *opts, bf_err *err);
+/* The same from a scene made in code (taken over, also on failure; see
+ * bf_setf and bf_add_ball below): validated, then built. */
+bf_status bf_run_from_scene(bf_run **run, const bf_catalog *c, bf_scene *sc,
+                            const struct bf_sim_opts *opts, bf_err *err);
 /* The run of the output OUT continued from its checkpoint (bf_sim_restart). */
 bf_status bf_run_restart(bf_run **run, const bf_catalog *c,
                          const char *out_path, const char *const *sets,
                          size_t nsets, const struct bf_sim_opts *opts,
                          bf_err *err);
 struct bf_sim *bf_run_sim(bf_run *run);
+/* The run's scene (resolved: its keys can be read; the output's
+ * provenance). */
+const bf_scene *bf_run_scene_of(const bf_run *run);
 /* Create the run's output (bf_sim_open_output) after refusing a path that
  * is one of the run's inputs (the scene file, a file the scene reads),
  * which the result would overwrite (BF_EINPUT). */
 bf_status bf_run_open_output(bf_run *run, const char *path, bf_err *err);
 void bf_run_free(bf_run *run);
+
+/* The size of a public struct by its name ("bf_err", "bf_sim_opts",
+ * "bf_state_var", "bf_sweep", "bf_converge_result", ...), 0 for a name it
+ * does not know: foreign-function interfaces (the Python package) check
+ * their mirrors of the structs with it. */
+size_t bf_sizeof(const char *name);
+
+/* ---- scenes written in code ----
+ * Start from bf_scene_load_string(&sc, "name", "", err) (an empty scene)
+ * or from INI text, then set keys and add balls; bf_run_from_scene
+ * validates the result like a file (an unknown key is an error naming
+ * it).  Every key set is recorded as an override, so the output's
+ * provenance and checkpoints carry the scene. */
+
+/* Set "section.key=value" formatted like printf: bf_setf(sc, err,
+ * "ball.%d.mass=%.17g", 2, 0.8).  Messages say "code: error: ...". */
+bf_status bf_setf(bf_scene *sc, bf_err *err, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+/* Add the next ball [ball.N] (N = 1 + the balls the scene has): centre
+ * position (cm), velocity (cm/s), mass (g), radius (cm); *index (may be
+ * NULL) receives N.  Values go in at full precision (%.17g). */
+bf_status bf_add_ball(bf_scene *sc, double position, double velocity,
+                      double mass, double radius, int *index, bf_err *err);
 
 #endif

@@ -133,6 +133,9 @@ typedef struct bf_observer_type {
     bf_status (*load)(void *self, const bf_ckpt *ck, bf_err *err);
     void (*results)(const void *self, bf_results *r);
     void (*destroy)(void *self);
+    /* the state was replaced before the first step (bf_sim_set): start
+     * again from it (the Lyapunov shadow is seeded anew) */
+    bf_status (*state_set)(void *self, bf_err *err);
 } bf_observer_type;
 
 /* Attach an observer (called in the order attached, after the model's own
@@ -141,6 +144,18 @@ bf_status bf_sim_observe(bf_sim *sim, const bf_observer_type *t, void *self,
                          bf_err *err);
 /* The first attached observer of type t, or NULL. */
 void *bf_sim_observer(bf_sim *sim, const bf_observer_type *t);
+
+/* A heartbeat (REBOUND's): fn(ctx, sim, err) at t = 0 and then every
+ * `every` steps, or (every = 0) after each output row is written, with
+ * the whole sim to read (bf_sim_time, bf_sim_get, bf_sim_state, the
+ * energy error); it runs in the loop's thread.  It must not change the
+ * state.  Returning BF_INTERRUPTED stops the run as an interruption does
+ * (checkpoint written when there is an output); any other failure stops
+ * it with that status and message.  Heartbeats every N steps end the
+ * loop's runs of steps there (model.h, advance): the same bits. */
+typedef bf_status (*bf_heartbeat_fn)(void *ctx, bf_sim *sim, bf_err *err);
+bf_status bf_sim_heartbeat(bf_sim *sim, long every, bf_heartbeat_fn fn,
+                           void *ctx, bf_err *err);
 
 /* ---- analyses of balls ----
  * An analysis is an observer made from its section's keys for a model
@@ -177,6 +192,12 @@ bf_status bf_sim_open_output(bf_sim *sim, const char *path, bf_err *err);
  * output file keeps every row up to the last good step and records the
  * status in its root attributes. */
 bf_status bf_sim_run(bf_sim *sim, bf_err *err);
+/* The same, stopping (BF_OK) at the first step whose time reaches t
+ * (at most t_end), or after k more steps (at most to t_end); call again
+ * to go on.  The output's rows and the results are those of one
+ * bf_sim_run. */
+bf_status bf_sim_run_until(bf_sim *sim, double t, bf_err *err);
+bf_status bf_sim_steps(bf_sim *sim, long k, bf_err *err);
 
 /* Finish the output (final datasets, status, counters) and close it. */
 bf_status bf_sim_close_output(bf_sim *sim, bf_status run_status,
@@ -212,9 +233,27 @@ long bf_sim_steps_total(const bf_sim *sim);
 double bf_sim_time(const bf_sim *sim);
 double bf_sim_dt(const bf_sim *sim);
 double bf_sim_max_energy_error(const bf_sim *sim); /* relative; NAN if none */
+/* The energy now (erg; NAN for a model without one) and at t = 0. */
+void bf_sim_energy(const bf_sim *sim, double *kin, double *pot);
+double bf_sim_initial_energy(const bf_sim *sim);
 double bf_sim_wall_seconds(const bf_sim *sim);
 void bf_sim_counters(const bf_sim *sim, bf_counters *c);
 /* The analyses' results (the model's and every observer's). */
 void bf_sim_results(const bf_sim *sim, bf_results *r);
+
+/* ---- the state as arrays (model.h, bf_state_var) ---- */
+/* The model's state arrays (at most cap into vars); returns how many
+ * there are (0: the model shows none). */
+size_t bf_sim_state(bf_sim *sim, bf_state_var *vars, size_t cap);
+/* The current values of one array (*n its length), or NULL when the model
+ * has no array of that name. */
+const double *bf_sim_get(bf_sim *sim, const char *name, size_t *n);
+/* Initial fields from arrays: replace the array `name` by v[0..n-1]
+ * before the first step (BF_EINPUT afterwards, for an unknown or not
+ * settable name, a wrong length or a bad value, naming it).  The energy
+ * reference, the stable-step check and the observers start again from the
+ * new state. */
+bf_status bf_sim_set(bf_sim *sim, const char *name, const double *v,
+                     size_t n, bf_err *err);
 
 #endif

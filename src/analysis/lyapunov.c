@@ -149,6 +149,17 @@ static bf_status lyap_load(void *self, const bf_ckpt *ck, bf_err *err)
     return st;
 }
 
+/* The balls got a new initial state (bf_sim_set): the shadow starts
+ * from it, displaced as at creation. */
+static bf_status lyap_state_set(void *self, bf_err *err)
+{
+    (void)err;
+    bf_lyap *ly = self;
+    bf_lyap_displace(&ly->sum, ly->view.x, ly->view.v, ly->x, ly->v);
+    bf_integrator_reset(ly->it);
+    return BF_OK;
+}
+
 const bf_observer_type bf_lyap_observer = {
     .name = "lyapunov",
     .flags = BF_OBS_STEPS,
@@ -160,6 +171,7 @@ const bf_observer_type bf_lyap_observer = {
     .load = lyap_load,
     .results = lyap_results,
     .destroy = lyap_free,
+    .state_set = lyap_state_set,
 };
 
 const bf_analysis_type bf_lyap_analysis = {

@@ -15,6 +15,7 @@ int bf_cmd_sweep(int argc, char **argv);
 int bf_cmd_converge(int argc, char **argv);
 int bf_cmd_xdmf(int argc, char **argv);
 int bf_cmd_animate(int argc, char **argv);
+int bf_cmd_info(int argc, char **argv);
 /* Write OUT.xmf beside OUT.h5 after a run; a failure is a warning. */
 void bf_cli_write_xdmf(const char *h5_path);
 /* Create ./out if missing; 0 on success (else prints why). */

@@ -33,6 +33,9 @@ static void usage(FILE *f)
             "  animate OUT.h5 [-o MOVIE.mp4] [--fps N] [--t0 T] [--t1 T]\n"
             "                     a movie of a run (see 'ballfilm animate "
             "--help')\n"
+            "  info OUT.h5        what a run's file holds: scene, status, "
+            "counters, energy\n"
+            "                     error, every dataset with shape and unit\n"
             "  help               this text and every scene key\n"
             "  version            print the version\n"
             "\n"
@@ -98,6 +101,8 @@ int main(int argc, char **argv)
         return bf_cmd_xdmf(argc - 1, argv + 1);
     if (!strcmp(cmd, "animate"))
         return bf_cmd_animate(argc - 1, argv + 1);
+    if (!strcmp(cmd, "info"))
+        return bf_cmd_info(argc - 1, argv + 1);
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
         usage(stdout);
         printf("\n");

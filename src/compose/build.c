@@ -8,6 +8,7 @@
 
 #include "ballfilm/checkpoint.h"
 #include "compose.h"
+#include "io/h5lock.h"
 
 /* ------------------------------------------------------------ provenance */
 
@@ -70,9 +71,9 @@ static char *join_sets(const bf_scene *sc)
 
 static void free_setup(void *s) { bf_setup_free(s); }
 
-bf_status bf_sim_from_scene(bf_sim **out, const bf_catalog *c,
-                            const bf_scene *sc, const bf_sim_opts *opts,
-                            bf_err *err)
+static bf_status sim_from_scene(bf_sim **out, const bf_catalog *c,
+                                const bf_scene *sc, const bf_sim_opts *opts,
+                                bf_err *err)
 {
     *out = NULL;
     bf_sim_keys k;
@@ -111,6 +112,18 @@ bf_status bf_sim_from_scene(bf_sim **out, const bf_catalog *c,
     }
     *out = sim;
     return BF_OK;
+}
+
+/* A model may read HDF5 files when it is built (an initial profile):
+ * under the process's HDF5 lock (io/h5lock.h), as the restart. */
+bf_status bf_sim_from_scene(bf_sim **out, const bf_catalog *c,
+                            const bf_scene *sc, const bf_sim_opts *opts,
+                            bf_err *err)
+{
+    bf_h5_lock();
+    bf_status st = sim_from_scene(out, c, sc, opts, err);
+    bf_h5_unlock();
+    return st;
 }
 
 /* The keys a continued run may change: when it ends, how often it writes
@@ -167,9 +180,10 @@ static bf_status apply_sets(bf_scene *sc, const char *stored,
     return BF_OK;
 }
 
-bf_status bf_sim_restart(bf_sim **out, bf_scene **scene, const bf_catalog *c,
-                         const char *out_path, const char *const *sets,
-                         size_t nsets, const bf_sim_opts *opts, bf_err *err)
+static bf_status sim_restart(bf_sim **out, bf_scene **scene,
+                             const bf_catalog *c, const char *out_path,
+                             const char *const *sets, size_t nsets,
+                             const bf_sim_opts *opts, bf_err *err)
 {
     *out = NULL;
     *scene = NULL;
@@ -214,6 +228,16 @@ bf_status bf_sim_restart(bf_sim **out, bf_scene **scene, const bf_catalog *c,
     return BF_OK;
 }
 
+bf_status bf_sim_restart(bf_sim **out, bf_scene **scene, const bf_catalog *c,
+                         const char *out_path, const char *const *sets,
+                         size_t nsets, const bf_sim_opts *opts, bf_err *err)
+{
+    bf_h5_lock();
+    bf_status st = sim_restart(out, scene, c, out_path, sets, nsets, opts, err);
+    bf_h5_unlock();
+    return st;
+}
+
 /* ------------------------------------------------------------ bf_run */
 
 struct bf_run {
@@ -221,15 +245,19 @@ struct bf_run {
     bf_sim *sim;
 };
 
-bf_status bf_run_load(bf_run **out, const bf_catalog *c, const char *path,
-                      const char *const *sets, size_t nsets,
-                      const bf_sim_opts *opts, bf_err *err)
+/* The run of scene sc (taken over, also on failure; NULL when it could
+ * not be read, with st its failure) after the overrides. */
+static bf_status run_of(bf_run **out, const bf_catalog *c, bf_scene *sc,
+                        bf_status st, const char *const *sets, size_t nsets,
+                        const bf_sim_opts *opts, bf_err *err)
 {
     *out = NULL;
     bf_run *r = calloc(1, sizeof *r);
-    if (!r)
+    if (!r) {
+        bf_scene_free(sc);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    bf_status st = bf_scene_load(&r->sc, path, err);
+    }
+    r->sc = sc;
     for (size_t k = 0; !st && k < nsets; k++)
         st = bf_scene_set(r->sc, sets[k], "--set", err);
     if (!st)
@@ -242,6 +270,31 @@ bf_status bf_run_load(bf_run **out, const bf_catalog *c, const char *path,
     }
     *out = r;
     return BF_OK;
+}
+
+bf_status bf_run_load(bf_run **out, const bf_catalog *c, const char *path,
+                      const char *const *sets, size_t nsets,
+                      const bf_sim_opts *opts, bf_err *err)
+{
+    bf_scene *sc = NULL;
+    bf_status st = bf_scene_load(&sc, path, err);
+    return run_of(out, c, sc, st, sets, nsets, opts, err);
+}
+
+bf_status bf_run_from_text(bf_run **out, const bf_catalog *c,
+                           const char *name, const char *text,
+                           const char *const *sets, size_t nsets,
+                           const bf_sim_opts *opts, bf_err *err)
+{
+    bf_scene *sc = NULL;
+    bf_status st = bf_scene_load_string(&sc, name, text ? text : "", err);
+    return run_of(out, c, sc, st, sets, nsets, opts, err);
+}
+
+bf_status bf_run_from_scene(bf_run **out, const bf_catalog *c, bf_scene *sc,
+                            const bf_sim_opts *opts, bf_err *err)
+{
+    return run_of(out, c, sc, BF_OK, NULL, 0, opts, err);
 }
 
 bf_status bf_run_restart(bf_run **out, const bf_catalog *c,
@@ -263,6 +316,8 @@ bf_status bf_run_restart(bf_run **out, const bf_catalog *c,
 }
 
 bf_sim *bf_run_sim(bf_run *r) { return r->sim; }
+
+const bf_scene *bf_run_scene_of(const bf_run *r) { return r->sc; }
 
 /* The canonical name of a path that may not exist yet: its directory
  * resolved, its last component as given. */

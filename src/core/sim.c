@@ -19,7 +19,8 @@
 
 #include "ballfilm/version.h"
 #include "base/clock.h"
-#include "diag/energy.h"
+#include "core/sim_impl.h"
+#include "io/h5lock.h"
 
 static const bf_param scene_params[] = {
     {"title", BF_AT(bf_sim_keys, title, BF_STR), "", "",
@@ -69,41 +70,6 @@ const bf_section_spec bf_sim_scene_spec =
     BF_SECTION("scene", "what to simulate and how long (every scene has it)",
                scene_params, bf_sim_keys);
 
-typedef struct observer {
-    const bf_observer_type *t;
-    void *self;
-} observer;
-
-struct bf_sim {
-    const bf_model_type *mt;
-    void *model;
-    bf_sim_opts opts;
-    /* provenance (owned copies) */
-    char *scene_path, *scene_text, *scene_sets;
-    bf_status (*write_params)(void *ctx, bf_out *out, bf_err *err);
-    void *params_ctx;
-    /* something the composition layer hands over to be freed with us */
-    void *owned;
-    void (*owned_free)(void *);
-    observer *obs;
-    size_t nobs;
-    int obs_steps; /* some observer watches every step */
-    double dt, t_end;
-    long nsteps, n;
-    long out_every, energy_every, ckpt_every;
-    long steps_this_run;
-    char *ckpt_path;
-    double energy_bound, flush_seconds;
-    int compress; /* deflate level of the output (0: off) */
-    bf_out *out;
-    bf_series *s_time, *s_step, *s_ek, *s_ep, *s_et;
-    long last_row; /* step of the last output row, -1 if none */
-    int has_energy;
-    bf_energy_diag en;
-    double wall;
-    double prog_last;
-};
-
 bf_status bf_sim_run_ctx(const bf_sim_keys *k, bf_run_ctx *run, bf_err *err)
 {
     double steps = ceil(k->t_end / k->dt * (1.0 - 1e-12));
@@ -128,8 +94,12 @@ void bf_sim_free(bf_sim *s)
 {
     if (!s)
         return;
-    if (s->out)
+    if (s->out) {
+        bf_h5_lock();
         bf_out_close_keep(s->out, NULL);
+        bf_h5_unlock();
+    }
+    free(s->hb);
     for (size_t k = s->nobs; k-- > 0;)
         if (s->obs[k].t->destroy)
             s->obs[k].t->destroy(s->obs[k].self);
@@ -152,7 +122,7 @@ void bf_sim_own(bf_sim *s, void *ctx, void (*free_fn)(void *))
 }
 
 /* The model's largest stable step, refused when [scene] dt exceeds it. */
-static bf_status check_stable_dt(const bf_sim *s, bf_err *err)
+bf_status bf_sim_check_stable_dt(const bf_sim *s, bf_err *err)
 {
     if (!s->mt->stable_dt)
         return BF_OK;
@@ -203,7 +173,7 @@ bf_status bf_sim_create(bf_sim **out, const bf_sim_keys *k,
     if (!s->scene_path || !s->scene_text || !s->scene_sets)
         st = bf_fail(err, BF_EINTERNAL, "out of memory");
     if (!st)
-        st = check_stable_dt(s, err);
+        st = bf_sim_check_stable_dt(s, err);
     if (!st && s->ckpt_every && !bf_sim_can_checkpoint(s))
         st = bf_fail_key(err, BF_EINPUT, "scene", "checkpoint_every",
                          "model '%s' cannot write checkpoints yet", mt->name);
@@ -245,13 +215,6 @@ void *bf_sim_observer(bf_sim *s, const bf_observer_type *t)
             return s->obs[k].self;
     return NULL;
 }
-
-/* Call hook H of every observer that has it with the arguments after self;
- * stop at the first failure. */
-#define EACH_OBSERVER(s, st, H, ...)                                           \
-    for (size_t k_ = 0; !(st) && k_ < (s)->nobs; k_++)                         \
-        if ((s)->obs[k_].t->H)                                                 \
-    (st) = (s)->obs[k_].t->H((s)->obs[k_].self, __VA_ARGS__)
 
 /* ------------------------------------------------------------- output */
 
@@ -299,7 +262,7 @@ static bf_status open_series(bf_sim *s, bf_err *err)
     return st;
 }
 
-bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)
+static bf_status open_output(bf_sim *s, const char *path, bf_err *err)
 {
     bf_status st = set_ckpt_path(s, path, err);
     if (st)
@@ -323,6 +286,20 @@ bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)
     return bf_out_flush(o, err);
 }
 
+/* The public calls that reach HDF5 hold its lock (io/h5lock.h). */
+#define H5_LOCKED(call)                                                        \
+    do {                                                                       \
+        bf_h5_lock();                                                          \
+        bf_status st_ = (call);                                                \
+        bf_h5_unlock();                                                        \
+        return st_;                                                            \
+    } while (0)
+
+bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)
+{
+    H5_LOCKED(open_output(s, path, err));
+}
+
 static bf_status write_row(bf_sim *s, bf_err *err)
 {
     if (!s->out || s->last_row == s->n)
@@ -344,8 +321,11 @@ static bf_status write_row(bf_sim *s, bf_err *err)
     if (s->mt->output_row)
         st = s->mt->output_row(s->model, s->n, t, err);
     EACH_OBSERVER(s, st, output_row, s->n, t, err);
-    if (!st)
+    if (!st) {
+        bf_h5_lock();
         st = bf_out_maybe_flush(s->out, s->flush_seconds, err);
+        bf_h5_unlock();
+    }
     s->last_row = s->n;
     return st;
 }
@@ -406,15 +386,18 @@ enum { RUN_MAX = 1024 };
 static long min_long(long a, long b) { return a < b ? a : b; }
 
 /* Steps from s->n to the next event the loop must see: an energy check
- * (unless the run makes it, energy_in_run),
- * an output row, a checkpoint, the end, the --stop-after limit, a multiple
- * of RUN_MAX (progress line, interruption flag).  At least 1. */
-static long run_length(const bf_sim *s, int energy_in_run)
+ * (unless the run makes it, energy_in_run), an output row, a checkpoint, a
+ * heartbeat, the target step, the --stop-after limit, a multiple of
+ * RUN_MAX (progress line, interruption flag).  At least 1. */
+static long run_length(const bf_sim *s, long target, int energy_in_run)
 {
     const long n = s->n;
     const int energy = s->has_energy && s->energy_every && !energy_in_run;
-    long k = min_long(s->nsteps - n, RUN_MAX - (n & (RUN_MAX - 1)));
+    long k = min_long(target - n, RUN_MAX - (n & (RUN_MAX - 1)));
     k = min_long(k, s->out_every - n % s->out_every);
+    for (size_t h = 0; h < s->nhb; h++)
+        if (s->hb[h].every)
+            k = min_long(k, s->hb[h].every - n % s->hb[h].every);
     if (energy)
         k = min_long(k, s->energy_every - n % s->energy_every);
     if (s->ckpt_every && s->out)
@@ -514,13 +497,30 @@ static int watched_run(bf_sim *s, long watcher, int energy_in_run, long k,
     return 1;
 }
 
-bf_status bf_sim_run(bf_sim *s, bf_err *err)
+/* The output row of step s->n (when due) and the heartbeats of rows. */
+static bf_status row_and_beat(bf_sim *s, bf_err *err)
+{
+    int wrote = s->out && s->last_row != s->n;
+    bf_status st = write_row(s, err);
+    if (!st && (wrote || !s->out))
+        st = bf_sim_beat(s, 1, err);
+    return st;
+}
+
+/* Run from s->n to step target (<= nsteps). */
+static bf_status run_to(bf_sim *s, long target, bf_err *err)
 {
     bf_status st = BF_OK;
     double t0 = bf_wall_time();
     s->prog_last = t0;
-    if (s->n == 0 && (st = write_row(s, err)))
-        return st;
+    if (s->n == 0 && !s->hb_started) {
+        s->hb_started = 1;
+        if ((st = row_and_beat(s, err)) || (st = bf_sim_beat(s, 0, err))) {
+            if (st == BF_INTERRUPTED)
+                st = interrupt(s, err);
+            return st;
+        }
+    }
     const long every = s->out_every, eevery = s->energy_every;
     /* Runs of more than one step: a model with advance, rows not every
      * step, and no check the loop must make after every step (energy
@@ -533,15 +533,14 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
     const int plain_runs = s->mt->advance && every > 1 && !s->obs_steps &&
                            !energy_every_step && !s->opts.step_by_step;
     const int energy_in_run = watchable && !plain_runs && energy_every_step;
-    s->steps_this_run = 0;
-    while (s->n < s->nsteps) {
+    while (s->n < target) {
         if ((s->opts.stop_flag && *s->opts.stop_flag) ||
             (s->opts.stop_after && s->steps_this_run >= s->opts.stop_after)) {
             st = interrupt(s, err);
             break;
         }
         /* a run of steps up to the next event, or one step */
-        long k = plain_runs || watchable ? run_length(s, energy_in_run) : 1;
+        long k = plain_runs || watchable ? run_length(s, target, energy_in_run) : 1;
         long done = 1;
         int energy_checked = 0, named = 0;
         if (k > 1 && plain_runs) {
@@ -574,11 +573,18 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
         if (s->n % every == 0 || s->n == s->nsteps) {
             if (s->has_energy && !eevery)
                 check_energy(s);
-            if ((st = write_row(s, err))) {
-                bf_err_prefix(err, "step %ld (t = %.9g s)", s->n,
-                              (double)s->n * s->dt);
-                break;
-            }
+            st = row_and_beat(s, err);
+        }
+        if (!st)
+            st = bf_sim_beat(s, 0, err);
+        if (st == BF_INTERRUPTED) {
+            st = interrupt(s, err);
+            break;
+        }
+        if (st) {
+            bf_err_prefix(err, "step %ld (t = %.9g s)", s->n,
+                          (double)s->n * s->dt);
+            break;
         }
         if (s->ckpt_every && s->out && s->n % s->ckpt_every == 0 &&
             s->n < s->nsteps &&
@@ -596,7 +602,28 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
     return st;
 }
 
-bf_status bf_sim_close_output(bf_sim *s, bf_status run_status,
+bf_status bf_sim_run(bf_sim *s, bf_err *err)
+{
+    return run_to(s, s->nsteps, err);
+}
+
+bf_status bf_sim_run_until(bf_sim *s, double t, bf_err *err)
+{
+    double steps = ceil(t / s->dt * (1.0 - 1e-12));
+    long target = !(steps < (double)s->nsteps) ? s->nsteps
+                  : steps > 0                  ? (long)steps
+                                               : 0;
+    return run_to(s, target > s->n ? target : s->n, err);
+}
+
+bf_status bf_sim_steps(bf_sim *s, long k, bf_err *err)
+{
+    if (k < 0)
+        return bf_fail(err, BF_EINPUT, "bf_sim_steps: k = %ld < 0", k);
+    return run_to(s, k > s->nsteps - s->n ? s->nsteps : s->n + k, err);
+}
+
+static bf_status close_output(bf_sim *s, bf_status run_status,
                               const bf_err *run_err, bf_err *err)
 {
     if (!s->out)
@@ -643,6 +670,12 @@ bf_status bf_sim_close_output(bf_sim *s, bf_status run_status,
     if (!st && !cst && run_status == BF_OK && !s->opts.keep_checkpoint)
         unlink(s->ckpt_path);
     return st ? st : cst;
+}
+
+bf_status bf_sim_close_output(bf_sim *s, bf_status run_status,
+                              const bf_err *run_err, bf_err *err)
+{
+    H5_LOCKED(close_output(s, run_status, run_err, err));
 }
 
 void bf_sim_summary(const bf_sim *s, FILE *f)
@@ -760,7 +793,7 @@ static bf_status put_rows(const bf_sim *s, bf_ckpt *ck, bf_err *err)
     return st;
 }
 
-bf_status bf_sim_checkpoint_write(bf_sim *s, const char *path, bf_err *err)
+static bf_status checkpoint_write(bf_sim *s, const char *path, bf_err *err)
 {
     if (!bf_sim_can_checkpoint(s))
         return bf_fail(err, BF_EINPUT, "model '%s' cannot write checkpoints",
@@ -790,7 +823,12 @@ bf_status bf_sim_checkpoint_write(bf_sim *s, const char *path, bf_err *err)
     return st;
 }
 
-bf_status bf_sim_resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
+bf_status bf_sim_checkpoint_write(bf_sim *s, const char *path, bf_err *err)
+{
+    H5_LOCKED(checkpoint_write(s, path, err));
+}
+
+static bf_status resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
                         bf_err *err)
 {
     if (!bf_sim_can_checkpoint(s))
@@ -833,4 +871,10 @@ bf_status bf_sim_resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
     if ((st = bf_out_attr_str(s->out, "/", "status", "running", err)))
         return st;
     return bf_out_flush(s->out, err);
+}
+
+bf_status bf_sim_resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
+                        bf_err *err)
+{
+    H5_LOCKED(resume(s, ck, out_path, err));
 }

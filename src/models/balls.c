@@ -123,6 +123,17 @@ static int balls_view(void *self, bf_ball_view *v)
     return 1;
 }
 
+static size_t balls_state(void *self, bf_state_var *vars, size_t cap)
+{
+    return bf_ballsys_state(((balls_model *)self)->sys, vars, cap);
+}
+
+static bf_status balls_set_state(void *self, const char *name,
+                                 const double *v, size_t n, bf_err *err)
+{
+    return bf_ballsys_set(((balls_model *)self)->sys, name, v, n, err);
+}
+
 static const bf_section_spec *const balls_specs[] = {&bf_ballsys_ball_spec,
                                                      NULL};
 
@@ -143,4 +154,6 @@ const bf_model_type bf_model_balls = {
     .checkpoint_load = balls_load,
     .advance = balls_advance,
     .ball_view = balls_view,
+    .state = balls_state,
+    .set_state = balls_set_state,
 };

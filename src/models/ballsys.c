@@ -108,6 +108,9 @@ void bf_ballsys_free(bf_ballsys *s)
     for (size_t k = 0; k < s->neff; k++)
         if (s->eff[k].type->destroy && s->eff[k].self)
             s->eff[k].type->destroy(s->eff[k].self);
+    for (size_t k = 0; s->effect_params && k < s->neff; k++)
+        free(s->effect_params[k]);
+    free(s->effect_params);
     free(s->eff);
     free(s->ev_work);
     free(s->ev_side);
@@ -524,6 +527,22 @@ bf_status bf_ballsys_create(bf_ballsys **out, const bf_model_setup *setup,
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
     memcpy(s->effect_types, setup->effects, ne * sizeof *s->effect_types);
+    s->env = *env;
+    s->effect_params = calloc(ne ? ne : 1, sizeof *s->effect_params);
+    for (size_t k = 0; s->effect_params && k < ne; k++) {
+        const bf_section_spec *sp = setup->effects[k]->spec;
+        if (!sp || !sp->size || !setup->effect_params[k])
+            continue;
+        if (!(s->effect_params[k] = malloc(sp->size))) {
+            bf_ballsys_free(s);
+            return bf_fail(err, BF_EINTERNAL, "out of memory");
+        }
+        memcpy(s->effect_params[k], setup->effect_params[k], sp->size);
+    }
+    if (!s->effect_params) {
+        bf_ballsys_free(s);
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
     if (s->it_params)
         memcpy(s->it_params, setup->integrator_params, isp->size);
     s->ode.n = nb;
@@ -550,6 +569,58 @@ void bf_ballsys_energy(const bf_ballsys *s, double t, double *kin, double *pot)
         k += 0.5 * s->b.m[i] * s->b.v[i] * s->b.v[i];
     *kin = k;
     *pot = bf_effects_potential_inline(s->eff, s->neff, &s->b, t, s->b.x);
+}
+
+size_t bf_ballsys_state(bf_ballsys *s, bf_state_var *vars, size_t cap)
+{
+    const bf_state_var v[2] = {
+        {"balls/position", "cm", s->b.n, s->b.x, 1},
+        {"balls/velocity", "cm/s", s->b.n, s->b.v, 1},
+    };
+    for (size_t k = 0; k < 2 && k < cap; k++)
+        vars[k] = v[k];
+    return 2;
+}
+
+/* The positions now in s->b.x as a scene's would be checked: order,
+ * overlap, each effect's own check (a trial instance of it). */
+static bf_status check_positions(bf_ballsys *s, bf_err *err)
+{
+    bf_status st = check_order(&s->b, err);
+    for (size_t k = 0; !st && k < s->neff; k++) {
+        const bf_effect_type *t = s->eff[k].type;
+        void *trial = NULL;
+        st = t->create(&trial, s->effect_params[k], &s->b, &s->env, err);
+        if (trial && t->destroy)
+            t->destroy(trial);
+    }
+    return st;
+}
+
+bf_status bf_ballsys_set(bf_ballsys *s, const char *name, const double *v,
+                         size_t n, bf_err *err)
+{
+    const int pos = !strcmp(name, "balls/position");
+    if ((!pos && strcmp(name, "balls/velocity")) || n != s->b.n)
+        return bf_fail(err, BF_EINPUT, "%s: not an array of %zu balls", name,
+                       s->b.n);
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(v[i]))
+            return bf_fail(err, BF_EINPUT, "%s: ball %zu: %g is not finite",
+                           name, i + 1, v[i]);
+    double *dst = pos ? s->b.x : s->b.v, *old = malloc(n * sizeof *old);
+    if (!old)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    memcpy(old, dst, n * sizeof *old);
+    memcpy(dst, v, n * sizeof *dst);
+    bf_status st = pos ? check_positions(s, err) : BF_OK;
+    if (st) {
+        memcpy(dst, old, n * sizeof *dst);
+        bf_err_prefix(err, "%s", name);
+    }
+    free(old);
+    bf_integrator_reset(s->it);
+    return st;
 }
 
 void bf_ballsys_view(bf_ballsys *s, bf_ball_view *v)

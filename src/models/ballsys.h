@@ -30,6 +30,9 @@ typedef struct bf_ballsys {
     bf_integrator *it;
     void *it_params; /* a copy of the integrator's [integrator] struct */
     const bf_effect_type **effect_types; /* the effects' types (owned) */
+    void **effect_params; /* copies of the effects' structs (set_state
+                             checks new positions with them) */
+    bf_effect_env env;
     bf_ode ode;
     /* what the integrator's specialised steps see (b, eff, neff) */
     bf_ball_forces forces;
@@ -135,6 +138,14 @@ bf_status bf_ballsys_load(bf_ballsys *s, const bf_ckpt *ck, const char *prefix,
 /* Kinetic and potential energy (erg). */
 void bf_ballsys_energy(const bf_ballsys *s, double t, double *kin,
                        double *pot);
+
+/* The state as arrays (model.h's state and set_state): balls/position
+ * (cm) and balls/velocity (cm/s), both settable.  New positions are
+ * checked as [ball.N] positions are (order, overlap, and every effect's
+ * own check, such as the floor's); on failure the state is unchanged. */
+size_t bf_ballsys_state(bf_ballsys *s, bf_state_var *vars, size_t cap);
+bf_status bf_ballsys_set(bf_ballsys *s, const char *name, const double *v,
+                         size_t n, bf_err *err);
 
 /* The ball view of analyses (model.h). */
 void bf_ballsys_view(bf_ballsys *s, bf_ball_view *v);

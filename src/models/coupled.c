@@ -595,6 +595,21 @@ static const bf_section_spec *const coupled_specs[] = {
     &coupled_spec, &bf_filmsys_spec, &bf_ballsys_ball_spec, &bf_lyap_spec,
     NULL};
 
+/* The balls' and the film's arrays, to read (the coupling's state
+ * follows from both, so setting either is not offered). */
+static size_t coupled_state(void *self, bf_state_var *vars, size_t cap)
+{
+    coupled_model *m = self;
+    bf_state_var v[7];
+    size_t nb = bf_ballsys_state(m->sys, v, 2);
+    for (size_t k = 0; k < nb; k++)
+        v[k].settable = 0;
+    size_t n = nb + bf_filmsys_state(m->fs, v + nb, 5, 0);
+    for (size_t k = 0; k < n && k < cap; k++)
+        vars[k] = v[k];
+    return n;
+}
+
 const bf_model_type bf_model_coupled = {
     .name = "coupled",
     .doc = "balls coupled to the two-phase film, static kink or dynamic "
@@ -614,6 +629,7 @@ const bf_model_type bf_model_coupled = {
     .checkpoint_save = coupled_save,
     .checkpoint_load = coupled_load,
     .results = coupled_results,
+    .state = coupled_state,
 };
 
 /* ------------------------------------------------------------ drivers */

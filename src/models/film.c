@@ -64,6 +64,17 @@ static bf_status film_load(void *self, const bf_ckpt *ck, bf_err *err)
     return bf_filmsys_load(self, ck, "", err);
 }
 
+static size_t film_state(void *self, bf_state_var *vars, size_t cap)
+{
+    return bf_filmsys_state(self, vars, cap, 1);
+}
+
+static bf_status film_set_state(void *self, const char *name,
+                                const double *v, size_t n, bf_err *err)
+{
+    return bf_filmsys_set(self, name, v, n, err);
+}
+
 static const bf_section_spec *const film_specs[] = {&bf_filmsys_spec, NULL};
 
 const bf_model_type bf_model_film = {
@@ -82,4 +93,6 @@ const bf_model_type bf_model_film = {
     .report = film_report,
     .checkpoint_save = film_save,
     .checkpoint_load = film_load,
+    .state = film_state,
+    .set_state = film_set_state,
 };

@@ -26,6 +26,7 @@
 #include <string.h>
 
 #include "models/filmsys.h"
+#include "models/state_names.h"
 
 enum { INIT_KINK, INIT_UNIFORM, INIT_FILE };
 enum { PERT_POSITIVE, PERT_SIGNED };
@@ -115,6 +116,8 @@ struct bf_filmsys {
     double m0[2];
     double drift; /* largest relative change of the totals seen */
     double *tmp;  /* one profile row */
+    double *given; /* the initial h, psi, u_d, u_c as handed to the film
+                      (4 x n): set_state replaces one of them */
     double *kink0; /* the analytic kink on the nodes (initial = kink) */
     bf_series *s_time, *s_h, *s_psi, *s_ud, *s_uc;
     bf_series *s_md, *s_mc, *s_umax, *s_amin, *s_kerr, *s_lim;
@@ -136,6 +139,7 @@ void bf_filmsys_free(bf_filmsys *fs)
     bf_film_free(fs->film);
     free(fs->tmp);
     free(fs->kink0);
+    free(fs->given);
     free(fs);
 }
 
@@ -221,7 +225,10 @@ static bf_status initial_state(bf_filmsys *fs, const bf_film_keys *k,
         if (bf_film_set_state(f, h, psi, ud, uc, &e2))
             st = bf_fail_key(err, BF_EINPUT, "film", "initial", "%s", e2.msg);
     }
-    free(buf);
+    if (st)
+        free(buf);
+    else
+        fs->given = buf;
     return st;
 }
 
@@ -326,6 +333,47 @@ void bf_filmsys_stable_dt(const bf_filmsys *fs, bf_dt_limit *lim)
              "anyway");
     snprintf(lim->section, sizeof lim->section, "coupled");
     snprintf(lim->key, sizeof lim->key, "film_every");
+}
+
+static const char *const state_names[5] = {"film/h", "film/psi", "film/u_d",
+                                           "film/u_c", "film/x"};
+
+size_t bf_filmsys_state(bf_filmsys *fs, bf_state_var *vars, size_t cap,
+                        int settable)
+{
+    static const char *const units[5] = {"cm", "1", "cm/s", "cm/s", "cm"};
+    const double *data[5] = {bf_film_h(fs->film), bf_film_psi(fs->film),
+                             bf_film_u_d(fs->film), bf_film_u_c(fs->film),
+                             bf_film_x(fs->film)};
+    for (size_t k = 0; k < 5 && k < cap; k++)
+        vars[k] = (bf_state_var){state_names[k], units[k], fs->n, data[k],
+                                 settable && k < 4};
+    return 5;
+}
+
+bf_status bf_filmsys_set(bf_filmsys *fs, const char *name, const double *v,
+                         size_t n, bf_err *err)
+{
+    const size_t k = bf_state_index(state_names, 4, name);
+    if (k == 4 || n != fs->n)
+        return bf_fail(err, BF_EINPUT, "%s: not an array of the film's %zu "
+                       "nodes", name, fs->n);
+    double *old = malloc(n * sizeof *old), *g = fs->given;
+    if (!old)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    memcpy(old, g + k * n, n * sizeof *old);
+    memcpy(g + k * n, v, n * sizeof *old);
+    bf_status st = bf_film_set_state(fs->film, g, g + n, g + 2 * n, g + 3 * n,
+                                     err);
+    if (st) {
+        memcpy(g + k * n, old, n * sizeof *old);
+        bf_film_set_state(fs->film, g, g + n, g + 2 * n, g + 3 * n, NULL);
+        bf_err_prefix(err, "%s", name);
+    }
+    free(old);
+    bf_film_totals(fs->film, &fs->m0[0], &fs->m0[1]);
+    fs->drift = 0.0;
+    return st;
 }
 
 bf_status bf_filmsys_step(bf_filmsys *fs, double dt, const double *mu_cpl,

@@ -68,6 +68,18 @@ void bf_filmsys_free(bf_filmsys *fs);
  * limit for a static film or with [film] force_dt. */
 void bf_filmsys_stable_dt(const bf_filmsys *fs, bf_dt_limit *lim);
 
+/* The state as arrays (model.h's state): film/h (cm), film/psi (1),
+ * film/u_d, film/u_c (cm/s) on the nodes, settable or not, and the nodes'
+ * positions film/x (cm, never settable).  Setting one
+ * before the first step replaces it among the initial arrays and hands
+ * all four to the film again (bf_film_set_state, which checks them,
+ * naming the node; the velocities at the walls are zero); on failure the
+ * state is unchanged. */
+size_t bf_filmsys_state(bf_filmsys *fs, bf_state_var *vars, size_t cap,
+                        int settable);
+bf_status bf_filmsys_set(bf_filmsys *fs, const char *name, const double *v,
+                         size_t n, bf_err *err);
+
 bf_film *bf_filmsys_film(bf_filmsys *fs);
 /* Whether the scene started from the analytic kink, and its centre (cm). */
 int bf_filmsys_has_kink(const bf_filmsys *fs, double *x0);

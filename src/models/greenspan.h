@@ -6,8 +6,10 @@
 #ifndef BALLFILM_MODELS_GREENSPAN_H
 #define BALLFILM_MODELS_GREENSPAN_H
 
+#include "ballfilm/model.h"
 #include "ballfilm/particles.h"
 #include "particles/support.h"
+#include "particles/walls.h"
 
 /* The particles of a greenspan72 model (positions x^k, velocities
  * v^{k-1/2}). */
@@ -17,5 +19,16 @@ bf_support *bf_greenspan72_support(void *model);
 
 /* The particles of a greenspan73 model (time t_k). */
 bf_particles *bf_greenspan73_particles(void *model);
+
+/* The particles as arrays (model.h, state): particles/x, particles/y
+ * (cm), particles/vx, particles/vy (cm/s), all settable before the first
+ * step; a particle keeps its number, fluid (tag) and mass. */
+size_t bf_particles_state_vars(bf_particles *p, bf_state_var *vars,
+                               size_t cap);
+/* Replace one of them after checking every value (finite; positions
+ * inside box, when given), naming the particle. */
+bf_status bf_particles_set_var(bf_particles *p, const bf_box *box,
+                               const char *name, const double *v, size_t n,
+                               bf_err *err);
 
 #endif

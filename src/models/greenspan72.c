@@ -737,6 +737,19 @@ static bf_status g72_load(void *self, const bf_ckpt *ck, bf_err *err)
     return st;
 }
 
+static size_t g72_state_vars(void *self, bf_state_var *vars, size_t cap)
+{
+    return bf_particles_state_vars(&((g72 *)self)->p, vars, cap);
+}
+
+static bf_status g72_set_state(void *self, const char *name, const double *v,
+                               size_t n, bf_err *err)
+{
+    g72 *m = self;
+    m->acc_valid = 0; /* the forces of the new positions */
+    return bf_particles_set_var(&m->p, &m->walls.box, name, v, n, err);
+}
+
 static const bf_section_spec *const g72_specs[] = {
     &g72_spec,     &bf_repulsion_spec, &bf_support_spec,
     &bf_walls_spec, &bf_hertz_spec,    NULL};
@@ -757,4 +770,6 @@ const bf_model_type bf_model_greenspan72 = {
     .report = g72_report,
     .checkpoint_save = g72_save,
     .checkpoint_load = g72_load,
+    .state = g72_state_vars,
+    .set_state = g72_set_state,
 };

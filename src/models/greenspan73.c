@@ -648,6 +648,24 @@ static bf_status g73_load(void *self, const bf_ckpt *ck, bf_err *err)
 
 static const bf_section_spec *const g73_specs[] = {&g73_spec, NULL};
 
+static size_t g73_state_vars(void *self, bf_state_var *vars, size_t cap)
+{
+    return bf_particles_state_vars(&((g73 *)self)->p, vars, cap);
+}
+
+/* New positions or velocities; the energy of t = 0 is theirs. */
+static bf_status g73_set_state(void *self, const char *name, const double *v,
+                               size_t n, bf_err *err)
+{
+    g73 *m = self;
+    bf_status st = bf_particles_set_var(&m->p, NULL, name, v, n, err);
+    double K, V;
+    g73_energy(m, 0.0, &K, &V);
+    m->e0 = K + V;
+    m->eint0 = m->e0 - bf_pdiag_cm_kinetic(&m->p, m->mu);
+    return st;
+}
+
 const bf_model_type bf_model_greenspan73 = {
     .name = "greenspan73",
     .doc = "implicit, exactly energy-conserving particle scheme (Greenspan "
@@ -664,4 +682,6 @@ const bf_model_type bf_model_greenspan73 = {
     .report = g73_report,
     .checkpoint_save = g73_save,
     .checkpoint_load = g73_load,
+    .state = g73_state_vars,
+    .set_state = g73_set_state,
 };

@@ -1,0 +1,128 @@
+"""result.py: a ballfilm HDF5 file as a Python object (ballfilm.load).
+
+Reads with h5py; needs nothing of the C library, so it works on files
+from any machine.  Datasets are read when first asked for (a large run
+is not loaded whole) unless the file is temporary (ballfilm.run without
+an output path), then everything is read at once.
+"""
+import os
+
+import h5py
+
+
+def _text(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+class Result:
+    """What a ballfilm output file holds.
+
+    r["balls/position"]       a dataset as a numpy array (leading "/"
+                              optional); r.keys() lists them all
+    r.units[name], r.descriptions[name]
+                              each dataset's unit and description
+    r.time                    /time (s), the output rows' times
+    r.params                  every resolved scene key: {"ball.1.mass": 1.0}
+    r.param_units             their units; r.defaults: the keys left at their
+                              default
+    r.scene_text, r.scene_file, r.version
+    r.status, r.message       how the run ended ("ok", "interrupted", ...)
+    r.counters                steps, t_final, force evaluations, rejected
+                              steps, iterations
+    r.energy_error            the largest relative energy error (None for a
+                              model without an energy)
+    r.attrs                   every root attribute as h5py reads it
+    """
+
+    def __init__(self, path, eager=False):
+        self.path = os.fspath(path)
+        self._cache = {}
+        self.units, self.descriptions, self.shapes = {}, {}, {}
+        with h5py.File(self.path, "r") as f:
+            self.attrs = {k: f.attrs[k] for k in f.attrs}
+
+            def visit(name, obj):
+                if isinstance(obj, h5py.Dataset):
+                    self.units[name] = _text(obj.attrs.get("unit", ""))
+                    self.descriptions[name] = _text(
+                        obj.attrs.get("description", ""))
+                    self.shapes[name] = obj.shape
+                    if eager:
+                        self._cache[name] = obj[()]
+
+            f.visititems(visit)
+        a = self.attrs
+        self.scene_text = _text(a.get("scene_text", ""))
+        self.scene_file = _text(a.get("scene_file", ""))
+        self.version = _text(a.get("version", ""))
+        self.status = _text(a.get("status", ""))
+        self.message = _text(a.get("message", ""))
+        self.params, self.param_units, self.defaults = {}, {}, set()
+        for k, v in a.items():
+            if k.endswith(".unit"):
+                self.param_units[k[:-5]] = _text(v)
+            elif k.endswith(".default"):
+                self.defaults.add(k[:-8])
+            elif "." in k:
+                self.params[k] = _text(v) if isinstance(v, (str, bytes)) else v
+        self.counters = {}
+        for key in ("steps_done", "t_final", "force_evaluations",
+                    "rejected_steps", "iterations"):
+            if key in a:
+                self.counters[key] = a[key].item() if hasattr(a[key], "item") \
+                    else a[key]
+        e = a.get("max_relative_energy_error")
+        self.energy_error = float(e) if e is not None else None
+
+    @staticmethod
+    def _name(name):
+        return name[1:] if name.startswith("/") else name
+
+    def keys(self):
+        return sorted(self.shapes)
+
+    def __contains__(self, name):
+        return self._name(name) in self.shapes
+
+    def __getitem__(self, name):
+        n = self._name(name)
+        if n not in self.shapes:
+            raise KeyError(f"{self.path} has no dataset /{n} (it has: "
+                           f"{', '.join(self.keys())})")
+        if n not in self._cache:
+            with h5py.File(self.path, "r") as f:
+                self._cache[n] = f[n][()]
+        return self._cache[n]
+
+    def group(self, name):
+        """{dataset name below the group: array}, e.g. r.group("converge")."""
+        g = self._name(name).rstrip("/") + "/"
+        return {k[len(g):]: self[k] for k in self.keys() if k.startswith(g)}
+
+    def attrs_of(self, name):
+        """The attributes of a dataset or group, as h5py reads them."""
+        with h5py.File(self.path, "r") as f:
+            obj = f["/" + self._name(name)]
+            return {k: obj.attrs[k] for k in obj.attrs}
+
+    @property
+    def time(self):
+        return self["time"]
+
+    @property
+    def steps(self):
+        return self.counters.get("steps_done")
+
+    def __repr__(self):
+        return (f"<ballfilm.Result {self.path}: {self.params.get('scene.model', '?')}, "
+                f"status {self.status or '?'}, {len(self.shapes)} datasets>")
+
+
+def load(path):
+    """The contents of a ballfilm output file (a run's OUT.h5, its
+    OUT.h5.part while unfinished, a sweep's summary.h5, a converge
+    table)."""
+    path = os.fspath(path)
+    if not os.path.exists(path) and os.path.exists(path + ".part"):
+        path = path + ".part"
+    return Result(path)

@@ -1,0 +1,161 @@
+"""tables.py: the convergence study and parameter sweeps of the library
+(converge.h, sweep.h) from Python, their results as tables: numpy
+structured arrays with one row per run or case.
+"""
+import ctypes
+import os
+
+import numpy as np
+
+from . import _lib
+from .errors import Interrupted, from_err
+from .runner import _in_thread, _sets
+
+
+def _doubles(values):
+    if values is None:
+        return None, 0, None
+    a = np.ascontiguousarray([float(v) for v in values], dtype=np.float64)
+    return a.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), a.size, a
+
+
+def converge(scene, methods, dts=None, tols=None, t_end=None, set=None,
+             repeats=1, ref_rtol=0.0, max_step=0.0):
+    """`ballfilm converge` on a ball scene file: every method (a name or
+    "name:key=value", e.g. "arkode:table=ARKODE_CASH_KARP_6_4_5") at the
+    steps `dts` (fixed-step methods) and tolerances `tols` (adaptive ones)
+    against an ARKODE reference (converge.h).  Returns (table, reference):
+    table a structured array with columns method, label, adaptive, order,
+    dt, tol, err_x, err_v, energy_err, order_x, order_v, steps, evals,
+    rejected, wall, status, message; reference a dict of the reference
+    run's label, rtol, estimated errors, energy error and its final
+    state x_ref, v_ref.  The study has no stop flag: Ctrl-C is held until
+    it ends, then raised as KeyboardInterrupt."""
+    lib = _lib.lib()
+    if isinstance(methods, str):
+        methods = [methods]
+    if not methods:
+        raise ValueError("converge needs at least one method")
+    marr, nm, mkeep = _lib.cstrings(list(methods))
+    sarr, ns, skeep = _lib.cstrings(_sets(set, None))
+    dp, nd, dkeep = _doubles(dts)
+    tp, nt, tkeep = _doubles(tols)
+    o = _lib.ConvergeOpts(methods=marr, nmethods=nm, dts=dp, ndts=nd,
+                          tols=tp, ntols=nt,
+                          t_end=float(t_end) if t_end is not None else 0.0,
+                          repeats=int(repeats), ref_rtol=float(ref_rtol),
+                          max_step=float(max_step))
+    out = ctypes.POINTER(_lib.ConvergeResult)()
+    err = _lib.Err()
+    flag = ctypes.c_int(0)  # converge has no stop flag: Ctrl-C waits
+    st, ctrl_c = _in_thread(lambda: lib.bf_converge_file(
+        os.fspath(scene).encode(), sarr, ns, ctypes.byref(o),
+        ctypes.byref(out), ctypes.byref(err)), flag)
+    del mkeep, skeep, dkeep, tkeep
+    if ctrl_c:  # the study cannot stop in the middle: it ran to its end
+        if not st:
+            lib.bf_converge_free(out)
+        raise KeyboardInterrupt("ballfilm.converge ran to its end first")
+    if st:
+        raise from_err(err)
+    r = out.contents
+    dtype = [("method", "U64"), ("label", "U160"), ("adaptive", bool),
+             ("order", int), ("dt", float), ("tol", float), ("err_x", float),
+             ("err_v", float), ("energy_err", float), ("order_x", float),
+             ("order_v", float), ("steps", np.int64), ("evals", np.int64),
+             ("rejected", np.int64), ("wall", float), ("status", "U16"),
+             ("message", "U1024")]
+    rows = []
+    for k in range(r.nrows):
+        w = r.rows[k]
+        rows.append((r.methods[w.method].decode(), w.label.decode(),
+                     bool(w.adaptive), w.order, w.dt, w.tol, w.err_x,
+                     w.err_v, w.energy_err, w.order_x, w.order_v,
+                     w.count.steps, w.count.evals, w.count.rejected, w.wall,
+                     lib.bf_status_name(w.status).decode(),
+                     w.msg.decode(errors="replace")))
+    ref = {"label": r.ref_label.decode(), "rtol": r.ref_rtol,
+           "err_x": r.ref_err_x, "err_v": r.ref_err_v,
+           "energy_err": r.ref_energy_err, "max_step": r.max_step,
+           "t_end": r.t_end, "x_ref": np.array(r.x_ref[:r.n]),
+           "v_ref": np.array(r.v_ref[:r.n])}
+    lib.bf_converge_free(out)
+    return np.array(rows, dtype=dtype), ref
+
+
+def _vary_specs(vary):
+    """["key=a:b:n" or "key=v1,v2"] from a dict {key: values} or a list."""
+    if isinstance(vary, str):
+        return [vary]
+    if hasattr(vary, "items"):
+        specs = []
+        for k, v in vary.items():
+            if isinstance(v, str):
+                specs.append(f"{k}={v}")
+            else:
+                specs.append(f"{k}=" + ",".join(repr(float(x)) for x in v))
+        return specs
+    return list(vary)
+
+
+def sweep(scene, vary, dir, set=None):
+    """`ballfilm sweep` in this process, serially: one run of the scene
+    file for every combination of the varied keys (vary: {"ball.1.mass":
+    [0.8, 1.0, 1.2]} or {"ball.1.mass": "0.5:2:16"}), each in
+    dir/case_NNNNN.h5, the summary in dir/summary.h5 and summary.csv.
+    Cases finished by an earlier call are not run again.  Returns a
+    structured array, one row per case: index, one column per varied key,
+    status, wall, lyapunov, map_points, map_fill, energy_error, steps,
+    message.  Ctrl-C stops the running case (it is run again next time)
+    and raises ballfilm.Interrupted."""
+    lib = _lib.lib()
+    specs = _vary_specs(vary)
+    varr, nv, vkeep = _lib.cstrings(specs)
+    sarr, ns, skeep = _lib.cstrings(_sets(set, None))
+    sw = _lib.Sweep()
+    err = _lib.Err()
+    if lib.bf_sweep_init(ctypes.byref(sw), os.fspath(scene).encode(), sarr,
+                         ns, varr, nv, os.fspath(dir).encode(),
+                         ctypes.byref(err)):
+        raise from_err(err)
+    flag = ctypes.c_int(0)
+    sw.stop_flag = ctypes.pointer(flag)
+    rows = (_lib.SweepRow * max(sw.ncases, 1))()
+    keys = [sw.axis[a].key.decode() for a in range(sw.naxis)]
+
+    def all_cases():
+        for k in range(sw.ncases):
+            if lib.bf_sweep_case_done(ctypes.byref(sw), k, ctypes.byref(rows[k])):
+                continue
+            st = lib.bf_sweep_run_case(ctypes.byref(sw), k,
+                                       ctypes.byref(rows[k]), ctypes.byref(err))
+            if st:
+                return st
+        return lib.bf_sweep_write_summary(ctypes.byref(sw), rows,
+                                          ctypes.byref(err))
+
+    try:
+        st, ctrl_c = _in_thread(all_cases, flag)
+        if st == 6 or ctrl_c:
+            raise Interrupted(err.msg.decode(errors="replace") or
+                              "sweep interrupted", os.fspath(dir))
+        if st:
+            raise from_err(err)
+        dtype = [("index", np.int64)] + [(k, float) for k in keys] + [
+            ("status", "U16"), ("wall", float), ("lyapunov", float),
+            ("map_points", float), ("map_fill", float),
+            ("energy_error", float), ("steps", np.int64), ("message", "U512")]
+        table = []
+        for k in range(sw.ncases):
+            w = rows[k]
+            table.append((w.index, *[w.values[a] for a in range(sw.naxis)],
+                          lib.bf_status_name(w.status).decode(), w.wall,
+                          w.lyapunov, w.map_points, w.map_fill,
+                          w.energy_error, w.steps,
+                          w.message.decode(errors="replace")))
+        return np.array(table, dtype=dtype)
+    finally:
+        lib.bf_sweep_free(ctypes.byref(sw))
+        del vkeep, skeep
+
+

@@ -1,0 +1,68 @@
+/* sim_impl.h: the time loop's state, shared by the files of src/core
+ * (private): sim.c (the loop, output, checkpoints) and sim_state.c (the
+ * state as arrays, heartbeats). */
+#ifndef BALLFILM_CORE_SIM_IMPL_H
+#define BALLFILM_CORE_SIM_IMPL_H
+
+#include "ballfilm/sim.h"
+#include "diag/energy.h"
+
+typedef struct heartbeat {
+    long every; /* steps; 0: after every output row */
+    bf_heartbeat_fn fn;
+    void *ctx;
+} heartbeat;
+
+typedef struct observer {
+    const bf_observer_type *t;
+    void *self;
+} observer;
+
+struct bf_sim {
+    const bf_model_type *mt;
+    void *model;
+    bf_sim_opts opts;
+    /* provenance (owned copies) */
+    char *scene_path, *scene_text, *scene_sets;
+    bf_status (*write_params)(void *ctx, bf_out *out, bf_err *err);
+    void *params_ctx;
+    /* something the composition layer hands over to be freed with us */
+    void *owned;
+    void (*owned_free)(void *);
+    observer *obs;
+    size_t nobs;
+    int obs_steps; /* some observer watches every step */
+    double dt, t_end;
+    long nsteps, n;
+    long out_every, energy_every, ckpt_every;
+    long steps_this_run;
+    char *ckpt_path;
+    double energy_bound, flush_seconds;
+    int compress; /* deflate level of the output (0: off) */
+    bf_out *out;
+    bf_series *s_time, *s_step, *s_ek, *s_ep, *s_et;
+    long last_row; /* step of the last output row, -1 if none */
+    int has_energy;
+    bf_energy_diag en;
+    double wall;
+    double prog_last;
+    heartbeat *hb; /* bf_sim_heartbeat, in the order attached */
+    size_t nhb;
+    int hb_started; /* the heartbeats of t = 0 were called */
+};
+
+/* Call hook H of every observer that has it with the arguments after self;
+ * stop at the first failure. */
+#define EACH_OBSERVER(s, st, H, ...)                                           \
+    for (size_t k_ = 0; !(st) && k_ < (s)->nobs; k_++)                         \
+        if ((s)->obs[k_].t->H)                                                 \
+    (st) = (s)->obs[k_].t->H((s)->obs[k_].self, __VA_ARGS__)
+
+/* [scene] dt against the model's stable step (model.h, stable_dt). */
+bf_status bf_sim_check_stable_dt(const bf_sim *s, bf_err *err);
+
+/* The heartbeats due at step s->n: those every N steps whose N divides
+ * it, and (rows = 1) those of the output rows. */
+bf_status bf_sim_beat(bf_sim *s, int rows, bf_err *err);
+
+#endif
