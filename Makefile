@@ -188,7 +188,7 @@ install: $(PROG) $(LIB) $(SHLIB) $(MAN)
 	install -m 644 $(PUBLIC_H) $(DESTDIR)$(INCLUDEDIR)/ballfilm/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(LIBDIR)|' \
 	    -e 's|@INCLUDEDIR@|$(INCLUDEDIR)|' -e 's|@VERSION@|$(VERSION)|' \
-	    ballfilm.pc.in > $(DESTDIR)$(LIBDIR)/pkgconfig/ballfilm.pc
+	    src/ballfilm.pc.in > $(DESTDIR)$(LIBDIR)/pkgconfig/ballfilm.pc
 	install -m 644 $(MAN) $(DESTDIR)$(MANDIR)/man1/ballfilm.1
 	$(if $(PY_PKG),install -m 644 $(PY_PKG) $(DESTDIR)$(PYTHONDIR)/ballfilm/)
 	printf 'LIBRARY = "%s"\n' $(LIBDIR)/$(SONAME) \

@@ -14,7 +14,9 @@ and include/ballfilm/*.h, and fails (exit 1, one line per problem) when
     or an inline function with a loop (a numerical kernel: kernels are
     private, beside their code);
   - a source file of src/ has more than 900 lines;
-  - a file outside src/io and src/compose calls the scene API (bf_scene_).
+  - a file outside src/io and src/compose calls the scene API (bf_scene_);
+  - git tracks an entry at the top level other than TOP_LEVEL (the
+    repository's fixed layout; README.md's "Where things are").
 Run from the repository root: /usr/bin/python3 tests/check_architecture.py
 """
 import os
@@ -25,6 +27,22 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 MAX_LINES = 900
 MAX_PUBLIC = 20
 SCENE_LAYERS = ("src/io", "src/compose")
+TOP_LEVEL = {"Makefile", "README.md", "src", "include", "runs", "tests",
+             "plots", "bench", "docs", "examples", "python", ".ci",
+             ".gitignore"}
+
+
+def top_level_problems():
+    """Tracked top-level entries outside TOP_LEVEL (none outside git)."""
+    import subprocess
+    try:
+        out = subprocess.run(["git", "-C", ROOT, "ls-files"], check=True,
+                             capture_output=True, text=True).stdout
+    except (OSError, subprocess.CalledProcessError):
+        return []
+    tops = {line.split("/", 1)[0] for line in out.splitlines() if line}
+    return [f"{t}: an entry at the top level outside the fixed layout "
+            f"({', '.join(sorted(TOP_LEVEL))})" for t in sorted(tops - TOP_LEVEL)]
 
 
 def rel(path):
@@ -124,7 +142,7 @@ def inline_kernels(path, text):
 
 def main():
     folder_layer, header_folder = read_table()
-    problems = []
+    problems = top_level_problems()
     files = sources()
     folder_graph, unit_graph = {}, {}
     nedges = 0
