@@ -29,7 +29,10 @@ MAX_PUBLIC = 20
 SCENE_LAYERS = ("src/io", "src/compose")
 TOP_LEVEL = {"Makefile", "README.md", "src", "include", "runs", "tests",
              "plots", "bench", "docs", "examples", "python", ".ci",
-             ".gitignore"}
+             ".gitignore",
+             # a link to python/ballfilm, so that /usr/bin/python3 run
+             # from the root imports the package with no PYTHONPATH
+             "ballfilm"}
 
 
 def top_level_problems():
