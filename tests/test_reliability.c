@@ -106,12 +106,17 @@ static char *slurp(const char *path)
     return buf;
 }
 
+/* A byte-for-byte copy (checkpoints are binary). */
 static void copy_file(const char *from, const char *to)
 {
-    char *text = slurp(from);
-    FILE *f = fopen(to, "w");
-    ck_assert(f && fputs(text, f) >= 0 && fclose(f) == 0);
-    free(text);
+    FILE *in = fopen(from, "rb"), *out = fopen(to, "wb");
+    ck_assert_msg(in && out, "%s -> %s", from, to);
+    char buf[65536];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, in)) > 0)
+        ck_assert(fwrite(buf, 1, n, out) == n);
+    fclose(in);
+    ck_assert(fclose(out) == 0);
 }
 
 static int exists(const char *path)

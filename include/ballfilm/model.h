@@ -125,6 +125,11 @@ typedef struct bf_model_type {
     /* Kinetic and potential energy (erg).  Optional: NULL if the model has
      * no conserved energy to monitor. */
     void (*energy)(const void *self, double t, double *kin, double *pot);
+    /* The largest relative energy error a run of the model as set up can
+     * have and still be a result (0: its energy is not conserved, no
+     * bound).  The loop stops a run beyond it as unstable unless [scene]
+     * max_energy_error replaces it or energy_bound = no.  Optional. */
+    double (*energy_bound)(const void *self);
     /* Create the model's datasets; called once before the first row. */
     bf_status (*output_open)(void *self, bf_out *out, bf_err *err);
     /* Append one output row of the model's series (state at t). */

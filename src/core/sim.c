@@ -19,6 +19,7 @@
 
 #include "ballfilm/version.h"
 #include "base/clock.h"
+#include "core/sim_impl.h"
 #include "diag/energy.h"
 
 static const bf_param scene_params[] = {
@@ -47,8 +48,13 @@ static const bf_param scene_params[] = {
     {"max_energy_error", BF_AT(bf_sim_keys, max_energy_error, BF_REAL), "1",
      "0",
      "stop the run when the relative energy error exceeds this (0: no "
-     "bound)",
+     "bound); when given, it replaces the model's bound (energy_bound)",
      BF_NONNEG, 0, 0, NULL},
+    {"energy_bound", BF_AT(bf_sim_keys, energy_bound, BF_BOOL), "", "yes",
+     "stop the run as unstable when the relative energy error exceeds the "
+     "model's bound, for models whose energy is conserved: balls whose "
+     "effects are all conservative 0.5, greenspan73 1e-6 (no: off)",
+     0, 0, 0, NULL},
     {"flush_seconds", BF_AT(bf_sim_keys, flush_seconds, BF_REAL),
      "s (wall)", "5",
      "wall-clock interval between HDF5 flushes (what a killed run keeps)",
@@ -69,43 +75,15 @@ const bf_section_spec bf_sim_scene_spec =
     BF_SECTION("scene", "what to simulate and how long (every scene has it)",
                scene_params, bf_sim_keys);
 
-typedef struct observer {
-    const bf_observer_type *t;
-    void *self;
-} observer;
-
-struct bf_sim {
-    const bf_model_type *mt;
-    void *model;
-    bf_sim_opts opts;
-    /* provenance (owned copies) */
-    char *scene_path, *scene_text, *scene_sets;
-    bf_status (*write_params)(void *ctx, bf_out *out, bf_err *err);
-    void *params_ctx;
-    /* something the composition layer hands over to be freed with us */
-    void *owned;
-    void (*owned_free)(void *);
-    observer *obs;
-    size_t nobs;
-    int obs_steps; /* some observer watches every step */
-    double dt, t_end;
-    long nsteps, n;
-    long out_every, energy_every, ckpt_every;
-    long steps_this_run;
-    char *ckpt_path;
-    double energy_bound, flush_seconds;
-    int compress; /* deflate level of the output (0: off) */
-    bf_out *out;
-    bf_series *s_time, *s_step, *s_ek, *s_ep, *s_et;
-    long last_row; /* step of the last output row, -1 if none */
-    int has_energy;
-    bf_energy_diag en;
-    double wall;
-    double prog_last;
-};
-
 bf_status bf_sim_run_ctx(const bf_sim_keys *k, bf_run_ctx *run, bf_err *err)
 {
+    /* t = n dt with n whole: a step longer than the run would end it at
+     * dt, past t_end */
+    if (k->dt > k->t_end)
+        return bf_fail_key(err, BF_EINPUT, "scene", "dt",
+                           "dt = %g s exceeds t_end = %g s: the run would "
+                           "end at t = dt, past t_end",
+                           k->dt, k->t_end);
     double steps = ceil(k->t_end / k->dt * (1.0 - 1e-12));
     if (!(steps < 9e15))
         return bf_fail_key(err, BF_EINPUT, "scene", "t_end",
@@ -123,6 +101,7 @@ static char *dup_or_empty(const char *s)
 {
     return strdup(s ? s : "");
 }
+
 
 void bf_sim_free(bf_sim *s)
 {
@@ -198,6 +177,10 @@ bf_status bf_sim_create(bf_sim **out, const bf_sim_keys *k,
     s->ckpt_every = bf_interval_steps(k->checkpoint_every, s->dt);
     s->energy_every = k->energy_every;
     s->energy_bound = k->max_energy_error;
+    if (!(s->energy_bound > 0) && k->energy_bound && mt->energy_bound) {
+        s->energy_bound = mt->energy_bound(model);
+        s->bound_is_models = s->energy_bound > 0;
+    }
     s->flush_seconds = k->flush_seconds;
     s->compress = (int)k->compress;
     if (!s->scene_path || !s->scene_text || !s->scene_sets)
@@ -218,6 +201,15 @@ bf_status bf_sim_create(bf_sim **out, const bf_sim_keys *k,
         double kk, p;
         s->mt->energy(s->model, 0.0, &kk, &p);
         bf_energy_start(&s->en, kk + p);
+        /* a model names the key of a state it can blame (ball.N
+         * velocity); this catches the rest before any row is written */
+        if (!isfinite(kk + p)) {
+            bf_fail(err, BF_EINPUT, "the initial state has no finite energy "
+                    "(kinetic %g erg, potential %g erg): check the initial "
+                    "positions and velocities", kk, p);
+            bf_sim_free(s);
+            return BF_EINPUT;
+        }
     }
     *out = s;
     return BF_OK;
@@ -246,16 +238,10 @@ void *bf_sim_observer(bf_sim *s, const bf_observer_type *t)
     return NULL;
 }
 
-/* Call hook H of every observer that has it with the arguments after self;
- * stop at the first failure. */
-#define EACH_OBSERVER(s, st, H, ...)                                           \
-    for (size_t k_ = 0; !(st) && k_ < (s)->nobs; k_++)                         \
-        if ((s)->obs[k_].t->H)                                                 \
-    (st) = (s)->obs[k_].t->H((s)->obs[k_].self, __VA_ARGS__)
 
 /* ------------------------------------------------------------- output */
 
-static bf_status set_ckpt_path(bf_sim *s, const char *path, bf_err *err)
+bf_status bf_sim_set_ckpt_path_(bf_sim *s, const char *path, bf_err *err)
 {
     size_t len = strlen(path) + 6;
     free(s->ckpt_path);
@@ -268,7 +254,7 @@ static bf_status set_ckpt_path(bf_sim *s, const char *path, bf_err *err)
 
 /* Datasets of the loop itself (created, or reopened on restart), then the
  * model's and the observers'. */
-static bf_status open_series(bf_sim *s, bf_err *err)
+bf_status bf_sim_open_series_(bf_sim *s, bf_err *err)
 {
     bf_out *o = s->out;
     s->s_time = bf_out_series(o, "/time", 0, 0, "s", "simulated time of each "
@@ -301,7 +287,7 @@ static bf_status open_series(bf_sim *s, bf_err *err)
 
 bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)
 {
-    bf_status st = set_ckpt_path(s, path, err);
+    bf_status st = bf_sim_set_ckpt_path_(s, path, err);
     if (st)
         return st;
     st = bf_out_create(&s->out, path, err);
@@ -318,7 +304,7 @@ bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)
         return st;
     if (s->write_params && (st = s->write_params(s->params_ctx, o, err)))
         return st;
-    if ((st = open_series(s, err)))
+    if ((st = bf_sim_open_series_(s, err)))
         return st;
     return bf_out_flush(o, err);
 }
@@ -444,8 +430,10 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
     bf_status st = BF_OK;
     double t0 = bf_wall_time();
     s->prog_last = t0;
-    if (s->n == 0 && (st = write_row(s, err)))
-        return st;
+    if (s->n == 0 && (st = write_row(s, err))) {
+        bf_err_prefix(err, "step 0 (t = 0 s)");
+        return s->run_status = st;
+    }
     const long every = s->out_every, eevery = s->energy_every;
     /* runs of more than one step are possible at all (energy checks or
      * rows every step leave none) */
@@ -476,9 +464,17 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
             if (s->energy_bound > 0 && !(rel <= s->energy_bound)) {
                 st = bf_fail(err, BF_EUNSTABLE,
                              "step %ld (t = %.9g s): relative energy error %.3g "
-                             "exceeds [scene] max_energy_error = %g; the time "
-                             "step is too large for this integrator",
-                             s->n, (double)s->n * s->dt, rel, s->energy_bound);
+                             "exceeds %s%g%s; the time step is too large for "
+                             "this integrator",
+                             s->n, (double)s->n * s->dt, rel,
+                             s->bound_is_models ? ""
+                                                : "[scene] max_energy_error = ",
+                             s->energy_bound,
+                             s->bound_is_models
+                                 ? ", the bound of this model, whose energy "
+                                   "is conserved ([scene] max_energy_error "
+                                   "sets another, energy_bound = no none)"
+                                 : "");
                 break;
             }
         }
@@ -504,7 +500,7 @@ bf_status bf_sim_run(bf_sim *s, bf_err *err)
     if (s->opts.progress)
         progress(s, t0, 1);
     s->wall += bf_wall_time() - t0;
-    return st;
+    return s->run_status = st;
 }
 
 bf_status bf_sim_close_output(bf_sim *s, bf_status run_status,
@@ -577,6 +573,16 @@ void bf_sim_summary(const bf_sim *s, FILE *f)
         fprintf(f, "max relative energy error: %.6e (checked every %ld steps)\n",
                 s->en.max_rel,
                 s->energy_every ? s->energy_every : s->out_every);
+    if (s->run_status == BF_EUNSTABLE) {
+        /* the model's and the analyses' lines describe the final state,
+         * which is not a result ("relative change 0" next to "max |u|
+         * inf") */
+        fprintf(f, "stopped:           unstable after %ld steps (t = %.9g s); "
+                   "the final state is not a result, its summary is left "
+                   "out\n",
+                s->n, (double)s->n * s->dt);
+        return;
+    }
     if (s->mt->report)
         s->mt->report(s->model, f);
     for (size_t k = 0; k < s->nobs; k++)
@@ -623,125 +629,4 @@ void bf_sim_results(const bf_sim *s, bf_results *r)
     for (size_t k = 0; k < s->nobs; k++)
         if (s->obs[k].t->results)
             s->obs[k].t->results(s->obs[k].self, r);
-}
-
-/* ------------------------------------------------------------ checkpoints */
-
-int bf_sim_can_checkpoint(const bf_sim *s)
-{
-    return s->mt->checkpoint_save && s->mt->checkpoint_load;
-}
-
-const char *bf_sim_checkpoint_path(const bf_sim *s) { return s->ckpt_path; }
-
-/* What a checkpoint keeps of the loop itself. */
-static const bf_field loop_state[] = {
-    BF_FIELD(bf_sim, n, BF_F_LONG, "1"),
-    BF_FIELD(bf_sim, last_row, BF_F_LONG, "1"),
-    BF_FIELD(bf_sim, en.e0, BF_F_DOUBLE, "erg"),
-    BF_FIELD(bf_sim, en.max_rel, BF_F_DOUBLE, "1"),
-    BF_FIELD(bf_sim, wall, BF_F_DOUBLE, "s"),
-};
-
-/* The rows of every series and their paths (one per line). */
-static bf_status put_rows(const bf_sim *s, bf_ckpt *ck, bf_err *err)
-{
-    size_t ns = bf_out_nseries(s->out), plen = 1;
-    int64_t *rows = malloc((ns ? ns : 1) * sizeof *rows);
-    for (size_t k = 0; k < ns; k++)
-        plen += strlen(bf_series_path(bf_out_series_at(s->out, k))) + 1;
-    char *paths = malloc(plen);
-    bf_status st = BF_OK;
-    if (!rows || !paths) {
-        st = bf_fail(err, BF_EINTERNAL, "out of memory");
-    } else {
-        paths[0] = '\0';
-        for (size_t k = 0; k < ns; k++) {
-            bf_series *se = bf_out_series_at(s->out, k);
-            rows[k] = (int64_t)bf_series_rows(se);
-            strcat(paths, bf_series_path(se));
-            strcat(paths, "\n");
-        }
-        st = bf_ckpt_put_i64(ck, "out.rows", rows, ns, err);
-        if (!st)
-            st = bf_ckpt_put_str(ck, "out.paths", paths, err);
-    }
-    free(rows);
-    free(paths);
-    return st;
-}
-
-bf_status bf_sim_checkpoint_write(bf_sim *s, const char *path, bf_err *err)
-{
-    if (!bf_sim_can_checkpoint(s))
-        return bf_fail(err, BF_EINPUT, "model '%s' cannot write checkpoints",
-                       s->mt->name);
-    bf_status st = BF_OK;
-    /* rows on disk must cover what the checkpoint claims */
-    if (s->out && (st = bf_out_flush(s->out, err)))
-        return st;
-    bf_ckpt *ck = bf_ckpt_new();
-    if (!ck)
-        return bf_fail(err, BF_EINTERNAL, "out of memory");
-    if (!st) st = bf_ckpt_put_str(ck, "version", bf_version_string(), err);
-    if (!st) st = bf_ckpt_put_str(ck, "scene.path", s->scene_path, err);
-    if (!st) st = bf_ckpt_put_str(ck, "scene.text", s->scene_text, err);
-    if (!st) st = bf_ckpt_put_str(ck, "scene.sets", s->scene_sets, err);
-    if (!st)
-        st = bf_ckpt_put_fields(ck, "sim", loop_state, BF_NFIELDS(loop_state),
-                                s, err);
-    if (!st && s->out)
-        st = put_rows(s, ck, err);
-    if (!st)
-        st = s->mt->checkpoint_save(s->model, ck, err);
-    EACH_OBSERVER(s, st, save, ck, err);
-    if (!st)
-        st = bf_ckpt_write(ck, path, err);
-    bf_ckpt_free(ck);
-    return st;
-}
-
-bf_status bf_sim_resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
-                        bf_err *err)
-{
-    if (!bf_sim_can_checkpoint(s))
-        return bf_fail(err, BF_EINPUT, "model '%s' cannot restart",
-                       s->mt->name);
-    bf_status st = bf_ckpt_get_fields(ck, "sim", loop_state,
-                                      BF_NFIELDS(loop_state), s, err);
-    if (!st)
-        st = s->mt->checkpoint_load(s->model, ck, err);
-    EACH_OBSERVER(s, st, load, ck, err);
-    if (st)
-        return st;
-    if (s->n > s->nsteps)
-        return bf_fail(err, BF_EINPUT, "%s.ckpt: the checkpoint is at step "
-                       "%ld, beyond t_end (%ld steps)", out_path, s->n,
-                       s->nsteps);
-    if (s->n < 0 || s->last_row < -1 || s->last_row > s->n ||
-        !(s->wall >= 0) || !isfinite(s->en.e0) || !(s->en.max_rel >= 0))
-        return bf_fail(err, BF_EINPUT, "%s.ckpt: the loop's state is out of "
-                       "range (step %ld, last row %ld)", out_path, s->n,
-                       s->last_row);
-    /* reopen the output and drop rows written after the checkpoint */
-    if ((st = set_ckpt_path(s, out_path, err)) ||
-        (st = bf_out_open_append(&s->out, out_path, err)) ||
-        (st = open_series(s, err)))
-        return st;
-    size_t nrows;
-    const int64_t *rows = bf_ckpt_data_i64(ck, "out.rows", &nrows);
-    if (!rows || nrows != bf_out_nseries(s->out))
-        return bf_fail(err, BF_EINPUT, "%s.ckpt: the checkpoint does not "
-                       "match the datasets of %s", out_path, out_path);
-    for (size_t k = 0; k < nrows; k++) {
-        if (rows[k] < 0)
-            return bf_fail(err, BF_EINPUT, "%s.ckpt: a negative row count",
-                           out_path);
-        if ((st = bf_series_truncate(bf_out_series_at(s->out, k),
-                                     (size_t)rows[k], err)))
-            return st;
-    }
-    if ((st = bf_out_attr_str(s->out, "/", "status", "running", err)))
-        return st;
-    return bf_out_flush(s->out, err);
 }

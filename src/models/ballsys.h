@@ -123,6 +123,11 @@ bf_status bf_ballsys_load(bf_ballsys *s, const bf_ckpt *ck, const char *prefix,
 void bf_ballsys_energy(const bf_ballsys *s, double t, double *kin,
                        double *pot);
 
+/* The bound on the relative energy error of a ball system whose effects
+ * are all conservative (BF_EFFECT_CONSERVATIVE), 0 otherwise
+ * (model.h, energy_bound). */
+double bf_ballsys_energy_bound(const bf_ballsys *s);
+
 /* The ball view of analyses (model.h). */
 void bf_ballsys_view(bf_ballsys *s, bf_ball_view *v);
 

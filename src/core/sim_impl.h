@@ -1,0 +1,59 @@
+/* sim_impl.h: the loop's state, shared by sim.c (the loop, its output)
+ * and sim_ckpt.c (its checkpoints and restart).  Private to src/core. */
+#ifndef BALLFILM_CORE_SIM_IMPL_H
+#define BALLFILM_CORE_SIM_IMPL_H
+
+#include "ballfilm/sim.h"
+#include "diag/energy.h"
+
+typedef struct observer {
+    const bf_observer_type *t;
+    void *self;
+} observer;
+
+struct bf_sim {
+    const bf_model_type *mt;
+    void *model;
+    bf_sim_opts opts;
+    /* provenance (owned copies) */
+    char *scene_path, *scene_text, *scene_sets;
+    bf_status (*write_params)(void *ctx, bf_out *out, bf_err *err);
+    void *params_ctx;
+    /* something the composition layer hands over to be freed with us */
+    void *owned;
+    void (*owned_free)(void *);
+    observer *obs;
+    size_t nobs;
+    int obs_steps; /* some observer watches every step */
+    double dt, t_end;
+    long nsteps, n;
+    long out_every, energy_every, ckpt_every;
+    long steps_this_run;
+    char *ckpt_path;
+    double energy_bound, flush_seconds;
+    int bound_is_models; /* energy_bound is the model's default bound */
+    int compress; /* deflate level of the output (0: off) */
+    bf_out *out;
+    bf_series *s_time, *s_step, *s_ek, *s_ep, *s_et;
+    long last_row; /* step of the last output row, -1 if none */
+    int has_energy;
+    bf_energy_diag en;
+    double wall;
+    double prog_last;
+    bf_status run_status; /* how the last bf_sim_run ended */
+};
+
+/* Call hook H of every observer that has it with the arguments after self;
+ * stop at the first failure. */
+#define EACH_OBSERVER(s, st, H, ...)                                           \
+    for (size_t k_ = 0; !(st) && k_ < (s)->nobs; k_++)                         \
+        if ((s)->obs[k_].t->H)                                                 \
+    (st) = (s)->obs[k_].t->H((s)->obs[k_].self, __VA_ARGS__)
+
+/* OUT.ckpt of output path OUT into s->ckpt_path. */
+bf_status bf_sim_set_ckpt_path_(bf_sim *s, const char *path, bf_err *err);
+/* The loop's datasets (created, or reopened on restart), then the model's
+ * and the observers'. */
+bf_status bf_sim_open_series_(bf_sim *s, bf_err *err);
+
+#endif

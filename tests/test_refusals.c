@@ -1,0 +1,203 @@
+/* test_refusals.c: what cannot run is refused, and what went wrong is not
+ * called success (docs/reliability.md): an energy error beyond the
+ * model's bound stops the run, dt > t_end and a non-finite initial state
+ * are refused before anything is written, every stop names step, time and
+ * cause, and the summary of a blown-up run does not describe its garbage.
+ *
+ * Each test runs the program the way a user does and checks the exit
+ * status, the message and what is (not) on disk. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "ballfilm/h5out.h"
+#include "testutil.h"
+
+static int exists(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0;
+}
+
+/* Neither OUT nor OUT.part exists. */
+static void nothing_written(const char *out)
+{
+    char part[700];
+    snprintf(part, sizeof part, "%s.part", out);
+    ck_assert_msg(!exists(out) && !exists(part), "%s was written", out);
+}
+
+/* The issue's reproducer: Verlet at dt = 2.5 s on x'' = -x is far beyond
+ * its stability limit (dt < 2); the energy error reached 5.7e47 and the
+ * run ended "ok".  The balls' effects are conservative, so the model's
+ * bound (0.5) applies by default and stops the run after its first step
+ * (error 5.49). */
+START_TEST(energy_beyond_the_models_bound_is_unstable)
+{
+    const char *out = tu_tmp("garbage.h5");
+    char *err = NULL, *sum = NULL;
+    int rc = tu_run(&sum, &err, "run", tu_repo("runs/harmonic.ini"), "-q",
+                    "-o", out, "--set", "scene.integrator=verlet", "--set",
+                    "scene.dt=2.5", "--set", "scene.t_end=100", NULL);
+    ck_assert_int_eq(rc, 3);
+    ck_assert_msg(strstr(err, "step 1 (t = 2.5 s)") &&
+                      strstr(err, "relative energy error") &&
+                      strstr(err, "bound of this model"),
+                  "%s", err);
+    ck_assert_msg(!strstr(sum, "wrote"), "%s", sum);
+    char *status = NULL;
+    bf_err e = {0};
+    ck_assert(bf_h5_read_attr_str(tu_result(out), "/", "status", &status,
+                                  &e) == BF_OK);
+    ck_assert_str_eq(status, "unstable");
+    free(status);
+    free(err);
+    free(sum);
+    /* switched off, the same run ends (the user asked for it) */
+    rc = tu_run(NULL, NULL, "run", tu_repo("runs/harmonic.ini"), "-q", "-o",
+                out, "--set", "scene.integrator=verlet", "--set",
+                "scene.dt=2.5", "--set", "scene.t_end=100", "--set",
+                "scene.energy_bound=no", NULL);
+    ck_assert_int_eq(rc, 0);
+    /* a bound given replaces the model's: 0 is none, a larger one lets
+     * the first steps through */
+    rc = tu_run(NULL, NULL, "run", tu_repo("runs/harmonic.ini"), "-q", "-o",
+                out, "--set", "scene.integrator=verlet", "--set",
+                "scene.dt=2.5", "--set", "scene.t_end=100", "--set",
+                "scene.max_energy_error=0", NULL);
+    ck_assert_int_eq(rc, 0);
+    rc = tu_run(NULL, &err, "run", tu_repo("runs/harmonic.ini"), "-q", "-o",
+                out, "--set", "scene.integrator=verlet", "--set",
+                "scene.dt=2.5", "--set", "scene.t_end=100", "--set",
+                "scene.max_energy_error=1e6", NULL);
+    ck_assert_int_eq(rc, 3);
+    ck_assert_msg(strstr(err, "max_energy_error = 1e+06") &&
+                      !strstr(err, "step 1 "),
+                  "%s", err);
+    free(err);
+    /* a stable run of the same model is not touched by the bound */
+    ck_assert_int_eq(tu_run(NULL, NULL, "run", tu_repo("runs/harmonic.ini"),
+                            "-q", "-o", out, NULL),
+                     0);
+}
+END_TEST
+
+START_TEST(dt_beyond_t_end_refused)
+{
+    const char *out = tu_tmp("dt_t_end.h5");
+    char *err = NULL;
+    int rc = tu_run(NULL, &err, "run", tu_repo("runs/harmonic.ini"), "-q",
+                    "-o", out, "--set", "scene.dt=2", "--set", "scene.t_end=1",
+                    NULL);
+    ck_assert_int_eq(rc, 2);
+    ck_assert_msg(strstr(err, "[scene] dt") && strstr(err, "t_end"), "%s",
+                  err);
+    free(err);
+    nothing_written(out);
+    /* dt = t_end is one step to t_end exactly */
+    ck_assert_int_eq(tu_run(NULL, NULL, "run", tu_repo("runs/harmonic.ini"),
+                            "-q", "-o", out, "--set", "scene.dt=1", "--set",
+                            "scene.t_end=1", "--set",
+                            "scene.energy_bound=no", NULL),
+                     0);
+}
+END_TEST
+
+/* A state whose energy overflows is refused before the output exists
+ * (it used to be written as row 0 with an infinite energy error, and the
+ * run ended "ok"), naming the key. */
+START_TEST(non_finite_initial_state_refused)
+{
+    const char *out = tu_tmp("inf_state.h5");
+    static const char *const cases[][2] = {
+        {"ball.1.velocity=1e200", "[ball.1] velocity"},
+        {"ball.1.position=1e200", "[ball.1] position"},
+    };
+    for (int k = 0; k < 2; k++) {
+        char *err = NULL;
+        int rc = tu_run(NULL, &err, "run", tu_repo("runs/harmonic.ini"), "-q",
+                        "-o", out, "--set", cases[k][0], NULL);
+        ck_assert_int_eq(rc, 2);
+        ck_assert_msg(strstr(err, cases[k][1]) && strstr(err, "not finite"),
+                      "%s: %s", cases[k][0], err);
+        free(err);
+        nothing_written(out);
+    }
+    /* in a scene file the message names its line */
+    const char *scene = tu_write(
+        "inf_state.ini", "[scene]\nmodel = balls\neffects = gravity\n"
+                         "dt = 1e-3\nt_end = 1\n[gravity]\ng = 980\n"
+                         "[ball.1]\nposition = 1\nvelocity = -3e200\n");
+    char *err = NULL;
+    ck_assert_int_eq(tu_run(NULL, &err, "run", scene, "-q", "-o", out, NULL),
+                     2);
+    ck_assert_msg(strstr(err, "inf_state.ini:10:") &&
+                      strstr(err, "[ball.1] velocity"),
+                  "%s", err);
+    free(err);
+    nothing_written(out);
+}
+END_TEST
+
+/* Two of Greenspan's particles on one spot at t = 0: the repulsion has no
+ * direction.  That is the scene's fault: refused (exit 2), naming the
+ * particles, the time and the key; it used to stop as "unstable" naming
+ * no step or time. */
+START_TEST(coinciding_particles_named)
+{
+    const char *out = tu_tmp("coincide.h5");
+    char *err = NULL;
+    int rc = tu_run(
+        NULL, &err, "run", tu_repo("runs/greenspan72_ex1.ini"), "-q", "-o", out,
+        "--set",
+        "greenspan72.positions=12.5 87.5  37.5 87.5  62.5 87.5  87.5 87.5 "
+        "12.5 62.5  37.5 62.5  62.5 62.5  87.5 62.5 12.5 37.5  37.5 37.5 "
+        "62.5 37.5  87.5 37.5 12.5 12.5  37.5 12.5  62.5 12.5  37.5 12.5",
+        NULL);
+    ck_assert_int_eq(rc, 2);
+    ck_assert_msg(strstr(err, "[greenspan72] positions") &&
+                      strstr(err, "at t = 0") &&
+                      strstr(err, "particles 14 and 16 coincide"),
+                  "%s", err);
+    free(err);
+    nothing_written(out);
+}
+END_TEST
+
+/* A film forced beyond its stable step blows up: the run stops unstable
+ * naming step, time and node, and the summary says so instead of
+ * printing the blown-up state's "relative change 0" and kink error next
+ * to "max |u| inf". */
+START_TEST(blown_up_film_summary)
+{
+    const char *out = tu_tmp("blowup.h5");
+    char *err = NULL, *sum = NULL;
+    int rc = tu_run(&sum, &err, "run", tu_repo("runs/kink_steady.ini"), "-q",
+                    "-o", out, "--set", "film.force_dt=yes", "--set",
+                    "scene.dt=0.05", "--set", "scene.t_end=20", NULL);
+    ck_assert_int_eq(rc, 3);
+    ck_assert_msg(strstr(err, "step 7 (t = 0.3 s to 0.35 s)") &&
+                      strstr(err, "non-finite"),
+                  "%s", err);
+    ck_assert_msg(strstr(sum, "unstable after 6 steps (t = 0.3 s)") &&
+                      !strstr(sum, "relative change") &&
+                      !strstr(sum, "kink error") && !strstr(sum, "inf"),
+                  "%s", sum);
+    free(err);
+    free(sum);
+}
+END_TEST
+
+Suite *suite_refusals(void)
+{
+    Suite *s = suite_create("refusals");
+    TCase *tc = tu_tcase("refusals");
+    tcase_add_test(tc, energy_beyond_the_models_bound_is_unstable);
+    tcase_add_test(tc, dt_beyond_t_end_refused);
+    tcase_add_test(tc, non_finite_initial_state_refused);
+    tcase_add_test(tc, coinciding_particles_named);
+    tcase_add_test(tc, blown_up_film_summary);
+    suite_add_tcase(s, tc);
+    return s;
+}
