@@ -11,14 +11,17 @@
  */
 #include "ballfilm/sim.h"
 
+#include <fcntl.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "ballfilm/version.h"
 #include "base/clock.h"
+#include "base/hash.h"
 #include "core/sim_impl.h"
 #include "diag/energy.h"
 
@@ -102,6 +105,34 @@ static char *dup_or_empty(const char *s)
     return strdup(s ? s : "");
 }
 
+/* 64 random bits of the kernel mixed with the wall clock and the process
+ * id: two runs never share one, even two started in the same
+ * nanosecond or on a system without /dev/urandom. */
+static void new_run_id(char buf[20])
+{
+    uint64_t r = 0;
+    int fd = open("/dev/urandom", O_RDONLY | O_CLOEXEC);
+    if (fd >= 0) {
+        if (read(fd, &r, sizeof r) != (ssize_t)sizeof r)
+            r = 0;
+        close(fd);
+    }
+    struct timespec ts = {0, 0};
+    clock_gettime(CLOCK_REALTIME, &ts);
+    int64_t mix[3] = {(int64_t)ts.tv_sec, (int64_t)ts.tv_nsec,
+                      (int64_t)getpid()};
+    r ^= bf_hash64(BF_HASH_INIT, mix, sizeof mix);
+    snprintf(buf, 20, "%016llx", (unsigned long long)r);
+}
+
+/* FNV-1a of the scene's text, a NUL and its overrides (one per line):
+ * everything the run's parameters are resolved from. */
+static void scene_hash_of(const char *text, const char *sets, char buf[20])
+{
+    uint64_t h = bf_hash64(BF_HASH_INIT, text, strlen(text) + 1);
+    h = bf_hash64(h, sets, strlen(sets));
+    snprintf(buf, 20, "%016llx", (unsigned long long)h);
+}
 
 void bf_sim_free(bf_sim *s)
 {
@@ -185,6 +216,10 @@ bf_status bf_sim_create(bf_sim **out, const bf_sim_keys *k,
     s->compress = (int)k->compress;
     if (!s->scene_path || !s->scene_text || !s->scene_sets)
         st = bf_fail(err, BF_EINTERNAL, "out of memory");
+    else {
+        new_run_id(s->run_id);
+        scene_hash_of(s->scene_text, s->scene_sets, s->scene_hash);
+    }
     if (!st)
         st = check_stable_dt(s, err);
     if (!st && s->ckpt_every && !bf_sim_can_checkpoint(s))
@@ -300,6 +335,8 @@ bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)
     if ((st = bf_out_attr_str(o, "/", "version", bf_version_string(), err)) ||
         (st = bf_out_attr_str(o, "/", "scene_file", s->scene_path, err)) ||
         (st = bf_out_attr_str(o, "/", "scene_text", s->scene_text, err)) ||
+        (st = bf_out_attr_str(o, "/", "scene_hash", s->scene_hash, err)) ||
+        (st = bf_out_attr_str(o, "/", "run_id", s->run_id, err)) ||
         (st = bf_out_attr_str(o, "/", "status", "running", err)))
         return st;
     if (s->write_params && (st = s->write_params(s->params_ctx, o, err)))

@@ -1,7 +1,9 @@
 /* sim_ckpt.c: checkpoints of the time loop and the restart from one (see
  * sim.h).  A checkpoint holds the loop's own state (loop_state), the row
  * counts of every series, the model's and the observers' entries, the
- * scene. */
+ * scene, and what ties it to its output: the run's identifier and the
+ * scene's hash, which a restart compares with the output's before it
+ * touches anything. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -72,6 +74,8 @@ bf_status bf_sim_checkpoint_write(bf_sim *s, const char *path, bf_err *err)
     if (!st) st = bf_ckpt_put_str(ck, "scene.path", s->scene_path, err);
     if (!st) st = bf_ckpt_put_str(ck, "scene.text", s->scene_text, err);
     if (!st) st = bf_ckpt_put_str(ck, "scene.sets", s->scene_sets, err);
+    if (!st) st = bf_ckpt_put_str(ck, "run.id", s->run_id, err);
+    if (!st) st = bf_ckpt_put_str(ck, "run.scene_hash", s->scene_hash, err);
     if (!st)
         st = bf_ckpt_put_fields(ck, "sim", loop_state, BF_NFIELDS(loop_state),
                                 s, err);
@@ -86,13 +90,70 @@ bf_status bf_sim_checkpoint_write(bf_sim *s, const char *path, bf_err *err)
     return st;
 }
 
+/* An identifier of 16 hex digits (as new_run_id and scene_hash_of make
+ * them). */
+static int is_id(const char *v)
+{
+    if (!v || strlen(v) != 16)
+        return 0;
+    for (const char *p = v; *p; p++)
+        if (!((*p >= '0' && *p <= '9') || (*p >= 'a' && *p <= 'f')))
+            return 0;
+    return 1;
+}
+
+/* The checkpoint continues the output it is next to: the same run (its
+ * identifier) of the same scene (its hash), read from the file the run
+ * writes (OUT.part, or OUT when it had ended) before it is touched. */
+static bf_status same_run(bf_sim *s, const bf_ckpt *ck, const char *out_path,
+                          bf_err *err)
+{
+    const char *cid = bf_ckpt_str(ck, "run.id");
+    const char *chash = bf_ckpt_str(ck, "run.scene_hash");
+    if (!is_id(cid) || !is_id(chash))
+        return bf_fail(err, BF_EINPUT, "%s.ckpt: the checkpoint names no run "
+                       "(written by another version?); it cannot continue %s",
+                       out_path, out_path);
+    size_t len = strlen(out_path) + 6;
+    char *part = malloc(len);
+    if (!part)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    snprintf(part, len, "%s.part", out_path);
+    const char *file = access(part, F_OK) ? out_path : part;
+    char *oid = NULL, *ohash = NULL;
+    bf_err e = {0};
+    bf_status st = BF_OK;
+    if (bf_h5_read_attr_str(file, "/", "run_id", &oid, &e) ||
+        bf_h5_read_attr_str(file, "/", "scene_hash", &ohash, &e))
+        st = bf_fail(err, BF_EINPUT, "%s: %s names no run (%s); the "
+                     "checkpoint %s.ckpt cannot continue it",
+                     out_path, file, e.msg, out_path);
+    else if (strcmp(oid, cid) || strcmp(ohash, chash))
+        st = bf_fail(err, BF_EINPUT, "%s.ckpt is the checkpoint of another "
+                     "run (run %s of scene %s) than %s (run %s of scene %s); "
+                     "it cannot continue it: restart the run that wrote it, "
+                     "or start %s again",
+                     out_path, cid, chash, file, oid, ohash, out_path);
+    free(oid);
+    free(ohash);
+    free(part);
+    if (!st) {
+        snprintf(s->run_id, sizeof s->run_id, "%s", cid);
+        snprintf(s->scene_hash, sizeof s->scene_hash, "%s", chash);
+    }
+    return st;
+}
+
 bf_status bf_sim_resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
                         bf_err *err)
 {
     if (!bf_sim_can_checkpoint(s))
         return bf_fail(err, BF_EINPUT, "model '%s' cannot restart",
                        s->mt->name);
-    bf_status st = bf_ckpt_get_fields(ck, "sim", loop_state,
+    bf_status st = same_run(s, ck, out_path, err);
+    if (st)
+        return st;
+    st = bf_ckpt_get_fields(ck, "sim", loop_state,
                                       BF_NFIELDS(loop_state), s, err);
     if (!st)
         st = s->mt->checkpoint_load(s->model, ck, err);

@@ -17,6 +17,11 @@ struct bf_sim {
     bf_sim_opts opts;
     /* provenance (owned copies) */
     char *scene_path, *scene_text, *scene_sets;
+    /* what ties an output and its checkpoints together (16 hex digits
+     * each): this run's identifier, and the hash of the scene it was
+     * started with (its text, a NUL, the overrides); a restart takes both
+     * from the checkpoint */
+    char run_id[20], scene_hash[20];
     bf_status (*write_params)(void *ctx, bf_out *out, bf_err *err);
     void *params_ctx;
     /* something the composition layer hands over to be freed with us */
