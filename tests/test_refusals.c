@@ -189,6 +189,124 @@ START_TEST(blown_up_film_summary)
 }
 END_TEST
 
+/* ---- memory ---- */
+
+static int sanitized(void) { return getenv("BALLFILM_SANITIZED") != NULL; }
+
+/* A Greenspan 1973 scene of n particles in a square (layout = list). */
+static const char *g73_scene(const char *name, int n)
+{
+    size_t cap = (size_t)n * 24 + 256, used = 0;
+    char *text = malloc(cap);
+    used += (size_t)snprintf(text, cap, "[scene]\nmodel = greenspan73\n"
+                             "dt = 1e-4\nt_end = 2e-4\n[greenspan73]\n"
+                             "layout = list\npositions =");
+    int side = 1;
+    while (side * side < n)
+        side++;
+    for (int i = 0; i < n; i++)
+        used += (size_t)snprintf(text + used, cap - used, "%s%g %g\n",
+                                 i ? "  " : " ", 1.1 * (i % side),
+                                 1.1 * (i / side));
+    const char *path = tu_write(name, text);
+    free(text);
+    return path;
+}
+
+/* Memory bombs are refused before anything is allocated, with exit 2, the
+ * estimate and the key that sets the size: a film of 1e8 nodes (27 GiB),
+ * 5e7 Greenspan 1972 particles (19 GiB), 20000 Greenspan 1973 particles
+ * (their N^2 arrays, 18 GiB).  The runs are made under an address-space
+ * limit of 8 GiB (ulimit -v), so that the test does not depend on the
+ * memory of the machine; without a limit the machine's available memory
+ * decides (base/sysmem.h).  Each is refused in set-up, at once (the
+ * limit would not let a run allocate anyway). */
+START_TEST(memory_bombs_refused)
+{
+    if (sanitized())
+        return; /* RLIMIT_AS and the sanitizers' shadow memory exclude
+                   each other; make test covers this */
+    const char *out = tu_tmp("bomb.h5");
+    struct {
+        const char *what;
+        const char *argv[12];
+        const char *expect;
+    } cases[] = {
+        {"film",
+         {"run", tu_repo("runs/kink_steady.ini"), "-q", "-o", out, "--set",
+          "film.dx=5e-7", NULL},
+         "[film] dx: 1e+08 nodes"},
+        {"greenspan72",
+         {"run", tu_repo("runs/greenspan72_large.ini"), "-q", "-o", out,
+          "--set", "greenspan72.grid_nx=7071", "--set",
+          "greenspan72.grid_ny=7071", NULL},
+         "[greenspan72] grid_nx: 5e+07 particles"},
+        {"greenspan73",
+         {"run", g73_scene("g73_20000.ini", 20000), "-q", "-o", out, NULL},
+         "[greenspan73] positions: 20000 particles x 20000 particles"},
+    };
+    tu_run_limit_as(8LL << 30);
+    for (int k = 0; k < 3; k++) {
+        char *err = NULL;
+        int rc = tu_runv(NULL, &err, cases[k].argv);
+        ck_assert_msg(rc == 2, "%s: exit %d\n%s", cases[k].what, rc, err);
+        ck_assert_msg(strstr(err, cases[k].expect) && strstr(err, "GiB") &&
+                          strstr(err, "ulimit -v"),
+                      "%s: %s", cases[k].what, err);
+        free(err);
+        nothing_written(out);
+    }
+    /* a smaller film (1e6 nodes, 339 MiB with the program's reserve)
+     * under ulimit -v 256 MiB is refused; without the limit it runs */
+    const char *small[] = {"run", tu_repo("runs/kink_steady.ini"), "-q", "-o",
+                           out, "--set", "film.length=1e5", "--set",
+                           "scene.t_end=0.003", "--set", "film.force_dt=yes",
+                           NULL};
+    tu_run_limit_as(256LL << 20);
+    char *err = NULL;
+    ck_assert_int_eq(tu_runv(NULL, &err, small), 2);
+    ck_assert_msg(strstr(err, "[film] dx: 1e+06 nodes") &&
+                      strstr(err, "MiB"),
+                  "%s", err);
+    free(err);
+    nothing_written(out);
+    tu_run_limit_as(0);
+    ck_assert_int_eq(tu_runv(NULL, NULL, small), 0);
+}
+END_TEST
+
+/* Under any memory limit a run ends with one of the documented statuses
+ * and a message: refused by the estimate (2), or it runs (0); never killed
+ * by a signal (HDF5 and GSL crash or abort when their allocations fail,
+ * so nothing may reach them short of memory), never a bare status 1.
+ * Limits from 40 MiB (below that the dynamic loader itself fails) to
+ * 400 MiB, on a coupled run of 1e5 film nodes (about 170 MiB). */
+START_TEST(any_memory_limit_documented_status)
+{
+    if (sanitized())
+        return;
+    const char *out = tu_tmp("limited.h5");
+    const char *argv[] = {"run", tu_repo("runs/coupled_fig8.ini"), "-q", "-o",
+                          out, "--set", "film.length=10000", "--set",
+                          "scene.t_end=5e-5", NULL};
+    int seen[8] = {0};
+    for (long mib = 40; mib <= 400; mib += 24) {
+        tu_run_limit_as((long long)mib << 20);
+        char *err = NULL;
+        int rc = tu_runv(NULL, &err, argv);
+        ck_assert_msg(rc == 0 || rc == 2 || (rc == 1 && strstr(err, "memory")),
+                      "ulimit -v %ld MiB: exit %d\n%s", mib, rc, err);
+        if (rc == 2)
+            ck_assert_msg(strstr(err, "memory") && strstr(err, "leaves"),
+                          "%ld MiB: %s", mib, err);
+        seen[rc]++;
+        free(err);
+    }
+    tu_run_limit_as(0);
+    ck_assert_msg(seen[0] && seen[2], "refused %d, ran %d", seen[2], seen[0]);
+}
+END_TEST
+
 Suite *suite_refusals(void)
 {
     Suite *s = suite_create("refusals");
@@ -198,6 +316,8 @@ Suite *suite_refusals(void)
     tcase_add_test(tc, non_finite_initial_state_refused);
     tcase_add_test(tc, coinciding_particles_named);
     tcase_add_test(tc, blown_up_film_summary);
+    tcase_add_test(tc, memory_bombs_refused);
+    tcase_add_test(tc, any_memory_limit_documented_status);
     suite_add_tcase(s, tc);
     return s;
 }

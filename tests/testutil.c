@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <sys/wait.h>
@@ -87,6 +88,10 @@ static char *slurp_fd(int fd)
     return s;
 }
 
+static long long run_limit_as; /* RLIMIT_AS of the runs (0: none) */
+
+void tu_run_limit_as(long long bytes) { run_limit_as = bytes; }
+
 int tu_runv(char **out, char **errout, const char *const *argv)
 {
     const char *bin = getenv("BALLFILM_BIN");
@@ -103,6 +108,10 @@ int tu_runv(char **out, char **errout, const char *const *argv)
         int fe = open(efile, O_WRONLY | O_CREAT | O_TRUNC, 0644);
         dup2(fo, 1);
         dup2(fe, 2);
+        if (run_limit_as > 0) {
+            struct rlimit rl = {(rlim_t)run_limit_as, (rlim_t)run_limit_as};
+            setrlimit(RLIMIT_AS, &rl);
+        }
         size_t n = 0;
         while (argv[n])
             n++;

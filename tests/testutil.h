@@ -30,6 +30,11 @@ const char *tu_repo(const char *rel);
 int tu_run(char **out, char **errout, const char *arg0, ...);
 /* The same with an argv array. */
 int tu_runv(char **out, char **errout, const char *const *argv);
+/* Run the program of tu_run/tu_runv under an address-space limit
+ * (setrlimit RLIMIT_AS, as `ulimit -v`) of `bytes` from now on (0: none).
+ * Not under the sanitizers, whose shadow memory needs terabytes of
+ * address space. */
+void tu_run_limit_as(long long bytes);
 
 /* Build and resolve a scene from text; fails the test on error. */
 bf_scene *tu_scene(const char *text);

@@ -102,6 +102,17 @@ typedef struct bf_dt_limit {
     char key[64];        /* [scene] dt) */
 } bf_dt_limit;
 
+/* What a run of a model will need, estimated from its setup before
+ * anything is allocated (model type's memory). */
+typedef struct bf_mem_need {
+    double bytes;      /* the peak, B (the program's own reserve aside) */
+    char what[256];    /* how it arises, completing "[film] dx: ...":
+                          "5e+08 nodes (length 50 cm / dx 1e-07 cm) x 36
+                          doubles" */
+    char section[64];  /* the key that sets the size ("" for none) */
+    char key[64];
+} bf_mem_need;
+
 typedef struct bf_model_type {
     const char *name;
     const char *doc;
@@ -114,6 +125,11 @@ typedef struct bf_model_type {
     bf_status (*create)(void **self, const bf_model_setup *setup,
                         bf_err *err);
     void (*destroy)(void *self);
+    /* The memory a run of the model set up so will need (bf_mem_need),
+     * from the setup alone: the composition layer asks before create and
+     * refuses (BF_EINPUT, naming the key) a run that needs more than the
+     * process may allocate.  Optional (NULL: a few MiB at most). */
+    void (*memory)(const bf_model_setup *setup, bf_mem_need *need);
     /* The largest stable step of the model as set up (bf_dt_limit; leave
      * lim->dt_max 0 for none).  The loop asks once, when the run is
      * built, and refuses a larger [scene] dt with lim's text and key.

@@ -386,7 +386,12 @@ static bf_status append_raw(bf_series *s, const void *row)
 {
     size_t rowbytes = 8 * s->width;
     if (s->nbuf == s->capbuf) {
-        size_t cap = s->capbuf ? 2 * s->capbuf : 64;
+        /* 64 rows to start with, fewer when rows are large (a film
+         * profile of 10^7 nodes is 80 MB a row): the buffer is flushed
+         * beyond FLUSH_BYTES anyway (bf_out_maybe_flush) */
+        size_t first = FLUSH_BYTES / rowbytes;
+        size_t cap = s->capbuf ? 2 * s->capbuf
+                               : first < 1 ? 1 : first > 64 ? 64 : first;
         unsigned char *nb = realloc(s->buf, cap * rowbytes);
         if (!nb)
             return BF_EINTERNAL;

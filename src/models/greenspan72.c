@@ -198,6 +198,35 @@ static void g72_destroy(void *self)
     free(m);
 }
 
+/* The number of particles of the keys (a grid's may be refused). */
+static double g72_count(const g72_keys *k)
+{
+    return k->layout == LAYOUT_LIST ? (double)(k->positions.n / 2)
+                                    : (double)k->grid_nx * (double)k->grid_ny;
+}
+
+/* Doubles per particle: x, y, vx, vy, m and the tag; ax, ay, g and the
+ * old positions; the cell list's six arrays and the support sweep's
+ * eleven (ints and doubles alike counted as 8 bytes); the buffered rows
+ * of the per-particle outputs; 2 more per thread for the repulsion's
+ * work arrays.  Measured: the smallest ulimit -v of a two-step run of
+ * runs/greenspan72_large.ini grows by 306-319 B (38-40 doubles) per
+ * particle from 224^2 to 448^2 particles (docs/reliability.md). */
+static void g72_memory(const bf_model_setup *setup, bf_mem_need *need)
+{
+    const g72_keys *k = bf_setup_get(setup, &g72_spec, NULL);
+    if (!k)
+        return;
+    double n = g72_count(k), threads = k->threads > 1 ? (double)k->threads : 1;
+    double per = 48.0 + 2.0 * threads;
+    need->bytes = 8.0 * per * n;
+    snprintf(need->what, sizeof need->what, "%.3g particles x %.0f doubles",
+             n, per);
+    snprintf(need->section, sizeof need->section, "greenspan72");
+    snprintf(need->key, sizeof need->key,
+             k->layout == LAYOUT_LIST ? "positions" : "grid_nx");
+}
+
 /* Positions and initial velocities from the keys. */
 static bf_status g72_initial(g72 *m, const g72_keys *k72, bf_err *err)
 {
@@ -213,7 +242,6 @@ static bf_status g72_initial(g72 *m, const g72_keys *k72, bf_err *err)
                                "layout = list needs x y pairs (%zu numbers "
                                "given)",
                                npos);
-        n = npos / 2;
     } else {
         if (npos)
             return bf_fail_key(err, BF_EINPUT, S, "positions",
@@ -221,8 +249,8 @@ static bf_status g72_initial(g72 *m, const g72_keys *k72, bf_err *err)
         if ((double)gx * (double)gy > 5e7)
             return bf_fail_key(err, BF_EINPUT, S, "grid_nx",
                                "%ld x %ld particles is too many", gx, gy);
-        n = (size_t)gx * (size_t)gy;
     }
+    n = (size_t)g72_count(k72);
     if (nv && nv != 2 * n)
         return bf_fail_key(err, BF_EINPUT, S, "velocities",
                            "%zu numbers for %zu particles (need %zu)", nv, n,
@@ -771,6 +799,7 @@ const bf_model_type bf_model_greenspan72 = {
     .specs = g72_specs,
     .create = g72_create,
     .destroy = g72_destroy,
+    .memory = g72_memory,
     .step = g72_step,
     .output_open = g72_output_open,
     .output_row = g72_output_row,
