@@ -189,6 +189,135 @@ START_TEST(blown_up_film_summary)
 }
 END_TEST
 
+/* ---- scene text ---- */
+
+/* harmonic.ini with a line of `len` characters after [scene]'s header:
+ * a title (key line) or a comment. */
+static const char *long_line_scene(const char *name, size_t len, int comment)
+{
+    char *line = malloc(len + 1);
+    const char *lead = comment ? "; " : "title = ";
+    size_t l = strlen(lead);
+    memcpy(line, lead, l);
+    for (size_t k = l; k < len; k++)
+        line[k] = (char)('a' + k % 26);
+    line[len] = '\0';
+    size_t cap = len + 512;
+    char *text = malloc(cap);
+    snprintf(text, cap,
+             "[scene]\n%s\nmodel = balls\neffects = spring\ndt = 0.01\n"
+             "t_end = 0.1\n[spring]\nstiffness = 1\n[ball.1]\n"
+             "position = 1\n",
+             line);
+    const char *path = tu_write(name, text);
+    free(line);
+    free(text);
+    return path;
+}
+
+/* inih (Debian's build) reads lines of at most 198 characters: up to
+ * that a line works (150, 198), a longer key line is refused at its line
+ * with the limit and the way round it (199, 5000), a comment line of any
+ * length is skipped (it was refused). */
+START_TEST(long_lines)
+{
+    const char *out = tu_tmp("long.h5");
+    static const size_t ok_len[] = {150, 198};
+    for (int k = 0; k < 2; k++) {
+        const char *scene = long_line_scene("long_ok.ini", ok_len[k], 0);
+        char *err = NULL;
+        int rc = tu_run(NULL, &err, "run", scene, "-q", "-o", out, NULL);
+        ck_assert_msg(rc == 0, "%zu: %s", ok_len[k], err);
+        free(err);
+        /* the whole value arrived */
+        char *title = NULL;
+        bf_err e = {0};
+        ck_assert(bf_h5_read_attr_str(out, "/", "scene.title", &title, &e) ==
+                  BF_OK);
+        ck_assert_uint_eq(strlen(title), ok_len[k] - strlen("title = "));
+        free(title);
+    }
+    static const size_t bad_len[] = {199, 5000};
+    for (int k = 0; k < 2; k++) {
+        const char *scene = long_line_scene("long_bad.ini", bad_len[k], 0);
+        char *err = NULL;
+        ck_assert_int_eq(tu_run(NULL, &err, "run", scene, "-q", "-o",
+                                tu_tmp("long_bad.h5"), NULL),
+                         2);
+        ck_assert_msg(strstr(err, "long_bad.ini:2: error: line too long") &&
+                          strstr(err, "at most 198 characters") &&
+                          strstr(err, "continuation"),
+                      "%zu: %s", bad_len[k], err);
+        free(err);
+        nothing_written(tu_tmp("long_bad.h5"));
+    }
+    const char *scene = long_line_scene("long_comment.ini", 5000, 1);
+    ck_assert_int_eq(tu_run(NULL, NULL, "run", scene, "-q", "-o", out, NULL),
+                     0);
+}
+END_TEST
+
+/* A scene must be UTF-8 text: a binary file (the program itself), a NUL
+ * byte, a Latin-1 comment or --set value are refused with FILE:LINE (and
+ * the column), exit 2; a file name that is not UTF-8 reaches the output's
+ * attributes escaped (\xNN), never as invalid UTF-8 tagged UTF-8. */
+START_TEST(scene_must_be_text)
+{
+    const char *out = tu_tmp("text.h5");
+    const char *bin = getenv("BALLFILM_BIN");
+    char *err = NULL;
+    ck_assert_int_eq(tu_run(NULL, &err, "run", bin, "-q", "-o", out, NULL), 2);
+    char want[700];
+    snprintf(want, sizeof want, "%s:1: error:", bin);
+    ck_assert_msg(strstr(err, want), "%s", err);
+    free(err);
+    nothing_written(out);
+    const char *nul = tu_tmp("nul.ini");
+    FILE *f = fopen(nul, "wb");
+    ck_assert(f && fwrite("[scene]\nmodel = balls\n\0x\n", 1, 26, f) == 26);
+    fclose(f);
+    ck_assert_int_eq(tu_run(NULL, &err, "run", nul, "-q", "-o", out, NULL), 2);
+    ck_assert_msg(strstr(err, "nul.ini:3: error: a NUL byte"), "%s", err);
+    free(err);
+    const char *latin1 = tu_write(
+        "latin1.ini", "[scene]\nmodel = balls\neffects = spring\n"
+                      "; 20 \xb0" "C\ndt = 0.01\nt_end = 0.1\n"
+                      "[ball.1]\nposition = 1\n");
+    ck_assert_int_eq(tu_run(NULL, &err, "run", latin1, "-q", "-o", out, NULL),
+                     2);
+    ck_assert_msg(strstr(err, "latin1.ini:4: error: not UTF-8") &&
+                      strstr(err, "0xb0 at column 6"),
+                  "%s", err);
+    free(err);
+    ck_assert_int_eq(tu_run(NULL, &err, "run", tu_repo("runs/harmonic.ini"),
+                            "-q", "-o", out, "--set", "scene.title=caf\xe9",
+                            NULL),
+                     2);
+    ck_assert_msg(strstr(err, "scene.title: the value is not UTF-8"), "%s",
+                  err);
+    free(err);
+    nothing_written(out);
+    /* a scene whose name is Latin-1 */
+    char odd[600];
+    snprintf(odd, sizeof odd, "%s/caf\xe9.ini", tu_tmpdir());
+    FILE *in = fopen(tu_repo("runs/harmonic.ini"), "rb"),
+         *cp = fopen(odd, "wb");
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, in)) > 0)
+        ck_assert(fwrite(buf, 1, n, cp) == n);
+    fclose(in);
+    fclose(cp);
+    ck_assert_int_eq(tu_run(NULL, NULL, "run", odd, "-q", "-o", out, NULL), 0);
+    char *file = NULL;
+    bf_err e = {0};
+    ck_assert(bf_h5_read_attr_str(out, "/", "scene_file", &file, &e) ==
+              BF_OK);
+    ck_assert_msg(strstr(file, "caf\\xe9.ini"), "%s", file);
+    free(file);
+}
+END_TEST
+
 /* ---- memory ---- */
 
 static int sanitized(void) { return getenv("BALLFILM_SANITIZED") != NULL; }
@@ -316,6 +445,8 @@ Suite *suite_refusals(void)
     tcase_add_test(tc, non_finite_initial_state_refused);
     tcase_add_test(tc, coinciding_particles_named);
     tcase_add_test(tc, blown_up_film_summary);
+    tcase_add_test(tc, long_lines);
+    tcase_add_test(tc, scene_must_be_text);
     tcase_add_test(tc, memory_bombs_refused);
     tcase_add_test(tc, any_memory_limit_documented_status);
     suite_add_tcase(s, tc);
