@@ -190,11 +190,13 @@ START_TEST(advance_stops_at_the_failing_step)
 {
     blowup(&scenes[1], "verlet", 1e-3, 7744);
     blowup(&scenes[1], "mv2m", 3e-3, 14);
-    /* one ball does not gain enough energy to overflow; thrown at the
-     * floor at 1e300 cm/s, its first step ends far below it, where the
-     * force is inf */
+    /* one ball does not gain enough energy to overflow; thrown at a
+     * stiff floor at 1e150 cm/s (a finite initial energy: a faster ball
+     * is refused as a scene), its first step ends 1e147 cm below it,
+     * where the force k d^{3/2} = 1e100 (1e147)^{3/2} is inf */
     static const scene_case deep = {
-        "gravity floor", "[ball.1]\nposition = 0.2\nvelocity = -1e300\n"};
+        "gravity floor",
+        "[floor]\nk = 1e100\n[ball.1]\nposition = 0.2\nvelocity = -1e150\n"};
     blowup(&deep, "verlet", 1e-3, 1);
     blowup(&deep, "mv2m", 1e-3, 1);
     blowup(&scenes[2], "verlet", 3e-3, 0);

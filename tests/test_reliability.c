@@ -106,12 +106,17 @@ static char *slurp(const char *path)
     return buf;
 }
 
+/* A byte-for-byte copy (checkpoints are binary). */
 static void copy_file(const char *from, const char *to)
 {
-    char *text = slurp(from);
-    FILE *f = fopen(to, "w");
-    ck_assert(f && fputs(text, f) >= 0 && fclose(f) == 0);
-    free(text);
+    FILE *in = fopen(from, "rb"), *out = fopen(to, "wb");
+    ck_assert_msg(in && out, "%s -> %s", from, to);
+    char buf[65536];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, in)) > 0)
+        ck_assert(fwrite(buf, 1, n, out) == n);
+    fclose(in);
+    ck_assert(fclose(out) == 0);
 }
 
 static int exists(const char *path)
@@ -299,6 +304,71 @@ START_TEST(damaged_checkpoints_refused)
 }
 END_TEST
 
+/* The output and its checkpoint carry the run's identifier and the
+ * scene's hash; a checkpoint of another run (even of the same scene) is
+ * refused with exit 2 before the output is touched, and the right one
+ * still continues it. */
+START_TEST(checkpoint_of_another_run_refused)
+{
+    char a[600], b[600], cka[700], ckb[700], keep[800], parta[700];
+    snprintf(a, sizeof a, "%s", tu_tmp("runa.h5"));
+    snprintf(b, sizeof b, "%s", tu_tmp("runb.h5"));
+    snprintf(cka, sizeof cka, "%s.ckpt", a);
+    snprintf(ckb, sizeof ckb, "%s.ckpt", b);
+    snprintf(keep, sizeof keep, "%s.mine", cka);
+    snprintf(parta, sizeof parta, "%s.part", a);
+    const char *outs[2] = {a, b};
+    for (int k = 0; k < 2; k++)
+        ck_assert_int_eq(tu_run(NULL, NULL, "run",
+                                tu_repo("runs/two_balls_B.ini"), "-o", outs[k],
+                                "-q", "--set", "scene.t_end=2",
+                                "--stop-after", "3000", NULL),
+                         6);
+    char *ida = NULL, *idb = NULL, *ha = NULL, *hb = NULL;
+    bf_err e = {0};
+    ck_assert(bf_h5_read_attr_str(parta, "/", "run_id", &ida, &e) == BF_OK);
+    ck_assert(bf_h5_read_attr_str(tu_result(b), "/", "run_id", &idb, &e) ==
+              BF_OK);
+    ck_assert(bf_h5_read_attr_str(parta, "/", "scene_hash", &ha, &e) ==
+              BF_OK);
+    ck_assert(bf_h5_read_attr_str(tu_result(b), "/", "scene_hash", &hb,
+                                  &e) == BF_OK);
+    ck_assert_msg(strlen(ida) == 16 && strcmp(ida, idb), "%s %s", ida, idb);
+    ck_assert_str_eq(ha, hb); /* the same scene and overrides */
+    /* B's checkpoint next to A's output */
+    rename(cka, keep);
+    copy_file(ckb, cka);
+    struct stat before, after;
+    ck_assert(stat(parta, &before) == 0);
+    char *err = NULL;
+    int rc = tu_run(NULL, &err, "run", "--restart", a, "-q", NULL);
+    ck_assert_int_eq(rc, 2);
+    ck_assert_msg(strstr(err, "another run") && strstr(err, ida) &&
+                      strstr(err, idb),
+                  "%s", err);
+    free(err);
+    ck_assert(stat(parta, &after) == 0);
+    ck_assert(before.st_size == after.st_size &&
+              before.st_mtime == after.st_mtime);
+    /* its own checkpoint continues it */
+    rename(keep, cka);
+    rc = tu_run(NULL, &err, "run", "--restart", a, "-q", NULL);
+    ck_assert_msg(rc == 0, "%s", err);
+    free(err);
+    /* another override is another scene */
+    ck_assert_int_eq(tu_run(NULL, NULL, "run", tu_repo("runs/two_balls_B.ini"),
+                            "-o", b, "-q", "--set", "scene.t_end=2.5", NULL),
+                     0);
+    free(hb);
+    ck_assert(bf_h5_read_attr_str(b, "/", "scene_hash", &hb, &e) == BF_OK);
+    ck_assert_str_ne(ha, hb);
+    free(ida);
+    free(idb);
+    free(ha);
+    free(hb);
+}
+END_TEST
+
 /* --restart --set may change when a run ends and how often it writes,
  * not what it computes. */
 START_TEST(restart_cannot_change_the_physics)
@@ -430,6 +500,7 @@ Suite *suite_reliability(void)
     tcase_add_test(tc, output_equal_to_an_input_refused);
     tcase_add_test(tc, full_disk_readable_and_restartable);
     tcase_add_test(tc, damaged_checkpoints_refused);
+    tcase_add_test(tc, checkpoint_of_another_run_refused);
     tcase_add_test(tc, restart_cannot_change_the_physics);
     tcase_add_test(tc, checkpoint_removed_when_the_run_ends);
     tcase_add_test(tc, interrupt_during_setup);

@@ -1,7 +1,7 @@
 /* test_scenes.c: every scene in runs/ — whatever its model — starts, is
  * deterministic (two runs give the same bits), and survives interruption
  * (stopped at an odd step and continued with --restart, it gives the same
- * bits as the uninterrupted run).  Each scene runs 40 steps with a row every
+ * bits and counters as the uninterrupted run).  Each scene runs 40 steps with a row every
  * 10 steps, so the suite stays short while new scenes are covered
  * automatically. */
 #include <dirent.h>
@@ -53,6 +53,8 @@ static void check_scene(const char *name)
         free(err);
     }
     tu_same_datasets(a, b);
+    /* a restart recomputes what it does not store: never counted twice */
+    tu_same_counters(a, b);
 }
 
 START_TEST(every_scene_deterministic_and_restartable)

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <sys/wait.h>
@@ -87,6 +88,10 @@ static char *slurp_fd(int fd)
     return s;
 }
 
+static long long run_limit_as; /* RLIMIT_AS of the runs (0: none) */
+
+void tu_run_limit_as(long long bytes) { run_limit_as = bytes; }
+
 int tu_runv(char **out, char **errout, const char *const *argv)
 {
     const char *bin = getenv("BALLFILM_BIN");
@@ -103,6 +108,10 @@ int tu_runv(char **out, char **errout, const char *const *argv)
         int fe = open(efile, O_WRONLY | O_CREAT | O_TRUNC, 0644);
         dup2(fo, 1);
         dup2(fe, 2);
+        if (run_limit_as > 0) {
+            struct rlimit rl = {(rlim_t)run_limit_as, (rlim_t)run_limit_as};
+            setrlimit(RLIMIT_AS, &rl);
+        }
         size_t n = 0;
         while (argv[n])
             n++;
@@ -407,6 +416,24 @@ bf_integrator *tu_integrator(const char *name, const char *keys, size_t n)
     return it;
 }
 
+void tu_same_counters(const char *a, const char *b)
+{
+    static const char *const counters[] = {
+        "steps_done", "force_evaluations", "rejected_steps", "iterations",
+        "max_relative_energy_error"};
+    for (size_t k = 0; k < sizeof counters / sizeof *counters; k++) {
+        double va = 0, vb = 0;
+        bf_err e = {0};
+        int has_a = bf_h5_read_attr_real(tu_result(a), "/", counters[k], &va,
+                                         &e) == BF_OK;
+        int has_b = bf_h5_read_attr_real(tu_result(b), "/", counters[k], &vb,
+                                         &e) == BF_OK;
+        ck_assert_msg(has_a == has_b &&
+                          (!has_a || va == vb || (va != va && vb != vb)),
+                      "%s %s %.17g, %s %.17g", counters[k], a, va, b, vb);
+    }
+}
+
 void tu_stop_restart_same(const char *scene, const char *full,
                           const char *part, const char *stop,
                           const char *const *args)
@@ -429,6 +456,7 @@ void tu_stop_restart_same(const char *scene, const char *full,
                   err ? err : "");
     free(err);
     tu_same_datasets(full, part);
+    tu_same_counters(full, part);
 }
 
 int tu_part_unlocked(int fd)

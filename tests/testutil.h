@@ -30,6 +30,11 @@ const char *tu_repo(const char *rel);
 int tu_run(char **out, char **errout, const char *arg0, ...);
 /* The same with an argv array. */
 int tu_runv(char **out, char **errout, const char *const *argv);
+/* Run the program of tu_run/tu_runv under an address-space limit
+ * (setrlimit RLIMIT_AS, as `ulimit -v`) of `bytes` from now on (0: none).
+ * Not under the sanitizers, whose shadow memory needs terabytes of
+ * address space. */
+void tu_run_limit_as(long long bytes);
 
 /* Build and resolve a scene from text; fails the test on error. */
 bf_scene *tu_scene(const char *text);
@@ -55,9 +60,15 @@ void tu_wait_for_file(const char *path, long bytes);
  * looked up with tu_result). */
 void tu_same_datasets(const char *a, const char *b);
 
+/* Assert that two runs' counters agree (root attributes steps_done,
+ * force_evaluations, rejected_steps, iterations,
+ * max_relative_energy_error; each present in both or in neither). */
+void tu_same_counters(const char *a, const char *b);
+
 /* Run `run SCENE -o PART -q ARGS... --stop-after STOP` (it must stop:
  * exit 6), continue it with `run --restart PART -q` (it must finish), and
- * assert that PART holds FULL's datasets bit for bit.  args is
+ * assert that PART holds FULL's datasets bit for bit and its counters
+ * (tu_same_counters).  args is
  * NULL-terminated (at most 16). */
 void tu_stop_restart_same(const char *scene, const char *full,
                           const char *part, const char *stop,

@@ -56,7 +56,11 @@ enum {
     BF_EFFECT_FLOOR = 1u << 0,
     /* the force is odd under the mirror x -> -x (ball i <-> ball n+1-i):
      * the coupled model's forced symmetry may use it */
-    BF_EFFECT_MIRROR_ODD = 1u << 1
+    BF_EFFECT_MIRROR_ODD = 1u << 1,
+    /* the force is minus the gradient of `potential`, which does not
+     * depend on t: with only such effects the balls' energy is conserved
+     * and the loop bounds its error (model.h, energy_bound) */
+    BF_EFFECT_CONSERVATIVE = 1u << 2
 };
 
 typedef struct bf_effect_type {

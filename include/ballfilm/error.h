@@ -14,7 +14,8 @@
 typedef enum bf_status {
     BF_OK = 0,          /* success, run finished */
     BF_EINTERNAL = 1,   /* a bug or an out-of-memory condition */
-    BF_EINPUT = 2,      /* bad scene file, bad --set, bad command line */
+    BF_EINPUT = 2,      /* bad scene file, bad --set, bad command line, a
+                           run that needs more memory than there is */
     BF_EUNSTABLE = 3,   /* run stopped: non-finite or out-of-range state,
                            energy bound exceeded, CFL violated */
     BF_ENOCONV = 4,     /* an iteration (implicit step, pressure) did not

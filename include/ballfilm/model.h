@@ -116,6 +116,17 @@ typedef struct bf_state_var {
     int settable;       /* set_state takes it before the first step */
 } bf_state_var;
 
+/* What a run of a model will need, estimated from its setup before
+ * anything is allocated (model type's memory). */
+typedef struct bf_mem_need {
+    double bytes;      /* the peak, B (the program's own reserve aside) */
+    char what[256];    /* how it arises, completing "[film] dx: ...":
+                          "5e+08 nodes (length 50 cm / dx 1e-07 cm) x 36
+                          doubles" */
+    char section[64];  /* the key that sets the size ("" for none) */
+    char key[64];
+} bf_mem_need;
+
 typedef struct bf_model_type {
     const char *name;
     const char *doc;
@@ -128,6 +139,11 @@ typedef struct bf_model_type {
     bf_status (*create)(void **self, const bf_model_setup *setup,
                         bf_err *err);
     void (*destroy)(void *self);
+    /* The memory a run of the model set up so will need (bf_mem_need),
+     * from the setup alone: the composition layer asks before create and
+     * refuses (BF_EINPUT, naming the key) a run that needs more than the
+     * process may allocate.  Optional (NULL: a few MiB at most). */
+    void (*memory)(const bf_model_setup *setup, bf_mem_need *need);
     /* The largest stable step of the model as set up (bf_dt_limit; leave
      * lim->dt_max 0 for none).  The loop asks once, when the run is
      * built, and refuses a larger [scene] dt with lim's text and key.
@@ -139,6 +155,11 @@ typedef struct bf_model_type {
     /* Kinetic and potential energy (erg).  Optional: NULL if the model has
      * no conserved energy to monitor. */
     void (*energy)(const void *self, double t, double *kin, double *pot);
+    /* The largest relative energy error a run of the model as set up can
+     * have and still be a result (0: its energy is not conserved, no
+     * bound).  The loop stops a run beyond it as unstable unless [scene]
+     * max_energy_error replaces it or energy_bound = no.  Optional. */
+    double (*energy_bound)(const void *self);
     /* Create the model's datasets; called once before the first row. */
     bf_status (*output_open)(void *self, bf_out *out, bf_err *err);
     /* Append one output row of the model's series (state at t). */

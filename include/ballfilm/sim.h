@@ -3,7 +3,9 @@
  * The loop owns time (t = n dt, never accumulated), the output schedule
  * ([scene] output_every), energy bookkeeping (relative error against the
  * initial energy, every [scene] energy_every steps), the stop conditions
- * (non-finite state reported by the model, energy bound, interruption), the
+ * (non-finite state reported by the model, energy bound: [scene]
+ * max_energy_error, or the model's own for a model whose energy is
+ * conserved, interruption), the
  * progress line and the summary.  It ends with a named status (error.h).
  *
  * Observers (Basilisk's events, REBOUND's heartbeat) hook into the loop
@@ -42,6 +44,9 @@ typedef struct bf_sim_keys {
     bf_interval output_every;     /* steps or s */
     long energy_every;            /* steps (0: at output rows) */
     double max_energy_error;      /* 1 (0: no bound) */
+    int energy_bound;             /* 1: the model's bound applies when
+                                     max_energy_error is 0 (model.h,
+                                     energy_bound) */
     double flush_seconds;         /* s of wall time */
     bf_interval checkpoint_every; /* steps or s (0: when interrupted) */
     long compress;                /* deflate level of large datasets (0: off) */

@@ -119,6 +119,22 @@ static void warn_disk_space(const bf_sim *sim, const char *out_path)
                 need / 1048576.0, avail / 1048576.0, out_path);
 }
 
+/* A failure before the run started: scene errors come located
+ * ("FILE:LINE: error: ..."); the others get the program's prefix, and an
+ * allocation that failed says so (status 1 is documented as that or a
+ * bug, docs/output.md). */
+static void print_setup_error(bf_status st, const char *msg)
+{
+    if (strstr(msg, ": error: ") && strncmp(msg, "ballfilm:", 9))
+        fprintf(stderr, "%s\n", msg);
+    else if (st == BF_EINTERNAL && strstr(msg, "out of memory"))
+        fprintf(stderr, "ballfilm: error: %s: the run needs more memory than "
+                        "this process may allocate (free memory, ulimit -v); "
+                        "make it smaller\n", msg);
+    else
+        fprintf(stderr, "ballfilm: error: %s\n", msg);
+}
+
 int bf_cmd_run(int argc, char **argv)
 {
     const char *scene_path = NULL, *out_path = NULL, *restart = NULL;
@@ -213,7 +229,7 @@ int bf_cmd_run(int argc, char **argv)
         st = bf_run_restart(&run, bf_catalog_builtin(), restart, sets,
                             (size_t)nset, &opts, &err);
         if (st) {
-            fprintf(stderr, "ballfilm: error: %s\n", err.msg);
+            print_setup_error(st, err.msg);
             goto done;
         }
         sim = bf_run_sim(run);
@@ -223,7 +239,7 @@ int bf_cmd_run(int argc, char **argv)
     st = bf_run_load(&run, bf_catalog_builtin(), scene_path, sets,
                      (size_t)nset, &opts, &err);
     if (st) {
-        fprintf(stderr, "%s\n", err.msg);
+        print_setup_error(st, err.msg);
         goto done;
     }
     sim = bf_run_sim(run);
@@ -245,7 +261,7 @@ int bf_cmd_run(int argc, char **argv)
         }
     }
     if ((st = bf_run_open_output(run, out_path, &err))) {
-        fprintf(stderr, "ballfilm: error: %s\n", err.msg);
+        print_setup_error(st, err.msg);
         goto done;
     }
 run:;
@@ -263,6 +279,13 @@ run:;
         fprintf(stderr, "ballfilm: I/O error: %s\n", err.msg);
         fprintf(stderr, "ballfilm: %s may be incomplete; free space (or thin "
                         "the output) and run again\n", out_path);
+        st = run_st;
+    } else if (run_st == BF_EINTERNAL && strstr(err.msg, "out of memory")) {
+        fprintf(stderr, "ballfilm: out of memory: %s; the run needed more "
+                        "memory than this process may allocate (free memory, "
+                        "ulimit -v)\n", err.msg);
+        fprintf(stderr, "ballfilm: output up to the last good output row is in "
+                        "%s\n", out_path);
         st = run_st;
     } else if (run_st) {
         fprintf(stderr, "ballfilm: %s: %s\n", bf_status_name(run_st), err.msg);

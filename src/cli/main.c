@@ -1,6 +1,7 @@
 /* main.c: the ballfilm command line.  Subcommands dispatch to cmd_*.c; the
- * exit status is the run's bf_status (error.h): 0 ok, 2 bad input,
- * 3 unstable, 4 no convergence, 5 I/O error, 6 interrupted. */
+ * exit status is the run's bf_status (error.h): 0 ok, 1 out of memory or a
+ * bug, 2 bad input, 3 unstable, 4 no convergence, 5 I/O error,
+ * 6 interrupted. */
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
@@ -39,9 +40,11 @@ static void usage(FILE *f)
             "  help               this text and every scene key\n"
             "  version            print the version\n"
             "\n"
-            "exit status: 0 ok, 2 bad input, 3 run unstable, 4 iteration did "
-            "not converge,\n"
-            "             5 I/O error, 6 interrupted\n");
+            "exit status: 0 ok, 1 out of memory or internal error, 2 bad "
+            "input (also a run\n"
+            "             that needs more memory than there is), 3 run "
+            "unstable, 4 iteration\n"
+            "             did not converge, 5 I/O error, 6 interrupted\n");
 }
 
 volatile sig_atomic_t bf_cli_stop = 0;

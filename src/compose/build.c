@@ -78,6 +78,9 @@ static bf_status sim_from_scene(bf_sim **out, const bf_catalog *c,
     *out = NULL;
     bf_sim_keys k;
     bf_scene_fill(sc, "scene", &bf_sim_scene_spec, &k);
+    /* a bound given replaces the model's (0 included: no bound at all) */
+    if (bf_scene_given(sc, "scene", "max_energy_error"))
+        k.energy_bound = 0;
     bf_run_ctx run;
     bf_setup *setup = NULL;
     void *model = NULL;
@@ -131,7 +134,7 @@ bf_status bf_sim_from_scene(bf_sim **out, const bf_catalog *c,
 static const char *const restart_keys[] = {
     "scene.t_end",        "scene.output_every",    "scene.energy_every",
     "scene.flush_seconds", "scene.checkpoint_every", "scene.max_energy_error",
-    "film.profile_every",
+    "scene.energy_bound", "film.profile_every",
 };
 
 static bf_status restart_key_allowed(const char *set, bf_err *err)
@@ -146,7 +149,8 @@ static bf_status restart_key_allowed(const char *set, bf_err *err)
     return bf_fail(err, BF_EINPUT, "--restart --set %.*s: a continued run "
                    "cannot change what it computes; only t_end, "
                    "output_every, energy_every, flush_seconds, "
-                   "checkpoint_every, max_energy_error ([scene]) and "
+                   "checkpoint_every, max_energy_error, energy_bound "
+                   "([scene]) and "
                    "profile_every ([film]) may change (start a new run for "
                    "another scene)",
                    (int)len, set);

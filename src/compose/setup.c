@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/sysmem.h"
 #include "models/ballsys.h"
 #include "compose.h"
 
@@ -188,11 +189,55 @@ bf_status bf_setup_observe(const bf_setup *s, const bf_catalog *c,
     return BF_OK;
 }
 
+/* What every run needs beyond its model's arrays: HDF5's caches and the
+ * working memory of the libraries, a few threads' stacks.  Without it a
+ * run under a tight ulimit -v would fail inside HDF5 (which crashes when
+ * its own allocations fail) instead of being refused. */
+#define PROGRAM_RESERVE (64.0 * 1048576.0)
+
+/* "12.3 GiB", "45 MiB" */
+static void human(double bytes, char *buf, size_t cap)
+{
+    if (bytes >= 1073741824.0)
+        snprintf(buf, cap, "%.3g GiB", bytes / 1073741824.0);
+    else
+        snprintf(buf, cap, "%.3g MiB", bytes / 1048576.0);
+}
+
+/* A run that needs more memory than the process may allocate is refused
+ * before its model allocates anything (the estimate is the model's,
+ * model.h memory; the limit base/sysmem.h's). */
+static bf_status check_memory(const bf_setup *s, bf_err *err)
+{
+    bf_mem_need need = {0};
+    if (s->mt->memory)
+        s->mt->memory(&s->pub, &need);
+    double total = need.bytes + PROGRAM_RESERVE;
+    bf_mem_avail av;
+    bf_mem_available(&av);
+    if (!(total > av.bytes))
+        return BF_OK;
+    char t[32], a[32];
+    human(total, t, sizeof t);
+    human(av.bytes, a, sizeof a);
+    if (need.bytes > 0)
+        return bf_fail_key(err, BF_EINPUT, need.section, need.key,
+                           "%s need about %s of memory (with the program's "
+                           "own %.0f MiB); %s leaves %s: make the run smaller",
+                           need.what, t, PROGRAM_RESERVE / 1048576.0,
+                           av.source, a);
+    return bf_fail(err, BF_EINPUT, "the run needs about %s of memory (HDF5 "
+                   "and the libraries' working memory); %s leaves %s",
+                   t, av.source, a);
+}
+
 bf_status bf_setup_build_model(const bf_setup *s, const bf_scene *sc,
                                void **model, bf_err *err)
 {
     *model = NULL;
-    bf_status st = s->mt->create(model, &s->pub, err);
+    bf_status st = check_memory(s, err);
+    if (!st)
+        st = s->mt->create(model, &s->pub, err);
     if (st)
         bf_scene_locate(sc, err);
     return st;

@@ -11,15 +11,19 @@
  */
 #include "ballfilm/sim.h"
 
+#include <fcntl.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "ballfilm/version.h"
 #include "base/clock.h"
+#include "base/hash.h"
 #include "core/sim_impl.h"
+#include "diag/energy.h"
 #include "io/h5lock.h"
 
 static const bf_param scene_params[] = {
@@ -48,8 +52,13 @@ static const bf_param scene_params[] = {
     {"max_energy_error", BF_AT(bf_sim_keys, max_energy_error, BF_REAL), "1",
      "0",
      "stop the run when the relative energy error exceeds this (0: no "
-     "bound)",
+     "bound); when given, it replaces the model's bound (energy_bound)",
      BF_NONNEG, 0, 0, NULL},
+    {"energy_bound", BF_AT(bf_sim_keys, energy_bound, BF_BOOL), "", "yes",
+     "stop the run as unstable when the relative energy error exceeds the "
+     "model's bound, for models whose energy is conserved: balls whose "
+     "effects are all conservative 0.5, greenspan73 1e-6 (no: off)",
+     0, 0, 0, NULL},
     {"flush_seconds", BF_AT(bf_sim_keys, flush_seconds, BF_REAL),
      "s (wall)", "5",
      "wall-clock interval between HDF5 flushes (what a killed run keeps)",
@@ -72,6 +81,13 @@ const bf_section_spec bf_sim_scene_spec =
 
 bf_status bf_sim_run_ctx(const bf_sim_keys *k, bf_run_ctx *run, bf_err *err)
 {
+    /* t = n dt with n whole: a step longer than the run would end it at
+     * dt, past t_end */
+    if (k->dt > k->t_end)
+        return bf_fail_key(err, BF_EINPUT, "scene", "dt",
+                           "dt = %g s exceeds t_end = %g s: the run would "
+                           "end at t = dt, past t_end",
+                           k->dt, k->t_end);
     double steps = ceil(k->t_end / k->dt * (1.0 - 1e-12));
     if (!(steps < 9e15))
         return bf_fail_key(err, BF_EINPUT, "scene", "t_end",
@@ -88,6 +104,35 @@ bf_status bf_sim_run_ctx(const bf_sim_keys *k, bf_run_ctx *run, bf_err *err)
 static char *dup_or_empty(const char *s)
 {
     return strdup(s ? s : "");
+}
+
+/* 64 random bits of the kernel mixed with the wall clock and the process
+ * id: two runs never share one, even two started in the same
+ * nanosecond or on a system without /dev/urandom. */
+static void new_run_id(char buf[20])
+{
+    uint64_t r = 0;
+    int fd = open("/dev/urandom", O_RDONLY | O_CLOEXEC);
+    if (fd >= 0) {
+        if (read(fd, &r, sizeof r) != (ssize_t)sizeof r)
+            r = 0;
+        close(fd);
+    }
+    struct timespec ts = {0, 0};
+    clock_gettime(CLOCK_REALTIME, &ts);
+    int64_t mix[3] = {(int64_t)ts.tv_sec, (int64_t)ts.tv_nsec,
+                      (int64_t)getpid()};
+    r ^= bf_hash64(BF_HASH_INIT, mix, sizeof mix);
+    snprintf(buf, 20, "%016llx", (unsigned long long)r);
+}
+
+/* FNV-1a of the scene's text, a NUL and its overrides (one per line):
+ * everything the run's parameters are resolved from. */
+static void scene_hash_of(const char *text, const char *sets, char buf[20])
+{
+    uint64_t h = bf_hash64(BF_HASH_INIT, text, strlen(text) + 1);
+    h = bf_hash64(h, sets, strlen(sets));
+    snprintf(buf, 20, "%016llx", (unsigned long long)h);
 }
 
 void bf_sim_free(bf_sim *s)
@@ -168,10 +213,18 @@ bf_status bf_sim_create(bf_sim **out, const bf_sim_keys *k,
     s->ckpt_every = bf_interval_steps(k->checkpoint_every, s->dt);
     s->energy_every = k->energy_every;
     s->energy_bound = k->max_energy_error;
+    if (!(s->energy_bound > 0) && k->energy_bound && mt->energy_bound) {
+        s->energy_bound = mt->energy_bound(model);
+        s->bound_is_models = s->energy_bound > 0;
+    }
     s->flush_seconds = k->flush_seconds;
     s->compress = (int)k->compress;
     if (!s->scene_path || !s->scene_text || !s->scene_sets)
         st = bf_fail(err, BF_EINTERNAL, "out of memory");
+    else {
+        new_run_id(s->run_id);
+        scene_hash_of(s->scene_text, s->scene_sets, s->scene_hash);
+    }
     if (!st)
         st = bf_sim_check_stable_dt(s, err);
     if (!st && s->ckpt_every && !bf_sim_can_checkpoint(s))
@@ -188,6 +241,15 @@ bf_status bf_sim_create(bf_sim **out, const bf_sim_keys *k,
         double kk, p;
         s->mt->energy(s->model, 0.0, &kk, &p);
         bf_energy_start(&s->en, kk + p);
+        /* a model names the key of a state it can blame (ball.N
+         * velocity); this catches the rest before any row is written */
+        if (!isfinite(kk + p)) {
+            bf_fail(err, BF_EINPUT, "the initial state has no finite energy "
+                    "(kinetic %g erg, potential %g erg): check the initial "
+                    "positions and velocities", kk, p);
+            bf_sim_free(s);
+            return BF_EINPUT;
+        }
     }
     *out = s;
     return BF_OK;
@@ -218,7 +280,7 @@ void *bf_sim_observer(bf_sim *s, const bf_observer_type *t)
 
 /* ------------------------------------------------------------- output */
 
-static bf_status set_ckpt_path(bf_sim *s, const char *path, bf_err *err)
+bf_status bf_sim_set_ckpt_path_(bf_sim *s, const char *path, bf_err *err)
 {
     size_t len = strlen(path) + 6;
     free(s->ckpt_path);
@@ -231,7 +293,7 @@ static bf_status set_ckpt_path(bf_sim *s, const char *path, bf_err *err)
 
 /* Datasets of the loop itself (created, or reopened on restart), then the
  * model's and the observers'. */
-static bf_status open_series(bf_sim *s, bf_err *err)
+bf_status bf_sim_open_series_(bf_sim *s, bf_err *err)
 {
     bf_out *o = s->out;
     s->s_time = bf_out_series(o, "/time", 0, 0, "s", "simulated time of each "
@@ -264,7 +326,7 @@ static bf_status open_series(bf_sim *s, bf_err *err)
 
 static bf_status open_output(bf_sim *s, const char *path, bf_err *err)
 {
-    bf_status st = set_ckpt_path(s, path, err);
+    bf_status st = bf_sim_set_ckpt_path_(s, path, err);
     if (st)
         return st;
     st = bf_out_create(&s->out, path, err);
@@ -277,23 +339,16 @@ static bf_status open_output(bf_sim *s, const char *path, bf_err *err)
     if ((st = bf_out_attr_str(o, "/", "version", bf_version_string(), err)) ||
         (st = bf_out_attr_str(o, "/", "scene_file", s->scene_path, err)) ||
         (st = bf_out_attr_str(o, "/", "scene_text", s->scene_text, err)) ||
+        (st = bf_out_attr_str(o, "/", "scene_hash", s->scene_hash, err)) ||
+        (st = bf_out_attr_str(o, "/", "run_id", s->run_id, err)) ||
         (st = bf_out_attr_str(o, "/", "status", "running", err)))
         return st;
     if (s->write_params && (st = s->write_params(s->params_ctx, o, err)))
         return st;
-    if ((st = open_series(s, err)))
+    if ((st = bf_sim_open_series_(s, err)))
         return st;
     return bf_out_flush(o, err);
 }
-
-/* The public calls that reach HDF5 hold its lock (io/h5lock.h). */
-#define H5_LOCKED(call)                                                        \
-    do {                                                                       \
-        bf_h5_lock();                                                          \
-        bf_status st_ = (call);                                                \
-        bf_h5_unlock();                                                        \
-        return st_;                                                            \
-    } while (0)
 
 bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)
 {
@@ -428,9 +483,16 @@ static bf_status energy_exceeded(const bf_sim *s, double rel, bf_err *err)
 {
     return bf_fail(err, BF_EUNSTABLE,
                    "step %ld (t = %.9g s): relative energy error %.3g "
-                   "exceeds [scene] max_energy_error = %g; the time "
-                   "step is too large for this integrator",
-                   s->n, (double)s->n * s->dt, rel, s->energy_bound);
+                   "exceeds %s%g%s; the time step is too large for this "
+                   "integrator",
+                   s->n, (double)s->n * s->dt, rel,
+                   s->bound_is_models ? "" : "[scene] max_energy_error = ",
+                   s->energy_bound,
+                   s->bound_is_models
+                       ? ", the bound of this model, whose energy is "
+                         "conserved ([scene] max_energy_error sets another, "
+                         "energy_bound = no none)"
+                       : "");
 }
 
 /* Can runs of steps make the per-step checks themselves (model.h,
@@ -518,7 +580,9 @@ static bf_status run_to(bf_sim *s, long target, bf_err *err)
         if ((st = row_and_beat(s, err)) || (st = bf_sim_beat(s, 0, err))) {
             if (st == BF_INTERRUPTED)
                 st = interrupt(s, err);
-            return st;
+            else
+                bf_err_prefix(err, "step 0 (t = 0 s)");
+            return s->run_status = st;
         }
     }
     const long every = s->out_every, eevery = s->energy_every;
@@ -599,7 +663,7 @@ static bf_status run_to(bf_sim *s, long target, bf_err *err)
     if (s->opts.progress)
         progress(s, t0, 1);
     s->wall += bf_wall_time() - t0;
-    return st;
+    return s->run_status = st;
 }
 
 bf_status bf_sim_run(bf_sim *s, bf_err *err)
@@ -699,6 +763,16 @@ void bf_sim_summary(const bf_sim *s, FILE *f)
         fprintf(f, "max relative energy error: %.6e (checked every %ld steps)\n",
                 s->en.max_rel,
                 s->energy_every ? s->energy_every : s->out_every);
+    if (s->run_status == BF_EUNSTABLE) {
+        /* the model's and the analyses' lines describe the final state,
+         * which is not a result ("relative change 0" next to "max |u|
+         * inf") */
+        fprintf(f, "stopped:           unstable after %ld steps (t = %.9g s); "
+                   "the final state is not a result, its summary is left "
+                   "out\n",
+                s->n, (double)s->n * s->dt);
+        return;
+    }
     if (s->mt->report)
         s->mt->report(s->model, f);
     for (size_t k = 0; k < s->nobs; k++)
@@ -745,136 +819,4 @@ void bf_sim_results(const bf_sim *s, bf_results *r)
     for (size_t k = 0; k < s->nobs; k++)
         if (s->obs[k].t->results)
             s->obs[k].t->results(s->obs[k].self, r);
-}
-
-/* ------------------------------------------------------------ checkpoints */
-
-int bf_sim_can_checkpoint(const bf_sim *s)
-{
-    return s->mt->checkpoint_save && s->mt->checkpoint_load;
-}
-
-const char *bf_sim_checkpoint_path(const bf_sim *s) { return s->ckpt_path; }
-
-/* What a checkpoint keeps of the loop itself. */
-static const bf_field loop_state[] = {
-    BF_FIELD(bf_sim, n, BF_F_LONG, "1"),
-    BF_FIELD(bf_sim, last_row, BF_F_LONG, "1"),
-    BF_FIELD(bf_sim, en.e0, BF_F_DOUBLE, "erg"),
-    BF_FIELD(bf_sim, en.max_rel, BF_F_DOUBLE, "1"),
-    BF_FIELD(bf_sim, wall, BF_F_DOUBLE, "s"),
-};
-
-/* The rows of every series and their paths (one per line). */
-static bf_status put_rows(const bf_sim *s, bf_ckpt *ck, bf_err *err)
-{
-    size_t ns = bf_out_nseries(s->out), plen = 1;
-    int64_t *rows = malloc((ns ? ns : 1) * sizeof *rows);
-    for (size_t k = 0; k < ns; k++)
-        plen += strlen(bf_series_path(bf_out_series_at(s->out, k))) + 1;
-    char *paths = malloc(plen);
-    bf_status st = BF_OK;
-    if (!rows || !paths) {
-        st = bf_fail(err, BF_EINTERNAL, "out of memory");
-    } else {
-        paths[0] = '\0';
-        for (size_t k = 0; k < ns; k++) {
-            bf_series *se = bf_out_series_at(s->out, k);
-            rows[k] = (int64_t)bf_series_rows(se);
-            strcat(paths, bf_series_path(se));
-            strcat(paths, "\n");
-        }
-        st = bf_ckpt_put_i64(ck, "out.rows", rows, ns, err);
-        if (!st)
-            st = bf_ckpt_put_str(ck, "out.paths", paths, err);
-    }
-    free(rows);
-    free(paths);
-    return st;
-}
-
-static bf_status checkpoint_write(bf_sim *s, const char *path, bf_err *err)
-{
-    if (!bf_sim_can_checkpoint(s))
-        return bf_fail(err, BF_EINPUT, "model '%s' cannot write checkpoints",
-                       s->mt->name);
-    bf_status st = BF_OK;
-    /* rows on disk must cover what the checkpoint claims */
-    if (s->out && (st = bf_out_flush(s->out, err)))
-        return st;
-    bf_ckpt *ck = bf_ckpt_new();
-    if (!ck)
-        return bf_fail(err, BF_EINTERNAL, "out of memory");
-    if (!st) st = bf_ckpt_put_str(ck, "version", bf_version_string(), err);
-    if (!st) st = bf_ckpt_put_str(ck, "scene.path", s->scene_path, err);
-    if (!st) st = bf_ckpt_put_str(ck, "scene.text", s->scene_text, err);
-    if (!st) st = bf_ckpt_put_str(ck, "scene.sets", s->scene_sets, err);
-    if (!st)
-        st = bf_ckpt_put_fields(ck, "sim", loop_state, BF_NFIELDS(loop_state),
-                                s, err);
-    if (!st && s->out)
-        st = put_rows(s, ck, err);
-    if (!st)
-        st = s->mt->checkpoint_save(s->model, ck, err);
-    EACH_OBSERVER(s, st, save, ck, err);
-    if (!st)
-        st = bf_ckpt_write(ck, path, err);
-    bf_ckpt_free(ck);
-    return st;
-}
-
-bf_status bf_sim_checkpoint_write(bf_sim *s, const char *path, bf_err *err)
-{
-    H5_LOCKED(checkpoint_write(s, path, err));
-}
-
-static bf_status resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
-                        bf_err *err)
-{
-    if (!bf_sim_can_checkpoint(s))
-        return bf_fail(err, BF_EINPUT, "model '%s' cannot restart",
-                       s->mt->name);
-    bf_status st = bf_ckpt_get_fields(ck, "sim", loop_state,
-                                      BF_NFIELDS(loop_state), s, err);
-    if (!st)
-        st = s->mt->checkpoint_load(s->model, ck, err);
-    EACH_OBSERVER(s, st, load, ck, err);
-    if (st)
-        return st;
-    if (s->n > s->nsteps)
-        return bf_fail(err, BF_EINPUT, "%s.ckpt: the checkpoint is at step "
-                       "%ld, beyond t_end (%ld steps)", out_path, s->n,
-                       s->nsteps);
-    if (s->n < 0 || s->last_row < -1 || s->last_row > s->n ||
-        !(s->wall >= 0) || !isfinite(s->en.e0) || !(s->en.max_rel >= 0))
-        return bf_fail(err, BF_EINPUT, "%s.ckpt: the loop's state is out of "
-                       "range (step %ld, last row %ld)", out_path, s->n,
-                       s->last_row);
-    /* reopen the output and drop rows written after the checkpoint */
-    if ((st = set_ckpt_path(s, out_path, err)) ||
-        (st = bf_out_open_append(&s->out, out_path, err)) ||
-        (st = open_series(s, err)))
-        return st;
-    size_t nrows;
-    const int64_t *rows = bf_ckpt_data_i64(ck, "out.rows", &nrows);
-    if (!rows || nrows != bf_out_nseries(s->out))
-        return bf_fail(err, BF_EINPUT, "%s.ckpt: the checkpoint does not "
-                       "match the datasets of %s", out_path, out_path);
-    for (size_t k = 0; k < nrows; k++) {
-        if (rows[k] < 0)
-            return bf_fail(err, BF_EINPUT, "%s.ckpt: a negative row count",
-                           out_path);
-        if ((st = bf_series_truncate(bf_out_series_at(s->out, k),
-                                     (size_t)rows[k], err)))
-            return st;
-    }
-    if ((st = bf_out_attr_str(s->out, "/", "status", "running", err)))
-        return st;
-    return bf_out_flush(s->out, err);
-}
-
-bf_status bf_sim_resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
-                        bf_err *err)
-{
-    H5_LOCKED(resume(s, ck, out_path, err));
 }

@@ -1,6 +1,6 @@
 /* sim_impl.h: the time loop's state, shared by the files of src/core
- * (private): sim.c (the loop, output, checkpoints) and sim_state.c (the
- * state as arrays, heartbeats). */
+ * (private): sim.c (the loop, output), sim_state.c (the state as arrays,
+ * heartbeats) and sim_ckpt.c (checkpoints and restart). */
 #ifndef BALLFILM_CORE_SIM_IMPL_H
 #define BALLFILM_CORE_SIM_IMPL_H
 
@@ -24,6 +24,11 @@ struct bf_sim {
     bf_sim_opts opts;
     /* provenance (owned copies) */
     char *scene_path, *scene_text, *scene_sets;
+    /* what ties an output and its checkpoints together (16 hex digits
+     * each): this run's identifier, and the hash of the scene it was
+     * started with (its text, a NUL, the overrides); a restart takes both
+     * from the checkpoint */
+    char run_id[20], scene_hash[20];
     bf_status (*write_params)(void *ctx, bf_out *out, bf_err *err);
     void *params_ctx;
     /* something the composition layer hands over to be freed with us */
@@ -38,6 +43,7 @@ struct bf_sim {
     long steps_this_run;
     char *ckpt_path;
     double energy_bound, flush_seconds;
+    int bound_is_models; /* energy_bound is the model's default bound */
     int compress; /* deflate level of the output (0: off) */
     bf_out *out;
     bf_series *s_time, *s_step, *s_ek, *s_ep, *s_et;
@@ -49,6 +55,7 @@ struct bf_sim {
     heartbeat *hb; /* bf_sim_heartbeat, in the order attached */
     size_t nhb;
     int hb_started; /* the heartbeats of t = 0 were called */
+    bf_status run_status; /* how the last bf_sim_run ended */
 };
 
 /* Call hook H of every observer that has it with the arguments after self;
@@ -64,5 +71,21 @@ bf_status bf_sim_check_stable_dt(const bf_sim *s, bf_err *err);
 /* The heartbeats due at step s->n: those every N steps whose N divides
  * it, and (rows = 1) those of the output rows. */
 bf_status bf_sim_beat(bf_sim *s, int rows, bf_err *err);
+
+/* OUT.ckpt of output path OUT into s->ckpt_path. */
+bf_status bf_sim_set_ckpt_path_(bf_sim *s, const char *path, bf_err *err);
+/* The loop's datasets (created, or reopened on restart), then the model's
+ * and the observers'. */
+bf_status bf_sim_open_series_(bf_sim *s, bf_err *err);
+
+/* The public calls that reach HDF5 hold its lock (io/h5lock.h; it is
+ * recursive, so a locked call may make another). */
+#define H5_LOCKED(call)                                                        \
+    do {                                                                       \
+        bf_h5_lock();                                                          \
+        bf_status st_ = (call);                                                \
+        bf_h5_unlock();                                                        \
+        return st_;                                                            \
+    } while (0)
 
 #endif

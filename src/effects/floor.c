@@ -41,7 +41,7 @@ const bf_effect_type bf_effect_floor = {
     .doc = "Hertz contact with a rigid floor at x = 0",
     .spec = &floor_spec,
     .kernel = BF_KERNEL_FLOOR,
-    .flags = BF_EFFECT_FLOOR,
+    .flags = BF_EFFECT_FLOOR | BF_EFFECT_CONSERVATIVE,
     .create = floor_create,
     .accel = floor_accel,
     .potential = floor_potential,

@@ -29,6 +29,7 @@ const bf_effect_type bf_effect_gravity = {
     .doc = "uniform gravity g along -x",
     .spec = &gravity_spec,
     .kernel = BF_KERNEL_GRAVITY,
+    .flags = BF_EFFECT_CONSERVATIVE,
     .create = gravity_create,
     .accel = gravity_accel,
     .potential = gravity_potential,

@@ -31,6 +31,7 @@ const bf_effect_type bf_effect_spring = {
     .doc = "linear restoring force (harmonic oscillator)",
     .spec = &spring_spec,
     .kernel = BF_KERNEL_SPRING,
+    .flags = BF_EFFECT_CONSERVATIVE,
     .create = spring_create,
     .accel = spring_accel,
     .potential = spring_potential,

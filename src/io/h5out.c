@@ -19,6 +19,7 @@
  * close), for the same reason. */
 #define _GNU_SOURCE /* fallocate's FALLOC_FL_KEEP_SIZE */
 #include "base/clock.h"
+#include "base/utf8.h"
 #include "ballfilm/h5out.h"
 
 #include <errno.h>
@@ -282,8 +283,37 @@ bf_status bf_out_close_keep(bf_out *out, bf_err *err)
     return st;
 }
 
+/* A copy of s with every byte that is not part of well-formed UTF-8
+ * written as \xNN (a file name in another encoding), or NULL if s is
+ * well-formed: attributes are tagged UTF-8. */
+static char *utf8_escaped(const char *s)
+{
+    size_t n = strlen(s);
+    if (bf_utf8_invalid(s, n) == n)
+        return NULL;
+    char *out = malloc(4 * n + 1), *o = out;
+    if (!out)
+        return NULL;
+    const unsigned char *u = (const unsigned char *)s;
+    for (size_t k = 0; k < n;) {
+        size_t len = bf_utf8_seq(u + k, n - k);
+        if (len) {
+            memcpy(o, u + k, len);
+            o += len;
+            k += len;
+        } else {
+            o += sprintf(o, "\\x%02x", u[k++]);
+        }
+    }
+    *o = '\0';
+    return out;
+}
+
 static bf_status set_str_attr(hid_t obj, const char *name, const char *value)
 {
+    char *escaped = utf8_escaped(value ? value : "");
+    if (escaped)
+        value = escaped;
     hid_t t = H5Tcopy(H5T_C_S1);
     H5Tset_size(t, H5T_VARIABLE);
     H5Tset_cset(t, H5T_CSET_UTF8);
@@ -299,6 +329,7 @@ static bf_status set_str_attr(hid_t obj, const char *name, const char *value)
     }
     H5Sclose(sp);
     H5Tclose(t);
+    free(escaped);
     return rc < 0 ? BF_EIO : BF_OK;
 }
 
@@ -396,7 +427,12 @@ static bf_status append_raw(bf_series *s, const void *row)
 {
     size_t rowbytes = 8 * s->width;
     if (s->nbuf == s->capbuf) {
-        size_t cap = s->capbuf ? 2 * s->capbuf : 64;
+        /* 64 rows to start with, fewer when rows are large (a film
+         * profile of 10^7 nodes is 80 MB a row): the buffer is flushed
+         * beyond FLUSH_BYTES anyway (bf_out_maybe_flush) */
+        size_t first = FLUSH_BYTES / rowbytes;
+        size_t cap = s->capbuf ? 2 * s->capbuf
+                               : first < 1 ? 1 : first > 64 ? 64 : first;
         unsigned char *nb = realloc(s->buf, cap * rowbytes);
         if (!nb)
             return BF_EINTERNAL;

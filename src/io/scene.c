@@ -3,9 +3,17 @@
  * inih does the INI syntax.  We feed it through our own line reader so that
  * we know the line number of every key (the Debian build of inih does not
  * pass it to the handler), can tell a continuation line from a duplicate key,
- * and can refuse over-long lines instead of letting inih split them.
+ * and can refuse over-long lines instead of letting inih split them: inih
+ * reads a line into a buffer of INI_MAX_LINE bytes, which it passes to the
+ * reader (Debian's build: 200, so 198 characters and the newline).  A
+ * longer comment line is skipped; a longer key line is refused at its
+ * line, with the limit and the way round it (continuation lines).  A
+ * scene is text: a NUL byte or invalid UTF-8 is refused at its line (so
+ * that the scene's text in an output is valid UTF-8, as its attributes
+ * are tagged).
  */
 #include "ballfilm/scene.h"
+#include "base/utf8.h"
 #include "base/xalloc.h"
 
 #include <ctype.h>
@@ -18,7 +26,6 @@
 #include <string.h>
 #include <strings.h>
 
-#define MAX_LINE 4096 /* longer lines are refused */
 #define MAX_SPECS 64
 
 typedef struct entry {
@@ -125,7 +132,8 @@ typedef struct reader {
     const char *p;      /* remaining text */
     int line;           /* line number of the line last handed to inih */
     int cont;           /* that line is a continuation line */
-    int too_long;       /* first over-long line, or 0 */
+    int too_long;       /* first over-long key line, or 0 */
+    int max_len;        /* the longest line inih takes, characters */
     bf_scene *sc;
     bf_err *err;
     int failed;
@@ -141,8 +149,13 @@ static char *read_line(char *str, int num, void *stream)
     const char *nl = strchr(r->p, '\n');
     size_t len = nl ? (size_t)(nl - r->p) + 1 : strlen(r->p);
     r->line++;
+    r->max_len = num - 2;
     if (len >= (size_t)num) {
-        if (!r->too_long)
+        const char *q = r->p;
+        while (*q == ' ' || *q == '\t')
+            q++;
+        /* a comment says nothing: skip it whatever its length */
+        if (!r->too_long && *q != ';' && *q != '#')
             r->too_long = r->line;
         len = 0; /* hand inih an empty line; the error is reported later */
     }
@@ -233,8 +246,20 @@ bf_status bf_scene_load_string(bf_scene **out, const char *name,
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     sc->path = bf_xstrdup(name);
     sc->text = bf_xstrdup(text);
-    if (strlen(text) != strlen(sc->text) || memchr(text, '\0', strlen(text))) {
-        /* unreachable for C strings; kept for clarity */
+    size_t len = strlen(text), bad = bf_utf8_invalid(text, len);
+    if (bad < len) {
+        int line = 1;
+        const char *bol = text;
+        for (const char *q = text; q < text + bad; q++)
+            if (*q == '\n') {
+                line++;
+                bol = q + 1;
+            }
+        bf_scene_free(sc);
+        return fail_at(err, name, line,
+                       "not UTF-8 text (byte 0x%02x at column %d); save the "
+                       "scene as UTF-8",
+                       (unsigned char)text[bad], (int)(text + bad - bol) + 1);
     }
     reader r = {.p = sc->text, .sc = sc, .err = err};
     /* inih reads into a buffer of INI_MAX_LINE; our reader is told its size
@@ -247,8 +272,10 @@ bf_status bf_scene_load_string(bf_scene **out, const char *name,
     if (r.too_long) {
         bf_scene_free(sc);
         return fail_at(err, name, r.too_long,
-                       "line too long; split the value over continuation "
-                       "lines (indented lines continue a value)");
+                       "line too long (the INI reader takes at most %d "
+                       "characters); split the value over continuation "
+                       "lines (indented lines continue a value)",
+                       r.max_len);
     }
     if (rc != 0) {
         bf_scene_free(sc);
@@ -291,11 +318,14 @@ bf_status bf_scene_load(bf_scene **out, const char *path, bf_err *err)
                        path);
     }
     buf[n] = '\0';
-    if (memchr(buf, '\0', n)) {
+    const char *nul = memchr(buf, '\0', n);
+    if (nul) {
+        int line = 1;
+        for (const char *q = buf; q < nul; q++)
+            line += *q == '\n';
         free(buf);
-        return bf_fail(err, BF_EINPUT,
-                       "%s: error: scene file contains a NUL byte (not text)",
-                       path);
+        return fail_at(err, path, line,
+                       "a NUL byte: the scene file is not text");
     }
     bf_status st = bf_scene_load_string(out, path, buf, err);
     free(buf);
@@ -406,6 +436,9 @@ bf_status bf_scene_set(bf_scene *sc, const char *assignment, const char *origin,
                        origin, assignment);
     /* inih strips blanks around values; do the same */
     const char *v = eq + 1;
+    if (bf_utf8_invalid(v, strlen(v)) < strlen(v))
+        return bf_fail(err, BF_EINPUT, "%s: error: %s.%s: the value is not "
+                       "UTF-8 text", origin, section, key);
     while (*v == ' ' || *v == '\t')
         v++;
     char *val = bf_xstrdup(v);

@@ -68,6 +68,11 @@ static void balls_energy(const void *self, double t, double *kin, double *pot)
     bf_ballsys_energy(m->sys, t, kin, pot);
 }
 
+static double balls_energy_bound(const void *self)
+{
+    return bf_ballsys_energy_bound(((const balls_model *)self)->sys);
+}
+
 static bf_status balls_output_open(void *self, bf_out *out, bf_err *err)
 {
     balls_model *m = self;
@@ -147,6 +152,7 @@ const bf_model_type bf_model_balls = {
     .destroy = balls_destroy,
     .step = balls_step,
     .energy = balls_energy,
+    .energy_bound = balls_energy_bound,
     .output_open = balls_output_open,
     .output_row = balls_output_row,
     .counters = balls_counters,

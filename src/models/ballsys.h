@@ -147,6 +147,11 @@ size_t bf_ballsys_state(bf_ballsys *s, bf_state_var *vars, size_t cap);
 bf_status bf_ballsys_set(bf_ballsys *s, const char *name, const double *v,
                          size_t n, bf_err *err);
 
+/* The bound on the relative energy error of a ball system whose effects
+ * are all conservative (BF_EFFECT_CONSERVATIVE), 0 otherwise
+ * (model.h, energy_bound). */
+double bf_ballsys_energy_bound(const bf_ballsys *s);
+
 /* The ball view of analyses (model.h). */
 void bf_ballsys_view(bf_ballsys *s, bf_ball_view *v);
 

@@ -125,6 +125,17 @@ static void coupled_destroy(void *self)
 
 /* ------------------------------------------------------------ set-up */
 
+/* The film's doubles per node, and the coupling's beside them: g, m, lc,
+ * rc, pw, pwr, tl, tw, tmp, the zero row and mu_cpl (11), the pool of 96
+ * rows (coupling.c, NROW) and row_of (3); all again for the Lyapunov
+ * shadow. */
+static void coupled_memory(const bf_model_setup *setup, bf_mem_need *need)
+{
+    const bf_lyap_keys *lk = bf_setup_get(setup, &bf_lyap_spec, NULL);
+    bf_filmsys_memory(bf_setup_get(setup, &bf_filmsys_spec, NULL), 110.0,
+                      lk && lk->enabled ? 2 : 1, need);
+}
+
 /* a 1-based ball index k of [coupled] key (0: default) */
 static bf_status ball_key(long k, const char *key, size_t nb, size_t def,
                           size_t *out, bf_err *err)
@@ -618,6 +629,7 @@ const bf_model_type bf_model_coupled = {
     .specs = coupled_specs,
     .create = coupled_create,
     .destroy = coupled_destroy,
+    .memory = coupled_memory,
     .stable_dt = coupled_stable_dt,
     .step = coupled_step,
     .energy = coupled_energy,

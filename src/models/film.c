@@ -20,6 +20,12 @@ static bf_status film_create(void **self, const bf_model_setup *setup,
 
 static void film_destroy(void *self) { bf_filmsys_free(self); }
 
+static void film_memory(const bf_model_setup *setup, bf_mem_need *need)
+{
+    bf_filmsys_memory(bf_setup_get(setup, &bf_filmsys_spec, NULL), 0.0, 1,
+                      need);
+}
+
 static void film_stable_dt(const void *self, bf_dt_limit *lim)
 {
     bf_filmsys_stable_dt(self, lim);
@@ -85,6 +91,7 @@ const bf_model_type bf_model_film = {
     .specs = film_specs,
     .create = film_create,
     .destroy = film_destroy,
+    .memory = film_memory,
     .stable_dt = film_stable_dt,
     .step = film_step,
     .output_open = film_output_open,

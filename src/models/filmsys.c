@@ -232,6 +232,29 @@ static bf_status initial_state(bf_filmsys *fs, const bf_film_keys *k,
     return st;
 }
 
+/* Doubles per node a film takes at its peak: the 25 arrays of the
+ * scheme (film_impl.h), the zero mu_cpl, tmp and kink0 here, and 8 more
+ * for the larger of the initial state's 4 (freed after create), two
+ * buffered profile rows of the 4 profiles, or a checkpoint's copy of the
+ * 6 arrays of the state.  Measured: the smallest ulimit -v under which
+ * runs/kink_steady.ini (3 steps) ends grows by 228 B = 28.5 doubles per
+ * node from 4e5 to 8e5 nodes (docs/reliability.md). */
+#define FILM_DOUBLES_PER_NODE 36.0
+
+void bf_filmsys_memory(const bf_film_keys *k, double extra, int copies,
+                       bf_mem_need *need)
+{
+    double nodes = floor(k->length / k->dx + 0.5) + 1.0;
+    double per = FILM_DOUBLES_PER_NODE + extra;
+    need->bytes = (double)copies * nodes * per * 8.0;
+    snprintf(need->what, sizeof need->what,
+             "%.3g nodes (length %g cm / dx %g cm) x %.0f doubles%s", nodes,
+             k->length, k->dx, per,
+             copies > 1 ? ", twice (the Lyapunov shadow)" : "");
+    snprintf(need->section, sizeof need->section, "film");
+    snprintf(need->key, sizeof need->key, "dx");
+}
+
 bf_status bf_filmsys_create(bf_filmsys **out, const bf_film_keys *k,
                             const bf_run_ctx *run, long film_every,
                             bf_err *err)
@@ -265,6 +288,8 @@ bf_status bf_filmsys_create(bf_filmsys **out, const bf_film_keys *k,
     bf_err e2 = {0};
     if (bf_film_create(&fs->film, &p, &e2)) {
         free(fs);
+        if (e2.status != BF_EINPUT)
+            return bf_fail(err, e2.status, "film: %s", e2.msg);
         return bf_fail_key(err, BF_EINPUT, "film", "dx", "%s", e2.msg);
     }
     fs->n = bf_film_nodes(fs->film);

@@ -53,6 +53,12 @@ extern const bf_section_spec bf_filmsys_spec; /* [film] */
 
 typedef struct bf_filmsys bf_filmsys;
 
+/* The memory of a film of keys k (model.h, memory), with `extra` more
+ * doubles per node for what the caller keeps beside it (the coupling's
+ * arrays), times `copies` (a Lyapunov shadow is a second film). */
+void bf_filmsys_memory(const bf_film_keys *k, double extra, int copies,
+                       bf_mem_need *need);
+
 /* Build the film of the keys and its initial state, for the run `run`
  * (its dt, length and output interval).  The film will step by
  * film_every x dt (0: never, a static film).  Bad keys are named

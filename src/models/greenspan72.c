@@ -156,6 +156,9 @@ typedef struct g72 {
     double *ax, *ay, *g, *x0, *y0;
     uint8_t *kind;
     int acc_valid; /* ax, ay, g, kind are those of the current positions */
+    /* after a restart: the next a(x) recomputes one the interrupted run
+     * had computed (and counted) already */
+    int acc_replay;
     unsigned long long steps, evals, wall_hits;
     unsigned long long kind_total[4]; /* particle-steps of each BF_SUP_ kind */
     int out_mode, threads, nthr; /* requested threads, threads used */
@@ -195,6 +198,35 @@ static void g72_destroy(void *self)
     free(m);
 }
 
+/* The number of particles of the keys (a grid's may be refused). */
+static double g72_count(const g72_keys *k)
+{
+    return k->layout == LAYOUT_LIST ? (double)(k->positions.n / 2)
+                                    : (double)k->grid_nx * (double)k->grid_ny;
+}
+
+/* Doubles per particle: x, y, vx, vy, m and the tag; ax, ay, g and the
+ * old positions; the cell list's six arrays and the support sweep's
+ * eleven (ints and doubles alike counted as 8 bytes); the buffered rows
+ * of the per-particle outputs; 2 more per thread for the repulsion's
+ * work arrays.  Measured: the smallest ulimit -v of a two-step run of
+ * runs/greenspan72_large.ini grows by 306-319 B (38-40 doubles) per
+ * particle from 224^2 to 448^2 particles (docs/reliability.md). */
+static void g72_memory(const bf_model_setup *setup, bf_mem_need *need)
+{
+    const g72_keys *k = bf_setup_get(setup, &g72_spec, NULL);
+    if (!k)
+        return;
+    double n = g72_count(k), threads = k->threads > 1 ? (double)k->threads : 1;
+    double per = 48.0 + 2.0 * threads;
+    need->bytes = 8.0 * per * n;
+    snprintf(need->what, sizeof need->what, "%.3g particles x %.0f doubles",
+             n, per);
+    snprintf(need->section, sizeof need->section, "greenspan72");
+    snprintf(need->key, sizeof need->key,
+             k->layout == LAYOUT_LIST ? "positions" : "grid_nx");
+}
+
 /* Positions and initial velocities from the keys. */
 static bf_status g72_initial(g72 *m, const g72_keys *k72, bf_err *err)
 {
@@ -210,7 +242,6 @@ static bf_status g72_initial(g72 *m, const g72_keys *k72, bf_err *err)
                                "layout = list needs x y pairs (%zu numbers "
                                "given)",
                                npos);
-        n = npos / 2;
     } else {
         if (npos)
             return bf_fail_key(err, BF_EINPUT, S, "positions",
@@ -218,8 +249,8 @@ static bf_status g72_initial(g72 *m, const g72_keys *k72, bf_err *err)
         if ((double)gx * (double)gy > 5e7)
             return bf_fail_key(err, BF_EINPUT, S, "grid_nx",
                                "%ld x %ld particles is too many", gx, gy);
-        n = (size_t)gx * (size_t)gy;
     }
+    n = (size_t)g72_count(k72);
     if (nv && nv != 2 * n)
         return bf_fail_key(err, BF_EINPUT, S, "velocities",
                            "%zu numbers for %zu particles (need %zu)", nv, n,
@@ -298,6 +329,8 @@ static bf_status g72_initial(g72 *m, const g72_keys *k72, bf_err *err)
     }
     return BF_OK;
 }
+
+static bf_status g72_accel(g72 *m, bf_err *err);
 
 static bf_status g72_create(void **self, const bf_model_setup *setup,
                             bf_err *err)
@@ -382,6 +415,15 @@ static bf_status g72_create(void **self, const bf_model_setup *setup,
         m->settle_lastfail[c] = -1;
     }
     m->settle_last_row = -1;
+    /* a(x) at t = 0, which the first row or step would compute: particles
+     * that coincide at the start are the scene's fault, not the run's */
+    if ((st = g72_accel(m, err))) {
+        bf_err_prefix(err, "at t = 0");
+        err->status = st = BF_EINPUT;
+        bf_err_set_key(err, "greenspan72",
+                       k72->layout == LAYOUT_LIST ? "positions" : "layout");
+        goto fail;
+    }
     *self = m;
     return BF_OK;
 fail:
@@ -440,7 +482,10 @@ static bf_status g72_accel(g72 *m, bf_err *err)
                        "particles %zu and %zu coincide at (%.9g, %.9g): the "
                        "Hertz force has no direction",
                        bi + 1, bj + 1, p->x[bi], p->y[bi]);
-    m->evals++;
+    if (m->acc_replay)
+        m->acc_replay = 0;
+    else
+        m->evals++;
     m->acc_valid = 1;
     return BF_OK;
 }
@@ -714,6 +759,7 @@ static const bf_field g72_state[] = {
     BF_FIELD_ARRAY(g72, settle_lastfail, BF_F_LONG, "step"),
     BF_FIELD(g72, settle_last_row, BF_F_LONG, "step"),
     BF_FIELD(g72, rows, BF_F_LONG, "1"),
+    BF_FIELD(g72, acc_valid, BF_F_INT, "1"),
 };
 
 static bf_status g72_save(const void *self, bf_ckpt *ck, bf_err *err)
@@ -733,7 +779,11 @@ static bf_status g72_load(void *self, const bf_ckpt *ck, bf_err *err)
     if (!st)
         st = bf_ckpt_get_fields(ck, "g72", g72_state, BF_NFIELDS(g72_state),
                                 m, err);
-    m->acc_valid = 0; /* a(x) is recomputed from the restored positions */
+    /* a(x) is recomputed from the restored positions; if the run had it,
+     * that is no new evaluation (the counters stay the uninterrupted
+     * run's) */
+    m->acc_replay = m->acc_valid;
+    m->acc_valid = 0;
     return st;
 }
 
@@ -762,6 +812,7 @@ const bf_model_type bf_model_greenspan72 = {
     .specs = g72_specs,
     .create = g72_create,
     .destroy = g72_destroy,
+    .memory = g72_memory,
     .step = g72_step,
     .output_open = g72_output_open,
     .output_row = g72_output_row,

@@ -364,6 +364,36 @@ static void g73_reading(g73 *m, const g73_keys *k)
                  k->wall_mass, start_names[k->start]);
 }
 
+/* The memory of the scheme's N x N arrays, per pair of particles (B):
+ * the pair constants p, q and the distances of the model, the solver's
+ * old and new distances (5 doubles, 6 with the outputs' rows and the
+ * per-particle arrays of a small N); Newton adds the full Jacobian and
+ * GSL's dense matrix of (2N)^2 (8 doubles), its sparse form a COO and a
+ * CSC copy of (2N)^2 entries of 16 and 12 bytes.  Measured: the smallest
+ * ulimit -v of a two-step run grows by 42 B (fixed point) and 106 B
+ * (Newton) per N^2 from N = 500 to 1000 (docs/reliability.md). */
+static void g73_memory(const bf_model_setup *setup, bf_mem_need *need)
+{
+    const g73_keys *k = bf_setup_get(setup, &g73_spec, NULL);
+    if (!k)
+        return;
+    double n = k->layout == LAYOUT_HEXAGON ? 34
+               : k->layout == LAYOUT_WALL  ? (k->below ? 10 : 9)
+                                           : (double)(k->positions.n / 2);
+    double per = 48.0;
+    if (k->solver == BF_IMPLICIT_NEWTON)
+        per += k->jacobian == 1 ? 64.0 + 4.0 * (16.0 + 12.0) : 64.0;
+    need->bytes = per * n * n;
+    snprintf(need->what, sizeof need->what,
+             "%.0f particles x %.0f particles x %.0f bytes (the N^2 arrays "
+             "of the %s)",
+             n, n, per,
+             k->solver == BF_IMPLICIT_NEWTON ? "Newton solver" : "scheme");
+    snprintf(need->section, sizeof need->section, "greenspan73");
+    snprintf(need->key, sizeof need->key,
+             k->layout == LAYOUT_LIST ? "positions" : "layout");
+}
+
 static bf_status g73_create(void **self, const bf_model_setup *setup,
                             bf_err *err)
 {
@@ -515,6 +545,16 @@ static void g73_energy(const void *self, double t, double *kin, double *pot)
     *kin = bf_pdiag_kinetic(&m->p, m->mu);
     *pot = bf_dforce_pair_energy(&m->f, m->r) +
            bf_dforce_gravity_energy(&m->f, m->p.y);
+}
+
+/* The scheme conserves E = K + V exactly in exact arithmetic (the
+ * discrete gradient of eq. 2.17); what is left is the iteration's
+ * tolerance and rounding, below 1e-14 in every scene of runs/.  A drift
+ * of 1e-6 means that the iteration did not do its job. */
+static double g73_energy_bound(const void *self)
+{
+    (void)self;
+    return 1e-6;
 }
 
 static bf_status g73_output_open(void *self, bf_out *out, bf_err *err)
@@ -674,8 +714,10 @@ const bf_model_type bf_model_greenspan73 = {
     .specs = g73_specs,
     .create = g73_create,
     .destroy = g73_destroy,
+    .memory = g73_memory,
     .step = g73_step,
     .energy = g73_energy,
+    .energy_bound = g73_energy_bound,
     .output_open = g73_output_open,
     .output_row = g73_output_row,
     .counters = g73_counters,

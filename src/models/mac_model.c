@@ -79,6 +79,31 @@ static void mac_model_destroy(void *self)
     free(mm);
 }
 
+/* Per cell about 30 doubles (the solver's 18 fields, flags and counts,
+ * the output rows of the 6 cell series); the band matrix of the exact
+ * pressure solve and its copy, 2 nunk (bw + 1); per particle slot 15
+ * (position, velocity, mass, tag, the solver's 3, the output rows of
+ * the 4 marker series and the row buffers), as mac.c allocates them. */
+static void mac_model_memory(const bf_model_setup *setup, bf_mem_need *need)
+{
+    const bf_mac_params *p = bf_setup_get(setup, &bf_mac_spec, NULL);
+    if (!p)
+        return;
+    double r = (double)p->refine, side = 14.0 * r + 4.0;
+    double cells = side * side, unk = 14.0 * r * 14.0 * r;
+    double slots = p->slots > 0 ? (double)p->slots : 800.0 * r * r;
+    int exact = p->solver == BF_MAC_DIRECT || p->compare;
+    need->bytes = 8.0 * (30.0 * cells + (exact ? 2.0 * unk * (14.0 * r + 1.0)
+                                               : 0.0) +
+                         15.0 * slots);
+    snprintf(need->what, sizeof need->what,
+             "%.0f cells (refine %ld) and %.3g particle slots", cells,
+             p->refine, slots);
+    snprintf(need->section, sizeof need->section, "mac");
+    snprintf(need->key, sizeof need->key, "%s",
+             p->slots > 0 ? "slots" : "refine");
+}
+
 static bf_status mac_model_create(void **self, const bf_model_setup *setup,
                                   bf_err *err)
 {
@@ -397,6 +422,7 @@ const bf_model_type bf_model_mac = {
     .specs = mac_specs,
     .create = mac_model_create,
     .destroy = mac_model_destroy,
+    .memory = mac_model_memory,
     .stable_dt = mac_model_stable_dt,
     .step = mac_model_step,
     .output_open = mac_model_output_open,

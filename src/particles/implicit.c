@@ -3,6 +3,7 @@
  * implicit.h). */
 #include "implicit.h"
 
+#include <gsl/gsl_errno.h>
 #include <gsl/gsl_linalg.h>
 #include <gsl/gsl_splinalg.h>
 #include <gsl/gsl_spmatrix.h>
@@ -70,6 +71,9 @@ bf_status bf_implicit_create(bf_implicit **out, const bf_dforce *f,
                              const bf_implicit_opts *o, bf_err *err)
 {
     *out = NULL;
+    /* GSL's default handler aborts when an allocation fails; we check
+     * every result and fail with a message instead */
+    gsl_set_error_handler_off();
     bf_implicit *s = calloc(1, sizeof *s);
     if (!s)
         return bf_fail(err, BF_EINTERNAL, "out of memory");

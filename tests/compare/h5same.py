@@ -4,11 +4,15 @@ the same datasets with the
 same bits (dtype, shape and raw bytes, so NaN payloads and -0.0 count) and
 the same root attributes; print every difference otherwise.
 
-Root attributes that describe the build or the wall clock (version,
-wall-time figures) are not compared, nor datasets of wall times (their path
-ends in 'wall'): they differ between any two runs.  The scene's text
-(scene_text) is the run's input, not its result: a difference there (an
-edited comment in a scene file) is printed as a note and does not fail.
+Root attributes that describe the build, the wall clock or the run itself
+(version, wall-time figures, run_id: a random identifier of each run) are
+not compared, nor datasets of wall times (their path ends in 'wall'): they
+differ between any two runs, and nothing else is skipped.  The scene's
+text and its hash (scene_text, scene_hash) are the run's input, not its
+result: a difference there (an edited comment in a scene file) is printed
+as a note and does not fail.  scene_hash may be only in B, from a
+program that added it (a note); only in A it is a difference like any
+other.
 
 A scene key that only B records, at its default (B's "KEY.default" is 1),
 is a key that B's program added: its record (KEY, KEY.unit, KEY.default)
@@ -25,8 +29,10 @@ import sys
 import h5py
 import numpy as np
 
-SKIP_ATTRS = {"version"}
-NOTE_ATTRS = {"scene_text"}
+SKIP_ATTRS = {"version", "run_id"}
+NOTE_ATTRS = {"scene_text", "scene_hash"}
+# provenance a later program writes: only in B is a note, not a difference
+NEW_PROVENANCE = {"run_id", "scene_hash"}
 
 
 def datasets(f):
@@ -104,6 +110,9 @@ def main(a, b, ulps):
                     bad.append(f"dataset {k}: differs")
         ka, kb = set(fa.attrs), set(fb.attrs)
         for k in sorted(ka | kb):
+            if k in NEW_PROVENANCE and k in kb and k not in ka:
+                notes.append(f"attribute {k}: new provenance, only in {b}")
+                continue
             if k in SKIP_ATTRS or k.endswith("wall"):
                 continue
             if k not in ka and new_default_key(fb.attrs, ka, k):
