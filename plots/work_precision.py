@@ -1,9 +1,13 @@
 #!/usr/bin/python3
-"""Work-precision diagram of a `ballfilm converge` table: error at the final
-time against wall time and against force evaluations, log-log, one line
-per method (failed runs are left out, and listed in the legend).
+"""Work-precision diagram of a `ballfilm converge` table, any model: the
+error of the first state group at the final time (ball positions, the
+film's psi, particle positions, ...) against wall time and against
+right-hand-side evaluations, log-log, one line per method (failed runs are
+left out, and counted in the legend).  --group NAME picks another group,
+--norm max|rms the error over the output rows instead of at T.
 
 usage: work_precision.py CONVERGE.h5 -o work_precision.png
+       [--group NAME] [--norm final|max|rms]
 (CONVERGE.h5 from `ballfilm converge SCENE.ini --methods ... -o ...`)"""
 import argparse
 
@@ -12,24 +16,44 @@ import numpy as np
 
 from bfplot import plt, save
 
+
+def text(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
 ap = argparse.ArgumentParser()
 ap.add_argument("table")
 ap.add_argument("-o", "--output", default="work_precision.png")
+ap.add_argument("--group", default=None,
+                help="state group (default: the first)")
+ap.add_argument("--norm", default="final", choices=["final", "max", "rms"])
 a = ap.parse_args()
 
 with h5py.File(a.table, "r") as f:
     c = {k: f["/converge/" + k][()] for k in f["/converge"]}
-    methods = f.attrs["methods"]
-    methods = (methods.decode() if isinstance(methods, bytes)
-               else str(methods)).split(",")
-    scene = f.attrs["scene_file"]
-    scene = scene.decode() if isinstance(scene, bytes) else str(scene)
+    methods = text(f.attrs["methods"]).split(",")
+    scene = text(f.attrs["scene_file"])
+    model = text(f.attrs.get("model", "balls"))
     t_end = float(f.attrs["t_end"])
     ref = f["/reference"]
-    ref_err = float(ref.attrs["estimated_error_x"])
-    ref_name = ref.attrs["method"]
-    ref_name = ref_name.decode() if isinstance(ref_name, bytes) else ref_name
+    ref_name = text(ref.attrs["method"])
+    if "error" in c:  # the table of every model
+        groups = text(f["/converge"].attrs["groups"]).split(",")
+        units = text(f["/converge"].attrs["units"]).split(",")
+        g = groups.index(a.group) if a.group else 0
+        key = {"final": "error", "max": "error_max", "rms": "error_rms"}
+        errs = np.atleast_2d(c[key[a.norm]])[:, g]
+        est = ref["estimated_error" if a.norm == "final"
+                  else "estimated_error_max"][()]
+        ref_err = float(np.atleast_1d(est)[g])
+        gname, gunit = groups[g], units[g]
+    else:  # tables of ball scenes before every model had one
+        errs = c["err_x"]
+        ref_err = float(ref.attrs["estimated_error_x"])
+        gname, gunit = "x", "cm"
 
+where = {"final": "at T", "max": "max over the output rows",
+         "rms": "RMS over the output rows"}[a.norm]
 fig, ax = plt.subplots(1, 2, figsize=(12, 5))
 for m, name in enumerate(methods):
     sel = (c["method"] == m) & (c["status"] == 0)
@@ -37,18 +61,18 @@ for m, name in enumerate(methods):
     label = name + (" (%d failed)" % failed if failed else "")
     if not np.any(sel):
         continue
-    err = np.maximum(c["err_x"][sel], 1e-300)
+    err = np.maximum(errs[sel], 1e-300)
     style = "s--" if np.any(c["adaptive"][sel]) else "o-"
     ax[0].loglog(c["wall"][sel], err, style, label=label)
     ax[1].loglog(c["evals"][sel], err, style, label=label)
 for k, xl in enumerate(["wall time of the stepping loop [s] (min of repeats)",
-                        "force evaluations"]):
+                        "right-hand-side evaluations"]):
     ax[k].axhline(ref_err, color="grey", ls=":", lw=1,
                   label="reference's estimated error")
     ax[k].set_xlabel(xl)
-    ax[k].set_ylabel("max position error at T [cm]")
+    ax[k].set_ylabel("max |%s - ref| %s [%s]" % (gname, where, gunit))
     ax[k].grid(True, which="both", alpha=0.3)
 ax[1].legend(fontsize=8)
-fig.suptitle("work-precision, %s to T = %g s (reference: %s)"
-             % (scene, t_end, ref_name), fontsize=10)
+fig.suptitle("work-precision, %s (model %s) to T = %g s (reference: %s)"
+             % (scene, model, t_end, ref_name), fontsize=10)
 save(fig, a.output)
