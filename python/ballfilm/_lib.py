@@ -73,40 +73,58 @@ class SweepRow(ctypes.Structure):
                 ("message", ctypes.c_char * 512)]
 
 
+BF_CONVERGE_MAX_GROUPS = 6
+
+
 class ConvergeOpts(ctypes.Structure):
     _fields_ = [("methods", POINTER(c_char_p)), ("nmethods", c_size_t),
                 ("dts", POINTER(c_double)), ("ndts", c_size_t),
                 ("tols", POINTER(c_double)), ("ntols", c_size_t),
-                ("t_end", c_double), ("repeats", c_int),
+                ("t_end", c_double), ("repeats", c_int), ("rows", ctypes.c_long),
                 ("ref_rtol", c_double), ("ref_table", c_char_p),
-                ("max_step", c_double), ("progress", c_void_p)]
+                ("max_step", c_double), ("ref_may_be_compared", c_int),
+                ("skip_checks", c_int), ("progress", c_void_p)]
+
+
+class ConvergeGroup(ctypes.Structure):
+    _fields_ = [("name", ctypes.c_char * 32), ("unit", ctypes.c_char * 16),
+                ("n", c_size_t)]
+
+
+_PER_GROUP = c_double * BF_CONVERGE_MAX_GROUPS
 
 
 class ConvergeRow(ctypes.Structure):
     _fields_ = [("method", c_int), ("label", ctypes.c_char * 160),
                 ("adaptive", c_int), ("order", c_int), ("dt", c_double),
-                ("tol", c_double), ("err_x", c_double), ("err_v", c_double),
-                ("energy_err", c_double), ("order_x", c_double),
-                ("order_v", c_double), ("count", Counters), ("wall", c_double),
+                ("tol", c_double), ("err", _PER_GROUP),
+                ("err_max", _PER_GROUP), ("err_rms", _PER_GROUP),
+                ("order_obs", _PER_GROUP), ("invariant_err", c_double),
+                ("count", Counters), ("wall", c_double),
                 ("status", c_int), ("msg", ctypes.c_char * BF_ERR_MSG)]
 
 
 class ConvergeResult(ctypes.Structure):
-    _fields_ = [("scene", ctypes.c_char * 512), ("t_end", c_double),
+    _fields_ = [("scene", ctypes.c_char * 512), ("model", ctypes.c_char * 32),
+                ("t_end", c_double), ("out_rows", ctypes.c_long),
                 ("nmethods", c_size_t), ("methods", POINTER(c_char_p)),
                 ("rows", POINTER(ConvergeRow)), ("nrows", c_size_t),
+                ("ngroups", c_size_t),
+                ("groups", ConvergeGroup * BF_CONVERGE_MAX_GROUPS),
+                ("invariant", ctypes.c_char * 48),
                 ("ref_label", ctypes.c_char * 160), ("ref_rtol", c_double),
-                ("ref_err_x", c_double), ("ref_err_v", c_double),
-                ("ref_energy_err", c_double), ("max_step", c_double),
+                ("ref_err", _PER_GROUP), ("ref_err_max", _PER_GROUP),
+                ("ref_invariant_err", c_double), ("max_step", c_double),
                 ("ref_count", Counters), ("ref_wall", c_double),
-                ("n", c_size_t), ("x_ref", POINTER(c_double)),
-                ("v_ref", POINTER(c_double)), ("hertz", c_int)]
+                ("nstate", c_size_t), ("ref_state", POINTER(c_double)),
+                ("notes", ctypes.c_char * 2048), ("priv", c_void_p)]
 
 
 MIRRORS = {"bf_err": Err, "bf_sim_opts": SimOpts, "bf_state_var": StateVar,
            "bf_counters": Counters, "bf_results": Results, "bf_sweep": Sweep,
            "bf_sweep_axis": SweepAxis, "bf_sweep_row": SweepRow,
            "bf_converge_opts": ConvergeOpts, "bf_converge_row": ConvergeRow,
+           "bf_converge_group": ConvergeGroup,
            "bf_converge_result": ConvergeResult}
 
 # bf_status (*)(void *ctx, bf_sim *sim, bf_err *err)

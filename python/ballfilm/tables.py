@@ -20,17 +20,23 @@ def _doubles(values):
 
 
 def converge(scene, methods, dts=None, tols=None, t_end=None, set=None,
-             repeats=1, ref_rtol=0.0, max_step=0.0):
-    """`ballfilm converge` on a ball scene file: every method (a name or
-    "name:key=value", e.g. "arkode:table=ARKODE_CASH_KARP_6_4_5") at the
-    steps `dts` (fixed-step methods) and tolerances `tols` (adaptive ones)
-    against an ARKODE reference (converge.h).  Returns (table, reference):
+             repeats=1, ref_rtol=0.0, max_step=0.0, rows=0):
+    """`ballfilm converge` on a scene file of any model: every method (a
+    name or "name:key=value", e.g. "arkode:table=ARKODE_CASH_KARP_6_4_5")
+    at the steps `dts` (fixed-step methods) and tolerances `tols`
+    (adaptive ones) against an ARKODE reference (converge.h), the state
+    compared at `rows` output rows (0: 10).  Returns (table, reference):
     table a structured array with columns method, label, adaptive, order,
-    dt, tol, err_x, err_v, energy_err, order_x, order_v, steps, evals,
-    rejected, wall, status, message; reference a dict of the reference
-    run's label, rtol, estimated errors, energy error and its final
-    state x_ref, v_ref.  The study has no stop flag: Ctrl-C is held until
-    it ends, then raised as KeyboardInterrupt."""
+    dt, tol, and for every state group G of the model (balls: x, v; the
+    film: psi, h, ...) err_G (at T), err_max_G and err_rms_G (over the
+    rows), order_G (observed, NaN for a method's first run), then
+    invariant_err (the relative change of the energy or of the conserved
+    totals), steps, evals, rejected, iterations, wall, status, message;
+    reference a dict of the reference run's label, rtol, model, groups
+    [(name, unit)], estimated errors err_G and err_max_G, invariant_err,
+    max_step, t_end, notes, and its final state, group by group, as G_ref
+    (balls: x_ref, v_ref).  The study has no stop flag: Ctrl-C is held
+    until it ends, then raised as KeyboardInterrupt."""
     lib = _lib.lib()
     if isinstance(methods, str):
         methods = [methods]
@@ -43,8 +49,8 @@ def converge(scene, methods, dts=None, tols=None, t_end=None, set=None,
     o = _lib.ConvergeOpts(methods=marr, nmethods=nm, dts=dp, ndts=nd,
                           tols=tp, ntols=nt,
                           t_end=float(t_end) if t_end is not None else 0.0,
-                          repeats=int(repeats), ref_rtol=float(ref_rtol),
-                          max_step=float(max_step))
+                          repeats=int(repeats), rows=int(rows),
+                          ref_rtol=float(ref_rtol), max_step=float(max_step))
     out = ctypes.POINTER(_lib.ConvergeResult)()
     err = _lib.Err()
     flag = ctypes.c_int(0)  # converge has no stop flag: Ctrl-C waits
@@ -58,28 +64,49 @@ def converge(scene, methods, dts=None, tols=None, t_end=None, set=None,
         raise KeyboardInterrupt("ballfilm.converge ran to its end first")
     if st:
         raise from_err(err)
-    r = out.contents
+    try:
+        return _converge_table(lib, out.contents)
+    finally:
+        lib.bf_converge_free(out)
+
+
+def _converge_table(lib, r):
+    groups = [(r.groups[g].name.decode(), r.groups[g].unit.decode())
+              for g in range(r.ngroups)]
+    names = [g for g, _ in groups]
     dtype = [("method", "U64"), ("label", "U160"), ("adaptive", bool),
-             ("order", int), ("dt", float), ("tol", float), ("err_x", float),
-             ("err_v", float), ("energy_err", float), ("order_x", float),
-             ("order_v", float), ("steps", np.int64), ("evals", np.int64),
-             ("rejected", np.int64), ("wall", float), ("status", "U16"),
-             ("message", "U1024")]
+             ("order", int), ("dt", float), ("tol", float)]
+    for g in names:
+        dtype += [(f"err_{g}", float), (f"err_max_{g}", float),
+                  (f"err_rms_{g}", float), (f"order_{g}", float)]
+    dtype += [("invariant_err", float), ("steps", np.int64),
+              ("evals", np.int64), ("rejected", np.int64),
+              ("iterations", np.int64), ("wall", float), ("status", "U16"),
+              ("message", "U1024")]
     rows = []
     for k in range(r.nrows):
         w = r.rows[k]
+        per = []
+        for g in range(r.ngroups):
+            per += [w.err[g], w.err_max[g], w.err_rms[g], w.order_obs[g]]
         rows.append((r.methods[w.method].decode(), w.label.decode(),
-                     bool(w.adaptive), w.order, w.dt, w.tol, w.err_x,
-                     w.err_v, w.energy_err, w.order_x, w.order_v,
-                     w.count.steps, w.count.evals, w.count.rejected, w.wall,
+                     bool(w.adaptive), w.order, w.dt, w.tol, *per,
+                     w.invariant_err, w.count.steps, w.count.evals,
+                     w.count.rejected, w.count.iterations, w.wall,
                      lib.bf_status_name(w.status).decode(),
                      w.msg.decode(errors="replace")))
     ref = {"label": r.ref_label.decode(), "rtol": r.ref_rtol,
-           "err_x": r.ref_err_x, "err_v": r.ref_err_v,
-           "energy_err": r.ref_energy_err, "max_step": r.max_step,
-           "t_end": r.t_end, "x_ref": np.array(r.x_ref[:r.n]),
-           "v_ref": np.array(r.v_ref[:r.n])}
-    lib.bf_converge_free(out)
+           "model": r.model.decode(), "groups": groups,
+           "invariant": r.invariant.decode(),
+           "invariant_err": r.ref_invariant_err, "max_step": r.max_step,
+           "t_end": r.t_end, "notes": r.notes.decode(errors="replace")}
+    off = 0
+    for g, name in enumerate(names):
+        ref[f"err_{name}"] = r.ref_err[g]
+        ref[f"err_max_{name}"] = r.ref_err_max[g]
+        n = r.groups[g].n
+        ref[f"{name}_ref"] = np.array(r.ref_state[off:off + n])
+        off += n
     return np.array(rows, dtype=dtype), ref
 
 

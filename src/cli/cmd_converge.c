@@ -13,32 +13,45 @@ static void converge_usage(FILE *f)
     fprintf(f,
             "usage: ballfilm converge SCENE.ini --methods M1,M2,... [options]\n"
             "\n"
-            "Runs each method on the scene's balls from 0 to T and compares "
-            "the state at T\n"
-            "with an ARKODE reference (rtol <= 1e-12, a Butcher table no "
-            "compared method uses).\n"
+            "Runs each time integrator on the scene's model from 0 to T and "
+            "compares the state\n"
+            "at the output rows with an ARKODE reference (a Butcher table no "
+            "compared method\n"
+            "uses); prints errors, observed orders, the energy (or conserved "
+            "totals), the cost.\n"
             "\n"
-            "  --methods LIST   integrators, each 'name' or "
-            "'name:key=value:...' with [integrator] keys,\n"
-            "                   e.g. verlet,mv2m,rk3,rk4,alpha:alpha=0.25,"
-            "arkode\n"
+            "  --methods LIST   time integrators, each 'name' or "
+            "'name:key=value:...':\n"
+            "                   balls: [scene] integrator with [integrator] "
+            "keys, e.g.\n"
+            "                     verlet,mv2m,rk4,mv2m:events=yes,"
+            "arkode:table=ARKODE_CASH_KARP_6_4_5\n"
+            "                   film: [film] scheme invariant, arkode, "
+            "arkode-imex (keys of [film])\n"
+            "                   greenspan72/73: [greenspan7x] integrator "
+            "leapfrog, greenspan73, arkode\n"
+            "                   a key written section.key goes to that "
+            "section (mv2m:coupled.film_every=10)\n"
             "  --dt LIST        step sizes of fixed-step methods, s "
             "(default: the scene's dt x 4,2,1,1/2)\n"
             "  --tol LIST       tolerances (rtol; atol = rtol/100) of "
             "adaptive methods\n"
             "                   (default 1e-4,1e-6,1e-8,1e-10)\n"
             "  --t-end T        final time, s (default: [scene] t_end)\n"
+            "  --rows N         output rows compared (default 10; max and RMS "
+            "errors over them)\n"
             "  --repeats N      timing repeats, minimum taken (default 3)\n"
-            "  --ref-rtol R     reference tolerance (default 1e-12, at most "
-            "1e-12)\n"
+            "  --ref-rtol R     reference tolerance (default and largest "
+            "allowed: the model's,\n"
+            "                   1e-12 for balls; docs/accuracy.md)\n"
             "  --ref-table NAME reference Butcher table (default "
             "ARKODE_VERNER_8_5_6,\n"
             "                   or DORMAND_PRINCE_7_4_5 / CASH_KARP_6_4_5 when "
             "it is compared)\n"
             "  --max-step H     largest internal step of adaptive methods and "
             "the reference, s\n"
-            "                   (default with Hertz contacts: 10 x the scene's "
-            "dt, else none;\n"
+            "                   (default for balls with Hertz contacts: 10 x "
+            "the scene's dt, else none;\n"
             "                   'none': no limit)\n"
             "  --set s.k=v      override a scene key (repeatable)\n"
             "  -o OUT.h5        write the table (default "
@@ -106,6 +119,13 @@ int bf_cmd_converge(int argc, char **argv)
         } else if (!strcmp(a, "--t-end") && val) {
             if (!bf_parse_real(val, &o.t_end) || !(o.t_end > 0)) {
                 fprintf(stderr, "ballfilm: error: --t-end needs a time > 0\n");
+                goto done;
+            }
+            k++;
+        } else if (!strcmp(a, "--rows") && val) {
+            if (!bf_parse_long(val, &o.rows) || o.rows < 1 ||
+                o.rows > 100000) {
+                fprintf(stderr, "ballfilm: error: --rows needs 1..100000\n");
                 goto done;
             }
             k++;

@@ -18,6 +18,7 @@ static const struct {
     SIZE(bf_sweep_axis),   SIZE(bf_sweep_row),     SIZE(bf_converge_opts),
     SIZE(bf_converge_row), SIZE(bf_converge_result), SIZE(bf_h5_dataset),
     SIZE(bf_effect_type),  SIZE(bf_integrator_type), SIZE(bf_balls),
+    SIZE(bf_converge_group),
 };
 
 size_t bf_sizeof(const char *name)

@@ -1,0 +1,66 @@
+/* study.c: the studies of the models for `ballfilm converge` (study.h),
+ * one line per model, and what they share. */
+#include <string.h>
+
+#include "compose/study.h"
+#include "integrators/arkode.h"
+
+extern const bf_study_type bf_study_balls;
+
+static const bf_study_type *const studies[] = {
+    &bf_study_balls,
+};
+
+const bf_study_type *bf_study_of(const char *model)
+{
+    for (size_t k = 0; k < sizeof studies / sizeof studies[0]; k++)
+        if (!strcmp(studies[k]->model, model))
+            return studies[k];
+    return NULL;
+}
+
+/* Does method string m use the table? */
+static int uses_table(const char *m, const char *const *names,
+                      const char *const *defaults, const char *table)
+{
+    size_t len = strcspn(m, ":");
+    for (size_t k = 0; names[k]; k++) {
+        if (strlen(names[k]) != len || strncmp(m, names[k], len))
+            continue;
+        const char *t = strstr(m, "table=");
+        if (t)
+            return !strncmp(t + 6, table, strlen(table)) &&
+                   (t[6 + strlen(table)] == '\0' ||
+                    t[6 + strlen(table)] == ':');
+        return defaults[k] && !strcmp(defaults[k], table);
+    }
+    return 0;
+}
+
+bf_status bf_study_pick_table(const bf_converge_opts *o,
+                              const char *const *names,
+                              const char *const *defaults,
+                              const char *const *candidates, size_t ncand,
+                              const char **table, bf_err *err)
+{
+    const char *t = o->ref_table;
+    for (size_t k = 0; !t && k < ncand; k++) {
+        int used = 0;
+        for (size_t m = 0; m < o->nmethods && !o->ref_may_be_compared; m++)
+            used |= uses_table(o->methods[m], names, defaults, candidates[k]);
+        if (!used)
+            t = candidates[k];
+    }
+    if (!t)
+        return bf_fail(err, BF_EINPUT, "every candidate reference table is "
+                       "compared; give --ref-table");
+    if (bf_arkode_table_index(t) < 0)
+        return bf_fail(err, BF_EINPUT, "unknown ARKODE table '%s'", t);
+    for (size_t m = 0; m < o->nmethods && !o->ref_may_be_compared; m++)
+        if (uses_table(o->methods[m], names, defaults, t))
+            return bf_fail(err, BF_EINPUT, "the reference table %s is also "
+                           "compared (method '%s'); the reference must use "
+                           "another method", t, o->methods[m]);
+    *table = t;
+    return BF_OK;
+}

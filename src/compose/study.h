@@ -1,0 +1,77 @@
+/* study.h: what the convergence driver (converge.c) needs to know of a
+ * model to study its time integrators: one bf_study_type per model, in
+ * its own file (study_balls.c, study_film.c, ...), listed in study.c.
+ * Private to the composition layer.
+ *
+ * The driver builds the model of each method's scene (run.h,
+ * bf_model_from_scene) and advances it through its bf_model_type (step,
+ * advance, energy, counters, stable_dt); the study says how a method
+ * string names the model's time integrator, which methods are adaptive,
+ * what the reference is, and which state values are compared. */
+#ifndef BALLFILM_COMPOSE_STUDY_H
+#define BALLFILM_COMPOSE_STUDY_H
+
+#include "ballfilm/converge.h"
+#include "ballfilm/run.h"
+#include "diag/energy.h"
+
+/* The state a study compares, read from a model after a step: groups of
+ * values (each one array a of n values, and optionally a second array b
+ * of n more, e.g. the x and y of particles), and conserved totals. */
+typedef struct bf_study_view {
+    size_t ngroups;
+    struct {
+        const char *name, *unit;
+        const double *a, *b;
+        size_t n;
+    } g[BF_CONVERGE_MAX_GROUPS];
+    /* conserved totals (the film's phase totals); ninv = 0: the model's
+     * energy, if it has one */
+    size_t ninv;
+    double inv[4];
+} bf_study_view;
+
+typedef struct bf_study_type {
+    const char *model;         /* the model's name */
+    const char *method_key;    /* the key a method's name sets */
+    const char *param_section; /* where a method's key=value go */
+    const char *invariant;     /* what the invariant error measures */
+    double default_ref_rtol;   /* reference tolerance when none is given */
+    double max_ref_rtol;       /* largest reference tolerance allowed */
+    /* 1 if the method of the resolved scene sc steps adaptively */
+    int (*adaptive)(const bf_scene *sc);
+    /* The reference's method string for this study (the driver sets its
+     * tolerances and largest step), chosen so that it shares no table
+     * with the compared methods (unless o->ref_may_be_compared). */
+    bf_status (*reference)(const bf_scene *sc, const bf_converge_opts *o,
+                           char *method, size_t cap, bf_err *err);
+    /* default largest internal step of adaptive runs, s (0: none) */
+    double (*max_step)(const bf_scene *sc);
+    /* the compared state of a model built from a method's scene */
+    void (*view)(void *model, bf_study_view *v);
+    /* one-line description of the model's integrator and its nominal
+     * order (0: unknown) */
+    void (*describe)(void *model, char *buf, size_t cap, int *order);
+    /* Optional: check the energy after every internal step of an
+     * adaptive integrator (balls): returns what to free after the run. */
+    void *(*watch)(void *model, bf_energy_diag *d);
+    /* Optional: notes printed under the table (appended to buf). */
+    void (*notes)(const bf_scene *sc, char *buf, size_t cap);
+} bf_study_type;
+
+/* The study of the scene's model (NULL: none). */
+const bf_study_type *bf_study_of(const char *model);
+
+/* Shared by the studies: the reference table among candidates (ARKODE
+ * names, in order of preference) that no compared method uses.  A method
+ * uses a table when its name is one of `names` (NULL-terminated: the
+ * model's ARKODE integrators) and its table= key names the table, or it
+ * sets none and defaults[k] (the default table of names[k]) is that
+ * table.  With o->ref_table the table is checked instead of chosen. */
+bf_status bf_study_pick_table(const bf_converge_opts *o,
+                              const char *const *names,
+                              const char *const *defaults,
+                              const char *const *candidates, size_t ncand,
+                              const char **table, bf_err *err);
+
+#endif
