@@ -12,6 +12,7 @@
 #include "ballfilm/sim.h"
 
 #include <fcntl.h>
+#include <limits.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -440,23 +441,48 @@ enum { RUN_MAX = 1024 };
 
 static long min_long(long a, long b) { return a < b ? a : b; }
 
+/* The next steps at which the loop has work: an output row, an energy
+ * check, a checkpoint (LONG_MAX: never).  Kept as step numbers rather than
+ * tested as s->n % every after every run, which cost several integer
+ * divisions per run on scenes whose runs end at frequent events. */
+typedef struct due_steps {
+    long row, energy, ckpt;
+} due_steps;
+
+/* the smallest multiple of every above n (every >= 1) */
+static long next_multiple(long n, long every)
+{
+    return every == 1 ? n + 1 : (n / every + 1) * every;
+}
+
+static due_steps due_after(const bf_sim *s, long n)
+{
+    due_steps d;
+    d.row = next_multiple(n, s->out_every);
+    d.energy = s->has_energy && s->energy_every
+                   ? next_multiple(n, s->energy_every)
+                   : LONG_MAX;
+    d.ckpt = s->ckpt_every && s->out ? next_multiple(n, s->ckpt_every)
+                                     : LONG_MAX;
+    return d;
+}
+
 /* Steps from s->n to the next event the loop must see: an energy check
  * (unless the run makes it, energy_in_run), an output row, a checkpoint, a
  * heartbeat, the target step, the --stop-after limit, a multiple of
  * RUN_MAX (progress line, interruption flag).  At least 1. */
-static long run_length(const bf_sim *s, long target, int energy_in_run)
+static long run_length(const bf_sim *s, const due_steps *d, long target,
+                       int energy_in_run)
 {
     const long n = s->n;
-    const int energy = s->has_energy && s->energy_every && !energy_in_run;
     long k = min_long(target - n, RUN_MAX - (n & (RUN_MAX - 1)));
-    k = min_long(k, s->out_every - n % s->out_every);
+    k = min_long(k, d->row - n);
     for (size_t h = 0; h < s->nhb; h++)
         if (s->hb[h].every)
             k = min_long(k, s->hb[h].every - n % s->hb[h].every);
-    if (energy)
-        k = min_long(k, s->energy_every - n % s->energy_every);
-    if (s->ckpt_every && s->out)
-        k = min_long(k, s->ckpt_every - n % s->ckpt_every);
+    if (!energy_in_run)
+        k = min_long(k, d->energy - n);
+    k = min_long(k, d->ckpt - n);
     if (s->opts.stop_after)
         k = min_long(k, s->opts.stop_after - s->steps_this_run);
     return k;
@@ -597,6 +623,7 @@ static bf_status run_to(bf_sim *s, long target, bf_err *err)
     const int plain_runs = s->mt->advance && every > 1 && !s->obs_steps &&
                            !energy_every_step && !s->opts.step_by_step;
     const int energy_in_run = watchable && !plain_runs && energy_every_step;
+    due_steps due = due_after(s, s->n);
     while (s->n < target) {
         if ((s->opts.stop_flag && *s->opts.stop_flag) ||
             (s->opts.stop_after && s->steps_this_run >= s->opts.stop_after)) {
@@ -604,7 +631,9 @@ static bf_status run_to(bf_sim *s, long target, bf_err *err)
             break;
         }
         /* a run of steps up to the next event, or one step */
-        long k = plain_runs || watchable ? run_length(s, target, energy_in_run) : 1;
+        long k = plain_runs || watchable
+                     ? run_length(s, &due, target, energy_in_run)
+                     : 1;
         long done = 1;
         int energy_checked = 0, named = 0;
         if (k > 1 && plain_runs) {
@@ -626,15 +655,24 @@ static bf_status run_to(bf_sim *s, long target, bf_err *err)
                               (double)(s->n + 1) * s->dt);
             break;
         }
-        if (!energy_checked && s->has_energy && eevery &&
-            s->n % eevery == 0) {
-            double rel = check_energy(s);
-            if (s->energy_bound > 0 && !(rel <= s->energy_bound)) {
-                st = energy_exceeded(s, rel, err);
-                break;
+        if (s->n >= due.energy) {
+            /* a run that checks the energy itself may pass the check's
+             * step (energy_in_run: every step) */
+            const int on_step = s->n == due.energy;
+            due.energy = on_step ? due.energy + eevery
+                                 : next_multiple(s->n, eevery);
+            if (on_step && !energy_checked) {
+                double rel = check_energy(s);
+                if (s->energy_bound > 0 && !(rel <= s->energy_bound)) {
+                    st = energy_exceeded(s, rel, err);
+                    break;
+                }
             }
         }
-        if (s->n % every == 0 || s->n == s->nsteps) {
+        const int row_due = s->n == due.row;
+        if (row_due)
+            due.row += every;
+        if (row_due || s->n == s->nsteps) {
             if (s->has_energy && !eevery)
                 check_energy(s);
             st = row_and_beat(s, err);
@@ -650,8 +688,10 @@ static bf_status run_to(bf_sim *s, long target, bf_err *err)
                           (double)s->n * s->dt);
             break;
         }
-        if (s->ckpt_every && s->out && s->n % s->ckpt_every == 0 &&
-            s->n < s->nsteps &&
+        const int ckpt_due = s->n == due.ckpt;
+        if (ckpt_due)
+            due.ckpt += s->ckpt_every;
+        if (ckpt_due && s->n < s->nsteps &&
             (st = bf_sim_checkpoint_write(s, s->ckpt_path, err))) {
             bf_err_prefix(err, "step %ld (t = %.9g s): checkpoint", s->n,
                           (double)s->n * s->dt);

@@ -190,7 +190,7 @@ static bf_status open_part(bf_out **out, const char *path, int append,
         return st;
     }
     o->append = append;
-    o->last_flush = bf_wall_time();
+    o->last_flush = bf_coarse_time();
     *out = o;
     return BF_OK;
 }
@@ -579,7 +579,7 @@ bf_status bf_out_flush(bf_out *out, bf_err *err)
         out->failed = 1;
         return st;
     }
-    out->last_flush = bf_wall_time();
+    out->last_flush = bf_coarse_time();
     return BF_OK;
 }
 
@@ -588,7 +588,7 @@ bf_status bf_out_maybe_flush(bf_out *out, double seconds, bf_err *err)
     size_t bytes = 0;
     for (size_t k = 0; k < out->nseries; k++)
         bytes += out->series[k]->nbuf * 8 * out->series[k]->width;
-    if (bytes > FLUSH_BYTES || bf_wall_time() - out->last_flush > seconds)
+    if (bytes > FLUSH_BYTES || bf_coarse_time() - out->last_flush > seconds)
         return bf_out_flush(out, err);
     return BF_OK;
 }
