@@ -24,6 +24,7 @@
 #include "ballfilm/h5out.h"
 #include "analysis/lyapunov.h"
 #include "analysis/returnmap.h"
+#include "diag/hermite.h"
 #include "ballfilm/run.h"
 #include "testutil.h"
 
@@ -300,11 +301,67 @@ START_TEST(lyapunov_refuses_adaptive)
 }
 END_TEST
 
+/* The slope's zero by two halvings per pass (diag/hermite.h,
+ * bf_hermite_slope_root) is the plain bisection's, one halving at a time,
+ * to the bit: on random steps, on zeros near 0 (where the 60-halving cap,
+ * not adjacency, ends the search) and near 1, and where the slope is 0 at
+ * theta = 1. */
+static double bisect_one_at_a_time(double D, double d0, double d1)
+{
+    double lo = 0, hi = 1;
+    for (int k = 0; k < 60; k++) {
+        double mid = 0.5 * (lo + hi);
+        if (mid == lo || mid == hi)
+            break;
+        if (bf_hermite_slope_mean(mid, D, d0, d1) < 0)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+START_TEST(slope_root_is_the_bisection)
+{
+    unsigned long long seed = 88172645463325252ull;
+    long same = 0, cases = 0;
+    for (int c = 0; c < 200000; c++) {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        double u1 = (double)(seed >> 11) * 0x1p-53, u2, u3;
+        seed ^= seed << 13, seed ^= seed >> 7, seed ^= seed << 17;
+        u2 = (double)(seed >> 11) * 0x1p-53;
+        seed ^= seed << 13, seed ^= seed >> 7, seed ^= seed << 17;
+        u3 = (double)(seed >> 11) * 0x1p-53;
+        /* d0 < 0 <= d1 over many scales; the mean slope anywhere */
+        double d0 = -pow(10.0, 8 * u1 - 6), d1 = pow(10.0, 8 * u2 - 6) - 1e-6;
+        double D = (u3 - 0.5) * 2e2;
+        if (c % 7 == 0)
+            d0 = -1e-300 * (1 + u1); /* the zero right at theta = 0 */
+        if (c % 11 == 0)
+            d1 = 0.0; /* the zero at theta = 1 */
+        if (!(d1 >= 0))
+            d1 = 0.0;
+        cases++;
+        double a = bf_hermite_slope_root(D, d0, d1),
+               b = bisect_one_at_a_time(D, d0, d1);
+        if (memcmp(&a, &b, sizeof a) == 0)
+            same++;
+        else
+            ck_abort_msg("D = %a, d0 = %a, d1 = %a: %a against %a", D, d0, d1,
+                         a, b);
+    }
+    ck_assert_int_eq(same, cases);
+}
+END_TEST
+
 Suite *suite_returnmap(void)
 {
     Suite *s = suite_create("returnmap");
     TCase *tc = tu_tcase("returnmap");
     tcase_add_test(tc, located_inside_the_step);
+    tcase_add_test(tc, slope_root_is_the_bisection);
     tcase_add_test(tc, two_balls_map_invariants);
     tcase_add_test(tc, lyapunov_of_linear_systems);
     tcase_add_test(tc, fig2_exponents_differ);

@@ -217,20 +217,7 @@ static bf_status retmap_after_step(void *self, long n_done, double t,
         v1[i] >= 0) {
         const double z0 = rm->x0[i], u0 = rm->v0[i], z1 = x1[i], u1 = v1[i];
         /* the upward zero of the quadratic slope in [0, 1] */
-        double lo = 0, hi = 1;
-        const double D = (z1 - z0) / dt;
-        for (int k = 0; k < 60; k++) {
-            double mid = 0.5 * (lo + hi);
-            /* lo and hi adjacent: no later halving changes 0.5 (lo + hi),
-             * the point taken below (it is whichever of the two mid is) */
-            if (mid == lo || mid == hi)
-                break;
-            if (bf_hermite_slope_mean(mid, D, u0, u1) < 0)
-                lo = mid;
-            else
-                hi = mid;
-        }
-        const double th = 0.5 * (lo + hi);
+        const double th = bf_hermite_slope_root((z1 - z0) / dt, u0, u1);
         /* forces at both ends for the velocity interpolant */
         if (ode->accel(ode->ctx, t, rm->x0, rm->v0, rm->a0) ||
             ode->accel(ode->ctx, t + dt, x1, v1, rm->a1))
