@@ -22,6 +22,7 @@ typedef struct dset {
     int rank; /* 0: absent */
     int is_int;
     size_t n0, n1;
+    const char *whole; /* its DataItem line (item_whole), cached, or NULL */
 } dset;
 
 /* What dset_of found, by path: a sidecar names the same datasets in each
@@ -30,6 +31,7 @@ typedef struct dset {
 enum { DSET_CACHE = 64 };
 typedef struct dset_cache {
     char *path[DSET_CACHE];
+    char *whole[DSET_CACHE];
     dset d[DSET_CACHE];
     size_t n;
 } dset_cache;
@@ -44,6 +46,7 @@ typedef struct xw {
 } xw;
 
 static dset dset_read(const xw *x, const char *path);
+static char *whole_line(const xw *x, const char *path, const dset *d);
 
 static dset dset_of(const xw *x, const char *path)
 {
@@ -52,14 +55,17 @@ static dset dset_of(const xw *x, const char *path)
         if (!strcmp(c->path[k], path))
             return c->d[k];
     dset d = dset_read(x, path);
-    if (c && c->n < DSET_CACHE && (c->path[c->n] = strdup(path)))
+    if (c && c->n < DSET_CACHE && (c->path[c->n] = strdup(path))) {
+        c->whole[c->n] = d.rank ? whole_line(x, path, &d) : NULL;
+        d.whole = c->whole[c->n];
         c->d[c->n++] = d;
+    }
     return d;
 }
 
 static dset dset_read(const xw *x, const char *path)
 {
-    dset d = {0, 0, 0, 0};
+    dset d = {0, 0, 0, 0, NULL};
     if (H5Lexists(x->h5, path, H5P_DEFAULT) <= 0)
         return d;
     hid_t id = H5Dopen2(x->h5, path, H5P_DEFAULT);
@@ -125,11 +131,45 @@ static void numtype(const xw *x, int is_int)
           x->f);
 }
 
+/* n in decimal, as printf's %zu */
+static void put_size(const xw *x, size_t n)
+{
+    char buf[24], *p = buf + sizeof buf;
+    do {
+        *--p = (char)('0' + n % 10);
+        n /= 10;
+    } while (n);
+    fwrite(p, 1, (size_t)(buf + sizeof buf - p), x->f);
+}
+
+/* The DataItem line of a whole dataset (without its indent); NULL when
+ * out of memory. */
+static char *whole_line(const xw *x, const char *path, const dset *d)
+{
+    char dims[48];
+    if (d->rank == 2)
+        snprintf(dims, sizeof dims, "%zu %zu", d->n0, d->n1);
+    else
+        snprintf(dims, sizeof dims, "%zu", d->n0);
+    const char *fmt = "<DataItem Dimensions=\"%s\" NumberType=\"%s\" "
+                      "Precision=\"8\" Format=\"HDF\">%s:%s</DataItem>\n";
+    const char *type = d->is_int ? "Int" : "Float";
+    int len = snprintf(NULL, 0, fmt, dims, type, x->href, path);
+    char *line = len >= 0 ? malloc((size_t)len + 1) : NULL;
+    if (line)
+        snprintf(line, (size_t)len + 1, fmt, dims, type, x->href, path);
+    return line;
+}
+
 /* A whole dataset. */
 static void item_whole(const xw *x, const char *path, const dset *d,
                        int depth)
 {
     indent(x, depth);
+    if (d->whole) {
+        fputs(d->whole, x->f);
+        return;
+    }
     fprintf(x->f, "<DataItem Dimensions=\"%zu", d->n0);
     if (d->rank == 2)
         fprintf(x->f, " %zu", d->n1);
@@ -151,15 +191,23 @@ static void item_row(const xw *x, const char *path, const dset *d, size_t k,
 {
     indent(x, depth);
     fputs("<DataItem ItemType=\"HyperSlab\" Dimensions=\"", x->f);
-    if (sh)
-        for (int r = 0; r < sh->rank; r++)
-            fprintf(x->f, r ? " %zu" : "%zu", sh->d[r]);
-    else
-        fprintf(x->f, "1 %zu", d->n1);
+    if (sh) {
+        for (int r = 0; r < sh->rank; r++) {
+            if (r)
+                fputc(' ', x->f);
+            put_size(x, sh->d[r]);
+        }
+    } else {
+        fputs("1 ", x->f);
+        put_size(x, d->n1);
+    }
     fputs("\" Type=\"HyperSlab\">\n", x->f);
     indent(x, depth + 1);
-    fprintf(x->f, "<DataItem Dimensions=\"3 2\" Format=\"XML\">%zu 0 1 1 1 "
-                  "%zu</DataItem>\n", k, d->n1);
+    fputs("<DataItem Dimensions=\"3 2\" Format=\"XML\">", x->f);
+    put_size(x, k);
+    fputs(" 0 1 1 1 ", x->f);
+    put_size(x, d->n1);
+    fputs("</DataItem>\n", x->f);
     item_whole(x, path, d, depth + 1);
     indent(x, depth);
     fputs("</DataItem>\n", x->f);
@@ -175,8 +223,11 @@ static void attribute(const xw *x, const char *name, const char *center,
     if (!d.rank)
         return;
     indent(x, depth);
-    fprintf(x->f, "<Attribute Name=\"%s\" AttributeType=\"Scalar\" "
-                  "Center=\"%s\">\n", name, center);
+    fputs("<Attribute Name=\"", x->f);
+    fputs(name, x->f);
+    fputs("\" AttributeType=\"Scalar\" Center=\"", x->f);
+    fputs(center, x->f);
+    fputs("\">\n", x->f);
     if (d.rank == 2)
         item_row(x, path, &d, k, sh, depth + 1);
     else
@@ -212,10 +263,13 @@ static void point_set(const xw *x, const char *px, const char *py, size_t k,
 {
     dset a = dset_of(x, px);
     indent(x, depth);
-    fprintf(x->f, "<Topology TopologyType=\"Polyvertex\" "
-                  "NumberOfElements=\"%zu\" NodesPerElement=\"1\"/>\n", a.n1);
+    fputs("<Topology TopologyType=\"Polyvertex\" NumberOfElements=\"", x->f);
+    put_size(x, a.n1);
+    fputs("\" NodesPerElement=\"1\"/>\n", x->f);
     indent(x, depth);
-    fprintf(x->f, "<Geometry GeometryType=\"%s\">\n", py ? "X_Y" : "X_Y_Z");
+    fputs(py ? "<Geometry GeometryType=\"X_Y\">\n"
+             : "<Geometry GeometryType=\"X_Y_Z\">\n",
+          x->f);
     item_row(x, px, &a, k, NULL, depth + 1);
     if (py) {
         dset b = dset_of(x, py);
@@ -223,8 +277,9 @@ static void point_set(const xw *x, const char *px, const char *py, size_t k,
     } else {
         for (int c = 0; c < 2; c++) {
             indent(x, depth + 1);
-            fprintf(x->f, "<DataItem Dimensions=\"%zu\" NumberType=\"Float\" "
-                          "Format=\"XML\">", a.n1);
+            fputs("<DataItem Dimensions=\"", x->f);
+            put_size(x, a.n1);
+            fputs("\" NumberType=\"Float\" Format=\"XML\">", x->f);
             for (size_t i = 0; i < a.n1; i++)
                 fputs(i ? " 0" : "0", x->f);
             fputs("</DataItem>\n", x->f);
@@ -621,8 +676,10 @@ bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
         st = bf_fail(err, BF_EIO, "%s: writing the XDMF file failed (disk "
                      "full?)", xmf_path);
     free(x.href);
-    for (size_t k = 0; k < cache.n; k++)
+    for (size_t k = 0; k < cache.n; k++) {
         free(cache.path[k]);
+        free(cache.whole[k]);
+    }
     H5Fclose(x.h5);
     return st;
 }
