@@ -46,6 +46,7 @@ struct bf_series {
     size_t nbuf, capbuf;
     unsigned char *buf;
     char *path;
+    size_t *buffered; /* the output's count of bytes in every buffer */
 };
 
 struct bf_out {
@@ -57,7 +58,9 @@ struct bf_out {
     int failed;  /* a write failed: touch nothing more */
     bf_series **series;
     size_t nseries, capseries;
-    size_t buffered_bytes;
+    size_t buffered_bytes; /* rows in the series' buffers, B: kept as they
+                              are appended, truncated and flushed, so that
+                              the test after every row is one compare */
     double last_flush;
     int deflate; /* level of new datasets' deflate filter (0: none) */
 };
@@ -419,8 +422,15 @@ registered:
         out->series = ns;
     }
     out->series[out->nseries++] = s;
-    (void)out->buffered_bytes;
+    s->buffered = &out->buffered_bytes;
     return s;
+}
+
+/* rows rows of s leave its buffer */
+static void series_unbuffer(bf_series *s, size_t rows)
+{
+    if (s->buffered)
+        *s->buffered -= rows * 8 * s->width;
 }
 
 static bf_status append_raw(bf_series *s, const void *row)
@@ -441,6 +451,8 @@ static bf_status append_raw(bf_series *s, const void *row)
     }
     memcpy(s->buf + s->nbuf * rowbytes, row, rowbytes);
     s->nbuf++;
+    if (s->buffered)
+        *s->buffered += rowbytes;
     return BF_OK;
 }
 
@@ -474,9 +486,11 @@ bf_status bf_series_truncate(bf_series *s, size_t rows, bf_err *err)
                        "checkpoint expects", s->path, s->written + s->nbuf,
                        rows);
     if (rows >= s->written) {
+        series_unbuffer(s, s->nbuf - (rows - s->written));
         s->nbuf = rows - s->written;
         return BF_OK;
     }
+    series_unbuffer(s, s->nbuf);
     s->nbuf = 0;
     hsize_t dims[2] = {rows, s->ncols};
     if (H5Dset_extent(s->dset, dims) < 0)
@@ -560,6 +574,7 @@ static bf_status series_flush(bf_out *out, bf_series *s, bf_err *err)
         return bf_fail(err, BF_EIO, "%s: writing %s failed (disk full?)",
                        out->path, s->path);
     s->written += s->nbuf;
+    series_unbuffer(s, s->nbuf);
     s->nbuf = 0;
     return BF_OK;
 }
@@ -585,10 +600,8 @@ bf_status bf_out_flush(bf_out *out, bf_err *err)
 
 bf_status bf_out_maybe_flush(bf_out *out, double seconds, bf_err *err)
 {
-    size_t bytes = 0;
-    for (size_t k = 0; k < out->nseries; k++)
-        bytes += out->series[k]->nbuf * 8 * out->series[k]->width;
-    if (bytes > FLUSH_BYTES || bf_coarse_time() - out->last_flush > seconds)
+    if (out->buffered_bytes > FLUSH_BYTES ||
+        bf_coarse_time() - out->last_flush > seconds)
         return bf_out_flush(out, err);
     return BF_OK;
 }
