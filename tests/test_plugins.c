@@ -66,72 +66,10 @@ static const bf_integrator_type symplectic_euler = {
     .step = euler_step,
 };
 
-/* ---- the effect: a quartic well ---- */
-
-typedef struct quartic {
-    double q;      /* g/(cm^2 s^2) */
-    double centre; /* cm */
-} quartic;
-
-static const bf_param quartic_params[] = {
-    {"strength", BF_AT(quartic, q, BF_REAL), "g/(cm^2 s^2)", "1",
-     "q of V = (q/4) (x - centre)^4", BF_POS, 0, 0, NULL},
-    {"centre", BF_AT(quartic, centre, BF_REAL), "cm", "0",
-     "the bottom of the well", 0, 0, 0, NULL},
-    {0},
-};
-
-static const bf_section_spec quartic_spec =
-    BF_SECTION("quartic", "a quartic well", quartic_params, quartic);
-
-static bf_status quartic_create(void **self, const void *params,
-                                const bf_balls *b, const bf_effect_env *env,
-                                bf_err *err)
-{
-    (void)b;
-    (void)env;
-    quartic *w = malloc(sizeof *w);
-    if (!w)
-        return bf_fail(err, BF_EINTERNAL, "out of memory");
-    *w = *(const quartic *)params;
-    *self = w;
-    return BF_OK;
-}
-
-static int quartic_accel(const void *self, const bf_balls *b, double t,
-                         const double *x, double *acc)
-{
-    (void)t;
-    const quartic *w = self;
-    for (size_t i = 0; i < b->n; i++) {
-        const double d = x[i] - w->centre;
-        acc[i] -= w->q * b->inv_m[i] * d * d * d;
-    }
-    return 0;
-}
-
-static double quartic_potential(const void *self, const bf_balls *b, double t,
-                                const double *x)
-{
-    (void)t;
-    const quartic *w = self;
-    double V = 0;
-    for (size_t i = 0; i < b->n; i++) {
-        const double d = x[i] - w->centre;
-        V += 0.25 * w->q * d * d * d * d;
-    }
-    return V;
-}
-
-static const bf_effect_type quartic_well = {
-    .name = "quartic",
-    .doc = "a quartic well V = (q/4) (x - centre)^4",
-    .spec = &quartic_spec,
-    .create = quartic_create,
-    .accel = quartic_accel,
-    .potential = quartic_potential,
-    .destroy = free,
-};
+/* ---- the effect: a quartic well ----
+ * The one the Python tests compile into a shared object and load
+ * (tests/python/plugin.c): the same source, built into this test too. */
+#include "python/plugin.c"
 
 /* ---- the catalog of this file: the library's plus the two ---- */
 
