@@ -31,7 +31,8 @@ ours = [prog, "run", "runs/stratres.ini", "-q", "-o", h5,
 plain_args = ["4", "0.0125", "10", "40"]
 runs = {"ballfilm": ours,
         "-O2": [plain_o2, os.path.join(tmp, "o2.bin")] + plain_args,
-        "-O2 -march=native": [plain_nat, os.path.join(tmp, "nat.bin")] + plain_args}
+        "-O2 -march=native": [plain_nat, os.path.join(tmp, "nat.bin")]
+                             + plain_args}
 
 def cpu(cmd):
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -54,7 +55,8 @@ slots = f["/mac/particles/x"].shape[1]
 layout = [("/mac/u", (ni + 1) * nj, "<f8"), ("/mac/v", ni * (nj + 1), "<f8"),
           ("/mac/p", ni * nj, "<f8"), ("/mac/rho", ni * nj, "<f8"),
           ("/mac/T", ni * nj, "<f8"), ("/mac/flags", ni * nj, "<i8"),
-          ("/mac/particles/x", slots, "<f8"), ("/mac/particles/y", slots, "<f8"),
+          ("/mac/particles/x", slots, "<f8"),
+          ("/mac/particles/y", slots, "<f8"),
           ("/mac/particles/density", slots, "<f8"),
           ("/mac/particles/flag", slots, "<i8"), ("/mac/counts", 8, "<i8"),
           ("/mac/mass", 4, "<f8"), ("/mac/diag", 6, "<f8")]

@@ -61,8 +61,8 @@ static const int MAX_SWEEPS = 500, MAX_PASSES = 10;
 static int NI, NJ, ST, NSUR, NRO, OUT_LO, OUT_HI, NSLOT;
 static size_t NCELL;
 static double DX, DY, DT, DEPTH, PAREA;
-static double *U, *V, *P, *R, *T, *RN, *XI, *ZE, *PN, *A, *B1, *B2, *B3,
-    *B4, *TN, *S, *PO, *TO, *RO;
+static double *U, *V, *P, *R, *T, *RN, *XI, *ZE, *PN, *A, *B1, *B2, *B3, *B4,
+    *TN, *S, *PO, *TO, *RO;
 static int *F, *N, *MARK, *QUEUE;
 /* markers */
 static double *X, *Y, *VX, *VY, *DENS, *XN, *YN;
@@ -77,8 +77,7 @@ static long voids_pass;
 
 #define IX(i, j) ((size_t)(i) * (size_t)ST + (size_t)(j))
 
-static void *alloc(size_t n, size_t size)
-{
+static void *alloc(size_t n, size_t size) {
     void *p = calloc(n, size);
     if (!p) {
         fprintf(stderr, "plain_mac: out of memory\n");
@@ -88,15 +87,13 @@ static void *alloc(size_t n, size_t size)
 }
 
 static int fluidish(int f) { return f == FULL || f == SUR; }
-static int interior(int i, int j)
-{
+static int interior(int i, int j) {
     return i >= 2 && i <= NI - 1 && j >= 2 && j <= NJ - 1;
 }
 
 /* ------------------------------------------------------------ set-up */
 
-static void setup(int r)
-{
+static void setup(int r) {
     NI = NJ = 14 * r + 2;
     ST = NJ + 2;
     NCELL = (size_t)(NI + 2) * (size_t)ST;
@@ -108,8 +105,8 @@ static void setup(int r)
     OUT_LO = (13 - 2) * r + 2;
     OUT_HI = OUT_LO + 2 * r - 1;
     NSLOT = 800 * r * r;
-    double **d[] = {&U, &V, &P, &R, &T, &RN, &XI, &ZE, &PN, &A, &B1, &B2,
-                    &B3, &B4, &TN, &S};
+    double **d[] = {&U,  &V, &P,  &R,  &T,  &RN, &XI, &ZE,
+                    &PN, &A, &B1, &B2, &B3, &B4, &TN, &S};
     for (size_t k = 0; k < sizeof d / sizeof d[0]; k++)
         *d[k] = alloc(NCELL, sizeof(double));
     F = alloc(NCELL, sizeof(int));
@@ -128,9 +125,9 @@ static void setup(int r)
     for (int i = 1; i <= NI; i++)
         for (int j = 1; j <= NJ; j++)
             F[IX(i, j)] = (i == 1 || i == NI || j == 1 || j == NJ) ? NOSLIP
-                          : j <= NSUR                               ? FULL
-                          : j == NSUR + 1                           ? SUR
-                                                                    : EMP;
+                          : j <= NSUR                              ? FULL
+                          : j == NSUR + 1                          ? SUR
+                                                                   : EMP;
     for (int j = 2; j <= NJ - 1; j++)
         F[IX(1, j)] = IN;
     for (int i = OUT_LO; i <= OUT_HI; i++)
@@ -146,9 +143,9 @@ static void setup(int r)
     for (int j = 2; j <= NSUR; j++) {
         double yc = ((double)j - 1.5) * DY, yb = (double)(j - 2) * DY;
         TO[j] = T_MEAN + T_AMP * tanh(yc - 0.5 * deep) / th;
-        PO[j] = gabs * (RHO_MEAN * (deep - yb) -
-                        RHO_AMP / th *
-                            log(cosh(0.5 * deep) / cosh(yb - 0.5 * deep)));
+        PO[j] = gabs *
+                (RHO_MEAN * (deep - yb) -
+                 RHO_AMP / th * log(cosh(0.5 * deep) / cosh(yb - 0.5 * deep)));
     }
     for (int i = 1; i <= NI - 1; i++)
         for (int j = 2; j <= NSUR; j++) {
@@ -180,8 +177,7 @@ static void setup(int r)
 
 /* ------------------------------------------------------------ the step */
 
-static void mirror_density(void)
-{
+static void mirror_density(void) {
     for (int i = 2; i <= NI - 1; i++) {
         R[IX(i, 1)] = R[IX(i, 2)];
         R[IX(i, NJ)] = R[IX(i, NJ - 1)];
@@ -193,8 +189,7 @@ static void mirror_density(void)
 }
 
 /* psi and zeta of (3.3)/(3.4), donor-cell corner fluxes */
-static void momentum(void)
-{
+static void momentum(void) {
     for (int i = 2; i <= NI; i++)
         for (int j = 2; j <= NJ - 1; j++) {
             double rl = 0.5 * (R[IX(i - 1, j)] + R[IX(i, j)]);
@@ -202,18 +197,22 @@ static void momentum(void)
             double ul = 0.5 * (U[IX(i - 1, j)] + U[IX(i, j)]);
             double vb = 0.5 * (V[IX(i - 1, j)] + V[IX(i, j)]);
             double vt = 0.5 * (V[IX(i - 1, j + 1)] + V[IX(i, j + 1)]);
-            double ruvb = vb >= 0 ? 0.5 * (R[IX(i, j - 1)] + R[IX(i - 1, j - 1)]) *
-                                        U[IX(i, j - 1)] * vb
-                                  : 0.5 * (R[IX(i, j)] + R[IX(i - 1, j)]) *
-                                        U[IX(i, j)] * vb;
-            double ruvt = vt >= 0 ? 0.5 * (R[IX(i, j)] + R[IX(i - 1, j)]) *
-                                        U[IX(i, j)] * vt
-                                  : 0.5 * (R[IX(i, j + 1)] + R[IX(i - 1, j + 1)]) *
-                                        U[IX(i, j + 1)] * vt;
-            double dux2 = (U[IX(i + 1, j)] - 2.0 * U[IX(i, j)] + U[IX(i - 1, j)]) /
-                          (DX * DX);
-            double duy2 = (U[IX(i, j + 1)] - 2.0 * U[IX(i, j)] + U[IX(i, j - 1)]) /
-                          (DY * DY);
+            double ruvb =
+                vb >= 0
+                    ? 0.5 * (R[IX(i, j - 1)] + R[IX(i - 1, j - 1)]) *
+                          U[IX(i, j - 1)] * vb
+                    : 0.5 * (R[IX(i, j)] + R[IX(i - 1, j)]) * U[IX(i, j)] * vb;
+            double ruvt =
+                vt >= 0
+                    ? 0.5 * (R[IX(i, j)] + R[IX(i - 1, j)]) * U[IX(i, j)] * vt
+                    : 0.5 * (R[IX(i, j + 1)] + R[IX(i - 1, j + 1)]) *
+                          U[IX(i, j + 1)] * vt;
+            double dux2 =
+                (U[IX(i + 1, j)] - 2.0 * U[IX(i, j)] + U[IX(i - 1, j)]) /
+                (DX * DX);
+            double duy2 =
+                (U[IX(i, j + 1)] - 2.0 * U[IX(i, j)] + U[IX(i, j - 1)]) /
+                (DY * DY);
             XI[IX(i, j)] =
                 rl * U[IX(i, j)] -
                 DT * ((R[IX(i, j)] * ur * ur - R[IX(i - 1, j)] * ul * ul) / DX +
@@ -226,18 +225,22 @@ static void momentum(void)
             double vb = 0.5 * (V[IX(i, j - 1)] + V[IX(i, j)]);
             double ur = 0.5 * (U[IX(i + 1, j)] + U[IX(i + 1, j - 1)]);
             double ul = 0.5 * (U[IX(i, j)] + U[IX(i, j - 1)]);
-            double ruvr = ur >= 0 ? 0.5 * (R[IX(i, j)] + R[IX(i, j - 1)]) * ur *
-                                        V[IX(i, j)]
-                                  : 0.5 * (R[IX(i + 1, j)] + R[IX(i + 1, j - 1)]) *
-                                        ur * V[IX(i + 1, j)];
-            double ruvl = ul >= 0 ? 0.5 * (R[IX(i - 1, j)] + R[IX(i - 1, j - 1)]) *
-                                        ul * V[IX(i - 1, j)]
-                                  : 0.5 * (R[IX(i, j)] + R[IX(i, j - 1)]) * ul *
-                                        V[IX(i, j)];
-            double dvx2 = (V[IX(i + 1, j)] - 2.0 * V[IX(i, j)] + V[IX(i - 1, j)]) /
-                          (DX * DX);
-            double dvy2 = (V[IX(i, j + 1)] - 2.0 * V[IX(i, j)] + V[IX(i, j - 1)]) /
-                          (DY * DY);
+            double ruvr =
+                ur >= 0
+                    ? 0.5 * (R[IX(i, j)] + R[IX(i, j - 1)]) * ur * V[IX(i, j)]
+                    : 0.5 * (R[IX(i + 1, j)] + R[IX(i + 1, j - 1)]) * ur *
+                          V[IX(i + 1, j)];
+            double ruvl =
+                ul >= 0
+                    ? 0.5 * (R[IX(i - 1, j)] + R[IX(i - 1, j - 1)]) * ul *
+                          V[IX(i - 1, j)]
+                    : 0.5 * (R[IX(i, j)] + R[IX(i, j - 1)]) * ul * V[IX(i, j)];
+            double dvx2 =
+                (V[IX(i + 1, j)] - 2.0 * V[IX(i, j)] + V[IX(i - 1, j)]) /
+                (DX * DX);
+            double dvy2 =
+                (V[IX(i, j + 1)] - 2.0 * V[IX(i, j)] + V[IX(i, j - 1)]) /
+                (DY * DY);
             ZE[IX(i, j)] =
                 rb * V[IX(i, j)] -
                 DT * ((R[IX(i, j)] * vt * vt - R[IX(i, j - 1)] * vb * vb) / DY +
@@ -246,16 +249,14 @@ static void momentum(void)
 }
 
 /* (3.13), put into R in FULL cells */
-static void predict_density(void)
-{
+static void predict_density(void) {
     for (int i = 2; i <= NI - 1; i++)
         for (int j = 2; j <= NJ - 1; j++) {
             double rr = R[IX(i, j)];
-            RN[IX(i, j)] =
-                rr - DT * (0.5 * (U[IX(i, j)] + U[IX(i + 1, j)]) *
-                               (R[IX(i + 1, j)] - rr) / DX +
-                           0.5 * (V[IX(i, j)] + V[IX(i, j + 1)]) *
-                               (R[IX(i, j + 1)] - rr) / DY);
+            RN[IX(i, j)] = rr - DT * (0.5 * (U[IX(i, j)] + U[IX(i + 1, j)]) *
+                                          (R[IX(i + 1, j)] - rr) / DX +
+                                      0.5 * (V[IX(i, j)] + V[IX(i, j + 1)]) *
+                                          (R[IX(i, j + 1)] - rr) / DY);
         }
     for (int i = 2; i <= NI - 1; i++)
         for (int j = 2; j <= NJ - 1; j++)
@@ -264,8 +265,7 @@ static void predict_density(void)
 }
 
 /* coefficients of (3.10) in FULL cells, face densities */
-static void coefficients(void)
-{
+static void coefficients(void) {
     for (int i = 2; i <= NI - 1; i++)
         for (int j = 2; j <= NJ - 1; j++) {
             size_t c = IX(i, j);
@@ -288,8 +288,7 @@ static void coefficients(void)
 }
 
 /* free-surface pressure (2.20) in SUR cells */
-static void surface_pressure(void)
-{
+static void surface_pressure(void) {
     const double sor = 1.0 / sqrt(2.0);
     for (int i = 2; i <= NI - 1; i++)
         for (int j = 2; j <= NJ - 1; j++) {
@@ -318,12 +317,17 @@ static void surface_pressure(void)
                 continue;
             double dudx = (U[IX(i + 1, j)] - U[IX(i, j)]) / DX;
             double dvdy = (V[IX(i, j + 1)] - V[IX(i, j)]) / DY;
-            double dudy = 0.25 * (U[IX(i + 1, j + 1)] + U[IX(i, j + 1)] -
-                                  U[IX(i, j - 1)] - U[IX(i + 1, j - 1)]) / DY;
-            double dvdx = 0.25 * (V[IX(i + 1, j + 1)] + V[IX(i + 1, j)] -
-                                  V[IX(i - 1, j + 1)] - V[IX(i - 1, j)]) / DX;
-            P[IX(i, j)] = 2.0 * MU * (px * px * dudx + px * py * (dudy + dvdx) +
-                                      py * py * dvdy);
+            double dudy = 0.25 *
+                          (U[IX(i + 1, j + 1)] + U[IX(i, j + 1)] -
+                           U[IX(i, j - 1)] - U[IX(i + 1, j - 1)]) /
+                          DY;
+            double dvdx = 0.25 *
+                          (V[IX(i + 1, j + 1)] + V[IX(i + 1, j)] -
+                           V[IX(i - 1, j + 1)] - V[IX(i - 1, j)]) /
+                          DX;
+            P[IX(i, j)] =
+                2.0 * MU *
+                (px * px * dudx + px * py * (dudy + dvdx) + py * py * dvdy);
         }
 }
 
@@ -331,8 +335,7 @@ static void surface_pressure(void)
  * the IN column holds P0; walls and OUT cells get the pressure for which
  * the update gives the face velocity the boundary prescribes (0 at a
  * wall, Welch's unaccelerated outflow at OUT). */
-static void ghost(double *p, int ig, int jg, int ic, int jc)
-{
+static void ghost(double *p, int ig, int jg, int ic, int jc) {
     size_t g = IX(ig, jg), c = IX(ic, jc);
     int fg = F[g];
     if (fg == IN) {
@@ -357,7 +360,8 @@ static void ghost(double *p, int ig, int jg, int ic, int jc)
     if (fg == OUT) { /* bottom OUT cell: Welch's pressure offset */
         double rc = R[c];
         int i = ic;
-        double ruvr = 0.5 * rc * U[IX(i + 1, 2)] * (V[IX(i, 2)] + V[IX(i + 1, 2)]);
+        double ruvr =
+            0.5 * rc * U[IX(i + 1, 2)] * (V[IX(i, 2)] + V[IX(i + 1, 2)]);
         double ruvl = 0.5 * rc * U[IX(i, 2)] * (V[IX(i - 1, 2)] + V[IX(i, 2)]);
         double off = DY / DX * (ruvr - ruvl);
         val = psi / rhof - s * DT / delta * off / R[c];
@@ -370,8 +374,7 @@ static void ghost(double *p, int ig, int jg, int ic, int jc)
     p[g] = p[c] - delta / (DT * k) * s * (val - psi / rhof);
 }
 
-static void ghost_pressure(double *p)
-{
+static void ghost_pressure(double *p) {
     for (int j = 2; j <= NJ - 1; j++) {
         ghost(p, 1, j, 2, j);
         ghost(p, NI, j, NI - 1, j);
@@ -383,8 +386,7 @@ static void ghost_pressure(double *p)
 }
 
 /* Gauss-Seidel on (3.10) until the change per sweep passes the test */
-static long relax(int fine)
-{
+static long relax(int fine) {
     const double tol = fine ? FINE : CRUDE, gd = fabs(G) * DEPTH;
     for (long l = 1;; l++) {
         ghost_pressure(P);
@@ -393,8 +395,9 @@ static long relax(int fine)
             for (int j = 2; j <= NJ - 1; j++) {
                 size_t c = IX(i, j);
                 if (F[c] == FULL)
-                    PN[c] = B1[c] * PN[c + (size_t)ST] + B2[c] * PN[c - (size_t)ST] +
-                            B3[c] * PN[c + 1] + B4[c] * PN[c - 1] + A[c];
+                    PN[c] = B1[c] * PN[c + (size_t)ST] +
+                            B2[c] * PN[c - (size_t)ST] + B3[c] * PN[c + 1] +
+                            B4[c] * PN[c - 1] + A[c];
             }
         double worst = 0;
         for (int i = 2; i <= NI - 1; i++)
@@ -417,14 +420,12 @@ static long relax(int fine)
 }
 
 /* the modified update (3.11)/(3.12) on the face between cells a and b */
-static double update(size_t a, size_t b, double psi, double delta)
-{
+static double update(size_t a, size_t b, double psi, double delta) {
     double rf = R[a] + R[b];
     return 2.0 * psi / rf + DT * (P[a] / R[a] - P[b] / R[b]) / delta;
 }
 
-static void velocities(void)
-{
+static void velocities(void) {
     for (size_t k = 0; k < NCELL; k++)
         U[k] = V[k] = 0.0;
     for (int i = 3; i <= NI - 1; i++)
@@ -450,7 +451,8 @@ static void velocities(void)
             if (F[IX(i - 1, j)] != SUR || F[IX(i, j)] != SUR)
                 continue;
             if (F[IX(i - 1, j - 1)] == FULL || F[IX(i, j - 1)] == FULL)
-                U[IX(i, j)] = U[IX(i, j - 1)] - rxy * (V[IX(i, j)] - V[IX(i - 1, j)]);
+                U[IX(i, j)] =
+                    U[IX(i, j - 1)] - rxy * (V[IX(i, j)] - V[IX(i - 1, j)]);
             else if (F[IX(i - 1, j + 1)] == FULL || F[IX(i, j + 1)] == FULL)
                 U[IX(i, j)] = U[IX(i, j + 1)] +
                               rxy * (V[IX(i, j + 1)] - V[IX(i - 1, j + 1)]);
@@ -460,7 +462,8 @@ static void velocities(void)
             if (F[IX(i, j - 1)] != SUR || F[IX(i, j)] != SUR)
                 continue;
             if (F[IX(i - 1, j - 1)] == FULL || F[IX(i - 1, j)] == FULL)
-                V[IX(i, j)] = V[IX(i - 1, j)] - ryx * (U[IX(i, j)] - U[IX(i, j - 1)]);
+                V[IX(i, j)] =
+                    V[IX(i - 1, j)] - ryx * (U[IX(i, j)] - U[IX(i, j - 1)]);
             else if (F[IX(i + 1, j - 1)] == FULL || F[IX(i + 1, j)] == FULL)
                 V[IX(i, j)] = V[IX(i + 1, j)] +
                               ryx * (U[IX(i + 1, j)] - U[IX(i + 1, j - 1)]);
@@ -531,14 +534,14 @@ static void velocities(void)
     for (int i = 2; i <= NI - 1; i++) {
         V[IX(i, NJ + 1)] = V[IX(i, NJ - 1)];
         if (F[IX(i, 1)] == OUT)
-            V[IX(i, 1)] = V[IX(i, 2)] + DY / DX * (U[IX(i + 1, 1)] - U[IX(i, 1)]);
+            V[IX(i, 1)] =
+                V[IX(i, 2)] + DY / DX * (U[IX(i + 1, 1)] - U[IX(i, 1)]);
         else
             V[IX(i, 1)] = V[IX(i, 3)];
     }
 }
 
-static void check_cfl(void)
-{
+static void check_cfl(void) {
     for (int i = 1; i <= NI + 1; i++)
         for (int j = 1; j <= NJ + 1; j++) {
             double u = j <= NJ ? U[IX(i, j)] : 0, v = i <= NI ? V[IX(i, j)] : 0;
@@ -554,30 +557,31 @@ static void check_cfl(void)
 
 /* cell of coordinate x (I = X/DX + 2) */
 static int cell_of(double x, double h) { return (int)floor(x / h) + 2; }
-static int clampi(int k, int lo, int hi) { return k < lo ? lo : k > hi ? hi : k; }
+static int clampi(int k, int lo, int hi) {
+    return k < lo ? lo : k > hi ? hi : k;
+}
 
 /* bilinear (area-weighted) velocities, Fig. 2 */
-static double interp_u(double x, double y)
-{
+static double interp_u(double x, double y) {
     double fx = x / DX + 2.0, fy = y / DY + 1.5;
-    int i = clampi((int)floor(fx), 1, NI), j = clampi((int)floor(fy), 1, NJ - 1);
+    int i = clampi((int)floor(fx), 1, NI),
+        j = clampi((int)floor(fy), 1, NJ - 1);
     double ax = fx - (double)i, ay = fy - (double)j;
     return (1 - ax) * (1 - ay) * U[IX(i, j)] + ax * (1 - ay) * U[IX(i + 1, j)] +
            (1 - ax) * ay * U[IX(i, j + 1)] + ax * ay * U[IX(i + 1, j + 1)];
 }
 
-static double interp_v(double x, double y)
-{
+static double interp_v(double x, double y) {
     double fx = x / DX + 1.5, fy = y / DY + 2.0;
-    int i = clampi((int)floor(fx), 1, NI - 1), j = clampi((int)floor(fy), 1, NJ);
+    int i = clampi((int)floor(fx), 1, NI - 1),
+        j = clampi((int)floor(fy), 1, NJ);
     double bx = fx - (double)i, by = fy - (double)j;
     return (1 - bx) * (1 - by) * V[IX(i, j)] + bx * (1 - by) * V[IX(i + 1, j)] +
            (1 - bx) * by * V[IX(i, j + 1)] + bx * by * V[IX(i + 1, j + 1)];
 }
 
 /* the largest coordinate below the wall at w still in cell `cell` */
-static double inside_of(double w, double h, int cell)
-{
+static double inside_of(double w, double h, int cell) {
     double x = w;
     while (cell_of(x, h) > cell)
         x = nextafter(x, -INFINITY);
@@ -586,8 +590,7 @@ static double inside_of(double w, double h, int cell)
 
 /* every marker moved from its position at t = n dt; fluid markers that
  * would cross a wall are held on it */
-static long move_markers(void)
-{
+static long move_markers(void) {
     long nheld = 0;
     for (int k = 0; k < NSLOT; k++) {
         int f = TAG[k];
@@ -595,7 +598,8 @@ static long move_markers(void)
             continue;
         double x = X[k], y = Y[k], vx = 0, vy = 0;
         if (f == POUT) {
-            int i = clampi(cell_of(x, DX), 1, NI), j = clampi(cell_of(y, DY), 1, NJ);
+            int i = clampi(cell_of(x, DX), 1, NI),
+                j = clampi(cell_of(y, DY), 1, NJ);
             if (j == 1)
                 vy = V[IX(i, 2)];
             else if (i == NI)
@@ -635,8 +639,7 @@ static long move_markers(void)
 
 /* breadth-first flood over interior cells that are not FULL, from the
  * EMP cells */
-static void flood_from_empty(void)
-{
+static void flood_from_empty(void) {
     const int nyu = NJ - 2;
     int n = 0;
     memset(MARK, 0, sizeof *MARK * (size_t)(NI - 2) * (size_t)nyu);
@@ -664,8 +667,7 @@ static void flood_from_empty(void)
 
 /* void_fix: empty cells no chain of empty cells joins to an EMP cell
  * become FULL with their neighbours' density */
-static long fill_voids(void)
-{
+static long fill_voids(void) {
     long filled = 0;
     flood_from_empty();
     for (int again = 1; again;) {
@@ -701,8 +703,7 @@ static long fill_voids(void)
 }
 
 /* cell flags and densities from the moved markers; 1 if a density changed */
-static int correct_density(void)
-{
+static int correct_density(void) {
     for (size_t c = 0; c < NCELL; c++) {
         N[c] = 0;
         S[c] = 0.0;
@@ -749,7 +750,8 @@ static int correct_density(void)
                 R[c] = R[IX(i, j - 1)];
                 continue;
             }
-            size_t nb[4] = {IX(i, j - 1), IX(i + 1, j), IX(i - 1, j), IX(i, j + 1)};
+            size_t nb[4] = {IX(i, j - 1), IX(i + 1, j), IX(i - 1, j),
+                            IX(i, j + 1)};
             double s = 0;
             int cnt = 0;
             for (int d = 0; d < 4; d++)
@@ -763,8 +765,7 @@ static int correct_density(void)
 }
 
 /* after the final pass: markers entering, leaving, lost; positions kept */
-static void reflag_markers(void)
-{
+static void reflag_markers(void) {
     for (int k = 0; k < NSLOT; k++) {
         int f = TAG[k];
         if (f == AVAIL)
@@ -833,8 +834,7 @@ static void reflag_markers(void)
 }
 
 /* temperature boundary conditions and (3.14), conduction alpha/rho */
-static void temperature(void)
-{
+static void temperature(void) {
     for (size_t k = 0; k < NCELL; k++)
         if (F[k] == EMP)
             T[k] = 0.0;
@@ -865,13 +865,18 @@ static void temperature(void)
             if (F[IX(i, j)] != FULL)
                 continue;
             double tc = T[IX(i, j)];
-            double tl = 0.5 * (T[IX(i - 1, j)] + tc), tr = 0.5 * (T[IX(i + 1, j)] + tc);
-            double tt = 0.5 * (T[IX(i, j + 1)] + tc), tb = 0.5 * (T[IX(i, j - 1)] + tc);
-            double dtx2 = (T[IX(i + 1, j)] - 2.0 * tc + T[IX(i - 1, j)]) / (DX * DX);
-            double dty2 = (T[IX(i, j + 1)] - 2.0 * tc + T[IX(i, j - 1)]) / (DY * DY);
-            TN[IX(i, j)] = tc + DT * ((U[IX(i, j)] * tl - U[IX(i + 1, j)] * tr) / DX +
-                                      (V[IX(i, j)] * tb - V[IX(i, j + 1)] * tt) / DY +
-                                      ALPHA / R[IX(i, j)] * (dtx2 + dty2));
+            double tl = 0.5 * (T[IX(i - 1, j)] + tc),
+                   tr = 0.5 * (T[IX(i + 1, j)] + tc);
+            double tt = 0.5 * (T[IX(i, j + 1)] + tc),
+                   tb = 0.5 * (T[IX(i, j - 1)] + tc);
+            double dtx2 =
+                (T[IX(i + 1, j)] - 2.0 * tc + T[IX(i - 1, j)]) / (DX * DX);
+            double dty2 =
+                (T[IX(i, j + 1)] - 2.0 * tc + T[IX(i, j - 1)]) / (DY * DY);
+            TN[IX(i, j)] =
+                tc + DT * ((U[IX(i, j)] * tl - U[IX(i + 1, j)] * tr) / DX +
+                           (V[IX(i, j)] * tb - V[IX(i, j + 1)] * tt) / DY +
+                           ALPHA / R[IX(i, j)] * (dtx2 + dty2));
         }
     for (int i = 2; i <= NI - 1; i++)
         for (int j = 2; j <= NJ - 1; j++)
@@ -880,8 +885,7 @@ static void temperature(void)
 }
 
 /* the eight steps of the thesis */
-static void step(void)
-{
+static void step(void) {
     mirror_density();
     momentum();
     predict_density();
@@ -923,8 +927,7 @@ static void step(void)
 /* ------------------------------------------------------------ output */
 
 /* largest |u|, |v| on faces of fluid cells, |div w| over FULL cells */
-static void extremes(double *um, double *vm, double *dm)
-{
+static void extremes(double *um, double *vm, double *dm) {
     *um = *vm = *dm = 0;
     for (int i = 2; i <= NI; i++)
         for (int j = 2; j <= NJ - 1; j++)
@@ -944,8 +947,7 @@ static void extremes(double *um, double *vm, double *dm)
             }
 }
 
-static double fluid_mass(void)
-{
+static double fluid_mass(void) {
     double s = 0;
     for (int k = 0; k < NSLOT; k++)
         if (TAG[k] == REG)
@@ -953,15 +955,13 @@ static double fluid_mass(void)
     return s;
 }
 
-static void put_field(FILE *o, const double *f, int ni1, int nj1)
-{
+static void put_field(FILE *o, const double *f, int ni1, int nj1) {
     for (int i = 1; i <= ni1; i++)
         fwrite(&f[IX(i, 1)], sizeof *f, (size_t)nj1, o);
 }
 
 /* one output row: the fields, the markers, counts, masses, diagnostics */
-static void write_row(FILE *o)
-{
+static void write_row(FILE *o) {
     put_field(o, U, NI + 1, NJ);
     put_field(o, V, NI, NJ + 1);
     put_field(o, P, NI, NJ);
@@ -981,20 +981,19 @@ static void write_row(FILE *o)
         fwrite(&t, sizeof t, 1, o);
         fc[TAG[k]]++;
     }
-    int64_t counts[8] = {fc[PIN], fc[REG], fc[POUT], fc[AVAIL],
+    int64_t counts[8] = {fc[PIN], fc[REG],  fc[POUT], fc[AVAIL],
                          entered, left_out, backflow, lost};
     fwrite(counts, sizeof counts[0], 8, o);
     double mass[4] = {mass_in, mass_out, fluid_mass(), mass_lost};
     fwrite(mass, sizeof mass[0], 4, o);
     double um, vm, dm;
     extremes(&um, &vm, &dm);
-    double diag[6] = {um, vm, dm, last_passes, (double)last_sweeps,
-                      (double)oscillations};
+    double diag[6] = {
+        um, vm, dm, last_passes, (double)last_sweeps, (double)oscillations};
     fwrite(diag, sizeof diag[0], 6, o);
 }
 
-int main(int argc, char **argv)
-{
+int main(int argc, char **argv) {
     if (argc < 2) {
         fprintf(stderr, "usage: plain_mac OUT.bin [REFINE [DT [T_END "
                         "[OUTPUT_EVERY]]]]\n");
