@@ -35,8 +35,13 @@
  * inflow, wall_markers = remove), checkpoints, error recovery beyond
  * stopping with a message.  It is written for this one scene, as a
  * competent programmer would write it: global arrays, one loop per step
- * of the algorithm, every marker moved in every corrector pass (the
- * algorithm as the thesis states it).
+ * of the algorithm, every marker moved and every pressure coefficient
+ * computed in every corrector pass, each relaxation sweep on a copy of
+ * the pressure as the listing's PN (the algorithm as the thesis states
+ * it).  It does not take ballfilm's shortcuts (docs/performance.md): not
+ * moving the markers that cannot change cell before the final pass,
+ * keeping the coefficients of cells whose densities did not change,
+ * sweeping in place; those are what the comparison measures.
  *
  * usage: plain_mac OUT.bin [REFINE [DT [T_END [OUTPUT_EVERY]]]]
  *        (defaults 4, 0.0125, 10, 40)
