@@ -776,11 +776,13 @@ fuzz:
 	  -artifact_prefix=build/fuzz/crashes/ -print_final_stats=1
 
 # ---------------------------------------------------------------- bench
+# bench/plain_*.c are yardsticks: programs without the library that the
+# scripts bench/*_vs_plain.sh run with their arguments beside ballfilm.
 bench:
 	@$(MAKE) --no-print-directory deps
 	@$(MAKE) --no-print-directory all mpi $(BENCH_BIN)
-	@for b in $(BENCH_BIN); do echo "== $$b"; \
-	  BALLFILM_ROOT=$(CURDIR) $$b || exit 1; done
+	@for b in $(filter-out $(BUILD)/bench/plain_%,$(BENCH_BIN)); do \
+	  echo "== $$b"; BALLFILM_ROOT=$(CURDIR) $$b || exit 1; done
 	@for b in bench/*.sh; do echo "== $$b"; $$b || exit 1; done
 
 clean:

@@ -17,6 +17,9 @@
  *    lost, markers only inside the grid, refinement x2 and x4 (the x4 run
  *    traps empty cells inside the fluid: it stops with a message naming
  *    the cell, or runs with void_fix);
+ *  - the corrector passes' shortcuts change no bit (against the same
+ *    scene with every marker moved and every coefficient computed in
+ *    every pass);
  *  - errors: non-converging relaxation and corrector loop (exit 4), bad
  *    scenes; checkpoint/restart bit for bit.
  */
@@ -26,6 +29,7 @@
 #include <string.h>
 
 #include "mac/mac.h"
+#include "mac/mac_grid.h" /* the state, for the shortcut test */
 #include "testutil.h"
 
 static bf_mac *make(bf_mac_params *p, double dt)
@@ -559,6 +563,78 @@ START_TEST(reservoir_refined_x2_x4)
 }
 END_TEST
 
+/* Two bitwise-equal arrays of n values of size `size`. */
+static int same_array(const void *a, const void *b, size_t n, size_t size)
+{
+    return memcmp(a, b, n * size) == 0;
+}
+
+/* The corrector passes' shortcuts (src/mac/mac_markers.c: markers that
+ * cannot change cell are not moved again before the final pass;
+ * mac_pressure.c: coefficients whose five densities did not change are
+ * kept) must not change a bit: the same scene with them turned off
+ * (full_passes, the thesis's algorithm as written: every marker moved
+ * and every coefficient computed in every pass) gives the same fields,
+ * markers and counters after every step.  Three scenes: the reservoir at
+ * 2x (markers held at the bottom wall), at 4x with void_fix (many
+ * passes), and at 1x with the consistent update and wall_markers =
+ * remove; each must have taken both shortcuts. */
+START_TEST(corrector_shortcuts_change_nothing)
+{
+    struct {
+        const char *name; /* a name without digits: tu_ref tells lines
+                             apart by their words */
+        int refine, steps, void_fix, remove, update;
+    } cases[] = {{"reservoir, double grid", 2, 200, 0, 0, BF_MAC_PRINTED},
+                 {"reservoir, quadruple grid, void_fix", 4, 160, 1, 0,
+                  BF_MAC_PRINTED},
+                 {"reservoir, consistent update, markers removed at walls", 1,
+                  200, 0, 1, BF_MAC_CONSISTENT}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        bf_mac_params p;
+        bf_mac_params_default(&p);
+        p.refine = cases[c].refine;
+        p.void_fix = cases[c].void_fix;
+        p.wall_remove = cases[c].remove;
+        p.update = cases[c].update;
+        double dt = 0.05 / (double)p.refine;
+        bf_mac *fast = make(&p, dt), *full = make(&p, dt);
+        full->full_passes = 1;
+        int ni, nj;
+        bf_mac_dims(fast, &ni, &nj, NULL, NULL);
+        for (int n = 1; n <= cases[c].steps; n++) {
+            step(fast, dt);
+            step(full, dt);
+            const size_t nc = fast->ncell, np = fast->part.n;
+            int same =
+                same_array(fast->u, full->u, nc, sizeof *fast->u) &&
+                same_array(fast->v, full->v, nc, sizeof *fast->v) &&
+                same_array(fast->p, full->p, nc, sizeof *fast->p) &&
+                same_array(fast->r, full->r, nc, sizeof *fast->r) &&
+                same_array(fast->t, full->t, nc, sizeof *fast->t) &&
+                same_array(fast->ic, full->ic, nc, sizeof *fast->ic) &&
+                same_array(fast->part.x, full->part.x, np, sizeof(double)) &&
+                same_array(fast->part.y, full->part.y, np, sizeof(double)) &&
+                same_array(fast->part.vx, full->part.vx, np, sizeof(double)) &&
+                same_array(fast->part.tag, full->part.tag, np,
+                           sizeof *fast->part.tag) &&
+                same_array(fast->dens, full->dens, np, sizeof *fast->dens) &&
+                same_array(&fast->cnt, &full->cnt, 1, sizeof fast->cnt);
+            ck_assert_msg(same, "refine %d: step %d differs with the "
+                          "shortcuts", cases[c].refine, n);
+        }
+        tu_ref("mac", "mac shortcuts, %s, %d steps: %lld passes, "
+               "moves skipped %lld, coefficients kept %lld\n",
+               cases[c].name, cases[c].steps, (long long)fast->cnt.passes,
+               fast->skipped_moves, fast->kept_coefficients);
+        ck_assert(fast->skipped_moves > 0 && fast->kept_coefficients > 0);
+        ck_assert(full->skipped_moves == 0 && full->kept_coefficients == 0);
+        bf_mac_free(fast);
+        bf_mac_free(full);
+    }
+}
+END_TEST
+
 static const char *res_scene =
     "[scene]\nmodel = mac\ndt = 0.05\nt_end = 2\noutput_every = 5\n"
     "[mac]\nproblem = reservoir\n";
@@ -679,6 +755,7 @@ Suite *suite_mac(void)
     tcase_add_test(tc, reservoir_divergence_free_except_inflow_column);
     tcase_add_test(tc, reservoir_markers_and_mass_balance);
     tcase_add_test(tc, reservoir_refined_x2_x4);
+    tcase_add_test(tc, corrector_shortcuts_change_nothing);
     tcase_add_test(tc, nonconvergence_stops_with_enoconv);
     tcase_add_test(tc, bad_scenes_are_refused);
     tcase_add_test(tc, restart_is_bit_identical);

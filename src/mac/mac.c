@@ -154,13 +154,19 @@ void bf_mac_free(bf_mac *m)
                     &m->xi, &m->zeta, &m->pn, &m->pold, &m->a, &m->b1,
                     &m->b2, &m->b3, &m->b4, &m->tn,   &m->s,  &m->po,
                     &m->to, &m->ro, &m->band, &m->rhs, &m->sol, &m->pex,
-                    &m->dens, &m->xn, &m->yn, &m->band0};
+                    &m->dens, &m->xn, &m->yn, &m->band0, &m->slack,
+                    &m->uref, &m->vref, &m->mdu, &m->mdv, &m->mbound,
+                    &m->rcoef};
     for (size_t k = 0; k < sizeof d / sizeof d[0]; k++)
         free(*d[k]);
     free(m->ic);
     free(m->ncnt);
     free(m->mark);
     free(m->queue);
+    free(m->mcell);
+    free(m->mcell1);
+    free(m->mstart);
+    free(m->cstamp);
     bf_particles_free(&m->part);
     free(m);
 }
@@ -192,12 +198,15 @@ static bf_status alloc_all(bf_mac *m, size_t nslots, bf_err *err)
     size_t n = m->ncell;
     double **d[] = {&m->u,  &m->v,  &m->p,  &m->r,    &m->t,  &m->rn,
                     &m->xi, &m->zeta, &m->pn, &m->pold, &m->a, &m->b1,
-                    &m->b2, &m->b3, &m->b4, &m->tn,   &m->s,  &m->pex};
+                    &m->b2, &m->b3, &m->b4, &m->tn,   &m->s,  &m->pex,
+                    &m->uref, &m->vref, &m->mdu, &m->mdv, &m->mbound,
+                    &m->rcoef};
     for (size_t k = 0; k < sizeof d / sizeof d[0]; k++)
         if (!(*d[k] = calloc(n, sizeof(double))))
             return bf_fail(err, BF_EINTERNAL, "out of memory");
     m->ic = calloc(n, sizeof *m->ic);
     m->ncnt = calloc(n, sizeof *m->ncnt);
+    m->cstamp = calloc(n, sizeof *m->cstamp);
     m->po = calloc((size_t)m->nj + 2, sizeof(double));
     m->to = calloc((size_t)m->nj + 2, sizeof(double));
     m->ro = calloc((size_t)m->nro + 1, sizeof(double));
@@ -215,9 +224,14 @@ static bf_status alloc_all(bf_mac *m, size_t nslots, bf_err *err)
     m->dens = calloc(nslots, sizeof(double));
     m->xn = calloc(nslots, sizeof(double));
     m->yn = calloc(nslots, sizeof(double));
-    if (!m->ic || !m->ncnt || !m->po || !m->to || !m->ro || !m->band ||
-        !m->band0 || !m->rhs || !m->sol || !m->mark || !m->queue ||
-        !m->dens || !m->xn || !m->yn)
+    m->slack = calloc(nslots, sizeof(double));
+    m->mcell = calloc(nslots, sizeof *m->mcell);
+    m->mcell1 = calloc(nslots, sizeof *m->mcell1);
+    m->mstart = calloc(nslots, sizeof *m->mstart);
+    if (!m->ic || !m->ncnt || !m->cstamp || !m->po || !m->to || !m->ro ||
+        !m->band || !m->band0 || !m->rhs || !m->sol || !m->mark ||
+        !m->queue || !m->dens || !m->xn || !m->yn || !m->slack ||
+        !m->mcell || !m->mcell1 || !m->mstart)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     return bf_particles_init(&m->part, nslots, err);
 }
@@ -546,6 +560,7 @@ bf_status bf_mac_step(bf_mac *m, double dt, bf_err *err)
 {
     bf_status st;
     m->dt = dt;
+    m->nstep++; /* psi, zeta and dt are new: no coefficient is current */
     bf_mac_mirror_density(m);
     momentum(m);
     predict_density(m);
@@ -582,7 +597,10 @@ bf_status bf_mac_step(bf_mac *m, double dt, bf_err *err)
         bf_mac_velocities(m);
         if ((st = check_velocities(m, passes, err)))
             return st;
-        long held = bf_mac_move_markers(m);
+        long held = bf_mac_move_markers(
+            m, passes == 1                  ? BF_MAC_MOVE_FIRST
+               : fine || m->full_passes ? BF_MAC_MOVE_ALL
+                                            : BF_MAC_MOVE_CELLS);
         if ((st = bf_mac_markers_finite(m, err)))
             return st;
         int changed = bf_mac_correct_density(m);

@@ -51,11 +51,31 @@ struct bf_mac {
     int nunk, bw;
     double *band, *band0, *rhs, *sol, *pex;
     int *mark, *queue;
+    /* pressure coefficients (mac_pressure.c): the densities they were
+     * last computed from, and per cell the step (nstep) they belong to */
+    double *rcoef;
+    long *cstamp;
+    long nstep; /* steps taken by this object (1 in the first) */
+    /* The two shortcuts of the corrector passes (markers that cannot
+     * change cell, coefficients whose densities did not change) and how
+     * often they were taken; full_passes = 1 turns them off (tests). */
+    int full_passes;
+    long long skipped_moves, kept_coefficients;
 
     /* markers: x, y, vx, vy (velocity of the last move), m (mass),
      * tag = particle flag */
     bf_particles part;
     double *dens, *xn, *yn;
+    /* marker motion (mac_markers.c): each marker's cell index IX after
+     * the move of the current pass (-1: free slot or off the grid); after
+     * the first pass its cell, the cell it started from and the margin
+     * in cells by which it landed inside (-1: a later pass must move it);
+     * the face velocities of the first pass, their changes since and the
+     * bound per start cell; the first marker whose move was not finite
+     * (-1: none) */
+    int *mcell, *mcell1, *mstart;
+    double *slack, *uref, *vref, *mdu, *mdv, *mbound;
+    long nonfinite;
 
     bf_mac_counts cnt;
     long voids_filled; /* cells filled by void_fix in the current step */

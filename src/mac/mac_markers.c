@@ -30,32 +30,51 @@
 #include "mac/mac_markers.h"
 
 #include <math.h>
+#include <string.h>
+
+/* floor(q) as an int for |q| < 2^30 (the same integer as (int)floor(q),
+ * without the call the generic x86-64 build makes for floor); q beyond
+ * that (a marker far off the grid) takes floor itself. */
+static int ifloor(double q)
+{
+    if (!(fabs(q) < 1073741824.0))
+        return (int)floor(q);
+    int t = (int)q; /* truncation towards zero */
+    return t - (q < (double)t);
+}
 
 /* cell index of coordinate x (listing: I = X/DX + 2, Fortran truncation;
  * floor agrees for every cell of the grid and stays monotone outside) */
 static int cell_of(double x, double h)
 {
-    return (int)floor(x / h) + 2;
+    return ifloor(x / h) + 2;
 }
 
 static int clampi(int k, int lo, int hi) { return k < lo ? lo : k > hi ? hi : k; }
 
-static double interp_u(const bf_mac *m, double x, double y)
+/* Bilinear velocities at a marker whose coordinates in cell units are
+ * qx = x/dx, qy = y/dy (the same divisions serve both components and the
+ * listing's I = X/DX + 2).  *inside is cleared when an index had to be
+ * clamped (a marker beyond the ring): only unclamped weights lie in
+ * [0, 1] and sum to 1. */
+static double interp_u(const bf_mac *m, double qx, double qy, int *inside)
 {
-    double fx = x / m->dx + 2.0, fy = y / m->dy + 1.5;
-    int i = clampi((int)floor(fx), 1, m->ni);
-    int j = clampi((int)floor(fy), 1, m->nj - 1);
+    double fx = qx + 2.0, fy = qy + 1.5;
+    int i0 = ifloor(fx), j0 = ifloor(fy);
+    int i = clampi(i0, 1, m->ni), j = clampi(j0, 1, m->nj - 1);
+    *inside &= i == i0 && j == j0;
     double ax = fx - (double)i, ay = fy - (double)j;
     const double *U = m->u;
     return (1 - ax) * (1 - ay) * U[IX(i, j)] + ax * (1 - ay) * U[IX(i + 1, j)] +
            (1 - ax) * ay * U[IX(i, j + 1)] + ax * ay * U[IX(i + 1, j + 1)];
 }
 
-static double interp_v(const bf_mac *m, double x, double y)
+static double interp_v(const bf_mac *m, double qx, double qy, int *inside)
 {
-    double fx = x / m->dx + 1.5, fy = y / m->dy + 2.0;
-    int i = clampi((int)floor(fx), 1, m->ni - 1);
-    int j = clampi((int)floor(fy), 1, m->nj);
+    double fx = qx + 1.5, fy = qy + 2.0;
+    int i0 = ifloor(fx), j0 = ifloor(fy);
+    int i = clampi(i0, 1, m->ni - 1), j = clampi(j0, 1, m->nj);
+    *inside &= i == i0 && j == j0;
     double bx = fx - (double)i, by = fy - (double)j;
     const double *V = m->v;
     return (1 - bx) * (1 - by) * V[IX(i, j)] + bx * (1 - by) * V[IX(i + 1, j)] +
@@ -80,11 +99,10 @@ static double inside_of(double w, double h, int cell)
 /* wall_markers = hold [not in the listing]: a fluid marker whose move ends
  * beyond a wall (interpolation mixes the wall's zero normal velocity with
  * the sink's next to it) stops on the wall instead of being deleted.
- * Returns 1 if the move was cut. */
-static int hold_on_walls(const bf_mac *m, double *xn, double *yn)
+ * (i, j) is the cell of (*xn, *yn).  Returns 1 if the move was cut. */
+static int hold_on_walls(const bf_mac *m, int i, int j, double *xn, double *yn)
 {
     int held = 0;
-    int i = cell_of(*xn, m->dx), j = cell_of(*yn, m->dy);
     int jj = clampi(j, 2, m->nj - 1);
     if (i < 2 && is_wall(m->ic[IX(1, jj)])) {
         *xn = 0.0;
@@ -93,7 +111,7 @@ static int hold_on_walls(const bf_mac *m, double *xn, double *yn)
         *xn = inside_of((double)(m->ni - 2) * m->dx, m->dx, m->ni - 1);
         held = 1;
     }
-    int ii = clampi(cell_of(*xn, m->dx), 2, m->ni - 1);
+    int ii = clampi(held ? cell_of(*xn, m->dx) : i, 2, m->ni - 1);
     if (j < 2 && is_wall(m->ic[IX(ii, 1)])) {
         *yn = 0.0;
         held = 1;
@@ -104,46 +122,176 @@ static int hold_on_walls(const bf_mac *m, double *xn, double *yn)
     return held;
 }
 
-long bf_mac_move_markers(bf_mac *m)
+/* Distance of q >= 0 to the nearest integer (exact: Sterbenz, up to one
+ * rounding of 1 - q below q = 1/2). */
+static double to_edge(double q)
+{
+    double f = (double)ifloor(q);
+    double below = q - f, above = f + 1.0 - q;
+    return below < above ? below : above;
+}
+
+/* Move marker k from its position at t = n dt with the current faces
+ * (into xn, yn, vx, vy; its cell into mcell).  With `first`, record in
+ * slack[k] how far inside its new cell the marker lands (in cells) and in
+ * mstart[k] the cell it starts from, or slack -1 where a later pass may
+ * not skip it: not a fluid marker, off the interior, clamped weights,
+ * held at a wall.  Returns 1 if held at a wall. */
+static int move_one(bf_mac *m, size_t k, int first)
 {
     bf_particles *pt = &m->part;
     const double dt = m->dt;
-    long held = 0;
-    for (size_t k = 0; k < pt->n; k++) {
-        int f = pt->tag[k];
-        double x = pt->x[k], y = pt->y[k];
-        double vx = 0, vy = 0;
-        if (f == BF_MAC_AVAIL)
-            continue;
-        if (f == BF_MAC_OUT) {
-            int i = clampi(cell_of(x, m->dx), 1, m->ni);
-            int j = clampi(cell_of(y, m->dy), 1, m->nj);
-            if (j == 1)
-                vy = m->v[IX(i, 2)];
-            else if (i == m->ni)
-                vx = m->u[IX(m->ni, j)];
-        } else {
-            vx = interp_u(m, x, y);
-            if (f == BF_MAC_REG)
-                vy = interp_v(m, x, y);
+    int f = pt->tag[k];
+    double x = pt->x[k], y = pt->y[k];
+    double vx = 0, vy = 0;
+    int inside = 1, held = 0, start = -1;
+    if (f == BF_MAC_OUT) {
+        int i = clampi(cell_of(x, m->dx), 1, m->ni);
+        int j = clampi(cell_of(y, m->dy), 1, m->nj);
+        if (j == 1)
+            vy = m->v[IX(i, 2)];
+        else if (i == m->ni)
+            vx = m->u[IX(m->ni, j)];
+    } else {
+        double qx = x / m->dx, qy = y / m->dy;
+        vx = interp_u(m, qx, qy, &inside);
+        if (f == BF_MAC_REG) {
+            vy = interp_v(m, qx, qy, &inside);
+            int i = ifloor(qx) + 2, j = ifloor(qy) + 2;
+            if (mac_interior(m, i, j))
+                start = (int)IX(i, j);
         }
-        pt->vx[k] = vx;
-        pt->vy[k] = vy;
-        m->xn[k] = x + vx * dt;
-        m->yn[k] = y + vy * dt;
-        if (f == BF_MAC_REG && !m->prm.wall_remove)
-            held += hold_on_walls(m, &m->xn[k], &m->yn[k]);
+    }
+    pt->vx[k] = vx;
+    pt->vy[k] = vy;
+    double xn = x + vx * dt, yn = y + vy * dt;
+    if (!isfinite(xn) || !isfinite(yn)) {
+        if (m->nonfinite < 0)
+            m->nonfinite = (long)k;
+        m->xn[k] = xn;
+        m->yn[k] = yn;
+        m->mcell[k] = -1;
+        if (first)
+            m->slack[k] = -1;
+        return 0;
+    }
+    double qx = xn / m->dx, qy = yn / m->dy;
+    int i = ifloor(qx) + 2, j = ifloor(qy) + 2;
+    if (f == BF_MAC_REG && !m->prm.wall_remove &&
+        (held = hold_on_walls(m, i, j, &xn, &yn))) {
+        i = cell_of(xn, m->dx);
+        j = cell_of(yn, m->dy);
+    }
+    m->xn[k] = xn;
+    m->yn[k] = yn;
+    m->mcell[k] = i >= 1 && i <= m->ni && j >= 1 && j <= m->nj ? (int)IX(i, j)
+                                                               : -1;
+    if (first) {
+        m->mcell1[k] = m->mcell[k];
+        m->mstart[k] = start;
+        m->slack[k] = start >= 0 && inside && !held && mac_interior(m, i, j)
+                          ? fmin(to_edge(qx), to_edge(qy))
+                          : -1;
+    }
+    return held;
+}
+
+static double max2(double a, double b) { return a > b ? a : b; }
+
+/* For every interior cell c, how far (in cells) a marker starting in c
+ * can land from where it landed in the first pass: dt over the spacing
+ * times the largest change since the first pass of the faces its bilinear
+ * velocities use (u faces I..I+2, J-1..J+1 and v faces I-1..I+1, J..J+2
+ * of a start cell (I,J), one more than the four of each component to
+ * cover the rounding of x/dx + 2), widened by 1e-6 of itself and 1e-9
+ * cells.  Every face is finite here (check_velocities in mac.c stops the
+ * step otherwise).  The 3 x 3 maxima are taken along J, then along I. */
+static void move_bounds(bf_mac *m)
+{
+    double *eu = m->mdu, *ev = m->mdv, *B = m->mbound;
+    const int ni = m->ni, nj = m->nj;
+    for (size_t c = 0; c < m->ncell; c++) {
+        eu[c] = fabs(m->u[c] - m->uref[c]);
+        ev[c] = fabs(m->v[c] - m->vref[c]);
+    }
+    /* in place along J: eu(i,j) = max over j-1..j+1 (prev keeps the
+     * overwritten j-1), ev(i,j) = max over j..j+2 */
+    for (int i = 1; i <= ni + 1; i++) {
+        double prev = eu[IX(i, 1)];
+        for (int j = 2; j <= nj - 1; j++) {
+            double cur = eu[IX(i, j)];
+            eu[IX(i, j)] = max2(max2(prev, cur), eu[IX(i, j + 1)]);
+            prev = cur;
+            ev[IX(i, j)] = max2(max2(ev[IX(i, j)], ev[IX(i, j + 1)]),
+                                ev[IX(i, j + 2)]);
+        }
+    }
+    const double sx = m->dt / m->dx, sy = m->dt / m->dy;
+    for (int i = 2; i <= ni - 1; i++)
+        for (int j = 2; j <= nj - 1; j++) {
+            double du = max2(max2(eu[IX(i, j)], eu[IX(i + 1, j)]),
+                             eu[IX(i + 2, j)]);
+            double dv = max2(max2(ev[IX(i - 1, j)], ev[IX(i, j)]),
+                             ev[IX(i + 1, j)]);
+            B[IX(i, j)] = max2(sx * du, sy * dv) * (1.0 + 1e-6) + 1e-9;
+        }
+}
+
+/* The corrector passes move the markers again from the same positions
+ * with slightly changed velocities, and only the cells they land in
+ * matter until the final pass (the density correction counts markers per
+ * cell).  A bilinear velocity is a convex combination of four faces, so
+ * it changes by at most the largest change of those faces since the first
+ * pass, and the marker's landing point by dt times that: a fluid marker
+ * that landed farther than that inside its cell in the first pass lands
+ * in the same cell again and is not moved.  The bound's widening is far
+ * beyond the rounding of a move (about 1e-14 cells), so the cells are
+ * exactly those a full move gives: the same results to the bit
+ * (bench/mac_vs_plain.sh compares every output row with a program that
+ * moves every marker in every pass). */
+long bf_mac_move_markers(bf_mac *m, bf_mac_move mode)
+{
+    const size_t n = m->part.n;
+    const int *tag = m->part.tag;
+    long held = 0;
+    m->nonfinite = -1;
+    if (mode == BF_MAC_MOVE_CELLS) {
+        move_bounds(m);
+        for (size_t k = 0; k < n; k++) {
+            /* slack >= 0: a fluid marker that started in an interior
+             * cell mstart[k] */
+            if (m->slack[k] >= 0 && m->slack[k] > m->mbound[m->mstart[k]]) {
+                m->mcell[k] = m->mcell1[k];
+                m->skipped_moves++;
+            } else if (tag[k] != BF_MAC_AVAIL)
+                held += move_one(m, k, 0);
+            else
+                m->mcell[k] = -1;
+        }
+        return held;
+    }
+    const int first = mode == BF_MAC_MOVE_FIRST;
+    if (first) {
+        memcpy(m->uref, m->u, m->ncell * sizeof *m->uref);
+        memcpy(m->vref, m->v, m->ncell * sizeof *m->vref);
+    }
+    for (size_t k = 0; k < n; k++) {
+        if (tag[k] != BF_MAC_AVAIL) {
+            held += move_one(m, k, first);
+        } else {
+            m->mcell[k] = -1;
+            if (first)
+                m->slack[k] = -1;
+        }
     }
     return held;
 }
 
 bf_status bf_mac_markers_finite(const bf_mac *m, bf_err *err)
 {
-    for (size_t k = 0; k < m->part.n; k++)
-        if (m->part.tag[k] != BF_MAC_AVAIL &&
-            (!isfinite(m->xn[k]) || !isfinite(m->yn[k])))
-            return bf_fail(err, BF_EUNSTABLE, "particle %zu: non-finite "
-                           "position after the move", k + 1);
+    if (m->nonfinite >= 0)
+        return bf_fail(err, BF_EUNSTABLE, "particle %ld: non-finite "
+                       "position after the move", m->nonfinite + 1);
     return BF_OK;
 }
 
@@ -230,14 +378,14 @@ int bf_mac_correct_density(bf_mac *m)
         N[c] = 0;
         S[c] = 0.0;
     }
+    /* the cells of the move (-1: free slot or off the grid), in slot
+     * order as before: the same sums */
+    const int *cell = m->mcell;
     for (size_t k = 0; k < pt->n; k++) {
-        if (pt->tag[k] == BF_MAC_AVAIL)
+        if (cell[k] < 0)
             continue;
-        int i = cell_of(m->xn[k], m->dx), j = cell_of(m->yn[k], m->dy);
-        if (i < 1 || i > m->ni || j < 1 || j > m->nj)
-            continue;
-        N[IX(i, j)]++;
-        S[IX(i, j)] += m->dens[k];
+        N[cell[k]]++;
+        S[cell[k]] += m->dens[k];
     }
     for (int i = 2; i <= m->ni - 1; i++)
         for (int j = 2; j <= m->nj - 1; j++) {

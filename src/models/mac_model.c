@@ -79,11 +79,12 @@ static void mac_model_destroy(void *self)
     free(mm);
 }
 
-/* Per cell about 30 doubles (the solver's 18 fields, flags and counts,
- * the output rows of the 6 cell series); the band matrix of the exact
- * pressure solve and its copy, 2 nunk (bw + 1); per particle slot 15
- * (position, velocity, mass, tag, the solver's 3, the output rows of
- * the 4 marker series and the row buffers), as mac.c allocates them. */
+/* Per cell about 37 doubles (the solver's 24 fields, flags, counts and
+ * coefficient stamps, the output rows of the 6 cell series); the band
+ * matrix of the exact pressure solve and its copy, 2 nunk (bw + 1); per
+ * particle slot 18 (position, velocity, mass, tag, the solver's 4 and
+ * its 3 cell indices, the output rows of the 4 marker series and the row
+ * buffers), as mac.c allocates them. */
 static void mac_model_memory(const bf_model_setup *setup, bf_mem_need *need)
 {
     const bf_mac_params *p = bf_setup_get(setup, &bf_mac_spec, NULL);
@@ -93,9 +94,9 @@ static void mac_model_memory(const bf_model_setup *setup, bf_mem_need *need)
     double cells = side * side, unk = 14.0 * r * 14.0 * r;
     double slots = p->slots > 0 ? (double)p->slots : 800.0 * r * r;
     int exact = p->solver == BF_MAC_DIRECT || p->compare;
-    need->bytes = 8.0 * (30.0 * cells + (exact ? 2.0 * unk * (14.0 * r + 1.0)
+    need->bytes = 8.0 * (37.0 * cells + (exact ? 2.0 * unk * (14.0 * r + 1.0)
                                                : 0.0) +
-                         15.0 * slots);
+                         18.0 * slots);
     snprintf(need->what, sizeof need->what,
              "%.0f cells (refine %ld) and %.3g particle slots", cells,
              p->refine, slots);
