@@ -19,10 +19,14 @@
  *              solver tolerance 1e-10 on x, v), the leapfrog only to
  *              O(dt^2) (above 1e-10 here), ARKODE's error falls with its
  *              tolerance.
+ *   restart    leapfrog and arkode on the hexagon, IMEX on the film:
+ *              stopped and continued, the same bits and counters.
  *   adaptive   ARKODE at rtol 1e-6 and 1e-10: errors below 1e-6 and 1e-10
  *              cm and falling by over 100x (measured 7.7e-10, 7.0e-13: 20x
  *              the reference's estimated error). */
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "ballfilm/converge.h"
@@ -76,11 +80,49 @@ START_TEST(greenspan73_and_leapfrog_second_order)
 }
 END_TEST
 
+/* A run with args, then the same stopped at step `stop` and continued:
+ * the same datasets and counters (tu_stop_restart_same). */
+static void restart_case(const char *tag, const char *scene, const char *stop,
+                         const char *const *args)
+{
+    char full[600], part[600];
+    snprintf(full, sizeof full, "%s.full.h5", tu_tmp(tag));
+    snprintf(part, sizeof part, "%s.part.h5", tu_tmp(tag));
+    const char *argv[24] = {"run", scene, "-o", full, "-q"};
+    size_t n = 5;
+    for (const char *const *a = args; *a && n < 23; a++)
+        argv[n++] = *a;
+    argv[n] = NULL;
+    char *err = NULL;
+    int rc = tu_runv(NULL, &err, argv);
+    ck_assert_msg(rc == 0, "%s: exit %d: %s", tag, rc, err ? err : "");
+    free(err);
+    tu_stop_restart_same(scene, full, part, stop, args);
+}
+
+START_TEST(new_integrators_restart_bit_for_bit)
+{
+    /* the checkpoints keep ARKODE's next initial step and its counters,
+     * the leapfrog's counters (its kept force is recomputed, not
+     * counted), the film's time */
+    const char *hex = tu_repo("runs/greenspan73_hex_v50.ini");
+    const char *lf[] = {"--set", "greenspan73.integrator=leapfrog", NULL};
+    const char *ark[] = {"--set", "greenspan73.integrator=arkode", NULL};
+    const char *imex[] = {"--set", "scene.t_end=1",   "--set",
+                          "scene.dt=0.05", "--set", "film.perturbation=0",
+                          "--set", "film.scheme=arkode-imex", NULL};
+    restart_case("g73_leapfrog", hex, "17", lf);
+    restart_case("g73_arkode", hex, "17", ark);
+    restart_case("film_imex", tu_repo("runs/kink_converge.ini"), "7", imex);
+}
+END_TEST
+
 Suite *suite_converge_particles(void)
 {
     Suite *s = suite_create("converge_particles");
     TCase *tc = tu_tcase("converge_particles");
     tcase_add_test(tc, greenspan73_and_leapfrog_second_order);
+    tcase_add_test(tc, new_integrators_restart_bit_for_bit);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -41,6 +41,7 @@ struct bf_ark1 {
     SUNLinearSolver LS;
     int order, padded;
     double h_next;
+    bf_counters base; /* counted before a checkpoint was loaded */
     int failed; /* a right-hand side asked to stop */
     char msg[512];
 };
@@ -340,10 +341,10 @@ void bf_ark1_counters(const bf_ark1 *a, bf_counters *c)
         break;
     }
     }
-    c->steps = (unsigned long long)steps;
-    c->evals = (unsigned long long)(nfe + nfi + nls);
-    c->rejected = (unsigned long long)ntf;
-    c->iterations = (unsigned long long)nni;
+    c->steps = a->base.steps + (unsigned long long)steps;
+    c->evals = a->base.evals + (unsigned long long)(nfe + nfi + nls);
+    c->rejected = a->base.rejected + (unsigned long long)ntf;
+    c->iterations = a->base.iterations + (unsigned long long)nni;
 }
 
 int bf_ark1_order(const bf_ark1 *a) { return a->order; }
@@ -368,3 +369,53 @@ void bf_ark1_describe(const bf_ark1 *a, char *buf, size_t cap)
 
 double bf_ark1_h_next(const bf_ark1 *a) { return a->h_next; }
 void bf_ark1_set_h_next(bf_ark1 *a, double h) { a->h_next = h; }
+
+static const bf_field count_fields[] = {
+    BF_FIELD(bf_counters, steps, BF_F_ULL, "1"),
+    BF_FIELD(bf_counters, evals, BF_F_ULL, "1"),
+    BF_FIELD(bf_counters, rejected, BF_F_ULL, "1"),
+    BF_FIELD(bf_counters, iterations, BF_F_ULL, "1"),
+};
+
+static void ark_names(const char *prefix, char *h, char *c, size_t cap)
+{
+    snprintf(h, cap, "%s.arkode_h_next", prefix);
+    snprintf(c, cap, "%s.arkode_counts", prefix);
+}
+
+bf_status bf_ark1_save(const bf_ark1 *a, bf_ckpt *ck, const char *prefix,
+                       bf_err *err)
+{
+    char h[160], c[160];
+    ark_names(prefix, h, c, sizeof h);
+    bf_counters n;
+    bf_ark1_counters(a, &n);
+    bf_status st = bf_ckpt_put_real(ck, h, a->h_next, err);
+    return st ? st
+              : bf_ckpt_put_fields(ck, c, count_fields,
+                                   BF_NFIELDS(count_fields), &n, err);
+}
+
+bf_status bf_ark1_load(bf_ark1 *a, const bf_ckpt *ck, const char *prefix,
+                       bf_err *err)
+{
+    char h[160], c[160];
+    ark_names(prefix, h, c, sizeof h);
+    bf_counters n = {0};
+    bf_status st = bf_ckpt_get_real(ck, h, &a->h_next, err);
+    if (!st)
+        st = bf_ckpt_get_fields(ck, c, count_fields, BF_NFIELDS(count_fields),
+                                &n, err);
+    if (!st) {
+        /* what this integrator counted since its creation is not in the
+         * saved run's counts */
+        bf_counters now;
+        a->base = (bf_counters){0};
+        bf_ark1_counters(a, &now);
+        a->base.steps = n.steps - now.steps;
+        a->base.evals = n.evals - now.evals;
+        a->base.rejected = n.rejected - now.rejected;
+        a->base.iterations = n.iterations - now.iterations;
+    }
+    return st;
+}

@@ -16,6 +16,7 @@
 
 #include <stddef.h>
 
+#include "ballfilm/checkpoint.h"
 #include "ballfilm/error.h"
 #include "ballfilm/integrator.h"
 
@@ -61,8 +62,16 @@ void bf_ark1_counters(const bf_ark1 *a, bf_counters *c);
 /* Nominal order and a one-line description ("ERK VERNER_8_5_6 rtol=..."). */
 int bf_ark1_order(const bf_ark1 *a);
 void bf_ark1_describe(const bf_ark1 *a, char *buf, size_t cap);
-/* The initial internal step of the next call (what a checkpoint keeps). */
+/* The initial internal step of the next call. */
 double bf_ark1_h_next(const bf_ark1 *a);
 void bf_ark1_set_h_next(bf_ark1 *a, double h);
+/* Checkpoints: the next initial step and the counters so far, under
+ * prefix + ".arkode_h_next" and prefix + ".arkode_counts.*"; after a load
+ * bf_ark1_counters goes on from the saved counters, as in the run that
+ * was not interrupted. */
+bf_status bf_ark1_save(const bf_ark1 *a, bf_ckpt *ck, const char *prefix,
+                       bf_err *err);
+bf_status bf_ark1_load(bf_ark1 *a, const bf_ckpt *ck, const char *prefix,
+                       bf_err *err);
 
 #endif

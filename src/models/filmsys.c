@@ -724,36 +724,25 @@ static const bf_field filmsys_fields[] = {
     BF_FIELD(bf_filmsys, drift, BF_F_DOUBLE, "1"),
 };
 
-/* The ARKODE schemes' own state in checkpoints: the next initial step
- * and the film's time (nothing for the invariant scheme, whose
- * checkpoints stay as they were). */
-static void ark_names(const char *name, char *h, char *t, size_t cap)
-{
-    snprintf(h, cap, "%s.arkode_h_next", name);
-    snprintf(t, cap, "%s.arkode_t", name);
-}
-
+/* The ARKODE schemes' own state in checkpoints: the next initial step,
+ * the counters and the film's time (nothing for the invariant scheme,
+ * whose checkpoints stay as they were). */
 static bf_status ark_save(const bf_filmsys *fs, bf_ckpt *ck,
                           const char *name, bf_err *err)
 {
-    char h[128], t[128];
-    ark_names(name, h, t, sizeof h);
-    bf_status st = bf_ckpt_put_real(ck, h, bf_ark1_h_next(fs->ark), err);
+    char t[128];
+    snprintf(t, sizeof t, "%s.arkode_t", name);
+    bf_status st = bf_ark1_save(fs->ark, ck, name, err);
     return st ? st : bf_ckpt_put_real(ck, t, fs->t_film, err);
 }
 
 static bf_status ark_load(bf_filmsys *fs, const bf_ckpt *ck,
                           const char *name, bf_err *err)
 {
-    char h[128], t[128];
-    double hn = 0.0;
-    ark_names(name, h, t, sizeof h);
-    bf_status st = bf_ckpt_get_real(ck, h, &hn, err);
-    if (!st)
-        st = bf_ckpt_get_real(ck, t, &fs->t_film, err);
-    if (!st)
-        bf_ark1_set_h_next(fs->ark, hn);
-    return st;
+    char t[128];
+    snprintf(t, sizeof t, "%s.arkode_t", name);
+    bf_status st = bf_ark1_load(fs->ark, ck, name, err);
+    return st ? st : bf_ckpt_get_real(ck, t, &fs->t_film, err);
 }
 
 bf_status bf_filmsys_save(const bf_filmsys *fs, bf_ckpt *ck,

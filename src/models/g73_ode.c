@@ -18,7 +18,7 @@ struct bf_g73_ode {
     double *fx, *fy; /* the force at the current positions (leapfrog) */
     double *y;       /* arkode: 4n */
     bf_ark1 *ark;
-    int force_valid;
+    int force_valid, replay;
     unsigned long long steps, evals;
 };
 
@@ -27,7 +27,10 @@ static void force(bf_g73_ode *o, const double *x, const double *y)
 {
     bf_dforce_distances(o->f, x, y, o->r);
     bf_dforce_eval(o->f, x, y, o->r, x, y, o->r, o->fx, o->fy);
-    o->evals++;
+    if (o->replay)
+        o->replay = 0;
+    else
+        o->evals++;
 }
 
 static int rhs(void *ctx, double t, const double *y, double *ydot)
@@ -191,13 +194,29 @@ void bf_g73_ode_describe(const bf_g73_ode *o, char *buf, size_t cap,
     *order = bf_ark1_order(o->ark);
 }
 
-double bf_g73_ode_h_next(const bf_g73_ode *o)
-{
-    return o->ark ? bf_ark1_h_next(o->ark) : 0.0;
-}
+static const bf_field lf_fields[] = {
+    BF_FIELD(bf_g73_ode, steps, BF_F_ULL, "1"),
+    BF_FIELD(bf_g73_ode, evals, BF_F_ULL, "1"),
+    BF_FIELD(bf_g73_ode, force_valid, BF_F_INT, "1"),
+};
 
-void bf_g73_ode_set_h_next(bf_g73_ode *o, double h)
+bf_status bf_g73_ode_save(const bf_g73_ode *o, bf_ckpt *ck, bf_err *err)
 {
     if (o->ark)
-        bf_ark1_set_h_next(o->ark, h);
+        return bf_ark1_save(o->ark, ck, "g73.ode", err);
+    return bf_ckpt_put_fields(ck, "g73.ode", lf_fields, BF_NFIELDS(lf_fields),
+                              o, err);
+}
+
+bf_status bf_g73_ode_load(bf_g73_ode *o, const bf_ckpt *ck, bf_err *err)
+{
+    if (o->ark)
+        return bf_ark1_load(o->ark, ck, "g73.ode", err);
+    bf_status st = bf_ckpt_get_fields(ck, "g73.ode", lf_fields,
+                                      BF_NFIELDS(lf_fields), o, err);
+    /* the kept force is recomputed from the restored positions: no new
+     * evaluation if the interrupted run had it */
+    o->replay = o->force_valid;
+    o->force_valid = 0;
+    return st;
 }

@@ -18,6 +18,7 @@
 #ifndef BALLFILM_MODELS_G73_ODE_H
 #define BALLFILM_MODELS_G73_ODE_H
 
+#include "ballfilm/checkpoint.h"
 #include "ballfilm/integrator.h"
 #include "ballfilm/particles.h"
 #include "particles/dforce.h"
@@ -47,8 +48,10 @@ void bf_g73_ode_changed(bf_g73_ode *o);
 void bf_g73_ode_counters(const bf_g73_ode *o, bf_counters *c);
 void bf_g73_ode_describe(const bf_g73_ode *o, char *buf, size_t cap,
                          int *order);
-/* ARKODE's next initial step (checkpoints); 0 for the leapfrog. */
-double bf_g73_ode_h_next(const bf_g73_ode *o);
-void bf_g73_ode_set_h_next(bf_g73_ode *o, double h);
+/* Checkpoints (under "g73.ode_*"): the counters, and ARKODE's next
+ * initial step; after a load the counters go on as in the run that was
+ * not interrupted (the leapfrog's kept force is recomputed, not counted). */
+bf_status bf_g73_ode_save(const bf_g73_ode *o, bf_ckpt *ck, bf_err *err);
+bf_status bf_g73_ode_load(bf_g73_ode *o, const bf_ckpt *ck, bf_err *err);
 
 #endif

@@ -203,7 +203,6 @@ typedef struct g73 {
     bf_dforce f;
     bf_implicit *solver;
     bf_g73_ode *ode; /* integrator = leapfrog, arkode (NULL: the scheme) */
-    int ode_arkode;
     double *mu, *r;
     int halve, max_halvings, watch;
     char reading[256];
@@ -511,7 +510,6 @@ static bf_status g73_create(void **self, const bf_model_setup *setup,
                               .max_steps = k->max_steps};
         if ((st = bf_g73_ode_create(&m->ode, f, m->mu, &m->p, &oo, err)))
             goto fail;
-        m->ode_arkode = k->integrator == BF_G73_ARKODE;
     }
     m->halve = k->on_failure == 1;
     m->max_halvings = (int)k->max_halvings;
@@ -738,10 +736,9 @@ static bf_status g73_save(const void *self, bf_ckpt *ck, bf_err *err)
     if (!st)
         st = bf_ckpt_put_fields(ck, "g73", g73_state, BF_NFIELDS(g73_state),
                                 m, err);
-    /* ARKODE's next initial step (nothing for the other integrators) */
-    if (!st && m->ode && m->ode_arkode)
-        st = bf_ckpt_put_real(ck, "g73.arkode_h_next",
-                              bf_g73_ode_h_next(m->ode), err);
+    /* the leapfrog's or ARKODE's own state (nothing for the scheme) */
+    if (!st && m->ode)
+        st = bf_g73_ode_save(m->ode, ck, err);
     return st;
 }
 
@@ -752,12 +749,8 @@ static bf_status g73_load(void *self, const bf_ckpt *ck, bf_err *err)
     if (!st)
         st = bf_ckpt_get_fields(ck, "g73", g73_state, BF_NFIELDS(g73_state),
                                 m, err);
-    double h = 0.0;
-    if (!st && m->ode && m->ode_arkode &&
-        !(st = bf_ckpt_get_real(ck, "g73.arkode_h_next", &h, err)))
-        bf_g73_ode_set_h_next(m->ode, h);
-    if (m->ode)
-        bf_g73_ode_changed(m->ode);
+    if (!st && m->ode)
+        st = bf_g73_ode_load(m->ode, ck, err);
     return st;
 }
 
