@@ -379,7 +379,9 @@ fig4: $(PROG) | deps deps-plot
 	    out/fig4_verlet.h5 -o out/fig4_velocity_difference.png
 
 # Work-precision diagrams of `ballfilm converge` (acceptance runs of the
-# integrator issue): the harmonic oscillator and the bouncing ball.
+# integrator issues): the harmonic oscillator, the bouncing ball, the film
+# (a kink with a density jump: a transient) and Greenspan's 1973 hexagon
+# over a short window (docs/accuracy.md).
 converge-figures: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) converge runs/harmonic.ini --methods verlet,mv2m,rk3,rk4,arkode \
@@ -397,6 +399,18 @@ converge-figures: $(PROG) | deps deps-plot
 	    -o out/converge_bouncing_ball_1s.h5
 	$(PY) plots/work_precision.py out/converge_bouncing_ball_1s.h5 \
 	    -o out/work_precision_bouncing_ball_1s.png
+	$(PROG) converge runs/kink_converge.ini \
+	    --methods invariant,arkode,arkode-imex -q --t-end 1 \
+	    --set film.perturbation=0 --set film.rho_d=1.2 \
+	    --dt 1e-3,5e-4,2.5e-4,1.25e-4,6.25e-5 \
+	    -o out/converge_film_transient.h5
+	$(PY) plots/work_precision.py out/converge_film_transient.h5 \
+	    -o out/work_precision_film_transient.png
+	$(PROG) converge runs/greenspan73_hex_v50.ini \
+	    --methods greenspan73,leapfrog,arkode -q --t-end 0.2 \
+	    --dt 0.02,0.01,0.005,0.0025 -o out/converge_greenspan73.h5
+	$(PY) plots/work_precision.py out/converge_greenspan73.h5 \
+	    -o out/work_precision_greenspan73.png
 # Yasuda Fig. 5: the perturbed kink, 1000 s at dt = 1e-3 s (10^6 steps),
 # and the space-time picture of psi.
 fig5: $(PROG) | deps deps-plot

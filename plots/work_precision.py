@@ -5,9 +5,11 @@ film's psi, particle positions, ...) against wall time and against
 right-hand-side evaluations, log-log, one line per method (failed runs are
 left out, and counted in the legend).  --group NAME picks another group,
 --norm max|rms the error over the output rows instead of at T.
+--cheapest E1,E2,... also prints, per accuracy E, the cheapest run (wall
+time) of each method whose error is at most E, and which method wins.
 
 usage: work_precision.py CONVERGE.h5 -o work_precision.png
-       [--group NAME] [--norm final|max|rms]
+       [--group NAME] [--norm final|max|rms] [--cheapest 1e-5,1e-7,1e-9]
 (CONVERGE.h5 from `ballfilm converge SCENE.ini --methods ... -o ...`)"""
 import argparse
 
@@ -22,6 +24,8 @@ ap.add_argument("-o", "--output", default="work_precision.png")
 ap.add_argument("--group", default=None,
                 help="state group (default: the first)")
 ap.add_argument("--norm", default="final", choices=["final", "max", "rms"])
+ap.add_argument("--cheapest", default=None,
+                help="accuracies E1,E2,...: print the cheapest run per method")
 a = ap.parse_args()
 
 table = ballfilm.load(a.table)
@@ -72,3 +76,25 @@ ax[1].legend(fontsize=8)
 fig.suptitle("work-precision, %s (model %s) to T = %g s (reference: %s)"
              % (scene, model, t_end, ref_name), fontsize=10)
 save(fig, a.output)
+
+if a.cheapest:
+    print("cheapest run reaching each accuracy (%s, %s, wall time of the "
+          "stepping loop):" % (gname, where))
+    for acc in [float(v) for v in a.cheapest.split(",")]:
+        best = []
+        for m, name in enumerate(methods):
+            sel = np.nonzero((c["method"] == m) & (c["status"] == 0)
+                             & (errs <= acc))[0]
+            if len(sel):
+                k = sel[np.argmin(c["wall"][sel])]
+                step = "tol %g" % c["tol"][k] if c["adaptive"][k] else \
+                    "dt %g" % c["dt"][k]
+                best.append((float(c["wall"][k]), name, step,
+                             float(errs[k])))
+        line = "  %-8g" % acc + "".join(
+            "  %s: %.3g s (%s, err %.2g);" % (n, w, st, e)
+            for w, n, st, e in best)
+        if best:
+            w0 = min(best)
+            line += "  cheapest: %s" % w0[1]
+        print(line if best else "  %-8g none reaches it" % acc)

@@ -9,9 +9,9 @@
  * ARKODE chooses every step in between.  The state is compared with a
  * reference at R output rows t_j = j T/R (j = 1..R; `rows`, default 10):
  * per group of state values (ball positions and velocities; the film's
- * psi, h, u_d, u_c; particle positions and velocities; ...) the largest
- * absolute difference at T, its maximum and its root mean square over the
- * rows.  Each run also reports the largest relative change of the model's
+ * psi, h and phase fluxes alpha_k h u_k; particle positions and
+ * velocities; ...) the largest absolute difference at T, its maximum and
+ * its root mean square over the rows.  Each run also reports the largest relative change of the model's
  * energy, or of its conserved totals (the film's phase totals), checked
  * after every step (and after every internal step of ARKODE on balls),
  * the counters (right-hand-side evaluations), and the wall time of the
@@ -27,8 +27,8 @@
  * unstable without running.
  *
  * The reference is the model's ARKODE integrator at rtol = ref_rtol (each
- * model's study has its own default, at most 1e-12 for balls and
- * particles), with a Butcher table that none of the compared methods uses,
+ * model's study has its own default: 1e-12 for balls and particles,
+ * 1e-10 for the film), with a Butcher table that none of the compared methods uses,
  * run twice, at ref_rtol and ref_rtol/10: the tighter one is the
  * reference, and the difference of the two is reported as its estimated
  * error (an over-estimate when the error scales with the tolerance).
@@ -46,7 +46,7 @@
  *
  * Method strings are "name" or "name:key=value:..." where name is the
  * model's time integrator (for balls [scene] integrator, for the film
- * [film] scheme, for the particle models [greenspan7x] integrator) and
+ * [film] scheme, for greenspan73 [greenspan73] integrator) and
  * each key=value a key of the section that integrator reads ([integrator]
  * for balls: "alpha:alpha=0.25", "arkode:table=ARKODE_CASH_KARP_6_4_5";
  * [film] for the film: "arkode-imex:rtol=1e-6"); a key written

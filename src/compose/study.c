@@ -1,14 +1,19 @@
 /* study.c: the studies of the models for `ballfilm converge` (study.h),
  * one line per model, and what they share. */
+#include <stdio.h>
 #include <string.h>
 
 #include "compose/study.h"
 #include "integrators/arkode.h"
 
 extern const bf_study_type bf_study_balls;
+extern const bf_study_type bf_study_film;
+extern const bf_study_type bf_study_greenspan73;
 
 static const bf_study_type *const studies[] = {
     &bf_study_balls,
+    &bf_study_film,
+    &bf_study_greenspan73,
 };
 
 const bf_study_type *bf_study_of(const char *model)
@@ -63,4 +68,32 @@ bf_status bf_study_pick_table(const bf_converge_opts *o,
                            "another method", t, o->methods[m]);
     *table = t;
     return BF_OK;
+}
+
+bf_status bf_study_arkode_reference(const bf_converge_opts *o,
+                                    const char *const *names,
+                                    const char *const *defaults,
+                                    const char *extra, char *method,
+                                    size_t cap, bf_err *err)
+{
+    static const char *const refs[] = {"ARKODE_VERNER_8_5_6",
+                                       "ARKODE_DORMAND_PRINCE_7_4_5",
+                                       "ARKODE_CASH_KARP_6_4_5"};
+    const char *table;
+    bf_status st = bf_study_pick_table(o, names, defaults, refs, 3, &table,
+                                       err);
+    if (!st)
+        snprintf(method, cap, "arkode:table=%s:max_steps=2000000000%s",
+                 table, extra);
+    return st;
+}
+
+bf_status bf_study_arkode_erk(const bf_scene *sc, const bf_converge_opts *o,
+                              char *method, size_t cap, bf_err *err)
+{
+    (void)sc;
+    static const char *const names[] = {"arkode", NULL};
+    static const char *const defaults[] = {"ARKODE_DORMAND_PRINCE_7_4_5"};
+    return bf_study_arkode_reference(o, names, defaults, "", method, cap,
+                                     err);
 }

@@ -74,4 +74,20 @@ bf_status bf_study_pick_table(const bf_converge_opts *o,
                               const char *const *candidates, size_t ncand,
                               const char **table, bf_err *err);
 
+/* The reference method of a study whose reference is the model's `arkode`
+ * integrator with its table set by table=: "arkode:table=T:max_steps=
+ * 2000000000" + extra, T the first of VERNER_8_5_6, DORMAND_PRINCE_7_4_5,
+ * CASH_KARP_6_4_5 that no compared method uses (names and defaults as in
+ * bf_study_pick_table). */
+bf_status bf_study_arkode_reference(const bf_converge_opts *o,
+                                    const char *const *names,
+                                    const char *const *defaults,
+                                    const char *extra, char *method,
+                                    size_t cap, bf_err *err);
+/* The same for a model whose only ARKODE integrator is `arkode` with the
+ * default table DORMAND_PRINCE_7_4_5 (the film, greenspan73): a study's
+ * reference function. */
+bf_status bf_study_arkode_erk(const bf_scene *sc, const bf_converge_opts *o,
+                              char *method, size_t cap, bf_err *err);
+
 #endif

@@ -46,19 +46,10 @@ static bf_status balls_reference(const bf_scene *sc,
     static const char *const names[] = {"arkode", "arkode-fixed", NULL};
     static const char *const defaults[] = {"ARKODE_DORMAND_PRINCE_7_4_5",
                                            "ARKODE_ZONNEVELD_5_3_4"};
-    static const char *const refs[] = {"ARKODE_VERNER_8_5_6",
-                                       "ARKODE_DORMAND_PRINCE_7_4_5",
-                                       "ARKODE_CASH_KARP_6_4_5"};
-    const char *table;
-    bf_status st = bf_study_pick_table(o, names, defaults, refs, 3, &table,
-                                       err);
-    if (st)
-        return st;
     /* events: rootfinding at every contact onset and release, the
      * integration restarted there (arkode.c) */
-    snprintf(method, cap, "arkode:table=%s:max_steps=2000000000:events=yes",
-             table);
-    return BF_OK;
+    return bf_study_arkode_reference(o, names, defaults, ":events=yes",
+                                     method, cap, err);
 }
 
 static double balls_max_step(const bf_scene *sc)

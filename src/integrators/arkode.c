@@ -74,14 +74,7 @@ static const struct {
 };
 #define NTABLES (sizeof tables / sizeof tables[0])
 
-#define TABLE_CHOICES                                                         \
-    "ARKODE_HEUN_EULER_2_1_2|ARKODE_BOGACKI_SHAMPINE_4_2_3|"                  \
-    "ARKODE_ARK324L2SA_ERK_4_2_3|ARKODE_ZONNEVELD_5_3_4|"                     \
-    "ARKODE_ARK436L2SA_ERK_6_3_4|ARKODE_SAYFY_ABURUB_6_3_4|"                  \
-    "ARKODE_CASH_KARP_6_4_5|ARKODE_FEHLBERG_6_4_5|"                           \
-    "ARKODE_DORMAND_PRINCE_7_4_5|ARKODE_ARK548L2SA_ERK_8_4_5|"                \
-    "ARKODE_VERNER_8_5_6|ARKODE_FEHLBERG_13_7_8|ARKODE_KNOTH_WOLKE_3_3|"      \
-    "ARKODE_ARK437L2SA_ERK_7_3_4|ARKODE_ARK548L2SAb_ERK_8_4_5"
+#define TABLE_CHOICES BF_ARKODE_TABLE_CHOICES
 
 typedef struct ark {
     int fixed;
@@ -210,6 +203,23 @@ int bf_arkode_table_needs_padding(int id)
     return need;
 }
 
+ARKodeButcherTable bf_arkode_erk_table(int index, int work_around,
+                                       int *padded)
+{
+    *padded = 0;
+    if (index < 0 || (size_t)index >= NTABLES)
+        return NULL;
+    const ARKODE_ERKTableID id = tables[index].id;
+    ARKodeButcherTable B = ARKodeButcherTable_LoadERK(id);
+    if (B && bf_arkode_table_needs_padding(id) && work_around) {
+        ARKodeButcherTable P = pad_table(B);
+        ARKodeButcherTable_Free(B);
+        B = P;
+        *padded = P != NULL;
+    }
+    return B;
+}
+
 int bf_arkode_table_index(const char *name)
 {
     for (size_t k = 0; k < NTABLES; k++)
@@ -330,8 +340,8 @@ static bf_status ark_init_common(bf_integrator *it, int fixed,
         p->substeps = k->substeps;
         p->max_steps = p->substeps + 10;
     }
-    const ARKODE_ERKTableID id = tables[p->table].id;
-    ARKodeButcherTable B = ARKodeButcherTable_LoadERK(id);
+    ARKodeButcherTable B =
+        bf_arkode_erk_table(p->table, k->work_around_311, &p->padded);
     if (!B)
         return bf_fail(err, BF_EINTERNAL, "cannot load %s", tname);
     if (!fixed && !B->d) {
@@ -342,14 +352,6 @@ static bf_status ark_init_common(bf_integrator *it, int fixed,
                            tname);
     }
     p->order = B->q;
-    p->padded = bf_arkode_table_needs_padding(id) && k->work_around_311;
-    if (p->padded) {
-        ARKodeButcherTable P = pad_table(B);
-        ARKodeButcherTable_Free(B);
-        if (!P)
-            return bf_fail(err, BF_EINTERNAL, "out of memory");
-        B = P;
-    }
     p->stages = B->stages;
     const size_t n = it->n;
     if (SUNContext_Create(NULL, &p->sunctx)) {

@@ -25,6 +25,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "film/film_mol.h"
+#include "integrators/ark1.h"
+#include "integrators/arkode.h"
 #include "models/filmsys.h"
 #include "models/state_names.h"
 
@@ -95,6 +98,38 @@ static const bf_param film_params[] = {
      "'T s'; 0: at every [scene] output_every row); the first and last "
      "states are always written",
      0, 0, 0, NULL},
+    {"scheme", BF_AT(bf_film_keys, scheme, BF_ENUM), "", "invariant",
+     "time integrator: invariant (the paper's scheme 3.15-3.16), arkode "
+     "(ARKODE adaptive ERK on the same grid in method-of-lines form) or "
+     "arkode-imex (ARKODE IMEX, the stiff terms implicit: imex_implicit); "
+     "the ARKODE schemes step adaptively inside each [scene] dt "
+     "(docs/models/film.md)",
+     0, 0, 0, "invariant|arkode|arkode-imex"},
+    {"table", BF_AT(bf_film_keys, table, BF_ENUM), "",
+     "ARKODE_DORMAND_PRINCE_7_4_5", "scheme = arkode: ERK Butcher table", 0,
+     0, 0, BF_ARKODE_TABLE_CHOICES},
+    {"imex_order", BF_AT(bf_film_keys, imex_order, BF_INT), "1", "4",
+     "scheme = arkode-imex: order of ARKStep's ARK pair (3: ARK324L2SA, 4: "
+     "ARK436L2SA, 5: ARK548L2SA)",
+     BF_MIN | BF_MAX, 3, 5, NULL},
+    {"imex_implicit", BF_AT(bf_film_keys, imex_implicit, BF_ENUM), "",
+     "waves",
+     "scheme = arkode-imex: waves (implicit: phase fluxes, pressure and mu "
+     "gradients, viscosity; explicit: the self-advection u u_x) or capillary "
+     "(implicit: the gamma psi_xx part of mu and the viscosity)",
+     0, 0, 0, "waves|capillary"},
+    {"rtol", BF_AT(bf_film_keys, rtol, BF_REAL), "1", "1e-6",
+     "ARKODE schemes: relative tolerance of the local error", BF_POS, 0, 0,
+     NULL},
+    {"atol", BF_AT(bf_film_keys, atol, BF_REAL), "cm, cm/s", "1e-8",
+     "ARKODE schemes: absolute tolerance (alpha_k h and u_k)", BF_POS, 0, 0,
+     NULL},
+    {"max_step", BF_AT(bf_film_keys, max_step, BF_REAL), "s", "0",
+     "ARKODE schemes: largest internal step (0: none)", BF_NONNEG, 0, 0,
+     NULL},
+    {"max_steps", BF_AT(bf_film_keys, max_steps, BF_INT), "1", "1000000",
+     "ARKODE schemes: internal steps allowed per [scene] dt", BF_MIN, 1, 0,
+     NULL},
     {0},
 };
 
@@ -119,6 +154,16 @@ struct bf_filmsys {
     double *given; /* the initial h, psi, u_d, u_c as handed to the film
                       (4 x n): set_state replaces one of them */
     double *kink0; /* the analytic kink on the nodes (initial = kink) */
+    double *flux;  /* 2 x n: bf_filmsys_phase_flux (allocated on demand) */
+    /* ARKODE schemes: the method-of-lines right-hand side, the
+     * integrator, the state vector, the coupling's mu_cpl of this step */
+    int scheme, split;
+    bf_film_mol *mol;
+    bf_ark1 *ark;
+    double *y;
+    const double *mu_cpl;
+    double t_film;                /* s, sum of the film steps taken */
+    unsigned long long inv_steps; /* invariant scheme: steps taken */
     bf_series *s_time, *s_h, *s_psi, *s_ud, *s_uc;
     bf_series *s_md, *s_mc, *s_umax, *s_amin, *s_kerr, *s_lim;
 };
@@ -140,6 +185,10 @@ void bf_filmsys_free(bf_filmsys *fs)
     free(fs->tmp);
     free(fs->kink0);
     free(fs->given);
+    free(fs->flux);
+    bf_ark1_free(fs->ark);
+    bf_film_mol_free(fs->mol);
+    free(fs->y);
     free(fs);
 }
 
@@ -240,12 +289,26 @@ static bf_status initial_state(bf_filmsys *fs, const bf_film_keys *k,
  * runs/kink_steady.ini (3 steps) ends grows by 228 B = 28.5 doubles per
  * node from 4e5 to 8e5 nodes (docs/reliability.md). */
 #define FILM_DOUBLES_PER_NODE 36.0
+/* What the ARKODE schemes add per node: the state vector and scratch of
+ * film_mol.c (11), ARKODE's vectors (4 unknowns per node each) and, for
+ * IMEX, the band matrix and its saved copy (2 x 4 columns x 34 rows of
+ * half-bandwidth 11).  Measured as above with runs/kink_converge.ini at
+ * length 5000 and 10000 cm (5e4 more nodes, 3 steps): the peak resident
+ * size grows by 38 doubles per node with the invariant scheme, 112 with
+ * scheme = arkode (the default DORMAND_PRINCE_7_4_5: 74 more; a 13-stage
+ * table adds 4 per extra stage, hence 100) and 432 with arkode-imex. */
+#define FILM_ARKODE_DOUBLES_PER_NODE 100.0
+#define FILM_IMEX_DOUBLES_PER_NODE 396.0
 
 void bf_filmsys_memory(const bf_film_keys *k, double extra, int copies,
                        bf_mem_need *need)
 {
     double nodes = floor(k->length / k->dx + 0.5) + 1.0;
     double per = FILM_DOUBLES_PER_NODE + extra;
+    if (k->scheme == BF_FILM_SCHEME_ARKODE)
+        per += FILM_ARKODE_DOUBLES_PER_NODE;
+    else if (k->scheme == BF_FILM_SCHEME_IMEX)
+        per += FILM_IMEX_DOUBLES_PER_NODE;
     need->bytes = (double)copies * nodes * per * 8.0;
     snprintf(need->what, sizeof need->what,
              "%.3g nodes (length %g cm / dx %g cm) x %.0f doubles%s", nodes,
@@ -253,6 +316,61 @@ void bf_filmsys_memory(const bf_film_keys *k, double extra, int copies,
              copies > 1 ? ", twice (the Lyapunov shadow)" : "");
     snprintf(need->section, sizeof need->section, "film");
     snprintf(need->key, sizeof need->key, "dx");
+}
+
+/* The right-hand sides of the ARKODE schemes (film_mol.h). */
+static int rhs_all(void *ctx, double t, const double *y, double *ydot)
+{
+    (void)t;
+    bf_filmsys *fs = ctx;
+    return bf_film_mol_rhs(fs->mol, y, fs->mu_cpl, BF_FILM_MOL_ALL,
+                           (bf_film_mol_split)fs->split, ydot);
+}
+
+static int rhs_explicit(void *ctx, double t, const double *y, double *ydot)
+{
+    (void)t;
+    bf_filmsys *fs = ctx;
+    return bf_film_mol_rhs(fs->mol, y, fs->mu_cpl, BF_FILM_MOL_EXPLICIT,
+                           (bf_film_mol_split)fs->split, ydot);
+}
+
+static int rhs_implicit(void *ctx, double t, const double *y, double *ydot)
+{
+    (void)t;
+    bf_filmsys *fs = ctx;
+    return bf_film_mol_rhs(fs->mol, y, fs->mu_cpl, BF_FILM_MOL_IMPLICIT,
+                           (bf_film_mol_split)fs->split, ydot);
+}
+
+static bf_status arkode_scheme(bf_filmsys *fs, const bf_film_keys *k,
+                               bf_err *err)
+{
+    bf_status st = bf_film_mol_create(&fs->mol, fs->film, err);
+    if (st)
+        return st;
+    const size_t n = bf_film_mol_size(fs->mol);
+    fs->y = calloc(n, sizeof *fs->y);
+    if (!fs->y)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    fs->split = k->imex_implicit;
+    const int imex = k->scheme == BF_FILM_SCHEME_IMEX;
+    bf_ark1_opts o = {
+        .kind = imex ? BF_ARK1_IMEX : BF_ARK1_ERK,
+        .table = k->table,
+        .order = (int)k->imex_order,
+        .rtol = k->rtol,
+        .atol = k->atol,
+        .max_step = k->max_step,
+        .max_steps = k->max_steps,
+        .band = bf_film_mol_bandwidth(),
+        .work_around_311 = 1,
+    };
+    st = bf_ark1_create(&fs->ark, n, imex ? rhs_explicit : rhs_all,
+                        imex ? rhs_implicit : NULL, fs, &o, err);
+    if (st == BF_EINPUT)
+        bf_err_prefix(err, "[film] table");
+    return st;
 }
 
 bf_status bf_filmsys_create(bf_filmsys **out, const bf_film_keys *k,
@@ -315,6 +433,12 @@ bf_status bf_filmsys_create(bf_filmsys **out, const bf_film_keys *k,
     if (fs->prof_every < 1)
         fs->prof_every = 1;
     bf_film_totals(fs->film, &fs->m0[0], &fs->m0[1]);
+    fs->scheme = k->scheme;
+    if (fs->scheme != BF_FILM_SCHEME_INVARIANT &&
+        (st = arkode_scheme(fs, k, err))) {
+        bf_filmsys_free(fs);
+        return st;
+    }
     *out = fs;
     return BF_OK;
 }
@@ -335,7 +459,9 @@ static double largest_dt(double lim, long K)
 void bf_filmsys_stable_dt(const bf_filmsys *fs, bf_dt_limit *lim)
 {
     char why[256];
-    if (fs->every < 1 || fs->force_dt)
+    /* the ARKODE schemes choose their own steps inside dt */
+    if (fs->every < 1 || fs->force_dt ||
+        fs->scheme != BF_FILM_SCHEME_INVARIANT)
         return;
     double L = bf_film_stable_dt(fs->film, why, sizeof why);
     if (!(L > 0 && L < INFINITY))
@@ -404,7 +530,65 @@ bf_status bf_filmsys_set(bf_filmsys *fs, const char *name, const double *v,
 bf_status bf_filmsys_step(bf_filmsys *fs, double dt, const double *mu_cpl,
                           bf_err *err)
 {
-    return bf_film_step_invariant(fs->film, dt, mu_cpl, err);
+    if (fs->scheme == BF_FILM_SCHEME_INVARIANT) {
+        fs->inv_steps++;
+        return bf_film_step_invariant(fs->film, dt, mu_cpl, err);
+    }
+    fs->mu_cpl = mu_cpl;
+    bf_film_mol_pack(fs->film, fs->y);
+    bf_status st = bf_ark1_evolve(fs->ark, fs->t_film, fs->t_film + dt, fs->y,
+                                  err);
+    if (!st)
+        st = bf_film_mol_check(fs->mol, fs->y, err);
+    if (!st) {
+        bf_film_mol_vanish(fs->mol, fs->y);
+        bf_film_mol_unpack(fs->film, fs->y);
+        fs->t_film += dt;
+    }
+    return st;
+}
+
+int bf_filmsys_scheme(const bf_filmsys *fs) { return fs->scheme; }
+
+const double *bf_filmsys_phase_flux(bf_filmsys *fs, int k)
+{
+    if (!fs->flux && !(fs->flux = malloc(2 * fs->n * sizeof *fs->flux)))
+        return NULL;
+    const double *a = k ? bf_film_ah_c(fs->film) : bf_film_ah_d(fs->film);
+    const double *u = k ? bf_film_u_c(fs->film) : bf_film_u_d(fs->film);
+    double *q = fs->flux + (size_t)k * fs->n;
+    for (size_t i = 0; i < fs->n; i++)
+        q[i] = a[i] * u[i];
+    return q;
+}
+
+void bf_filmsys_describe(const bf_filmsys *fs, char *buf, size_t cap,
+                         int *order)
+{
+    static const char *const mt[] = {"midpoint", "um", "uk"};
+    if (fs->scheme == BF_FILM_SCHEME_INVARIANT) {
+        snprintf(buf, cap, "film invariant (mu_taylor %s)",
+                 mt[bf_film_params_of(fs->film)->mu_taylor]);
+        *order = 1;
+        return;
+    }
+    char a[160];
+    bf_ark1_describe(fs->ark, a, sizeof a);
+    snprintf(buf, cap, "film arkode %s%s", a,
+             fs->scheme == BF_FILM_SCHEME_IMEX
+                 ? (fs->split == BF_FILM_MOL_WAVES ? " (implicit: waves)"
+                                                   : " (implicit: capillary)")
+                 : "");
+    *order = bf_ark1_order(fs->ark);
+}
+
+void bf_filmsys_counters(const bf_filmsys *fs, bf_counters *c)
+{
+    memset(c, 0, sizeof *c);
+    if (fs->ark)
+        bf_ark1_counters(fs->ark, c);
+    else
+        c->steps = c->evals = fs->inv_steps;
 }
 
 double bf_filmsys_kink_error(const bf_filmsys *fs)
@@ -513,7 +697,16 @@ void bf_filmsys_report(const bf_filmsys *fs, FILE *out)
     fprintf(out, "film: max |u| %.3e cm/s, min volume fraction %.3e, "
                  "positivity limiter acted in %llu steps (%llu faces)\n",
             bf_film_max_speed(f), bf_film_min_alpha(f), ls, lf);
-    if (fs->film_dt > 0)
+    if (fs->ark) {
+        char d[256];
+        int q;
+        bf_counters c;
+        bf_filmsys_describe(fs, d, sizeof d, &q);
+        bf_filmsys_counters(fs, &c);
+        fprintf(out, "film: %s: %llu steps, %llu right-hand-side "
+                     "evaluations, %llu rejected, %llu Newton iterations\n",
+                d, c.steps, c.evals, c.rejected, c.iterations);
+    } else if (fs->film_dt > 0)
         fprintf(out, "film: stable dt now %.4g s (film step %g s)\n", lim,
                 fs->film_dt);
     else
@@ -531,15 +724,37 @@ static const bf_field filmsys_fields[] = {
     BF_FIELD(bf_filmsys, drift, BF_F_DOUBLE, "1"),
 };
 
+/* The ARKODE schemes' own state in checkpoints: the next initial step,
+ * the counters and the film's time (nothing for the invariant scheme,
+ * whose checkpoints stay as they were). */
+static bf_status ark_save(const bf_filmsys *fs, bf_ckpt *ck,
+                          const char *name, bf_err *err)
+{
+    char t[128];
+    snprintf(t, sizeof t, "%s.arkode_t", name);
+    bf_status st = bf_ark1_save(fs->ark, ck, name, err);
+    return st ? st : bf_ckpt_put_real(ck, t, fs->t_film, err);
+}
+
+static bf_status ark_load(bf_filmsys *fs, const bf_ckpt *ck,
+                          const char *name, bf_err *err)
+{
+    char t[128];
+    snprintf(t, sizeof t, "%s.arkode_t", name);
+    bf_status st = bf_ark1_load(fs->ark, ck, name, err);
+    return st ? st : bf_ckpt_get_real(ck, t, &fs->t_film, err);
+}
+
 bf_status bf_filmsys_save(const bf_filmsys *fs, bf_ckpt *ck,
                           const char *prefix, bf_err *err)
 {
     char name[96];
     snprintf(name, sizeof name, "%sfilm", prefix);
     bf_status st = bf_film_save(fs->film, ck, name, err);
-    return st ? st
-              : bf_ckpt_put_fields(ck, name, filmsys_fields,
-                                   BF_NFIELDS(filmsys_fields), fs, err);
+    if (!st)
+        st = bf_ckpt_put_fields(ck, name, filmsys_fields,
+                                BF_NFIELDS(filmsys_fields), fs, err);
+    return st || !fs->ark ? st : ark_save(fs, ck, name, err);
 }
 
 bf_status bf_filmsys_load(bf_filmsys *fs, const bf_ckpt *ck,
@@ -548,7 +763,8 @@ bf_status bf_filmsys_load(bf_filmsys *fs, const bf_ckpt *ck,
     char name[96];
     snprintf(name, sizeof name, "%sfilm", prefix);
     bf_status st = bf_film_load(fs->film, ck, name, err);
-    return st ? st
-              : bf_ckpt_get_fields(ck, name, filmsys_fields,
-                                   BF_NFIELDS(filmsys_fields), fs, err);
+    if (!st)
+        st = bf_ckpt_get_fields(ck, name, filmsys_fields,
+                                BF_NFIELDS(filmsys_fields), fs, err);
+    return st || !fs->ark ? st : ark_load(fs, ck, name, err);
 }

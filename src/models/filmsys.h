@@ -47,7 +47,18 @@ typedef struct bf_film_keys {
     double vanish;
     int force_dt;
     bf_interval profile_every;
+    /* the time integrator: the invariant scheme, or ARKODE on the same
+     * grid in method-of-lines form (film_mol.h) */
+    int scheme;        /* BF_FILM_SCHEME_* */
+    int table;         /* arkode: ERK table (integrators/arkode.h) */
+    long imex_order;   /* arkode-imex: 3, 4, 5 */
+    int imex_implicit; /* bf_film_mol_split */
+    double rtol, atol, max_step;
+    long max_steps;
 } bf_film_keys;
+
+enum { BF_FILM_SCHEME_INVARIANT = 0, BF_FILM_SCHEME_ARKODE = 1,
+       BF_FILM_SCHEME_IMEX = 2 };
 
 extern const bf_section_spec bf_filmsys_spec; /* [film] */
 
@@ -95,9 +106,29 @@ double bf_filmsys_kink_error(const bf_filmsys *fs);
 double bf_filmsys_mass_drift(const bf_filmsys *fs);
 
 /* One film step of dt with the coupling's mu_cpl (nodes 0..N; NULL:
- * none), bf_film_step_invariant. */
+ * none): bf_film_step_invariant, or with [film] scheme = arkode or
+ * arkode-imex ARKODE's steps over dt on the film in method-of-lines form
+ * (mu_cpl held over dt), the state checked after it. */
 bf_status bf_filmsys_step(bf_filmsys *fs, double dt, const double *mu_cpl,
                           bf_err *err);
+
+/* The film's time integrator: [film] scheme, and a description of it
+ * ("invariant (mu_taylor midpoint)", "arkode ERK VERNER_8_5_6 rtol=...")
+ * with its nominal order in time (1 for the invariant scheme, whose
+ * first-order term is O(dt dx^2), docs/models/film.md). */
+int bf_filmsys_scheme(const bf_filmsys *fs);
+/* The phase volume fluxes alpha_k h u_k on the nodes (cm^2/s), k = 0: d,
+ * 1: c, of the current state (the convergence study compares them instead
+ * of u_k: where a phase is absent its velocity is a convention); the
+ * array is the filmsys's, valid until the next call.  NULL: out of
+ * memory. */
+const double *bf_filmsys_phase_flux(bf_filmsys *fs, int k);
+void bf_filmsys_describe(const bf_filmsys *fs, char *buf, size_t cap,
+                         int *order);
+/* The counters of its time integration: ARKODE's (steps, evaluations of
+ * the right-hand side, rejected steps, Newton iterations), or for the
+ * invariant scheme its steps, each counted as one evaluation. */
+void bf_filmsys_counters(const bf_filmsys *fs, bf_counters *c);
 
 bf_status bf_filmsys_output_open(bf_filmsys *fs, bf_out *out, bf_err *err);
 bf_status bf_filmsys_output_row(bf_filmsys *fs, long n, double t, bf_err *err);

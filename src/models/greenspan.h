@@ -19,6 +19,9 @@ bf_support *bf_greenspan72_support(void *model);
 
 /* The particles of a greenspan73 model (time t_k). */
 bf_particles *bf_greenspan73_particles(void *model);
+/* Its time integrator ([greenspan73] integrator) with its parameters, and
+ * its nominal order. */
+void bf_greenspan73_describe(void *model, char *buf, size_t cap, int *order);
 
 /* The particles as arrays (model.h, state): particles/x, particles/y
  * (cm), particles/vx, particles/vy (cm/s), all settable before the first

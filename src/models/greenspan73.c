@@ -37,6 +37,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "integrators/arkode.h"
+#include "models/g73_ode.h"
 #include "particles/dforce.h"
 #include "models/greenspan.h"
 #include "particles/implicit.h"
@@ -69,6 +71,11 @@ typedef struct g73_keys {
     double jacobian_cutoff;
     int on_failure; /* 0: stop, 1: halve */
     long max_halvings, watch;
+    /* the time integrator (g73_ode.h) */
+    int integrator; /* BF_G73_* */
+    int table;
+    double rtol, atol, max_step;
+    long max_steps;
 } g73_keys;
 
 enum { LAYOUT_HEXAGON = 0, LAYOUT_WALL = 1, LAYOUT_LIST = 2 };
@@ -164,6 +171,25 @@ static const bf_param g73_params[] = {
      "most halvings of one step", BF_MIN | BF_MAX, 0, 40, NULL},
     {"watch", BF_AT(g73_keys, watch, BF_INT), "1", "1",
      "particle whose final position the summary prints", BF_MIN, 1, 0, NULL},
+    {"integrator", BF_AT(g73_keys, integrator, BF_ENUM), "", "greenspan73",
+     "time integrator: greenspan73 (the paper's implicit energy-conserving "
+     "scheme), leapfrog (the 1972 leapfrog, kick-drift-kick, on the "
+     "continuous force) or arkode (ARKODE adaptive ERK on the same ODE, "
+     "stopped at every [scene] dt)",
+     0, 0, 0, "greenspan73|leapfrog|arkode"},
+    {"table", BF_AT(g73_keys, table, BF_ENUM), "",
+     "ARKODE_DORMAND_PRINCE_7_4_5", "integrator = arkode: ERK Butcher table",
+     0, 0, 0, BF_ARKODE_TABLE_CHOICES},
+    {"rtol", BF_AT(g73_keys, rtol, BF_REAL), "1", "1e-8",
+     "integrator = arkode: relative tolerance", BF_POS, 0, 0, NULL},
+    {"atol", BF_AT(g73_keys, atol, BF_REAL), "cm, cm/s", "1e-10",
+     "integrator = arkode: absolute tolerance", BF_POS, 0, 0, NULL},
+    {"max_step", BF_AT(g73_keys, max_step, BF_REAL), "s", "0",
+     "integrator = arkode: largest internal step (0: none)", BF_NONNEG, 0, 0,
+     NULL},
+    {"max_steps", BF_AT(g73_keys, max_steps, BF_INT), "1", "1000000",
+     "integrator = arkode: internal steps allowed per [scene] dt", BF_MIN, 1,
+     0, NULL},
     {0},
 };
 
@@ -176,6 +202,7 @@ typedef struct g73 {
     bf_particles p;
     bf_dforce f;
     bf_implicit *solver;
+    bf_g73_ode *ode; /* integrator = leapfrog, arkode (NULL: the scheme) */
     double *mu, *r;
     int halve, max_halvings, watch;
     char reading[256];
@@ -194,6 +221,7 @@ static void g73_destroy(void *self)
     bf_particles_free(&m->p);
     bf_dforce_free(&m->f);
     bf_implicit_free(m->solver);
+    bf_g73_ode_free(m->ode);
     free(m->mu);
     free(m->r);
     free(m);
@@ -473,6 +501,16 @@ static bf_status g73_create(void **self, const bf_model_setup *setup,
     };
     if ((st = bf_implicit_create(&m->solver, f, &o, err)))
         goto fail;
+    if (k->integrator != BF_G73_IMPLICIT) {
+        bf_g73_ode_opts oo = {.method = k->integrator,
+                              .table = k->table,
+                              .rtol = k->rtol,
+                              .atol = k->atol,
+                              .max_step = k->max_step,
+                              .max_steps = k->max_steps};
+        if ((st = bf_g73_ode_create(&m->ode, f, m->mu, &m->p, &oo, err)))
+            goto fail;
+    }
     m->halve = k->on_failure == 1;
     m->max_halvings = (int)k->max_halvings;
     m->watch = (int)k->watch;
@@ -527,10 +565,10 @@ static bf_status advance(g73 *m, double dt, int depth, bf_err *err)
 static bf_status g73_step(void *self, long n, double t, double dt, bf_err *err)
 {
     (void)n;
-    (void)t;
     g73 *m = self;
     m->last_iter = m->last_sub = 0;
-    bf_status st = advance(m, dt, 0, err);
+    bf_status st = m->ode ? bf_g73_ode_step(m->ode, t, dt, err)
+                          : advance(m, dt, 0, err);
     if (st)
         return st;
     m->steps++;
@@ -553,8 +591,19 @@ static void g73_energy(const void *self, double t, double *kin, double *pot)
  * of 1e-6 means that the iteration did not do its job. */
 static double g73_energy_bound(const void *self)
 {
-    (void)self;
-    return 1e-6;
+    /* the leapfrog and ARKODE conserve it only to their order: no bound */
+    return ((const g73 *)self)->ode ? 0.0 : 1e-6;
+}
+
+void bf_greenspan73_describe(void *model, char *buf, size_t cap, int *order)
+{
+    const g73 *m = model;
+    if (m->ode) {
+        bf_g73_ode_describe(m->ode, buf, cap, order);
+        return;
+    }
+    snprintf(buf, cap, "greenspan73 (implicit, energy-conserving)");
+    *order = 2;
 }
 
 static bf_status g73_output_open(void *self, bf_out *out, bf_err *err)
@@ -636,6 +685,10 @@ static bf_status g73_output_row(void *self, long n, double t, bf_err *err)
 static void g73_counters(const void *self, bf_counters *c)
 {
     const g73 *m = self;
+    if (m->ode) {
+        bf_g73_ode_counters(m->ode, c);
+        return;
+    }
     c->steps = m->steps;
     c->evals = m->iterations;
     c->iterations = m->iterations;
@@ -646,7 +699,17 @@ static void g73_report(const void *self, FILE *f)
 {
     const g73 *m = self;
     const size_t w = (size_t)m->watch - 1;
-    fprintf(f, "implicit solver:   %llu substeps, %llu iterations (%.2f per "
+    if (m->ode) {
+        char d[256];
+        int q;
+        bf_counters c;
+        bf_g73_ode_describe(m->ode, d, sizeof d, &q);
+        bf_g73_ode_counters(m->ode, &c);
+        fprintf(f, "integrator:        %s: %llu steps, %llu force "
+                   "evaluations, %llu rejected\n",
+                d, c.steps, c.evals, c.rejected);
+    } else
+        fprintf(f, "implicit solver:   %llu substeps, %llu iterations (%.2f per "
                "substep), %llu failed solves, most halvings of a step %d\n",
             m->substeps, m->iterations,
             m->substeps ? (double)m->iterations / (double)m->substeps : 0.0,
@@ -673,6 +736,9 @@ static bf_status g73_save(const void *self, bf_ckpt *ck, bf_err *err)
     if (!st)
         st = bf_ckpt_put_fields(ck, "g73", g73_state, BF_NFIELDS(g73_state),
                                 m, err);
+    /* the leapfrog's or ARKODE's own state (nothing for the scheme) */
+    if (!st && m->ode)
+        st = bf_g73_ode_save(m->ode, ck, err);
     return st;
 }
 
@@ -683,6 +749,8 @@ static bf_status g73_load(void *self, const bf_ckpt *ck, bf_err *err)
     if (!st)
         st = bf_ckpt_get_fields(ck, "g73", g73_state, BF_NFIELDS(g73_state),
                                 m, err);
+    if (!st && m->ode)
+        st = bf_g73_ode_load(m->ode, ck, err);
     return st;
 }
 
@@ -699,6 +767,8 @@ static bf_status g73_set_state(void *self, const char *name, const double *v,
 {
     g73 *m = self;
     bf_status st = bf_particles_set_var(&m->p, NULL, name, v, n, err);
+    if (m->ode)
+        bf_g73_ode_changed(m->ode);
     double K, V;
     g73_energy(m, 0.0, &K, &V);
     m->e0 = K + V;

@@ -1,0 +1,421 @@
+/* ark1.c: ARKODE on first-order systems (ark1.h): ERKStep, ARKStep IMEX
+ * with a banded Newton solve, MRIStep with an inner ARKStep ERK.
+ *
+ * The implicit part of IMEX is solved by ARKODE's modified Newton
+ * iteration with a banded direct linear solver (SUNDIALS band matrix and
+ * solver, in libsundials_arkode of Debian's 6.4.1) and the Jacobian by
+ * banded difference quotients (2 band + 1 evaluations of fi, counted in
+ * the evaluations).  The ERK tables with c_s = 1 that are not FSAL are
+ * padded against the issue-311 trap (arkode.c) for ERKStep and for the
+ * inner explicit method of MRIStep.  ARKStep's IMEX pairs (ARK324L2SA,
+ * ARK436L2SA, ARK548L2SA) are used as ARKStep defines them
+ * (tests/test_film_imex.c: IMEX at tight tolerance agrees with the ERK
+ * reference on the film). */
+#include "integrators/ark1.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <arkode/arkode_arkstep.h>
+#include <arkode/arkode_erkstep.h>
+#include <arkode/arkode_mristep.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_band.h>
+#include <sunmatrix/sunmatrix_band.h>
+
+#include "integrators/arkode.h"
+
+struct bf_ark1 {
+    bf_ark1_opts o;
+    size_t n;
+    bf_rhs_fn fe, fi;
+    void *ctx;
+    SUNContext sunctx;
+    void *mem;   /* ERKStep, ARKStep or MRIStep */
+    void *inner; /* MRI: the inner ARKStep */
+    MRIStepInnerStepper stepper;
+    N_Vector y;
+    SUNMatrix A;
+    SUNLinearSolver LS;
+    int order, padded;
+    double h_next;
+    bf_counters base; /* counted before a checkpoint was loaded */
+    int failed; /* a right-hand side asked to stop */
+    char msg[512];
+};
+
+static int rhs_e(realtype t, N_Vector y, N_Vector yd, void *ud)
+{
+    bf_ark1 *a = ud;
+    int r = a->fe(a->ctx, t, N_VGetArrayPointer(y), N_VGetArrayPointer(yd));
+    if (r < 0)
+        a->failed = 1;
+    return r;
+}
+
+static int rhs_i(realtype t, N_Vector y, N_Vector yd, void *ud)
+{
+    bf_ark1 *a = ud;
+    int r = a->fi(a->ctx, t, N_VGetArrayPointer(y), N_VGetArrayPointer(yd));
+    if (r < 0)
+        a->failed = 1;
+    return r;
+}
+
+static void errh(int code, const char *module, const char *function,
+                 char *msg, void *ud)
+{
+    (void)module;
+    bf_ark1 *a = ud;
+    if (code < 0)
+        snprintf(a->msg, sizeof a->msg, "%s: %s", function, msg);
+}
+
+static const char *flag_name(const bf_ark1 *a, int flag)
+{
+    return a->o.kind == BF_ARK1_ERK    ? ERKStepGetReturnFlagName(flag)
+           : a->o.kind == BF_ARK1_IMEX ? ARKStepGetReturnFlagName(flag)
+                                       : MRIStepGetReturnFlagName(flag);
+}
+
+static bf_status check(bf_ark1 *a, int flag, const char *what, bf_err *err)
+{
+    if (flag >= 0)
+        return BF_OK;
+    return bf_fail(err, BF_EINTERNAL, "ARKODE %s failed (%s)%s%s", what,
+                   flag_name(a, flag), a->msg[0] ? ": " : "", a->msg);
+}
+
+void bf_ark1_free(bf_ark1 *a)
+{
+    if (!a)
+        return;
+    if (a->o.kind == BF_ARK1_ERK && a->mem)
+        ERKStepFree(&a->mem);
+    if (a->o.kind == BF_ARK1_IMEX && a->mem)
+        ARKStepFree(&a->mem);
+    if (a->o.kind == BF_ARK1_MRI) {
+        if (a->mem)
+            MRIStepFree(&a->mem);
+        if (a->stepper)
+            MRIStepInnerStepper_Free(&a->stepper);
+        if (a->inner)
+            ARKStepFree(&a->inner);
+    }
+    if (a->LS)
+        SUNLinSolFree(a->LS);
+    if (a->A)
+        SUNMatDestroy(a->A);
+    if (a->y)
+        N_VDestroy(a->y);
+    if (a->sunctx)
+        SUNContext_Free(&a->sunctx);
+    free(a);
+}
+
+/* The explicit table (padded when it needs it). */
+static ARKodeButcherTable erk_table(bf_ark1 *a, bf_err *err)
+{
+    ARKodeButcherTable B =
+        bf_arkode_erk_table(a->o.table, a->o.work_around_311, &a->padded);
+    if (!B)
+        bf_fail(err, BF_EINTERNAL, "cannot load the ARKODE table %d",
+                a->o.table);
+    else if (!B->d) {
+        bf_fail(err, BF_EINPUT, "%s has no embedded method, so it cannot "
+                "adapt its step", bf_arkode_table_name(a->o.table));
+        ARKodeButcherTable_Free(B);
+        B = NULL;
+    }
+    return B;
+}
+
+static bf_status create_erk(bf_ark1 *a, bf_err *err)
+{
+    ARKodeButcherTable B = erk_table(a, err);
+    if (!B)
+        return err->status;
+    a->order = B->q;
+    a->mem = ERKStepCreate(rhs_e, 0.0, a->y, a->sunctx);
+    int flag = a->mem ? 0 : -1;
+    if (flag >= 0)
+        flag = ERKStepSetErrHandlerFn(a->mem, errh, a);
+    if (flag >= 0)
+        flag = ERKStepSetUserData(a->mem, a);
+    if (flag >= 0)
+        flag = ERKStepSetTable(a->mem, B);
+    ARKodeButcherTable_Free(B);
+    if (flag >= 0)
+        flag = ERKStepSStolerances(a->mem, a->o.rtol, a->o.atol);
+    if (flag >= 0)
+        flag = ERKStepSetMaxNumSteps(a->mem, a->o.max_steps);
+    if (flag >= 0 && a->o.max_step > 0)
+        flag = ERKStepSetMaxStep(a->mem, a->o.max_step);
+    return check(a, flag, "ERKStep setup", err);
+}
+
+static bf_status create_imex(bf_ark1 *a, bf_err *err)
+{
+    if (a->o.order < 3 || a->o.order > 5)
+        return bf_fail(err, BF_EINPUT, "ARKStep IMEX orders are 3, 4, 5");
+    a->order = a->o.order;
+    a->mem = ARKStepCreate(rhs_e, rhs_i, 0.0, a->y, a->sunctx);
+    int flag = a->mem ? 0 : -1;
+    if (flag >= 0)
+        flag = ARKStepSetErrHandlerFn(a->mem, errh, a);
+    if (flag >= 0)
+        flag = ARKStepSetUserData(a->mem, a);
+    if (flag >= 0)
+        flag = ARKStepSetOrder(a->mem, a->o.order);
+    if (flag >= 0)
+        flag = ARKStepSStolerances(a->mem, a->o.rtol, a->o.atol);
+    if (flag >= 0)
+        flag = ARKStepSetMaxNumSteps(a->mem, a->o.max_steps);
+    if (flag >= 0 && a->o.max_step > 0)
+        flag = ARKStepSetMaxStep(a->mem, a->o.max_step);
+    if (flag < 0)
+        return check(a, flag, "ARKStep setup", err);
+    const sunindextype b = (sunindextype)a->o.band;
+    a->A = SUNBandMatrix((sunindextype)a->n, b, b, a->sunctx);
+    a->LS = a->A ? SUNLinSol_Band(a->y, a->A, a->sunctx) : NULL;
+    if (!a->A || !a->LS)
+        return bf_fail(err, BF_EINTERNAL, "out of memory (band solver)");
+    flag = ARKStepSetLinearSolver(a->mem, a->LS, a->A);
+    return check(a, flag, "ARKStep linear solver setup", err);
+}
+
+static bf_status create_mri(bf_ark1 *a, bf_err *err)
+{
+    ARKodeButcherTable B = erk_table(a, err);
+    if (!B)
+        return err->status;
+    /* the fast part: an adaptive explicit ARKStep, the inner stepper */
+    a->inner = ARKStepCreate(rhs_i, NULL, 0.0, a->y, a->sunctx);
+    int flag = a->inner ? 0 : -1;
+    if (flag >= 0)
+        flag = ARKStepSetErrHandlerFn(a->inner, errh, a);
+    if (flag >= 0)
+        flag = ARKStepSetUserData(a->inner, a);
+    if (flag >= 0)
+        flag = ARKStepSetTables(a->inner, B->q, B->p, NULL, B);
+    ARKodeButcherTable_Free(B);
+    if (flag >= 0)
+        flag = ARKStepSStolerances(a->inner, a->o.rtol, a->o.atol);
+    if (flag >= 0)
+        flag = ARKStepSetMaxNumSteps(a->inner, a->o.max_steps);
+    if (flag >= 0)
+        flag = ARKStepCreateMRIStepInnerStepper(a->inner, &a->stepper);
+    if (flag < 0)
+        return check(a, flag, "the inner ARKStep's setup", err);
+    a->mem = MRIStepCreate(rhs_e, NULL, 0.0, a->y, a->stepper, a->sunctx);
+    flag = a->mem ? 0 : -1;
+    if (flag >= 0)
+        flag = MRIStepSetErrHandlerFn(a->mem, errh, a);
+    if (flag >= 0)
+        flag = MRIStepSetUserData(a->mem, a);
+    if (flag >= 0)
+        flag = MRIStepSetOrder(a->mem, a->o.order);
+    if (flag >= 0)
+        flag = MRIStepSetFixedStep(a->mem, a->o.slow_step);
+    if (flag >= 0)
+        flag = MRIStepSetMaxNumSteps(a->mem, a->o.max_steps);
+    a->order = a->o.order;
+    return check(a, flag, "MRIStep setup", err);
+}
+
+bf_status bf_ark1_create(bf_ark1 **out, size_t n, bf_rhs_fn fe, bf_rhs_fn fi,
+                         void *ctx, const bf_ark1_opts *o, bf_err *err)
+{
+    *out = NULL;
+    bf_ark1 *a = calloc(1, sizeof *a);
+    if (!a)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    a->o = *o;
+    a->n = n;
+    a->fe = fe;
+    a->fi = fi;
+    a->ctx = ctx;
+    bf_status st = BF_OK;
+    if (SUNContext_Create(NULL, &a->sunctx))
+        st = bf_fail(err, BF_EINTERNAL, "SUNContext_Create failed");
+    if (!st && !(a->y = N_VNew_Serial((sunindextype)n, a->sunctx)))
+        st = bf_fail(err, BF_EINTERNAL, "out of memory");
+    if (!st) {
+        N_VConst(0.0, a->y);
+        st = o->kind == BF_ARK1_ERK    ? create_erk(a, err)
+             : o->kind == BF_ARK1_IMEX ? create_imex(a, err)
+                                       : create_mri(a, err);
+    }
+    if (st) {
+        bf_ark1_free(a);
+        return st;
+    }
+    *out = a;
+    return BF_OK;
+}
+
+/* The calls of one evolve, per bf_ark1_kind. */
+typedef struct stepper_fns {
+    int (*init_step)(void *mem, realtype h);
+    int (*reset)(void *mem, realtype t, N_Vector y);
+    int (*stop_time)(void *mem, realtype t);
+    int (*evolve)(void *mem, realtype tout, N_Vector y, realtype *tret,
+                  int itask);
+    int (*current_step)(void *mem, realtype *h);
+} stepper_fns;
+
+static const stepper_fns steppers[3] = {
+    [BF_ARK1_ERK] = {ERKStepSetInitStep, ERKStepReset, ERKStepSetStopTime,
+                     ERKStepEvolve, ERKStepGetCurrentStep},
+    [BF_ARK1_IMEX] = {ARKStepSetInitStep, ARKStepReset, ARKStepSetStopTime,
+                      ARKStepEvolve, ARKStepGetCurrentStep},
+    [BF_ARK1_MRI] = {NULL, MRIStepReset, MRIStepSetStopTime, MRIStepEvolve,
+                     NULL},
+};
+
+bf_status bf_ark1_evolve(bf_ark1 *a, double t, double tend, double *y,
+                         bf_err *err)
+{
+    double *yy = N_VGetArrayPointer(a->y);
+    memcpy(yy, y, a->n * sizeof *yy);
+    a->failed = 0;
+    a->msg[0] = '\0';
+    /* the same calls for the three steppers (MRIStep's slow step is
+     * fixed: no initial step to carry over) */
+    const stepper_fns *S = &steppers[a->o.kind];
+    double tret = t;
+    int flag = S->init_step ? S->init_step(a->mem, a->h_next) : 0;
+    if (flag >= 0)
+        flag = S->reset(a->mem, t, a->y);
+    if (flag >= 0)
+        flag = S->stop_time(a->mem, tend);
+    if (flag >= 0)
+        flag = S->evolve(a->mem, tend, a->y, &tret, ARK_NORMAL);
+    if (flag >= 0 && S->current_step)
+        S->current_step(a->mem, &a->h_next);
+    if (flag < 0) {
+        bf_status code = a->failed               ? BF_EUNSTABLE
+                         : flag == ARK_TOO_MUCH_WORK ? BF_ENOCONV
+                                                     : BF_EUNSTABLE;
+        return bf_fail(err, code,
+                       "ARKODE failed between t = %.9g s and %.9g s: %s%s%s",
+                       t, tend, flag_name(a, flag), a->msg[0] ? ": " : "",
+                       a->msg);
+    }
+    if (tret != tend)
+        return bf_fail(err, BF_EINTERNAL,
+                       "ARKODE stopped at t = %.17g s instead of %.17g s",
+                       tret, tend);
+    memcpy(y, yy, a->n * sizeof *y);
+    return BF_OK;
+}
+
+void bf_ark1_counters(const bf_ark1 *a, bf_counters *c)
+{
+    long steps = 0, nfe = 0, nfi = 0, ntf = 0, nni = 0, nls = 0;
+    memset(c, 0, sizeof *c);
+    switch (a->o.kind) {
+    case BF_ARK1_ERK:
+        ERKStepGetNumSteps(a->mem, &steps);
+        ERKStepGetNumRhsEvals(a->mem, &nfe);
+        ERKStepGetNumErrTestFails(a->mem, &ntf);
+        break;
+    case BF_ARK1_IMEX:
+        ARKStepGetNumSteps(a->mem, &steps);
+        ARKStepGetNumRhsEvals(a->mem, &nfe, &nfi);
+        ARKStepGetNumErrTestFails(a->mem, &ntf);
+        ARKStepGetNumNonlinSolvIters(a->mem, &nni);
+        ARKStepGetNumLinRhsEvals(a->mem, &nls);
+        break;
+    default: {
+        long nsi = 0, fast = 0, ffe = 0, ffi = 0;
+        MRIStepGetNumSteps(a->mem, &steps);
+        MRIStepGetNumRhsEvals(a->mem, &nfe, &nsi);
+        ARKStepGetNumSteps(a->inner, &fast);
+        ARKStepGetNumRhsEvals(a->inner, &ffe, &ffi);
+        ARKStepGetNumErrTestFails(a->inner, &ntf);
+        nfi = ffe + ffi + nsi;
+        nni = fast;
+        break;
+    }
+    }
+    c->steps = a->base.steps + (unsigned long long)steps;
+    c->evals = a->base.evals + (unsigned long long)(nfe + nfi + nls);
+    c->rejected = a->base.rejected + (unsigned long long)ntf;
+    c->iterations = a->base.iterations + (unsigned long long)nni;
+}
+
+int bf_ark1_order(const bf_ark1 *a) { return a->order; }
+
+void bf_ark1_describe(const bf_ark1 *a, char *buf, size_t cap)
+{
+    const char *tab = bf_arkode_table_name(a->o.table);
+    tab = tab ? tab + 7 : "?"; /* drop "ARKODE_" */
+    if (a->o.kind == BF_ARK1_ERK)
+        snprintf(buf, cap, "ERK %s%s rtol=%g atol=%g", tab,
+                 a->padded ? " (padded)" : "", a->o.rtol, a->o.atol);
+    else if (a->o.kind == BF_ARK1_IMEX)
+        snprintf(buf, cap, "IMEX ARK order %d rtol=%g atol=%g", a->order,
+                 a->o.rtol, a->o.atol);
+    else
+        snprintf(buf, cap, "MRI order %d slow step %g, fast ERK %s rtol=%g",
+                 a->order, a->o.slow_step, tab, a->o.rtol);
+    if (a->o.max_step > 0 && a->o.kind != BF_ARK1_MRI)
+        snprintf(buf + strlen(buf), cap - strlen(buf), " hmax=%g",
+                 a->o.max_step);
+}
+
+double bf_ark1_h_next(const bf_ark1 *a) { return a->h_next; }
+void bf_ark1_set_h_next(bf_ark1 *a, double h) { a->h_next = h; }
+
+static const bf_field count_fields[] = {
+    BF_FIELD(bf_counters, steps, BF_F_ULL, "1"),
+    BF_FIELD(bf_counters, evals, BF_F_ULL, "1"),
+    BF_FIELD(bf_counters, rejected, BF_F_ULL, "1"),
+    BF_FIELD(bf_counters, iterations, BF_F_ULL, "1"),
+};
+
+static void ark_names(const char *prefix, char *h, char *c, size_t cap)
+{
+    snprintf(h, cap, "%s.arkode_h_next", prefix);
+    snprintf(c, cap, "%s.arkode_counts", prefix);
+}
+
+bf_status bf_ark1_save(const bf_ark1 *a, bf_ckpt *ck, const char *prefix,
+                       bf_err *err)
+{
+    char h[160], c[160];
+    ark_names(prefix, h, c, sizeof h);
+    bf_counters n;
+    bf_ark1_counters(a, &n);
+    bf_status st = bf_ckpt_put_real(ck, h, a->h_next, err);
+    return st ? st
+              : bf_ckpt_put_fields(ck, c, count_fields,
+                                   BF_NFIELDS(count_fields), &n, err);
+}
+
+bf_status bf_ark1_load(bf_ark1 *a, const bf_ckpt *ck, const char *prefix,
+                       bf_err *err)
+{
+    char h[160], c[160];
+    ark_names(prefix, h, c, sizeof h);
+    bf_counters n = {0};
+    bf_status st = bf_ckpt_get_real(ck, h, &a->h_next, err);
+    if (!st)
+        st = bf_ckpt_get_fields(ck, c, count_fields, BF_NFIELDS(count_fields),
+                                &n, err);
+    if (!st) {
+        /* what this integrator counted since its creation is not in the
+         * saved run's counts */
+        bf_counters now;
+        a->base = (bf_counters){0};
+        bf_ark1_counters(a, &now);
+        a->base.steps = n.steps - now.steps;
+        a->base.evals = n.evals - now.evals;
+        a->base.rejected = n.rejected - now.rejected;
+        a->base.iterations = n.iterations - now.iterations;
+    }
+    return st;
+}
