@@ -1,6 +1,7 @@
 /* test_converge_particles.c: `ballfilm converge` on Greenspan's 1973
  * particles (src/compose/study_particles.c) against the ARKODE reference
- * on the particles' ODE (src/models/g73_ode.c).
+ * on the particles' ODE (src/models/g73_ode.c), and on the 1972 ones
+ * (study_g72.c, g72_ode.c).
  *
  *   orders     runs/greenspan73_hex_v50.ini (34 particles, V = 50) over
  *              the short window T = 0.2 s (10 steps of the scene's dt =
@@ -80,6 +81,63 @@ START_TEST(greenspan73_and_leapfrog_second_order)
 }
 END_TEST
 
+/* Greenspan 1972, Example 1 (runs/greenspan72_ex1.ini, 16 particles,
+ * V = 100 cm/s) over the window T = 0.01 s: the leapfrog against ARKODE
+ * on the same forces (src/compose/study_g72.c).  The window is chosen
+ * free of events: a run at dt = 1e-5 s to 0.02 s has no wall hit, no
+ * change of any particle's support kind, and its accelerations (from the
+ * velocity differences) have no jump and no kink before t = 0.0126 s
+ * (the overlap area of particles 2 and 6 starts changing there); over T
+ * = 0.02 s the observed orders are 2.49, 1.16, 2.99.  Inside the window
+ * the right-hand side is smooth and the leapfrog, symmetric, has an
+ * error expansion in dt^2: measured orders 2.00 and 2.00 at dt = 1e-3,
+ * 5e-4, 2.5e-4 s, the dt^4 term below 1 % of the leading one, the
+ * reference's estimated error (4e-14 cm) 5e-6 of the smallest error
+ * compared; so +-0.15 is wide, and a kink inside the window (the orders
+ * above) would fail it. */
+START_TEST(greenspan72_leapfrog_second_order_without_events)
+{
+    const char *m[] = {"leapfrog", "arkode"};
+    const double dts[] = {1e-3, 5e-4, 2.5e-4};
+    const double tols[] = {1e-6};
+    bf_converge_opts o = {.methods = m,
+                          .nmethods = 2,
+                          .dts = dts,
+                          .ndts = 3,
+                          .tols = tols,
+                          .ntols = 1,
+                          .t_end = 0.01,
+                          .rows = 5,
+                          .repeats = -1};
+    bf_err err = {0};
+    bf_converge_result *r;
+    ck_assert_msg(bf_converge_file(tu_repo("runs/greenspan72_ex1.ini"),
+                                   NULL, 0, &o, &r, &err) == BF_OK,
+                  "%s", err.msg);
+    ck_assert_uint_eq(r->nrows, 4);
+    ck_assert_str_eq(r->groups[0].name, "x");
+    ck_assert_msg(r->ref_err[0] < 1e-12, "reference error %g", r->ref_err[0]);
+    ck_assert(strstr(r->notes, "not smooth"));
+    for (size_t k = 0; k < r->nrows; k++) {
+        const bf_converge_row *w = &r->rows[k];
+        ck_assert_msg(!w->status, "%s: %s", w->label, w->msg);
+        if (w->method == 0) {
+            ck_assert_msg(w->err[0] > 1e3 * r->ref_err[0], "err %g",
+                          w->err[0]);
+            if (!isnan(w->order_obs[0]))
+                ck_assert_msg(fabs(w->order_obs[0] - 2.0) < 0.15,
+                              "dt %g: observed order %.3f", w->dt,
+                              w->order_obs[0]);
+        } else {
+            /* rtol 1e-6 on positions below 100 cm */
+            ck_assert_msg(w->err[0] < 1e-4, "arkode: err %g", w->err[0]);
+        }
+    }
+    ck_assert(!isnan(r->rows[2].order_obs[0]));
+    bf_converge_free(r);
+}
+END_TEST
+
 /* A run with args, then the same stopped at step `stop` and continued:
  * the same datasets and counters (tu_stop_restart_same). */
 static void restart_case(const char *tag, const char *scene, const char *stop,
@@ -113,6 +171,10 @@ START_TEST(new_integrators_restart_bit_for_bit)
                           "--set", "film.scheme=arkode-imex", NULL};
     restart_case("g73_leapfrog", hex, "17", lf);
     restart_case("g73_arkode", hex, "17", ark);
+    const char *g72[] = {"--set", "greenspan72.integrator=arkode", "--set",
+                         "scene.t_end=0.3", NULL};
+    restart_case("g72_arkode", tu_repo("runs/greenspan72_ex1.ini"), "170",
+                 g72);
     restart_case("film_imex", tu_repo("runs/kink_converge.ini"), "7", imex);
 }
 END_TEST
@@ -122,6 +184,7 @@ Suite *suite_converge_particles(void)
     Suite *s = suite_create("converge_particles");
     TCase *tc = tu_tcase("converge_particles");
     tcase_add_test(tc, greenspan73_and_leapfrog_second_order);
+    tcase_add_test(tc, greenspan72_leapfrog_second_order_without_events);
     tcase_add_test(tc, new_integrators_restart_bit_for_bit);
     suite_add_tcase(s, tc);
     return s;

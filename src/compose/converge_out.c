@@ -97,9 +97,12 @@ void bf_converge_print(const bf_converge_result *r, FILE *f)
                "of adaptive ones; err: max |y - y_ref| over the group's "
                "values at T; p: observed orders between successive runs; "
                "max rows, rms rows: the error of %s over the output rows; "
-               "dI/I: relative change of the %s; wall: stepping loop, "
-               "minimum over the repeats.\n",
-            G ? r->groups[0].name : "-", r->invariant);
+               "dI/I: %s%s; wall: stepping loop, minimum over the "
+               "repeats.\n",
+            G ? r->groups[0].name : "-",
+            strcmp(r->invariant, "none") ? "relative change of the "
+                                         : "none, the model has no invariant",
+            strcmp(r->invariant, "none") ? r->invariant : "");
 }
 
 /* names joined with a separator (malloc'd) */

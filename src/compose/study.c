@@ -8,11 +8,13 @@
 
 extern const bf_study_type bf_study_balls;
 extern const bf_study_type bf_study_film;
+extern const bf_study_type bf_study_greenspan72;
 extern const bf_study_type bf_study_greenspan73;
 
 static const bf_study_type *const studies[] = {
     &bf_study_balls,
     &bf_study_film,
+    &bf_study_greenspan72,
     &bf_study_greenspan73,
 };
 
@@ -22,6 +24,25 @@ const bf_study_type *bf_study_of(const char *model)
         if (!strcmp(studies[k]->model, model))
             return studies[k];
     return NULL;
+}
+
+void bf_study_particles_view(const bf_particles *p, int velocities,
+                             bf_study_view *v)
+{
+    memset(v, 0, sizeof *v);
+    v->ngroups = velocities ? 2 : 1;
+    v->g[0].name = "x";
+    v->g[0].unit = "cm";
+    v->g[0].a = p->x;
+    v->g[0].b = p->y;
+    v->g[0].n = p->n;
+    if (velocities) {
+        v->g[1].name = "v";
+        v->g[1].unit = "cm/s";
+        v->g[1].a = p->vx;
+        v->g[1].b = p->vy;
+        v->g[1].n = p->n;
+    }
 }
 
 /* Does method string m use the table? */

@@ -12,6 +12,7 @@
 #define BALLFILM_COMPOSE_STUDY_H
 
 #include "ballfilm/converge.h"
+#include "ballfilm/particles.h"
 #include "ballfilm/run.h"
 #include "diag/energy.h"
 
@@ -61,6 +62,12 @@ typedef struct bf_study_type {
 
 /* The study of the scene's model (NULL: none). */
 const bf_study_type *bf_study_of(const char *model);
+
+/* Shared by the particle studies: the view of the positions (group x,
+ * cm: x and y of every particle) and, with velocities != 0, of the
+ * velocities (group v, cm/s). */
+void bf_study_particles_view(const bf_particles *p, int velocities,
+                             bf_study_view *v);
 
 /* Shared by the studies: the reference table among candidates (ARKODE
  * names, in order of preference) that no compared method uses.  A method

@@ -25,19 +25,7 @@ static int g73_adaptive(const bf_scene *sc)
 
 static void g73_view(void *model, bf_study_view *v)
 {
-    const bf_particles *p = bf_greenspan73_particles(model);
-    memset(v, 0, sizeof *v);
-    v->ngroups = 2;
-    v->g[0].name = "x";
-    v->g[0].unit = "cm";
-    v->g[0].a = p->x;
-    v->g[0].b = p->y;
-    v->g[0].n = p->n;
-    v->g[1].name = "v";
-    v->g[1].unit = "cm/s";
-    v->g[1].a = p->vx;
-    v->g[1].b = p->vy;
-    v->g[1].n = p->n;
+    bf_study_particles_view(bf_greenspan73_particles(model), 1, v);
 }
 
 static void g73_notes(const bf_scene *sc, char *buf, size_t cap)

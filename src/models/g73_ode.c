@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "integrators/ark1.h"
+#include "models/greenspan.h"
 
 struct bf_g73_ode {
     bf_g73_ode_opts o;
@@ -136,18 +137,11 @@ static bf_status leapfrog(bf_g73_ode *o, double dt)
 
 static bf_status arkode(bf_g73_ode *o, double t, double dt, bf_err *err)
 {
-    bf_particles *p = o->p;
-    const size_t n = o->n;
-    const double *src[4] = {p->x, p->y, p->vx, p->vy};
-    for (int k = 0; k < 4; k++)
-        memcpy(o->y + (size_t)k * n, src[k], n * sizeof *o->y);
+    bf_particles_pack(o->p, o->y);
     bf_status st = bf_ark1_evolve(o->ark, t, t + dt, o->y, err);
-    if (st)
-        return st;
-    double *dst[4] = {p->x, p->y, p->vx, p->vy};
-    for (int k = 0; k < 4; k++)
-        memcpy(dst[k], o->y + (size_t)k * n, n * sizeof *o->y);
-    return BF_OK;
+    if (!st)
+        bf_particles_unpack(o->p, o->y);
+    return st;
 }
 
 bf_status bf_g73_ode_step(bf_g73_ode *o, double t, double dt, bf_err *err)

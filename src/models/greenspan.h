@@ -14,6 +14,8 @@
 /* The particles of a greenspan72 model (positions x^k, velocities
  * v^{k-1/2}). */
 bf_particles *bf_greenspan72_particles(void *model);
+/* Its time integrator ([greenspan72] integrator) and nominal order. */
+void bf_greenspan72_describe(void *model, char *buf, size_t cap, int *order);
 /* Its support-set gravity workspace. */
 bf_support *bf_greenspan72_support(void *model);
 
@@ -33,5 +35,9 @@ size_t bf_particles_state_vars(bf_particles *p, bf_state_var *vars,
 bf_status bf_particles_set_var(bf_particles *p, const bf_box *box,
                                const char *name, const double *v, size_t n,
                                bf_err *err);
+/* The particles as one vector y = (x, y, vx, vy) of 4n values (for
+ * ARKODE), and back. */
+void bf_particles_pack(const bf_particles *p, double *y);
+void bf_particles_unpack(bf_particles *p, const double *y);
 
 #endif

@@ -40,6 +40,8 @@
 #include <string.h>
 
 #include "particles/cells.h"
+#include "integrators/arkode.h"
+#include "models/g72_ode.h"
 #include "models/greenspan.h"
 #include "particles/hertz_pairs.h"
 #include "ballfilm/model.h"
@@ -67,7 +69,13 @@ typedef struct g72_keys {
     double bottom;
     long threads, particles_every;
     int output; /* OUT_ALL, OUT_POSITIONS, OUT_DIAG */
+    /* the time integrator: INT_LEAPFROG or INT_ARKODE (g72_ode.h) */
+    int integrator, table;
+    double rtol, atol, max_step;
+    long max_steps;
 } g72_keys;
+
+enum { INT_LEAPFROG = 0, INT_ARKODE = 1 };
 
 enum { LAYOUT_GRID = 0, LAYOUT_LIST = 1 };
 
@@ -133,6 +141,25 @@ static const bf_param g72_params[] = {
      "per-row datasets: all (positions, velocities, diagnostics), positions "
      "(no velocities), diagnostics (none per particle)",
      0, 0, 0, "all|positions|diagnostics"},
+    {"integrator", BF_AT(g72_keys, integrator, BF_ENUM), "", "leapfrog",
+     "time integrator: leapfrog (the paper's, eqs 2.1-2.4) or arkode "
+     "(ARKODE adaptive ERK on the same forces as an ODE, stopped at every "
+     "[scene] dt, the walls applied there; its velocities are at t, not "
+     "t - dt/2)",
+     0, 0, 0, "leapfrog|arkode"},
+    {"table", BF_AT(g72_keys, table, BF_ENUM), "",
+     "ARKODE_DORMAND_PRINCE_7_4_5", "integrator = arkode: ERK Butcher table",
+     0, 0, 0, BF_ARKODE_TABLE_CHOICES},
+    {"rtol", BF_AT(g72_keys, rtol, BF_REAL), "1", "1e-8",
+     "integrator = arkode: relative tolerance", BF_POS, 0, 0, NULL},
+    {"atol", BF_AT(g72_keys, atol, BF_REAL), "cm, cm/s", "1e-10",
+     "integrator = arkode: absolute tolerance", BF_POS, 0, 0, NULL},
+    {"max_step", BF_AT(g72_keys, max_step, BF_REAL), "s", "0",
+     "integrator = arkode: largest internal step (0: none)", BF_NONNEG, 0, 0,
+     NULL},
+    {"max_steps", BF_AT(g72_keys, max_steps, BF_INT), "1", "1000000",
+     "integrator = arkode: internal steps allowed per [scene] dt", BF_MIN, 1,
+     0, NULL},
     {0},
 };
 
@@ -150,6 +177,7 @@ typedef struct g72 {
     int hertz_on; /* [hertz] enabled */
     bf_hertz_pairs hertz;
     bf_support *sup;
+    bf_g72_ode *ode; /* integrator = arkode (NULL: the leapfrog) */
     int need_cells;
     bf_cells cells;
     bf_repulsion_work rw;
@@ -187,6 +215,7 @@ static void g72_destroy(void *self)
         return;
     bf_particles_free(&m->p);
     bf_support_free(m->sup);
+    bf_g72_ode_free(m->ode);
     bf_cells_free(&m->cells);
     free(m->ax);
     free(m->ay);
@@ -331,6 +360,11 @@ static bf_status g72_initial(g72 *m, const g72_keys *k72, bf_err *err)
 }
 
 static bf_status g72_accel(g72 *m, bf_err *err);
+/* a(x) for the ODE of integrator = arkode (g72_ode.h) */
+static bf_status g72_accel_cb(void *m, bf_err *err)
+{
+    return g72_accel(m, err);
+}
 
 static bf_status g72_create(void **self, const bf_model_setup *setup,
                             bf_err *err)
@@ -424,6 +458,13 @@ static bf_status g72_create(void **self, const bf_model_setup *setup,
                        k72->layout == LAYOUT_LIST ? "positions" : "layout");
         goto fail;
     }
+    bf_g72_ode_opts oo = {.table = k72->table, .rtol = k72->rtol,
+                          .atol = k72->atol, .max_step = k72->max_step,
+                          .max_steps = k72->max_steps};
+    if (k72->integrator == INT_ARKODE &&
+        (st = bf_g72_ode_create(&m->ode, &m->p, m->ax, m->ay, m->g,
+                                g72_accel_cb, m, &oo, err)))
+        goto fail;
     *self = m;
     return BF_OK;
 fail:
@@ -504,7 +545,6 @@ static inline void g72_leapfrog(g72 *m, size_t i, double h, double dt)
 
 static bf_status g72_step(void *self, long n, double t, double dt, bf_err *err)
 {
-    (void)t;
     g72 *m = self;
     bf_particles *p = &m->p;
     bf_status st;
@@ -514,7 +554,13 @@ static bf_status g72_step(void *self, long n, double t, double dt, bf_err *err)
         m->kind_total[m->kind[i]]++;
     const double h = n == 0 ? 0.5 * dt : dt; /* eqs 2.1-2.2: half step first */
     const size_t np = p->n;
-    if (m->nthr > 1 && np >= 16384) {
+    if (m->ode) {
+        memcpy(m->x0, p->x, np * sizeof *p->x);
+        memcpy(m->y0, p->y, np * sizeof *p->y);
+        m->acc_valid = 0;
+        if ((st = bf_g72_ode_step(m->ode, t, dt, err)))
+            return st;
+    } else if (m->nthr > 1 && np >= 16384) {
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static) num_threads(m->nthr)
         for (size_t i = 0; i < np; i++)
@@ -709,8 +755,24 @@ static bf_status g72_output_close(void *self, bf_out *out, bf_err *err)
 static void g72_counters(const void *self, bf_counters *c)
 {
     const g72 *m = self;
+    if (m->ode) {
+        memset(c, 0, sizeof *c);
+        bf_ark1_counters(bf_g72_ode_arkode(m->ode), c);
+        return;
+    }
     c->steps = m->steps;
     c->evals = m->evals;
+}
+
+void bf_greenspan72_describe(void *model, char *buf, size_t cap, int *order)
+{
+    const g72 *m = model;
+    if (m->ode) {
+        bf_g72_ode_describe(m->ode, buf, cap, order);
+        return;
+    }
+    snprintf(buf, cap, "leapfrog (the 1972 paper's, half step first)");
+    *order = 2;
 }
 
 static void g72_report(const void *self, FILE *f)
@@ -769,6 +831,8 @@ static bf_status g72_save(const void *self, bf_ckpt *ck, bf_err *err)
     if (!st)
         st = bf_ckpt_put_fields(ck, "g72", g72_state, BF_NFIELDS(g72_state),
                                 m, err);
+    if (!st && m->ode)
+        st = bf_ark1_save(bf_g72_ode_arkode(m->ode), ck, "g72.ode", err);
     return st;
 }
 
@@ -779,6 +843,8 @@ static bf_status g72_load(void *self, const bf_ckpt *ck, bf_err *err)
     if (!st)
         st = bf_ckpt_get_fields(ck, "g72", g72_state, BF_NFIELDS(g72_state),
                                 m, err);
+    if (!st && m->ode)
+        st = bf_ark1_load(bf_g72_ode_arkode(m->ode), ck, "g72.ode", err);
     /* a(x) is recomputed from the restored positions; if the run had it,
      * that is no new evaluation (the counters stay the uninterrupted
      * run's) */

@@ -43,3 +43,17 @@ bf_status bf_particles_set_var(bf_particles *p, const bf_box *box,
     memcpy(dst[k], v, n * sizeof *v);
     return BF_OK;
 }
+
+void bf_particles_pack(const bf_particles *p, double *y)
+{
+    const double *src[4] = {p->x, p->y, p->vx, p->vy};
+    for (size_t k = 0; k < 4; k++)
+        memcpy(y + k * p->n, src[k], p->n * sizeof *y);
+}
+
+void bf_particles_unpack(bf_particles *p, const double *y)
+{
+    double *dst[4] = {p->x, p->y, p->vx, p->vy};
+    for (size_t k = 0; k < 4; k++)
+        memcpy(dst[k], y + k * p->n, p->n * sizeof *y);
+}
