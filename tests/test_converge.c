@@ -7,6 +7,7 @@
  *  - The reference is independent of the compared methods and its own
  *    error estimate is far below the errors it judges.
  *  - Failed runs are reported as failed, not dropped or averaged in.
+ *  - A model without a study is refused, naming the model and why.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -114,6 +115,30 @@ START_TEST(failed_runs_are_reported)
 }
 END_TEST
 
+/* A model without a study is refused before any run, the message naming
+ * the model and why (the MAC scheme: its pressure solve is a constraint);
+ * exit status 2 from the program. */
+START_TEST(model_without_study_refused_naming_why)
+{
+    const char *m[] = {"printed"};
+    bf_converge_opts o = {.methods = m, .nmethods = 1, .repeats = -1};
+    bf_err err = {0};
+    bf_converge_result *r = NULL;
+    ck_assert_int_eq(bf_converge_file(tu_repo("runs/stratres.ini"), NULL, 0,
+                                      &o, &r, &err),
+                     BF_EINPUT);
+    ck_assert(r == NULL);
+    ck_assert_msg(strstr(err.msg, "model 'mac'") &&
+                      strstr(err.msg, "constraint"),
+                  "%s", err.msg);
+    char *e = NULL;
+    int rc = tu_run(NULL, &e, "converge", tu_repo("runs/stratres.ini"),
+                    "--methods", "printed", "-q", NULL);
+    ck_assert_msg(rc == 2 && strstr(e, "model 'mac'"), "exit %d: %s", rc, e);
+    free(e);
+}
+END_TEST
+
 Suite *suite_converge(void)
 {
     Suite *s = suite_create("converge");
@@ -121,6 +146,7 @@ Suite *suite_converge(void)
     tcase_add_test(tc, harmonic_orders_through_the_program);
     tcase_add_test(tc, reference_is_independent_and_accurate);
     tcase_add_test(tc, failed_runs_are_reported);
+    tcase_add_test(tc, model_without_study_refused_naming_why);
     suite_add_tcase(s, tc);
     return s;
 }

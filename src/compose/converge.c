@@ -445,9 +445,12 @@ bf_status bf_converge_begin(const bf_scene *base_in,
     const char *model = bf_scene_str(base, "scene", "model");
     const bf_study_type *S = bf_study_of(model);
     if (!S) {
+        /* the message before the scene that holds the model's name goes */
+        const char *why = bf_study_why_not(model);
+        bf_fail(err, BF_EINPUT, "converge has no study of model '%s'%s%s",
+                model, why ? ": " : "", why ? why : "");
         bf_scene_free(base);
-        return bf_fail(err, BF_EINPUT, "converge has no study of model '%s'",
-                       model);
+        return BF_EINPUT;
     }
     if (o.ref_rtol == 0)
         o.ref_rtol = S->default_ref_rtol;

@@ -62,6 +62,8 @@ typedef struct bf_study_type {
 
 /* The study of the scene's model (NULL: none). */
 const bf_study_type *bf_study_of(const char *model);
+/* Why a model of the catalog has no study (NULL: no reason known). */
+const char *bf_study_why_not(const char *model);
 
 /* Shared by the particle studies: the view of the positions (group x,
  * cm: x and y of every particle) and, with velocities != 0, of the
