@@ -341,9 +341,21 @@ static bf_status layout(bf_converge_result *r, const bf_scene *sc,
     return BF_OK;
 }
 
+/* A fixed-step run of step about h: a whole number of steps per output
+ * row (*nper), all runs ending at T, and its step. */
+static void fixed_steps(const bf_converge_priv *P, double h, long *nper,
+                        double *step)
+{
+    long per = (long)ceil(P->T / ((double)P->R * h) * (1 - 1e-12));
+    *nper = per < 1 ? 1 : per;
+    *step = P->T / (double)(*nper * P->R);
+}
+
 /* The reference: the study's reference method at the given tolerance (its
  * rows in the scratch) and at a tenth of it (the reference rows, r->
- * ref_rtol); their difference is its estimated error. */
+ * ref_rtol); their difference is its estimated error.  A self-convergence
+ * study (study.h, self_reference = K): the method at the fixed steps
+ * [scene] dt / K and dt / 2K instead (r->ref_rtol NaN). */
 static bf_status reference(bf_converge_result *r, const bf_converge_opts *o,
                            bf_err *err)
 {
@@ -351,9 +363,15 @@ static bf_status reference(bf_converge_result *r, const bf_converge_opts *o,
     char method[256];
     bf_status st = P->S->reference(P->base, o, method, sizeof method, err);
     const double rtols[2] = {r->ref_rtol, r->ref_rtol / 10};
+    const int K = P->S->self_reference;
+    const double dt0 = bf_scene_real(P->base, "scene", "dt");
     for (int k = 0; k < 2 && !st; k++) {
+        long per = 0;
+        double step = 0.0;
+        if (K > 0)
+            fixed_steps(P, dt0 / (double)(K * (k + 1)), &per, &step);
         run_sets s;
-        make_sets(P, method, 1, 0.0, rtols[k], &s);
+        make_sets(P, method, K == 0, step, rtols[k], &s);
         bf_scene *sc;
         if ((st = method_scene(P, method, s.list, &sc, err)))
             break;
@@ -365,9 +383,9 @@ static bf_status reference(bf_converge_result *r, const bf_converge_opts *o,
         bf_converge_runout ro = {.rows = k ? P->ref_rows : P->rows};
         bf_converge_runout rt = {.rows = P->rows + RS};
         if (!st)
-            st = bf_converge_run_once(P, sc, 0, 0.0,
+            st = bf_converge_run_once(P, sc, per, step,
                                       BF_RUN_MEASURE | BF_RUN_SYNC, &ro, err);
-        if (!st && !ro.status && P->R > 1)
+        if (!st && !ro.status && P->R > 1 && !per)
             st = bf_converge_run_once(P, sc, 0, 0.0, 0, &rt, err);
         else
             rt = ro;
@@ -389,7 +407,7 @@ static bf_status reference(bf_converge_result *r, const bf_converge_opts *o,
     }
     if (st)
         return st;
-    r->ref_rtol = rtols[1];
+    r->ref_rtol = K > 0 ? NAN : rtols[1];
     double at_T[BF_CONVERGE_MAX_GROUPS];
     bf_converge_errors(P, P->rows, P->ref_rows, at_T, r->ref_err_max, NULL);
     group_errors(P, P->rows + (size_t)P->R * P->nstate, P->ref_final,
@@ -545,12 +563,8 @@ static bf_status row_scene(const bf_converge_result *r, size_t m, double h,
     const int adaptive = P->adaptive[m];
     *nper = 0;
     *step = 0.0;
-    if (!adaptive) {
-        /* a whole number of steps per output row, all runs ending at T */
-        long per = (long)ceil(P->T / ((double)P->R * h) * (1 - 1e-12));
-        *nper = per < 1 ? 1 : per;
-        *step = P->T / (double)(*nper * P->R);
-    }
+    if (!adaptive)
+        fixed_steps(P, h, nper, step);
     run_sets s;
     make_sets(P, r->methods[m], adaptive, *step, h, &s);
     return method_scene(P, r->methods[m], s.list, sc, err);

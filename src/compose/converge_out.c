@@ -22,11 +22,20 @@ void bf_converge_print(const bf_converge_result *r, FILE *f)
     fprintf(f, "convergence study of %s (model %s) to T = %g s, compared at "
                "%ld output rows\n",
             r->scene, r->model, r->t_end, r->out_rows);
-    fprintf(f, "reference: %s (run at rtol %g and %g), %llu steps, %llu "
-               "evaluations, %.3g s;\n"
+    const int K = r->priv->S->self_reference;
+    char how[160];
+    if (K > 0) {
+        const double dt0 = bf_scene_real(r->priv->base, "scene", "dt");
+        snprintf(how, sizeof how, "SELF-CONVERGENCE: the method itself at "
+                 "dt %g and %g", dt0 / K, dt0 / (2 * K));
+    } else {
+        snprintf(how, sizeof how, "run at rtol %g and %g", r->ref_rtol * 10,
+                 r->ref_rtol);
+    }
+    fprintf(f, "reference: %s (%s), %llu steps, %llu evaluations, %.3g s;\n"
                "  its estimated error at T (difference of the two):",
-            r->ref_label, r->ref_rtol * 10, r->ref_rtol, r->ref_count.steps,
-            r->ref_count.evals, r->ref_wall);
+            r->ref_label, how, r->ref_count.steps, r->ref_count.evals,
+            r->ref_wall);
     for (size_t g = 0; g < G; g++)
         fprintf(f, "%s %s %.2e %s", g ? "," : "", r->groups[g].name,
                 r->ref_err[g], r->groups[g].unit);

@@ -10,12 +10,14 @@ extern const bf_study_type bf_study_balls;
 extern const bf_study_type bf_study_film;
 extern const bf_study_type bf_study_greenspan72;
 extern const bf_study_type bf_study_greenspan73;
+extern const bf_study_type bf_study_mac;
 
 static const bf_study_type *const studies[] = {
     &bf_study_balls,
     &bf_study_film,
     &bf_study_greenspan72,
     &bf_study_greenspan73,
+    &bf_study_mac,
 };
 
 const bf_study_type *bf_study_of(const char *model)
@@ -49,11 +51,6 @@ void bf_study_particles_view(const bf_particles *p, int velocities,
 static const struct {
     const char *model, *why;
 } unstudied[] = {
-    {"mac", "the MAC scheme is a projection method: its pressure solve is "
-            "a constraint, so there is no ODE for ARKODE to integrate as a "
-            "reference; and the scheme is no reference for itself either: "
-            "on the reservoir the differences between runs at dt and dt/2 "
-            "stop shrinking below dt = 0.00625 (docs/accuracy.md)"},
     {"coupled", "an ARKODE reference on the whole ball and method-of-lines "
                 "film system is not built yet"},
 };

@@ -39,6 +39,13 @@ typedef struct bf_study_type {
     const char *invariant;     /* what the invariant error measures */
     double default_ref_rtol;   /* reference tolerance when none is given */
     double max_ref_rtol;       /* largest reference tolerance allowed */
+    /* 0: the reference is an ARKODE run (reference() names it, at the
+     * reference tolerance); K > 0: SELF-CONVERGENCE, for a scheme with no
+     * ODE form (mac): the reference is the method reference() names (the
+     * compared one) at the fixed step [scene] dt / K, its estimated error
+     * the difference to the run at [scene] dt / (2K), which is the
+     * reference's rows. */
+    int self_reference;
     /* 1 if the method of the resolved scene sc steps adaptively */
     int (*adaptive)(const bf_scene *sc);
     /* The reference's method string for this study (the driver sets its

@@ -29,6 +29,7 @@
 
 #include "mac/mac.h"
 #include "ballfilm/model.h"
+#include "models/mac_model.h"
 
 typedef struct mac_model {
     bf_mac *mac;
@@ -40,6 +41,21 @@ typedef struct mac_model {
     double *buf;   /* one row of the widest series */
     int64_t *ibuf; /* the same for the integer series */
 } mac_model;
+
+const bf_mac *bf_mac_model_solver(void *model)
+{
+    return ((mac_model *)model)->mac;
+}
+
+void bf_mac_model_describe(void *model, char *buf, size_t cap, int *order)
+{
+    static const char *const updates[3] = {"printed", "consistent",
+                                           "original"};
+    const mac_model *mm = model;
+    snprintf(buf, cap, "MAC update=%s (Euler predictor, projection)",
+             updates[mm->prm.update]);
+    *order = 1;
+}
 
 /* Combinations that cannot work, refused before anything is written (the
  * time-step limits are mac_model_stable_dt's). */
