@@ -24,7 +24,8 @@ def converge(scene, methods, dts=None, tols=None, t_end=None, set=None,
     """`ballfilm converge` on a scene file of any model: every method (a
     name or "name:key=value", e.g. "arkode:table=ARKODE_CASH_KARP_6_4_5")
     at the steps `dts` (fixed-step methods) and tolerances `tols`
-    (adaptive ones) against an ARKODE reference (converge.h), the state
+    (adaptive ones) against an ARKODE reference (converge.h; mac: the
+    same method at a small dt, a self-convergence study, rtol NaN), the state
     compared at `rows` output rows (0: 10).  Returns (table, reference):
     table a structured array with columns method, label, adaptive, order,
     dt, tol, and for every state group G of the model (balls: x, v; the

@@ -602,12 +602,16 @@ static bf_status g72_output_open(void *self, bf_out *out, bf_err *err)
     }
     if (m->out_mode == OUT_ALL) {
         if (!(m->s_vx = bf_out_series(out, "/particles/vx", n, 0, "cm/s",
-                                      "x velocity at t - dt/2 (leapfrog half "
-                                      "step; the initial velocity in row 0)",
+                                      m->ode ? "x velocity at t (arkode)"
+                                             : "x velocity at t - dt/2 "
+                                               "(leapfrog half step; the "
+                                               "initial velocity in row 0)",
                                       err)) ||
             !(m->s_vy = bf_out_series(out, "/particles/vy", n, 0, "cm/s",
-                                      "y velocity at t - dt/2 (leapfrog half "
-                                      "step; the initial velocity in row 0)",
+                                      m->ode ? "y velocity at t (arkode)"
+                                             : "y velocity at t - dt/2 "
+                                               "(leapfrog half step; the "
+                                               "initial velocity in row 0)",
                                       err)))
             return err->status;
     }
