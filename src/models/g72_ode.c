@@ -107,6 +107,11 @@ bf_status bf_g72_ode_step(bf_g72_ode *o, double t, double dt, bf_err *err)
 void bf_g72_ode_describe(const bf_g72_ode *o, char *buf, size_t cap,
                          int *order)
 {
+    if (!o) {
+        snprintf(buf, cap, "leapfrog (the 1972 paper's, half step first)");
+        *order = 2;
+        return;
+    }
     char a[160];
     bf_ark1_describe(o->ark, a, sizeof a);
     snprintf(buf, cap, "arkode %s", a);

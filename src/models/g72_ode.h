@@ -52,7 +52,8 @@ void bf_g72_ode_free(bf_g72_ode *o);
  * positions.  On failure the particles are those at t. */
 bf_status bf_g72_ode_step(bf_g72_ode *o, double t, double dt, bf_err *err);
 
-/* "arkode ERK <table> rtol=..." and the nominal order. */
+/* "arkode ERK <table> rtol=..." and the nominal order; o == NULL: the
+ * model's leapfrog. */
 void bf_g72_ode_describe(const bf_g72_ode *o, char *buf, size_t cap,
                          int *order);
 /* The ARKODE integrator: its counters (bf_ark1_counters) are the

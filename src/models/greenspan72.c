@@ -585,6 +585,12 @@ static bf_status g72_step(void *self, long n, double t, double dt, bf_err *err)
     return g72_accel(m, err);
 }
 
+static const char *const vdoc[2][2] = {
+    {"x velocity at t - dt/2 (leapfrog half step; the initial velocity in "
+     "row 0)", "x velocity at t (arkode)"},
+    {"y velocity at t - dt/2 (leapfrog half step; the initial velocity in "
+     "row 0)", "y velocity at t (arkode)"}};
+
 static bf_status g72_output_open(void *self, bf_out *out, bf_err *err)
 {
     g72 *m = self;
@@ -602,17 +608,9 @@ static bf_status g72_output_open(void *self, bf_out *out, bf_err *err)
     }
     if (m->out_mode == OUT_ALL) {
         if (!(m->s_vx = bf_out_series(out, "/particles/vx", n, 0, "cm/s",
-                                      m->ode ? "x velocity at t (arkode)"
-                                             : "x velocity at t - dt/2 "
-                                               "(leapfrog half step; the "
-                                               "initial velocity in row 0)",
-                                      err)) ||
+                                      vdoc[0][m->ode != NULL], err)) ||
             !(m->s_vy = bf_out_series(out, "/particles/vy", n, 0, "cm/s",
-                                      m->ode ? "y velocity at t (arkode)"
-                                             : "y velocity at t - dt/2 "
-                                               "(leapfrog half step; the "
-                                               "initial velocity in row 0)",
-                                      err)))
+                                      vdoc[1][m->ode != NULL], err)))
             return err->status;
     }
     if (!(m->s_kin = bf_out_series(out, "/diag/kinetic", 3, 0, "erg",
@@ -770,13 +768,7 @@ static void g72_counters(const void *self, bf_counters *c)
 
 void bf_greenspan72_describe(void *model, char *buf, size_t cap, int *order)
 {
-    const g72 *m = model;
-    if (m->ode) {
-        bf_g72_ode_describe(m->ode, buf, cap, order);
-        return;
-    }
-    snprintf(buf, cap, "leapfrog (the 1972 paper's, half step first)");
-    *order = 2;
+    bf_g72_ode_describe(((g72 *)model)->ode, buf, cap, order);
 }
 
 static void g72_report(const void *self, FILE *f)
