@@ -28,7 +28,7 @@
  * - film_every = auto: against the single-rate run, the ball positions
  *   keep the tolerance's promise |dx(t)| <= tol t^2/2 on every row of a
  *   short window, K changes during the run and grows with the tolerance;
- *   restart bit for bit; bad values and the Lyapunov shadow refused.
+ *   restart bit for bit; bad values refused.
  */
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
@@ -689,8 +689,7 @@ START_TEST(adaptive_multirate_keeps_its_promise)
 }
 END_TEST
 
-/* film_every: a positive integer or auto, named when wrong; auto with the
- * Lyapunov shadow is refused (the shadow would choose its own steps). */
+/* film_every: a positive integer or auto, named when wrong. */
 START_TEST(adaptive_multirate_refusals)
 {
     const char *scene = tu_repo("runs/coupled_fig8.ini");
@@ -706,14 +705,6 @@ START_TEST(adaptive_multirate_refusals)
                       "%s: exit %d: %s", bad[q], rc, errout);
         free(errout);
     }
-    char *errout = NULL;
-    int rc = tu_run(NULL, &errout, "run", scene, "-o", tu_tmp("mr_bad.h5"),
-                    "-q", "--set", "coupled.film_every=auto", "--set",
-                    "lyapunov.enabled=yes", NULL);
-    ck_assert_msg(rc == 2 && strstr(errout, "[coupled] film_every") &&
-                      strstr(errout, "[lyapunov]"),
-                  "exit %d: %s", rc, errout);
-    free(errout);
 }
 END_TEST
 

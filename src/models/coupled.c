@@ -202,6 +202,7 @@ static bf_status shadow_create(coupled_model *m, const bf_model_setup *setup,
         st = coupled_build(&m->shadow, setup, 0, err);
     if (st)
         return st;
+    m->shadow->leader = m; /* film_every = auto: the run's film steps */
     bf_coupled_lyap_seed(m);
     return BF_OK;
 }
@@ -319,13 +320,6 @@ static bf_status coupled_build(coupled_model **self,
     for (int q = 0; q < BF_COUPLED_NSYM; q++)
         m->sym_t[q] = NAN;
     const bf_lyap_keys *lk = bf_setup_get(setup, &bf_lyap_spec, NULL);
-    if (with_shadow && lk->enabled && m->adaptive) {
-        coupled_destroy(m);
-        return bf_fail_key(err, BF_EINPUT, "coupled", "film_every",
-                           "film_every = auto with [lyapunov] enabled is not "
-                           "supported (the shadow would choose its own film "
-                           "steps): give a fixed film_every");
-    }
     if (with_shadow && lk->enabled &&
         (st = shadow_create(m, setup, err))) {
         coupled_destroy(m);

@@ -48,6 +48,8 @@ typedef struct coupled_model {
     double mr_stat[6];      /* windows, sum of K, smallest and largest K,
                                largest lag (cm/s^2), windows over mr_tol */
     bf_series *kser;        /* /coupled/film_every */
+    const struct coupled_model *leader; /* a Lyapunov shadow: the run whose
+                                           film steps it takes (else NULL) */
     size_t nb, map_ball, map_pivot, peak_ball;
     double probe;
     double *mucpl;          /* mu_cpl (3.11) handed to the film step */

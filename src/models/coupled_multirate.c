@@ -34,6 +34,9 @@
  * estimate covers the balls' side of the lag only: the film's side (mu_cpl
  * frozen over the film step) is not estimated; on the Fig. 8 scene it is
  * the smaller part (tests/test_coupling.c measures the whole error).
+ *
+ * A Lyapunov shadow ([lyapunov] enabled) takes the film steps its run
+ * chooses (coupled_impl.h, leader).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -92,11 +95,20 @@ static void coupling_acc(coupled_model *m, double *a)
 
 void bf_coupled_mr_before(coupled_model *m)
 {
-    coupling_acc(m, m->acc_old);
+    if (!m->leader)
+        coupling_acc(m, m->acc_old);
 }
 
 void bf_coupled_mr_after(coupled_model *m, long n, double dt)
 {
+    if (m->leader) {
+        /* a Lyapunov shadow takes the run's film steps (the run has just
+         * chosen its next one at this step): the two systems then differ
+         * by their states only */
+        m->win_start = m->leader->win_start;
+        m->win_k = m->leader->win_k;
+        return;
+    }
     double lag = 0, *a = m->acc_old + m->nb;
     coupling_acc(m, a);
     for (size_t i = 0; i < m->nb; i++)
