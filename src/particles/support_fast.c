@@ -145,19 +145,57 @@ static size_t bsearch_pos(const double *v, size_t lo, size_t hi, double key,
     return lo;
 }
 
-/* Lower-band areas of the particles whose strips start in the chunk
+/* The same answer as bsearch_pos(v, 0, n, key, ge), found by galloping
+ * from `hint` (v is sorted): O(log distance) when the answer is near the
+ * hint, as it is for the strips that fit a gap next to the gap's two
+ * squares (empty_bands). */
+static size_t gallop_pos(const double *v, size_t n, size_t hint, double key,
+                         int ge)
+{
+#define PAST(p) (ge ? v[p] >= key : v[p] > key)
+    if (hint > n)
+        hint = n;
+    size_t step = 1;
+    if (hint > 0 && PAST(hint - 1)) {
+        /* the answer is at or before hint - 1: gallop down */
+        size_t hi = hint - 1; /* PAST(hi) */
+        while (hi >= step && PAST(hi - step)) {
+            hi -= step;
+            step *= 2;
+        }
+        return bsearch_pos(v, hi >= step ? hi - step + 1 : 0, hi, key, ge);
+    }
+    /* the answer is at or after hint: gallop up */
+    size_t lo = hint; /* !PAST(p) for every p < lo */
+    while (lo + step - 1 < n && !PAST(lo + step - 1)) {
+        lo += step;
+        step *= 2;
+    }
+    return bsearch_pos(v, lo, lo + step - 1 < n ? lo + step - 1 : n, key, ge);
+#undef PAST
+}
+
+/* Lower-band areas of the asking particles (the query list qk, with their
+ * strip edges qg, qd, in x order) whose strips start in the chunk
  * [X0, X1): a sweep over the square edges in (X0, X1 + dx], in coordinates
  * relative to X0 so that the sums stay small (their round-off does not
  * grow with the box).  Squares straddling X0 enter with their left edge at
- * X0: G(x) = integral from X0 to x of the filled height. */
-static void sweep_chunk(bf_support *s, double *fen, size_t n, int mq,
+ * X0: G(x) = integral from X0 to x of the filled height.  The tree holds
+ * only the levels up to the highest K asked in the chunk: a node above it
+ * is never read, and every node below gets the same additions in the same
+ * order as in a taller tree, so the areas are the same bits. */
+static void sweep_chunk(bf_support *s, double *fen, size_t n, size_t nq,
                         double X0, double X1, int last)
 {
-    const double *ls = s->ls, *rs = s->rs, *gs = s->gs, *ds = s->ds;
-    size_t q0 = bsearch_pos(gs, 0, n, X0, 1);
-    size_t q1 = last ? n : bsearch_pos(gs, q0, n, X1, 1);
+    const double *ls = s->ls, *rs = s->rs, *qg = s->qg, *qd = s->qd;
+    const uint32_t *qk = s->qk;
+    size_t q0 = bsearch_pos(qg, 0, nq, X0, 1);
+    size_t q1 = last ? nq : bsearch_pos(qg, q0, nq, X1, 1);
     if (q0 == q1)
         return;
+    int mq = 1;
+    for (size_t i = q0; i < q1; i++)
+        mq = s->ks[qk[i]] > mq ? s->ks[qk[i]] : mq;
     memset(fen, 0, 2 * (size_t)(mq + 1) * sizeof *fen);
     /* squares with l <= X0 < r enter at X0 */
     size_t pr = bsearch_pos(rs, 0, n, X0, 0);
@@ -168,7 +206,7 @@ static void sweep_chunk(bf_support *s, double *fen, size_t n, int mq,
     const double inf = INFINITY;
     while (pd < q1) {
         double vl = pl < n ? ls[pl] : inf, vr = pr < n ? rs[pr] : inf;
-        double vg = pg < q1 ? gs[pg] : inf, vd = ds[pd];
+        double vg = pg < q1 ? qg[pg] : inf, vd = qd[pd];
         if (vl <= vr && vl <= vg && vl <= vd) {
             sweep_add(s, fen, mq, pl, 1.0, vl - X0);
             pl++;
@@ -176,13 +214,11 @@ static void sweep_chunk(bf_support *s, double *fen, size_t n, int mq,
             sweep_add(s, fen, mq, pr, -1.0, vr - X0);
             pr++;
         } else if (vg <= vd) {
-            if (s->ks[pg] >= 1)
-                s->fgam[pg] = sweep_eval(fen, vg - X0, s->ks[pg]);
+            s->fgam[pg] = sweep_eval(fen, vg - X0, s->ks[qk[pg]]);
             pg++;
         } else {
-            if (s->ks[pd] >= 1)
-                s->lower[pd] = sweep_eval(fen, vd - X0, s->ks[pd]) -
-                               s->fgam[pd];
+            s->lower[qk[pd]] =
+                sweep_eval(fen, vd - X0, s->ks[qk[pd]]) - s->fgam[pd];
             pd++;
         }
     }
@@ -245,8 +281,10 @@ static void empty_bands(bf_support *s, size_t n, int mq)
              * rounded gap width is >= w */
             if (!(hi - lo >= wmin))
                 continue;
-            size_t p0 = bsearch_pos(s->gs, 0, n, lo, 1);
-            size_t p1 = bsearch_pos(s->ds, 0, n, hi, 0);
+            /* the strips that fit lie between the gap's two squares in
+             * the x order (the searches start there) */
+            size_t p0 = k == a ? 0 : gallop_pos(s->gs, n, blist[k - 1], lo, 1);
+            size_t p1 = k == e ? n : gallop_pos(s->ds, n, blist[k], hi, 0);
             for (uint32_t j = skip_find(nxt, (uint32_t)p0); j < p1;
                  j = skip_find(nxt, j + 1)) {
                 s->lowe[j] = q;
@@ -346,7 +384,6 @@ static inline int fast_setup(bf_support *s, const double *sx,
     const bf_support_params *p = &s->p;
     uint32_t i = s->ord[k];
     double xi = sx[i], yi = sy[i];
-    s->ys[k] = yi;
     s->ls[k] = dmax(xi - s->hd, p->box.ax);
     s->rs[k] = dmin(xi + s->hd, p->box.bx);
     s->bs[k] = dmax(yi - s->hd, p->box.ay);
@@ -450,7 +487,19 @@ void bf_sup_eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
             kmax = K > kmax ? K : kmax;
         }
     }
-    if (kmax >= 1) {
+    /* the empty bands first: a particle that falls freely through one
+     * asks the sweep nothing */
+    if (kmax >= 2) /* bands 1..kmax - 1, below every top band */
+        empty_bands(s, n, kmax - 1);
+    size_t nq = 0;
+    for (size_t k = 0; k < n; k++) {
+        const int K = s->ks[k];
+        s->qk[nq] = (uint32_t)k;
+        s->qg[nq] = s->gs[k];
+        s->qd[nq] = s->ds[k];
+        nq += K >= 1 && !(K >= 2 && s->lowe[k] <= K - 1); /* fast_one */
+    }
+    if (nq > 0) {
         /* the chunks are independent (each has its own tree), so they run
          * in parallel with results independent of the thread count */
         const double w = p->box.bx - p->box.ax, chunk = 8.0 * p->dx;
@@ -463,19 +512,16 @@ void bf_sup_eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
             for (long ch = 0; ch < nch; ch++)
                 sweep_chunk(s, s->fen + (size_t)omp_get_thread_num() * fsz, n,
-                            kmax, p->box.ax + (double)ch * chunk,
+                            nq, p->box.ax + (double)ch * chunk,
                             p->box.ax + (double)(ch + 1) * chunk,
                             ch == nch - 1);
 #endif
         } else {
             for (long ch = 0; ch < nch; ch++)
-                sweep_chunk(s, s->fen, n, kmax,
-                            p->box.ax + (double)ch * chunk,
+                sweep_chunk(s, s->fen, n, nq, p->box.ax + (double)ch * chunk,
                             p->box.ax + (double)(ch + 1) * chunk,
                             ch == nch - 1);
         }
-        if (kmax >= 2) /* bands 1..kmax - 1, below every top band */
-            empty_bands(s, n, kmax - 1);
     }
     /* the sweep's results and the square edges in the order of the cell
      * list; then g in that order (neighbouring queries read neighbouring

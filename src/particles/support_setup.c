@@ -111,7 +111,9 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->ts = malloc(k * sizeof *s->ts);
     s->gs = malloc(k * sizeof *s->gs);
     s->ds = malloc(k * sizeof *s->ds);
-    s->ys = malloc(k * sizeof *s->ys);
+    s->qk = malloc(k * sizeof *s->qk);
+    s->qg = malloc(k * sizeof *s->qg);
+    s->qd = malloc(k * sizeof *s->qd);
     s->ks = malloc(k * sizeof *s->ks);
     s->mb = malloc(k * sizeof *s->mb);
     s->mt = malloc(k * sizeof *s->mt);
@@ -134,7 +136,7 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->area = malloc(nb * (size_t)s->threads * sizeof *s->area);
     s->cnt = malloc(nb * (size_t)s->threads * sizeof *s->cnt);
     if (!s->bz || !s->ord || !s->binc || !s->ls || !s->rs || !s->bs ||
-        !s->ts || !s->gs || !s->ds || !s->ys || !s->ks || !s->mb || !s->mt ||
+        !s->ts || !s->gs || !s->ds || !s->qk || !s->qg || !s->qd || !s->ks || !s->mb || !s->mt ||
         !s->sl || !s->csl || !s->lower || !s->cl || !s->cr || !s->cb ||
         !s->ct || !s->bm || !s->fgam ||
         !s->lowe || !s->nxt || !s->fen || !s->bstart || !s->bfill ||
@@ -167,7 +169,9 @@ void bf_support_free(bf_support *s)
     free(s->ts);
     free(s->gs);
     free(s->ds);
-    free(s->ys);
+    free(s->qk);
+    free(s->qg);
+    free(s->qd);
     free(s->ks);
     free(s->mb);
     free(s->mt);
