@@ -42,6 +42,8 @@ struct bf_support {
     double *ls, *rs, *bs, *ts, *gs, *ds;
     uint32_t *qk;     /* the sorted positions that ask the sweep (x order) */
     double *qg, *qd;  /* their strip edges gamma, delta */
+    double *uv, *uh;  /* the sweep's updates in order: x, signed height */
+    int32_t *ul;      /* and level (sweep_updates) */
     int32_t *ks, *mb, *mt; /* K; the first and last band with positive
                               height of the square (first_band, full_level) */
     int32_t *sl, *csl; /* sweep level: mt, or INT32_MAX for a square clipped

@@ -114,6 +114,9 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->qk = malloc(k * sizeof *s->qk);
     s->qg = malloc(k * sizeof *s->qg);
     s->qd = malloc(k * sizeof *s->qd);
+    s->uv = malloc((2 * k + 1) * sizeof *s->uv);
+    s->uh = malloc((2 * k + 1) * sizeof *s->uh);
+    s->ul = malloc((2 * k + 1) * sizeof *s->ul);
     s->ks = malloc(k * sizeof *s->ks);
     s->mb = malloc(k * sizeof *s->mb);
     s->mt = malloc(k * sizeof *s->mt);
@@ -136,7 +139,7 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->area = malloc(nb * (size_t)s->threads * sizeof *s->area);
     s->cnt = malloc(nb * (size_t)s->threads * sizeof *s->cnt);
     if (!s->bz || !s->ord || !s->binc || !s->ls || !s->rs || !s->bs ||
-        !s->ts || !s->gs || !s->ds || !s->qk || !s->qg || !s->qd || !s->ks || !s->mb || !s->mt ||
+        !s->ts || !s->gs || !s->ds || !s->qk || !s->qg || !s->qd || !s->uv || !s->uh || !s->ul || !s->ks || !s->mb || !s->mt ||
         !s->sl || !s->csl || !s->lower || !s->cl || !s->cr || !s->cb ||
         !s->ct || !s->bm || !s->fgam ||
         !s->lowe || !s->nxt || !s->fen || !s->bstart || !s->bfill ||
@@ -172,6 +175,9 @@ void bf_support_free(bf_support *s)
     free(s->qk);
     free(s->qg);
     free(s->qd);
+    free(s->uv);
+    free(s->uh);
+    free(s->ul);
     free(s->ks);
     free(s->mb);
     free(s->mt);
