@@ -127,4 +127,10 @@ void bf_support_eval_with(bf_support *s, bf_support_method m, const double *x,
                           const double *y, size_t n, const bf_cells *cells,
                           double *g, uint8_t *kind);
 
+/* Method fast, for tests and benchmarks: with `on`, every particle with
+ * K >= 1 asks the sweep, free falling or not, and every chunk's tree
+ * holds every level of the box, as before the free-fall skipping (issue
+ * 21); the results must be the same bits either way. */
+void bf_support_set_exhaustive(bf_support *s, int on);
+
 #endif

@@ -238,13 +238,14 @@ static void sweep_chunk(bf_support *s, double *fen, size_t n, size_t nu,
     const int32_t *ul = s->ul;
     double *qd = s->qd, *fg = s->fgam;
     const uint32_t *qk = s->qk;
+    const int32_t *qK = s->qK;
     size_t q0 = bsearch_pos(qg, 0, nq, X0, 1);
     size_t q1 = last ? nq : bsearch_pos(qg, q0, nq, X1, 1);
     if (q0 == q1)
         return;
-    int mq = 1;
+    int mq = s->exhaustive ? s->kmax + 1 : 1;
     for (size_t i = q0; i < q1; i++)
-        mq = s->ks[qk[i]] > mq ? s->ks[qk[i]] : mq;
+        mq = qK[i] > mq ? qK[i] : mq;
     memset(fen, 0, 2 * (size_t)(mq + 1) * sizeof *fen);
     /* squares with l <= X0 < r enter at X0 */
     size_t pr = bsearch_pos(rs, 0, n, X0, 0);
@@ -257,13 +258,13 @@ static void sweep_chunk(bf_support *s, double *fen, size_t n, size_t nu,
     while (pd < q1) {
         /* the next query: gamma of pg or delta of pd (gamma first on
          * ties; the order of the reads does not matter) */
-        const int isg = pg < q1 && qg[pg] <= qd[pd];
+        const int isg = (pg < q1) & (qg[pg] <= qd[pd]); /* qg[nq] exists */
         const size_t i = isg ? pg : pd;
         const double v = isg ? qg[pg] : qd[pd];
         for (; uv[u] <= v; u++)
             fen_add(fen, mq, ul[u], uh[u], uh[u] * (uv[u] - X0));
         double *dst = isg ? fg + pg : qd + pd;
-        *dst = sweep_eval(fen, v - X0, s->ks[qk[i]]);
+        *dst = sweep_eval(fen, v - X0, qK[i]);
         pg += (size_t)isg;
         pd += (size_t)!isg;
     }
@@ -547,10 +548,13 @@ void bf_sup_eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
     for (size_t k = 0; k < n; k++) {
         const int K = s->ks[k];
         s->qk[nq] = (uint32_t)k;
+        s->qK[nq] = K;
         s->qg[nq] = s->gs[k];
         s->qd[nq] = s->ds[k];
-        nq += K >= 1 && !(K >= 2 && s->lowe[k] <= K - 1); /* fast_one */
+        nq += K >= 1 && (s->exhaustive ||
+                         !(K >= 2 && s->lowe[k] <= K - 1)); /* fast_one */
     }
+    s->qg[nq] = INFINITY; /* read, not used, at the end of the last chunk */
     const size_t nu = nq > 0 ? sweep_updates(s, n) : 0;
     if (nq > 0) {
         /* the chunks are independent (each has its own tree), so they run

@@ -36,12 +36,14 @@ struct bf_support {
     int kmax;        /* largest K of a particle in the box */
     double *bz;      /* [kmax + 3]: the band edges z_q (line_z) */
     int threads;     /* OpenMP threads */
+    int exhaustive;  /* bf_support_set_exhaustive */
     double hd, hdx;  /* d/2, dx/2 */
     /* x-sorted order and geometry in that order (fast method) */
     uint32_t *ord, *binc; /* x order, bin counts */
     double *ls, *rs, *bs, *ts, *gs, *ds;
     uint32_t *qk;     /* the sorted positions that ask the sweep (x order) */
-    double *qg, *qd;  /* their strip edges gamma, delta */
+    int32_t *qK;      /* their K */
+    double *qg, *qd;  /* their strip edges gamma, delta ([cap + 1]) */
     double *uv, *uh;  /* the sweep's updates in order: x, signed height */
     int32_t *ul;      /* and level (sweep_updates) */
     int32_t *ks, *mb, *mt; /* K; the first and last band with positive
