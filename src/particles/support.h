@@ -47,7 +47,11 @@
  *          range of the x order, and a skip list assigns each particle its
  *          lowest empty band once.  Band K_j is non-empty if a cut square
  *          of S(P_j) overlaps the strip, else the cell list is asked (rare).
- *          The K = 0 rectangle uses the cell list.
+ *          The K = 0 rectangle uses the cell list.  The empty bands are
+ *          found first: a particle that falls freely through one asks the
+ *          sweep nothing, and each chunk's tree keeps only the levels up
+ *          to the highest one asked (the same bits as the exhaustive
+ *          sweep, bf_support_set_exhaustive; tested).
  */
 #ifndef BALLFILM_PARTICLES_SUPPORT_H
 #define BALLFILM_PARTICLES_SUPPORT_H
