@@ -254,6 +254,8 @@ static bf_status coupled_build(coupled_model **self,
         free(m);
         return st;
     }
+    if (adaptive)
+        bf_filmsys_step_varies(m->fs);
     const bf_coupling_keys *ck = coupling_keys(setup);
     size_t nballs;
     bf_setup_get(setup, &bf_ballsys_ball_spec, &nballs);
