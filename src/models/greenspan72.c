@@ -35,6 +35,7 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -781,6 +782,12 @@ static bf_status g72_load(void *self, const bf_ckpt *ck, bf_err *err)
     if (!st)
         st = bf_ckpt_get_fields(ck, "g72", g72_state, BF_NFIELDS(g72_state),
                                 m, err);
+    /* one output row per step at most, the initial one included (the
+     * count is incremented at each row: an edited one could overflow) */
+    if (!st && (m->rows < 0 || (unsigned long long)m->rows > m->steps + 1 ||
+                m->rows == LONG_MAX))
+        st = bf_fail(err, BF_EINPUT, "checkpoint: g72.rows = %ld output rows "
+                     "after %llu steps", m->rows, (unsigned long long)m->steps);
     /* a(x) is recomputed from the restored positions; if the run had it,
      * that is no new evaluation (the counters stay the uninterrupted
      * run's) */
