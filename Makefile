@@ -768,10 +768,16 @@ valgrind: $(PROG)
 # ---------------------------------------------------------------- fuzz
 # libFuzzer on the scene parser and validation (tests/fuzz_one.c), seeded
 # with the scenes of runs/ (not the 200704-particle one: valid, but each of
-# its runs takes seconds under the sanitizers); findings go to
-# build/fuzz/crashes.  Copy every crash input into tests/fuzz/regress/ (the
-# test suite replays them).
+# its runs takes seconds under the sanitizers), for FUZZ_SECONDS; then on
+# checkpoints (tests/fuzz_ckpt.c: a real checkpoint of every model damaged
+# or edited, the restart must refuse it cleanly or run on), seeded with
+# tests/fuzz/ckpt_corpus, for FUZZ_CKPT_SECONDS.  Findings go to
+# build/fuzz/crashes and build/fuzz/ckpt_crashes.  Copy every crash input
+# into tests/fuzz/regress/ or tests/fuzz/ckpt_regress/ (the test suite
+# replays them; make test also runs a bounded deterministic set of
+# checkpoint damages and edits).
 FUZZ_SECONDS ?= 600
+FUZZ_CKPT_SECONDS ?= 300
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=undefined -g
 fuzz:
 	@$(MAKE) --no-print-directory deps
@@ -781,13 +787,21 @@ fuzz:
 	clang $(CPPFLAGS) -Itests $(CSTD) $(FUZZ_SAN) -fsanitize=fuzzer \
 	  tests/fuzz/fuzz_scene.c tests/fuzz_one.c build/fuzz/libballfilm.a \
 	  $(LDLIBS) -o build/fuzz/fuzz_scene
-	@mkdir -p build/fuzz/corpus build/fuzz/crashes
+	clang $(CPPFLAGS) -Itests $(CSTD) $(FUZZ_SAN) -fsanitize=fuzzer \
+	  tests/fuzz/fuzz_checkpoint.c tests/fuzz_ckpt.c build/fuzz/libballfilm.a \
+	  $(LDLIBS) -o build/fuzz/fuzz_checkpoint
+	@mkdir -p build/fuzz/corpus build/fuzz/crashes build/fuzz/ckpt_corpus \
+	  build/fuzz/ckpt_crashes
 	for f in runs/*.ini; do case $$f in *_large.ini) ;; \
 	  *) cp -n $$f tests/fuzz/corpus/ ;; esac; done
 	build/fuzz/fuzz_scene build/fuzz/corpus tests/fuzz/corpus \
 	  -dict=tests/fuzz/scene.dict -max_total_time=$(FUZZ_SECONDS) \
 	  -rss_limit_mb=4096 -timeout=20 -max_len=4096 \
 	  -artifact_prefix=build/fuzz/crashes/ -print_final_stats=1
+	BALLFILM_ROOT=$(CURDIR) build/fuzz/fuzz_checkpoint build/fuzz/ckpt_corpus \
+	  tests/fuzz/ckpt_corpus -max_total_time=$(FUZZ_CKPT_SECONDS) \
+	  -rss_limit_mb=4096 -timeout=60 -max_len=512 \
+	  -artifact_prefix=build/fuzz/ckpt_crashes/ -print_final_stats=1
 
 # ---------------------------------------------------------------- bench
 # bench/plain_*.c are yardsticks: programs without the library that the

@@ -2,7 +2,7 @@
  * gravity, repulsion, walls).
  *
  * 1. Example 2 (runs/greenspan72_ex2.ini, 256 particles, 30000 steps), the
- *    run the paper reports as 72 minutes on a UNIVAC 1108: wall time of the
+ *    run the paper reports as 72 minutes on a UNIVAC 1108: CPU time of the
  *    whole run without output, minimum of 3.
  * 2. Scaling: Example 2's local physics (d = 5, dx = 6.25, cutoff 10,
  *    V = 500, dt = 0.01, omega = 0.9) on an n x n grid in a box of side
@@ -12,9 +12,17 @@
  *    N log2 N relative to N = 4096 (flat or falling: no worse than N log N).
  * 3. The support-set gravity alone on the same states: fast against the
  *    cell-list method (naive is O(N^2) and only timed at 4096).
+ * 4. At N = 65536 and 262144: the step with the fast method's free-fall
+ *    skipping against the exhaustive sweep (every particle asks; the same
+ *    bits, tested), 5 alternating pairs of 10 steps, the median ratio;
+ *    and today's figure beside main's before issue 21 item 5 (a752c43),
+ *    measured on this machine with the same procedure
+ *    (docs/performance.md names the machine and the command).
  *
- * Ratios are measured within one run; other processes on the machine make
- * absolute numbers noisy, hence the minimum of repeats.
+ * Times are CPU times of the process (one thread) except where two
+ * threads run, where they are wall times: on a shared machine CPU time
+ * moves less.  Ratios are measured within one run; other processes on
+ * the machine make absolute numbers noisy, hence the minimum of repeats.
  */
 #include <math.h>
 #include <stdio.h>
@@ -27,10 +35,20 @@
 #include "ballfilm/model.h"
 #include "ballfilm/run.h"
 
+/* Particle-steps per second of main at a752c43 (before issue 21 item 5)
+ * on the machine of docs/performance.md, with this procedure (100 steps,
+ * then the minimum of 3 runs of 20 steps, CPU time): the median of 5
+ * runs alternated with this branch's (docs/performance.md). */
+#define A752C43_65536 1.95e6
+#define A752C43_262144 2.02e6
+
+/* Seconds of CPU time of the process, or wall time (two threads). */
+static int use_wall;
+
 static double now(void)
 {
     struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
+    clock_gettime(use_wall ? CLOCK_MONOTONIC : CLOCK_PROCESS_CPUTIME_ID, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
@@ -121,6 +139,56 @@ static double time_support(run *r, bf_support_method method)
     return t;
 }
 
+static int cmp_double(const void *a, const void *b)
+{
+    double u = *(const double *)a, v = *(const double *)b;
+    return u < v ? -1 : u > v;
+}
+
+/* Rank of x in the sorted array s[0..n) (x is in it). */
+static double rank_of(const double *s, size_t n, double x)
+{
+    const double *p = bsearch(&x, s, n, sizeof *s, cmp_double);
+    return (double)(p - s);
+}
+
+/* How far the particles move in one step: the mean |dx| (cm), the
+ * fraction that changes its cell of side h (the cell list's), and the
+ * mean change of a particle's place in the x order (what a sort reused
+ * from the step before would have to repair). */
+static void motion(run *r, double h)
+{
+    bf_particles *p = bf_greenspan72_particles(r->m);
+    const size_t n = p->n;
+    double *x0 = malloc(n * sizeof *x0), *y0 = malloc(n * sizeof *y0);
+    double *s0 = malloc(n * sizeof *s0), *s1 = malloc(n * sizeof *s1);
+    if (!x0 || !y0 || !s0 || !s1) {
+        fprintf(stderr, "bench: out of memory\n");
+        exit(1);
+    }
+    memcpy(x0, p->x, n * sizeof *x0);
+    memcpy(y0, p->y, n * sizeof *y0);
+    memcpy(s0, p->x, n * sizeof *s0);
+    advance(r, 1);
+    memcpy(s1, p->x, n * sizeof *s1);
+    qsort(s0, n, sizeof *s0, cmp_double);
+    qsort(s1, n, sizeof *s1, cmp_double);
+    double dx = 0, moved = 0, dr = 0;
+    for (size_t i = 0; i < n; i++) {
+        dx += fabs(p->x[i] - x0[i]);
+        moved += floor(p->x[i] / h) != floor(x0[i] / h) ||
+                 floor(p->y[i] / h) != floor(y0[i] / h);
+        dr += fabs(rank_of(s1, n, p->x[i]) - rank_of(s0, n, x0[i]));
+    }
+    printf("    one step: mean |dx| %.2f cm, %.0f %% change their cell of "
+           "%g cm, mean shift in the x order %.0f places\n",
+           dx / (double)n, 100.0 * moved / (double)n, h, dr / (double)n);
+    free(x0);
+    free(y0);
+    free(s0);
+    free(s1);
+}
+
 static char *scaled_scene(int n, int threads)
 {
     static char buf[2048];
@@ -194,9 +262,49 @@ int main(void)
     printf("(goal: N = 65536 at >= 3e6 particle-steps/s; cost/(N log2 N) "
            "not growing)\n");
 
+    /* ---- 4. the free-fall skipping, and today against a752c43 */
+    printf("\nFree-fall skipping against the exhaustive sweep (same bits), "
+           "and against main before it (a752c43, this machine, the same "
+           "procedure: docs/performance.md):\n");
+    printf("%8s %14s %16s %18s %14s\n", "N", "particle-st/s",
+           "exhaustive/skip", "a752c43 part-st/s", "now/a752c43");
+    const struct {
+        int n;
+        double before; /* particle-steps/s of a752c43 (docs/performance.md) */
+    } big[] = {{256, A752C43_65536}, {512, A752C43_262144}};
+    for (size_t k = 0; k < sizeof big / sizeof big[0]; k++) {
+        double N = (double)big[k].n * big[k].n, rat[5];
+        bf_scene *sc = load(NULL, scaled_scene(big[k].n, 1), &err);
+        run r = start(sc);
+        bf_support *s = bf_greenspan72_support(r.m);
+        advance(&r, 100);
+        double per = per_step(&r);
+        for (int rep = 0; rep < 5; rep++) {
+            bf_support_set_exhaustive(s, 1);
+            double te = advance(&r, 10);
+            bf_support_set_exhaustive(s, 0);
+            rat[rep] = te / advance(&r, 10);
+        }
+        for (int a = 1; a < 5; a++) /* median of 5 */
+            for (int b = a; b > 0 && rat[b - 1] > rat[b]; b--) {
+                double t = rat[b];
+                rat[b] = rat[b - 1];
+                rat[b - 1] = t;
+            }
+        printf("%8.0f %14.3g %16.3f %18.3g %14.2f\n", N, N / per, rat[2],
+               big[k].before, N / per / big[k].before);
+        motion(&r, 10.0);
+        fflush(stdout);
+        r.mt->destroy(r.m);
+        bf_setup_free(r.setup);
+        bf_scene_free(sc);
+    }
+    printf("(goal of issue 21 item 5: now/a752c43 >= 2)\n");
+
     /* ---- 3. two threads at N = 65536 (pays only if the other core is
      * free; the results are the same bits, see tests) */
     {
+        use_wall = 1;
         bf_scene *sc = load(NULL, scaled_scene(256, 2), &err);
         run r = start(sc);
         advance(&r, 100);

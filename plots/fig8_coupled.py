@@ -80,10 +80,13 @@ if sym:
 p.set_xlabel("t [s]")
 p.set_title("(D) symmetry error, conservation")
 p.legend(fontsize=8)
+every = attrs["coupled.film_every"]  # a number, or the text "auto"
+if isinstance(every, bytes):
+    every = every.decode()
 fig.suptitle("Four balls in the film, L = %g cm (Yasuda 2010, Fig. %s), "
-             "dt = %g s, film_every = %d%s"
+             "dt = %g s, film_every = %s%s"
              % (L, "8" if abs(L - 50) < 1e-9 else "9", attrs["scene.dt"],
-                attrs["coupled.film_every"],
+                every if isinstance(every, str) else "%d" % every,
                 ", forced mirror symmetry" if sym else ""))
 save(fig, a.output)
 print("%s: L = %g cm, %g s%s" % (a.run, L, t[-1],

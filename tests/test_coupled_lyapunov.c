@@ -8,7 +8,9 @@
 #include <string.h>
 
 #include "models/coupled.h"
+#include "models/coupled_impl.h"
 #include "ballfilm/h5out.h"
+#include "ballfilm/run.h"
 #include "diag/lyapsum.h"
 #include "testutil.h"
 
@@ -52,15 +54,18 @@ static double lyapunov_of(bf_sim *sim)
  * displacement, distance and pull-back code (bf_lyap_sum), and MV2M's
  * specialised step (coupled run and shadow) gives the bits of the generic
  * step (the balls model's shadow, test_advance.c).  So lambda must agree
- * bit for bit, single rate and multirate. */
+ * bit for bit, single rate and multirate, fixed or film_every = auto: the
+ * shadow must take the run's film steps (choosing its own, from its own
+ * ball velocities, its film would step at other times than the run's). */
 START_TEST(without_film_force_equals_balls_model)
 {
     bf_sim *b = tu_run_scene(balls_scene, NULL);
     double lb = lyapunov_of(b);
     bf_sim_free(b);
     ck_assert_msg(isfinite(lb) && lb > 5, "balls model lambda %g", lb);
-    const char *every[] = {"coupled.film_every=1", "coupled.film_every=3"};
-    for (int k = 0; k < 2; k++) {
+    const char *every[] = {"coupled.film_every=1", "coupled.film_every=3",
+                           "coupled.film_every=auto"};
+    for (int k = 0; k < 3; k++) {
         bf_sim *c = tu_run_scene(film_scene, every[k], NULL);
         double lc = lyapunov_of(c);
         bf_coupled_parts run, sh;
@@ -220,8 +225,9 @@ END_TEST
 
 /* Stopped at an odd step inside a multirate window and between
  * renormalisations, continued with --restart: the same bits in every
- * dataset (/lyapunov/estimate included) and the same lambda. Plain and
- * with symmetrize = yes (the mirror-odd displacement). */
+ * dataset (/lyapunov/estimate included) and the same lambda. Plain,
+ * with symmetrize = yes (the mirror-odd displacement) and with film_every
+ * = auto (the run's and the shadow's film steps are state). */
 static void restart_case(const char *tag, const char *sym)
 {
     char scene[600], full[600], part[600];
@@ -255,6 +261,46 @@ START_TEST(restart_bit_identical_with_estimate)
 {
     restart_case("lyap_plain.ini", "coupled.symmetrize=no");
     restart_case("lyap_sym.ini", "coupled.symmetrize=yes");
+    restart_case("lyap_auto.ini", "coupled.film_every=auto");
+}
+END_TEST
+
+
+/* film_every = auto with the shadow: after every step the shadow's film
+ * step under way is the run's (the same start, the same K), and K did
+ * change; choosing its own from its own balls, the shadow would step its
+ * film at other times (its lag and velocities differ from the run's). */
+START_TEST(adaptive_shadow_takes_the_runs_film_steps)
+{
+    bf_scene *sc = tu_scene(fig8_small);
+    bf_err err = {0};
+    ck_assert(bf_scene_set(sc, "coupled.film_every=auto", "test", &err) ==
+              BF_OK);
+    ck_assert(bf_scene_set(sc, "coupled.multirate_tol=1e-7", "test", &err) ==
+              BF_OK);
+    /* a shadow far from the run (1e-3 cm), whose own choices would differ */
+    ck_assert(bf_scene_set(sc, "lyapunov.d0=1e-3", "test", &err) == BF_OK);
+    ck_assert(bf_catalog_resolve(bf_catalog_builtin(), sc, &err) == BF_OK);
+    bf_sim *sim;
+    ck_assert_msg(bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL,
+                                    &err) == BF_OK,
+                  "%s", err.msg);
+    const coupled_model *m = bf_sim_model(sim);
+    ck_assert(m->adaptive && m->shadow && m->shadow->leader == m);
+    long kmin = m->win_k, kmax = m->win_k;
+    for (long n = 0; n < bf_sim_steps_total(sim); n++) {
+        ck_assert_msg(bf_sim_steps(sim, 1, &err) == BF_OK, "%s", err.msg);
+        ck_assert_msg(m->shadow->win_start == m->win_start &&
+                          m->shadow->win_k == m->win_k,
+                      "step %ld: shadow window %ld + %ld, run's %ld + %ld", n,
+                      m->shadow->win_start, m->shadow->win_k, m->win_start,
+                      m->win_k);
+        kmin = m->win_k < kmin ? m->win_k : kmin;
+        kmax = m->win_k > kmax ? m->win_k : kmax;
+    }
+    ck_assert_msg(kmax > kmin, "K stayed %ld", kmin);
+    bf_sim_free(sim);
+    bf_scene_free(sc);
 }
 END_TEST
 
@@ -266,6 +312,7 @@ Suite *suite_coupled_lyapunov(void)
     tcase_add_test(tc, pull_back_scales_whole_state_and_keeps_film_physical);
     tcase_add_test(tc, shrunken_separation_is_not_pushed_out);
     tcase_add_test(tc, restart_bit_identical_with_estimate);
+    tcase_add_test(tc, adaptive_shadow_takes_the_runs_film_steps);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -24,7 +24,11 @@
  * - the dynamic film: phase totals conserved to 1e-12, the film changes
  *   the balls' forces every step (a Verlet integrator must re-evaluate:
  *   2 evaluations per step, which fails if the force cache were kept),
- *   restart bit for bit (single rate and multirate).
+ *   restart bit for bit (single rate and multirate);
+ * - film_every = auto: against the single-rate run, the ball positions
+ *   keep the tolerance's promise |dx(t)| <= tol t^2/2 on every row of a
+ *   short window, K changes during the run and grows with the tolerance;
+ *   restart bit for bit; bad values refused.
  */
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
@@ -579,6 +583,128 @@ START_TEST(restart_bit_identical_static_and_dynamic)
                  "scene.t_end=0.1", "coupled.film_every=1", "4321");
     restart_case(tu_repo("runs/coupled_fig8.ini"), "rs_multi.h5",
                  "scene.t_end=0.1", "coupled.film_every=50", "4321");
+    restart_case(tu_repo("runs/coupled_fig8.ini"), "rs_auto.h5",
+                 "scene.t_end=0.1", "coupled.film_every=auto", "4321");
+}
+END_TEST
+
+
+/* The largest |x - x_ref| of ball positions at each of the n rows of two
+ * runs (malloc'd; the rows' times in *t). */
+static double *position_error(const char *a, const char *ref, double **t,
+                              size_t *n)
+{
+    bf_err err = {0};
+    double *xa, *xr;
+    size_t a0, a1, r0, r1, n0, n1;
+    ck_assert_msg(bf_h5_read(a, "/balls/position", &xa, &a0, &a1, &err) == 0 &&
+                      bf_h5_read(ref, "/balls/position", &xr, &r0, &r1,
+                                 &err) == 0 &&
+                      bf_h5_read(ref, "/time", t, &n0, &n1, &err) == 0,
+                  "%s", err.msg);
+    ck_assert(a0 == r0 && a1 == r1 && n0 == r0);
+    double *e = calloc(a0, sizeof *e);
+    for (size_t i = 0; i < a0; i++)
+        for (size_t j = 0; j < a1; j++)
+            e[i] = fmax(e[i], fabs(xa[i * a1 + j] - xr[i * a1 + j]));
+    free(xa);
+    free(xr);
+    *n = a0;
+    return e;
+}
+
+/* film_every = auto on 0.2 s of the Fig. 8 scene against the single-rate
+ * run.  The tolerance bounds the lag of the balls' coupling acceleration
+ * behind the film's at the end of each film step; an acceleration error
+ * of at most tol moves a ball by at most tol t^2/2 in a time t, and that
+ * is checked on every output row.  Why it may hold with room to spare:
+ * the lag grows from 0 over a film step (its mean is half its largest),
+ * the controller aims at 0.9 tol.  Why it is not trivially met: with K =
+ * 300 (the run's largest K, fixed) the error at 0.2 s is 3.7e-8 cm, above
+ * 1e-6 t^2/2 = 2e-8 cm.  What it does not cover: the film's side (mu_cpl
+ * frozen over the film step) is not estimated, and collisions amplify
+ * differences (the scene is chaotic, exp(4 t/s): a factor 2.2 over 0.2 s,
+ * which the factor 2 between mean and largest lag must absorb).  K must
+ * change during the run (it starts at 1) and be larger on average for the
+ * looser tolerance.  The multirate runs use the exact quadrature of the
+ * coupling integral ([coupling] taylor = false, the same values to 1e-17)
+ * so that the tolerance alone limits K: with the Taylor anchors, the rule
+ * of cost caps K near 60 here whatever the tolerance. */
+START_TEST(adaptive_multirate_keeps_its_promise)
+{
+    const char *scene = tu_repo("runs/coupled_fig8.ini");
+    const char *ref = tu_tmp("mr_ref.h5");
+    ck_assert_int_eq(tu_run(NULL, NULL, "run", scene, "-o", ref, "-q",
+                            "--set", "scene.t_end=0.2", NULL),
+                     0);
+    static const char *const tols[2] = {"1e-5", "1e-6"};
+    double meanK[2];
+    for (int q = 0; q < 2; q++) {
+        char out[600], set[64];
+        snprintf(out, sizeof out, "%s", tu_tmp(q ? "mr_a6.h5" : "mr_a5.h5"));
+        snprintf(set, sizeof set, "coupled.multirate_tol=%s", tols[q]);
+        char *so = NULL;
+        ck_assert_int_eq(tu_run(&so, NULL, "run", scene, "-o", out, "--set",
+                                "scene.t_end=0.2", "--set",
+                                "coupled.film_every=auto", "--set", set,
+                                "--set", "coupling.taylor=false", NULL),
+                         0);
+        ck_assert_msg(strstr(so, "multirate: film_every = auto"), "%s", so);
+        free(so);
+        const double tol = atof(tols[q]);
+        double *t, *e;
+        size_t n;
+        e = position_error(out, ref, &t, &n);
+        double emax = 0;
+        for (size_t i = 0; i < n; i++) {
+            ck_assert_msg(e[i] <= tol * t[i] * t[i] / 2,
+                          "tol %g: error %g cm at t = %g s above tol t^2/2",
+                          tol, e[i], t[i]);
+            emax = fmax(emax, e[i]);
+        }
+        ck_assert_msg(emax > 0, "tol %g: no difference from single rate", tol);
+        free(e);
+        free(t);
+        double *k;
+        size_t k0, k1;
+        bf_err err = {0};
+        ck_assert_msg(bf_h5_read(out, "/coupled/film_every", &k, &k0, &k1,
+                                 &err) == 0,
+                      "%s", err.msg);
+        double kmin = INFINITY, kmax = 0, ks = 0;
+        for (size_t i = 0; i < k0; i++) {
+            kmin = fmin(kmin, k[i]);
+            kmax = fmax(kmax, k[i]);
+            ks += k[i];
+        }
+        free(k);
+        ck_assert_msg(kmin >= 1 && kmax > 2 * kmin,
+                      "tol %g: K from %g to %g does not adapt", tol, kmin,
+                      kmax);
+        meanK[q] = ks / (double)k0;
+    }
+    ck_assert_msg(meanK[0] > 2 * meanK[1],
+                  "mean K %g (tol 1e-5) not above twice %g (tol 1e-6)",
+                  meanK[0], meanK[1]);
+}
+END_TEST
+
+/* film_every: a positive integer or auto, named when wrong. */
+START_TEST(adaptive_multirate_refusals)
+{
+    const char *scene = tu_repo("runs/coupled_fig8.ini");
+    static const char *const bad[] = {"coupled.film_every=fast",
+                                      "coupled.film_every=0",
+                                      "coupled.film_every=3x"};
+    for (int q = 0; q < 3; q++) {
+        char *errout = NULL;
+        int rc = tu_run(NULL, &errout, "run", scene, "-o", tu_tmp("mr_bad.h5"),
+                        "-q", "--set", bad[q], NULL);
+        ck_assert_msg(rc == 2 && strstr(errout, "[coupled] film_every") &&
+                          strstr(errout, "not a positive integer or auto"),
+                      "%s: exit %d: %s", bad[q], rc, errout);
+        free(errout);
+    }
 }
 END_TEST
 
@@ -599,6 +725,8 @@ Suite *suite_coupling(void)
     tcase_add_test(tc, static_kink_energy_and_peaks);
     tcase_add_test(tc, dynamic_film_conserves_and_refreshes_forces);
     tcase_add_test(tc, restart_bit_identical_static_and_dynamic);
+    tcase_add_test(tc, adaptive_multirate_keeps_its_promise);
+    tcase_add_test(tc, adaptive_multirate_refusals);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -23,7 +23,8 @@
  *   (empty bands: g = -g0) and the scheme is exact for constant
  *   acceleration: y_k = y_0 + v_0 t_k - g0 t_k^2 / 2.
  * - Same seed, same bits; another seed, other bits; restart bit-identity;
- *   results independent of the number of threads.
+ *   results independent of the number of threads; the fast method's
+ *   skipping of free-falling particles changes no bit.
  * - The Hertz contact ([hertz], off by default): two particles colliding
  *   head on, all pairs and through the cell list: momentum conserved to
  *   round-off, K + U during the collision and K after it to the
@@ -184,6 +185,18 @@ static void random_config(gsl_rng *r, size_t n, double L, double dx,
     }
 }
 
+/* The six arrays of a comparison of two evaluations. */
+static void free_arrays(double *x, double *y, double *g0, double *g1,
+                        uint8_t *k0, uint8_t *k1)
+{
+    free(x);
+    free(y);
+    free(g0);
+    free(g1);
+    free(k0);
+    free(k1);
+}
+
 START_TEST(support_fast_and_cell_equal_naive)
 {
     gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
@@ -236,12 +249,7 @@ START_TEST(support_fast_and_cell_equal_naive)
                                       c, m, i, g1[i], g0[i]);
                     }
                 }
-            free(x);
-            free(y);
-            free(g0);
-            free(g1);
-            free(k0);
-            free(k1);
+            free_arrays(x, y, g0, g1, k0, k1);
         }
     }
     /* the configurations exercise every case many times */
@@ -573,6 +581,93 @@ START_TEST(restart_bit_identical)
 }
 END_TEST
 
+/* The fast method skips the sweep for the particles that fall freely
+ * through an empty band and cuts each chunk's tree at the highest level
+ * asked (support.h); both are claimed to change no bit: a skipped query
+ * is a read, a node above the highest level asked is never read.  Checked
+ * against the exhaustive sweep (every particle asks, every level kept):
+ * on random configurations g and the kinds are the same bits, and so are
+ * the positions and velocities of two runs of 40 steps of 6400 particles,
+ * one with the exhaustive sweep (so any difference in any force would
+ * show).  The skipped path must have been taken: free falls with K >= 2
+ * are counted. */
+static const char *skip_scene =
+    "[scene]\nmodel = greenspan72\ndt = 0.01\nt_end = 1\n"
+    "[greenspan72]\nwidth = 500\nheight = 500\ninterface = 375\nd = 5\n"
+    "m_heavy = 1\nm_light = 0.25\nlayout = grid\ngrid_nx = 80\n"
+    "grid_ny = 80\nv_random = 500\noutput = diagnostics\nthreads = 1\n"
+    "[repulsion]\nxi = 0.1\np = 2\nbeta = 2\ncutoff = 10\n"
+    "[support]\ndx = 6.25\nmethod = fast\n[walls]\nomega = 0.9\n";
+
+START_TEST(fast_skipping_changes_no_bit)
+{
+    gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(r, 20261202);
+    bf_err err = {0};
+    size_t skipped = 0;
+    const struct {
+        size_t n;
+        double L, dx, d;
+    } cases[] = {{1500, 500, 6.25, 5}, {1500, 500, 6.25, 12.5},
+                 {1200, 400, 5, 1.5}, {3000, 300, 6.25, 5}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++)
+        for (int style = 0; style < 3; style++) {
+            size_t n = cases[c].n;
+            double *x = malloc(n * sizeof *x), *y = malloc(n * sizeof *y);
+            double *g0 = malloc(n * sizeof *g0), *g1 = malloc(n * sizeof *g1);
+            uint8_t *k0 = malloc(n), *k1 = malloc(n);
+            random_config(r, n, cases[c].L, cases[c].dx, x, y, style);
+            bf_support_params p = sup_params(cases[c].L, cases[c].dx,
+                                             cases[c].d);
+            p.method = BF_SUPPORT_FAST;
+            bf_support *s;
+            ck_assert(bf_support_create(&s, &p, n, &err) == BF_OK);
+            bf_cells cl;
+            ck_assert(bf_cells_init(&cl, 0, 0, cases[c].L, cases[c].L, 10, n,
+                                    &err) == BF_OK);
+            bf_cells_build(&cl, x, y, NULL, n);
+            bf_support_eval(s, x, y, n, &cl, g0, k0);
+            bf_support_set_exhaustive(s, 1);
+            bf_support_eval(s, x, y, n, &cl, g1, k1);
+            ck_assert_msg(memcmp(g0, g1, n * sizeof *g0) == 0 &&
+                              memcmp(k0, k1, n) == 0,
+                          "case %zu style %d: the skipping changed g", c,
+                          style);
+            for (size_t i = 0; i < n; i++)
+                skipped += k0[i] == BF_SUP_FREE &&
+                           y[i] >= 2 * cases[c].dx;
+            bf_cells_free(&cl);
+            bf_support_free(s);
+            free_arrays(x, y, g0, g1, k0, k1);
+        }
+    ck_assert_msg(skipped > 100, "free falls with K >= 2: %zu", skipped);
+    gsl_rng_free(r);
+    /* two runs, one exhaustive */
+    const bf_model_type *mt = g72_type();
+    bf_scene *sc = tu_scene(skip_scene);
+    ck_assert(bf_catalog_resolve(bf_catalog_builtin(), sc, &err) == BF_OK);
+    bf_setup *sa, *sb;
+    void *a = g72_model(sc, &sa), *b = g72_model(sc, &sb);
+    bf_support_set_exhaustive(bf_greenspan72_support(b), 1);
+    bf_particles *pa = bf_greenspan72_particles(a),
+                 *pb = bf_greenspan72_particles(b);
+    for (long k = 0; k < 40; k++) {
+        ck_assert(mt->step(a, k, k * 0.01, 0.01, &err) == BF_OK);
+        ck_assert(mt->step(b, k, k * 0.01, 0.01, &err) == BF_OK);
+    }
+    const size_t bytes = pa->n * sizeof(double);
+    ck_assert(memcmp(pa->x, pb->x, bytes) == 0 &&
+              memcmp(pa->y, pb->y, bytes) == 0 &&
+              memcmp(pa->vx, pb->vx, bytes) == 0 &&
+              memcmp(pa->vy, pb->vy, bytes) == 0);
+    mt->destroy(a);
+    mt->destroy(b);
+    bf_setup_free(sa);
+    bf_setup_free(sb);
+    bf_scene_free(sc);
+}
+END_TEST
+
 START_TEST(threads_do_not_change_results)
 {
     /* 6400 particles: above the size where the loops run in parallel */
@@ -782,6 +877,7 @@ Suite *suite_greenspan72(void)
     tcase_add_test(tc, same_seed_same_bits);
     tcase_add_test(tc, restart_bit_identical);
     tcase_add_test(tc, threads_do_not_change_results);
+    tcase_add_test(tc, fast_skipping_changes_no_bit);
     tcase_add_test(tc, bad_scenes_are_refused);
     tcase_add_test(tc, hertz_collision_conserves);
     suite_add_tcase(s, tc);

@@ -54,6 +54,13 @@ const int64_t *bf_ckpt_data_i64(const bf_ckpt *ck, const char *name,
                                 size_t *n);
 const char *bf_ckpt_str(const bf_ckpt *ck, const char *name); /* or NULL */
 int bf_ckpt_has(const bf_ckpt *ck, const char *name);
+/* The entries in the order stored, for tools that list or edit a
+ * checkpoint: how many, and entry k's name (NULL past the end), kind
+ * ("real", "int", "bytes", "str"), length in elements and data (doubles,
+ * int64s, bytes, a NUL-terminated string). */
+size_t bf_ckpt_count(const bf_ckpt *ck);
+const char *bf_ckpt_entry(const bf_ckpt *ck, size_t k, const char **kind,
+                          size_t *n, const void **data);
 
 /* ---- state described by data ----
  * A model (or a component) describes its state by a table of fields:
@@ -126,7 +133,10 @@ bf_status bf_ckpt_get_fields(const bf_ckpt *ck, const char *prefix,
                              const bf_field *f, size_t nf, void *obj,
                              bf_err *err);
 
-/* Atomic write (PATH.tmp + fsync + rename) and read. */
+/* Atomic write (PATH.tmp + fsync + rename) and read.  The file is sealed
+ * (its length and a hash of its bytes, checked before HDF5 reads it) and
+ * every entry is covered by a checksum: a damaged or edited file is
+ * refused (BF_EINPUT) with a message, never half-read. */
 bf_status bf_ckpt_write(const bf_ckpt *ck, const char *path, bf_err *err);
 bf_status bf_ckpt_read(bf_ckpt **out, const char *path, bf_err *err);
 

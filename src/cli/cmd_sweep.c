@@ -361,10 +361,12 @@ typedef struct shared {
     pthread_mutex_t lock;
 } shared;
 
+/* The next case to run, -1 when none is left or the sweep was
+ * interrupted (no case is started after an interrupt). */
 static long take(shared *s)
 {
     pthread_mutex_lock(&s->lock);
-    long k = s->next < s->ntodo ? s->todo[s->next++] : -1;
+    long k = !bf_cli_stop && s->next < s->ntodo ? s->todo[s->next++] : -1;
     pthread_mutex_unlock(&s->lock);
     return k;
 }
@@ -377,8 +379,9 @@ static void *local_worker(void *arg)
         bf_sweep_row r;
         bf_err e = {0};
         if (bf_sweep_run_case(s->sw, k, &r, &e)) {
-            fprintf(stderr, "ballfilm: error: %s\n", e.msg);
-            s->failed = 1;
+            fprintf(stderr, "ballfilm: %s%s\n",
+                    e.status == BF_INTERRUPTED ? "" : "error: ", e.msg);
+            s->failed |= e.status != BF_INTERRUPTED;
             continue;
         }
         report_case(s->sw, &r, s->quiet, 0);
@@ -422,6 +425,10 @@ int bf_cmd_sweep(int argc, char **argv)
         MPI_Finalize();
         return 2;
     }
+    /* SIGINT/SIGTERM (mpirun forwards them as SIGTERM to every rank):
+     * running cases stop as interrupted runs, no new case starts, the
+     * finished ones are gathered, and every rank ends with status 6 */
+    sw.stop_flag = &bf_cli_stop;
     char buf[ROWLEN];
     int status = 0;
     if (rank == 0) {
@@ -471,6 +478,11 @@ int bf_cmd_sweep(int argc, char **argv)
         status = gather_and_write(&sw, s.rows);
         if (s.failed && !status)
             status = 5;
+        if (bf_cli_stop) {
+            fprintf(stderr, "ballfilm: sweep interrupted; finished cases are "
+                            "kept, a rerun runs the others\n");
+            status = 6;
+        }
         pthread_mutex_destroy(&s.lock);
         free(s.rows);
         free(s.todo);
@@ -486,13 +498,18 @@ int bf_cmd_sweep(int argc, char **argv)
                 break;
             bf_sweep_row r;
             if (bf_sweep_run_case(&sw, k, &r, &err)) {
-                fprintf(stderr, "ballfilm: error (rank %d): %s\n", rank, err.msg);
+                int intr = err.status == BF_INTERRUPTED;
+                fprintf(stderr, "ballfilm: %s(rank %d): %s\n",
+                        intr ? "" : "error ", rank, err.msg);
                 buf[0] = '\0';
-                status = 5;
+                if (!intr)
+                    status = 5;
                 continue;
             }
             bf_sweep_row_format(&sw, &r, buf, sizeof buf);
         }
+        if (bf_cli_stop)
+            status = 6;
     }
     bf_sweep_free(&sw);
     MPI_Finalize();

@@ -67,11 +67,19 @@ static void install_handlers(void)
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
+#ifdef BF_MPI
+    /* mpirun (Open MPI) forwards SIGUSR1 to every rank as it is, while it
+     * answers SIGINT and SIGTERM by killing the job (docs/reliability.md) */
+    sigaction(SIGUSR1, &sa, NULL);
+#endif
     /* a signal that arrived while it was blocked (inherited), now caught */
     sigset_t set;
     sigemptyset(&set);
     sigaddset(&set, SIGINT);
     sigaddset(&set, SIGTERM);
+#ifdef BF_MPI
+    sigaddset(&set, SIGUSR1);
+#endif
     sigprocmask(SIG_UNBLOCK, &set, NULL);
 }
 

@@ -517,7 +517,7 @@ static bf_status energy_exceeded(const bf_sim *s, double rel, bf_err *err)
                    s->bound_is_models
                        ? ", the bound of this model, whose energy is "
                          "conserved ([scene] max_energy_error sets another, "
-                         "energy_bound = no none)"
+                         "energy_bound = no turns it off)"
                        : "");
 }
 

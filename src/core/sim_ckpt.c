@@ -186,10 +186,14 @@ static bf_status resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
         return bf_fail(err, BF_EINPUT, "%s.ckpt: the checkpoint does not "
                        "match the datasets of %s", out_path, out_path);
     for (size_t k = 0; k < nrows; k++) {
-        if (rows[k] < 0)
-            return bf_fail(err, BF_EINPUT, "%s.ckpt: a negative row count",
-                           out_path);
-        if ((st = bf_series_truncate(bf_out_series_at(s->out, k),
+        bf_series *se = bf_out_series_at(s->out, k);
+        if (rows[k] < 0 || (uint64_t)rows[k] > bf_series_rows(se))
+            return bf_fail(err, BF_EINPUT, "%s.ckpt: the checkpoint counts "
+                           "%lld rows of %s, the output has %zu (a checkpoint "
+                           "of another state of this run?)",
+                           out_path, (long long)rows[k], bf_series_path(se),
+                           bf_series_rows(se));
+        if ((st = bf_series_truncate(se,
                                      (size_t)rows[k], err)))
             return st;
     }

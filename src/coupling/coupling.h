@@ -88,12 +88,15 @@ static inline long bf_coupling_locate(const bf_coupling_grid *g, double r,
 {
     double u = (r - g->x0) / g->dx;
     /* truncation instead of floor() (a library call here): the same for
-     * u >= 0, and for u < 0 both are clamped to 0 */
-    long j = (long)u;
-    if (j < 0)
-        j = 0;
-    if (j > g->N - 1)
+     * u >= 0, and for u < 0 both are clamped to 0.  Clamped before the
+     * conversion, which is undefined for NaN and for u beyond long's
+     * range (a blown-up or edited ball position): j = 0 then, and t is
+     * NaN for the caller's checks */
+    long j = 0;
+    if (u >= (double)(g->N - 1))
         j = g->N - 1;
+    else if (u > 0)
+        j = (long)u;
     *t = u - (double)j;
     return j;
 }

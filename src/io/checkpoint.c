@@ -1,13 +1,23 @@
 /* checkpoint.c: in-memory store of named arrays and its atomic HDF5 file
  * (see checkpoint.h).  File layout: one 1-D dataset per entry at the root,
  * float64, int64 or uint8, with an attribute "kind" ("real", "int",
- * "bytes", "str"). */
+ * "bytes", "str").
+ *
+ * Two seals.  The entry "checksum" sums a hash of every entry (a file
+ * whose entries were edited and re-sealed by hand still parses).  The
+ * HDF5 user block (the first SEAL_BYTES of the file, which HDF5 skips)
+ * holds the length of the rest of the file and its FNV-1a hash: a file
+ * that was cut short, had a bit flipped or was written by something else
+ * is refused before HDF5 parses a byte of it (HDF5 is not robust against
+ * damaged files), and no dataset may claim more bytes than the file has,
+ * so no stored length sizes an allocation. */
 #include "ballfilm/checkpoint.h"
 
 #include "base/hash.h"
 
 #include <fcntl.h>
 #include <hdf5.h>
+#include <sys/stat.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -196,6 +206,23 @@ int bf_ckpt_has(const bf_ckpt *ck, const char *name)
     return find(ck, name) != NULL;
 }
 
+size_t bf_ckpt_count(const bf_ckpt *ck) { return ck->n; }
+
+const char *bf_ckpt_entry(const bf_ckpt *ck, size_t k, const char **kind,
+                          size_t *n, const void **data)
+{
+    if (k >= ck->n)
+        return NULL;
+    const item *it = &ck->items[k];
+    if (kind)
+        *kind = kind_name[it->k];
+    if (n)
+        *n = it->n;
+    if (data)
+        *data = it->data;
+    return it->name;
+}
+
 /* ------------------------------------------------------------------ file */
 
 static hid_t h5type(kind k)
@@ -247,6 +274,79 @@ static uint64_t checksum_of(const bf_ckpt *ck)
 
 static bf_status write_file(const bf_ckpt *ck, const char *path, bf_err *err);
 
+/* The user block: "ballfilm checkpoint\nbytes N\nfnv1a64 H\n", NUL-padded
+ * to SEAL_BYTES (a power of two >= 512, as HDF5 requires). */
+#define SEAL_BYTES 512
+#define SEAL_MAGIC "ballfilm checkpoint\n"
+
+/* The FNV-1a hash and the length of fd's bytes from SEAL_BYTES on; -1 on
+ * a read error. */
+static int hash_body(int fd, uint64_t *h, off_t *len)
+{
+    unsigned char buf[65536];
+    *h = BF_HASH_INIT;
+    *len = 0;
+    for (off_t at = SEAL_BYTES;;) {
+        ssize_t got = pread(fd, buf, sizeof buf, at);
+        if (got < 0)
+            return -1;
+        if (got == 0)
+            return 0;
+        *h = bf_hash64(*h, buf, (size_t)got);
+        at += got;
+        *len += got;
+    }
+}
+
+static int write_seal(int fd)
+{
+    uint64_t h;
+    off_t len;
+    if (hash_body(fd, &h, &len))
+        return -1;
+    char block[SEAL_BYTES] = {0};
+    snprintf(block, sizeof block, SEAL_MAGIC "bytes %lld\nfnv1a64 %016llx\n",
+             (long long)len, (unsigned long long)h);
+    return pwrite(fd, block, sizeof block, 0) == (ssize_t)sizeof block ? 0 : -1;
+}
+
+/* The file at path is a sealed checkpoint whose bytes are as written;
+ * *size receives its size. */
+static bf_status check_seal(const char *path, off_t *size, bf_err *err)
+{
+    int fd = open(path, O_RDONLY);
+    if (fd < 0)
+        return bf_fail(err, BF_EINPUT, "%s: cannot open checkpoint file",
+                       path);
+    char block[SEAL_BYTES + 1] = {0};
+    long long want = -1;
+    unsigned long long hash = 0;
+    uint64_t h = 0;
+    off_t len = -1;
+    struct stat sb;
+    int ok = !fstat(fd, &sb) &&
+             pread(fd, block, SEAL_BYTES, 0) == (ssize_t)SEAL_BYTES &&
+             !strncmp(block, SEAL_MAGIC, strlen(SEAL_MAGIC)) &&
+             sscanf(block + strlen(SEAL_MAGIC), "bytes %lld\nfnv1a64 %llx",
+                    &want, &hash) == 2 &&
+             !hash_body(fd, &h, &len);
+    close(fd);
+    if (!ok)
+        return bf_fail(err, BF_EINPUT, "%s: not a ballfilm checkpoint (no "
+                       "seal)", path);
+    if (len != want)
+        return bf_fail(err, BF_EINPUT, "%s: the checkpoint is damaged: %lld "
+                       "bytes where %lld were written (cut short?); it cannot "
+                       "be trusted", path, (long long)len + SEAL_BYTES,
+                       want + SEAL_BYTES);
+    if (h != hash)
+        return bf_fail(err, BF_EINPUT, "%s: the checkpoint is damaged: its "
+                       "bytes changed since it was written (edited, or a "
+                       "disk error); it cannot be trusted", path);
+    *size = sb.st_size;
+    return BF_OK;
+}
+
 bf_status bf_ckpt_write(const bf_ckpt *ck, const char *path, bf_err *err)
 {
     /* a copy of the entries with their checksum added */
@@ -275,7 +375,10 @@ static bf_status write_file(const bf_ckpt *ck, const char *path, bf_err *err)
     if (!tmp)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     snprintf(tmp, len + 5, "%s.tmp", path);
-    hid_t f = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
+    H5Pset_userblock(fcpl, SEAL_BYTES);
+    hid_t f = H5Fcreate(tmp, H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
+    H5Pclose(fcpl);
     if (f < 0) {
         bf_status st = bf_fail(err, BF_EIO, "%s: cannot create checkpoint", tmp);
         free(tmp);
@@ -304,9 +407,10 @@ static bf_status write_file(const bf_ckpt *ck, const char *path, bf_err *err)
     if (H5Fclose(f) < 0)
         bad = 1;
     if (!bad) {
-        /* make the data durable before the rename makes it visible */
-        int fd = open(tmp, O_RDONLY);
-        if (fd < 0 || fsync(fd))
+        /* seal it, and make the data durable before the rename makes it
+         * visible */
+        int fd = open(tmp, O_RDWR);
+        if (fd < 0 || write_seal(fd) || fsync(fd))
             bad = 1;
         if (fd >= 0)
             close(fd);
@@ -327,6 +431,7 @@ typedef struct read_ctx {
     bf_ckpt *ck;
     bf_err *err;
     int bad;
+    double file_bytes; /* no entry holds more */
 } read_ctx;
 
 static herr_t read_one(hid_t g, const char *name, const H5L_info_t *info,
@@ -362,6 +467,8 @@ static herr_t read_one(hid_t g, const char *name, const H5L_info_t *info,
     else
         found = 0;
     H5Sclose(sp);
+    if ((double)n * (double)elsize(k) > rc->file_bytes)
+        found = 0; /* a length the file cannot hold: never allocated */
     void *buf = found ? malloc((size_t)n * elsize(k) + 1) : NULL;
     if (!buf || (n && H5Dread(d, memtype(k), H5S_ALL, H5S_ALL, H5P_DEFAULT,
                               buf) < 0) ||
@@ -380,11 +487,15 @@ bf_status bf_ckpt_read(bf_ckpt **out, const char *path, bf_err *err)
 {
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
     *out = NULL;
+    off_t size;
+    bf_status st = check_seal(path, &size, err);
+    if (st)
+        return st;
     hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
     if (f < 0)
         return bf_fail(err, BF_EINPUT, "%s: cannot open checkpoint file", path);
     bf_ckpt *ck = bf_ckpt_new();
-    read_ctx rc = {ck, err, 0};
+    read_ctx rc = {ck, err, 0, (double)size};
     if (!ck ||
         H5Literate(f, H5_INDEX_NAME, H5_ITER_INC, NULL, read_one, &rc) < 0 ||
         rc.bad) {

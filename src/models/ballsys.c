@@ -709,6 +709,14 @@ bf_status bf_ballsys_load(bf_ballsys *s, const bf_ckpt *ck, const char *prefix,
     snprintf(name, sizeof name, "%s.v", prefix);
     if ((st = bf_ckpt_get(ck, name, s->b.v, s->b.n, err)))
         return st;
+    /* as the initial state (non-finite refused before any row): a state
+     * that is not finite is nothing to continue from (an edited file, or
+     * one written between a blow-up and the energy check that stops it) */
+    for (size_t k = 0; k < s->b.n; k++)
+        if (!isfinite(s->b.x[k]) || !isfinite(s->b.v[k]))
+            return bf_fail(err, BF_EINPUT, "checkpoint: %s: ball %zu at x = "
+                           "%g cm with v = %g cm/s: not finite", prefix,
+                           k + 1, s->b.x[k], s->b.v[k]);
     snprintf(name, sizeof name, "%s.integrator", prefix);
     return bf_integrator_load(s->it, ck, name, err);
 }

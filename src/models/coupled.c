@@ -23,7 +23,9 @@
  * Multirate (film_every = K > 1, beyond the paper): the film takes one
  * step of K dt every K ball steps, with mu_cpl from the balls at the start
  * of that film step, and the balls see the film of the last film level.
- * K = 1 is the paper's single-rate scheme, bit for bit.
+ * K = 1 is the paper's single-rate scheme, bit for bit.  film_every =
+ * auto chooses K for each film step from the lag of the balls' coupling
+ * acceleration behind the film (coupled_multirate.c).
  *
  * Diagnostics (HDF5):
  *   /balls/position, /balls/velocity [rows x balls]
@@ -62,7 +64,9 @@
 /* The keys of [coupled]. */
 typedef struct coupled_keys {
     int film;        /* 0 dynamic, 1 static */
-    long film_every; /* steps */
+    const char *film_every; /* steps, or "auto" */
+    double multirate_tol;   /* cm/s^2 */
+    long film_every_max;    /* steps */
     double probe;    /* cm */
     long map_ball, map_pivot, peak_ball; /* 1-based; 0: the default */
     int symmetrize, timing;
@@ -73,9 +77,25 @@ static const bf_param coupled_params[] = {
      "dynamic: the film is solved and feels the balls (sec. 3.5); static: "
      "the balls move in the potential of the initial film (sec. 3.4)",
      0, 0, 0, "dynamic|static"},
-    {"film_every", BF_AT(coupled_keys, film_every, BF_INT), "steps", "1",
-     "multirate: the film takes one step of film_every x dt every "
-     "film_every ball steps (1: the paper's single rate)",
+    {"film_every", BF_AT(coupled_keys, film_every, BF_STR), "steps", "1",
+     "a positive integer K or auto. K: multirate, the film takes one step "
+     "of K x dt every K ball steps (1: the paper's single rate); auto: "
+     "each film step as long as the balls' coupling acceleration lags "
+     "behind the film's by at most multirate_tol (and the film's stable "
+     "limit, film_every_max and the cost allow)",
+     0, 0, 0, NULL},
+    {"multirate_tol", BF_AT(coupled_keys, multirate_tol, BF_REAL), "cm/s^2",
+     "1e-4",
+     "film_every = auto: the largest lag of the coupling acceleration -M "
+     "dF/dr the balls feel behind the one of the current film, at the end "
+     "of each film step (it moves a ball by at most multirate_tol t^2/2 in "
+     "a time t, unless the dynamics amplifies it)",
+     BF_POS, 0, 0, NULL},
+    {"film_every_max", BF_AT(coupled_keys, film_every_max, BF_INT), "steps",
+     "1000",
+     "film_every = auto: the largest film step in ball steps (also capped "
+     "by 90% of the film's stable limit and by the time the fastest ball "
+     "takes to leave its [coupling] taylor anchor)",
      BF_MIN, 1, 0, NULL},
     {"probe", BF_AT(coupled_keys, probe, BF_REAL), "cm", "0.3",
      "position of the psi probe /coupled/psi_probe (Fig. 8C)", 0, 0, 0,
@@ -118,6 +138,7 @@ static void coupled_destroy(void *self)
     bf_coupling_free(m->cpl);
     bf_filmsys_free(m->fs);
     free(m->mucpl);
+    free(m->acc_old);
     free(m->x0);
     free(m->v0);
     free(m);
@@ -134,6 +155,22 @@ static void coupled_memory(const bf_model_setup *setup, bf_mem_need *need)
     const bf_lyap_keys *lk = bf_setup_get(setup, &bf_lyap_spec, NULL);
     bf_filmsys_memory(bf_setup_get(setup, &bf_filmsys_spec, NULL), 110.0,
                       lk && lk->enabled ? 2 : 1, need);
+}
+
+/* [coupled] film_every: a positive integer, or auto (*every = 0) */
+static bf_status film_every_key(const char *v, long *every, bf_err *err)
+{
+    if (strcmp(v, "auto") == 0) {
+        *every = 0;
+        return BF_OK;
+    }
+    char *end;
+    long k = strtol(v, &end, 10);
+    if (end == v || *end || k < 1)
+        return bf_fail_key(err, BF_EINPUT, "coupled", "film_every",
+                           "'%s' is not a positive integer or auto", v);
+    *every = k;
+    return BF_OK;
 }
 
 /* a 1-based ball index k of [coupled] key (0: default) */
@@ -165,6 +202,7 @@ static bf_status shadow_create(coupled_model *m, const bf_model_setup *setup,
         st = coupled_build(&m->shadow, setup, 0, err);
     if (st)
         return st;
+    m->shadow->leader = m; /* film_every = auto: the run's film steps */
     bf_coupled_lyap_seed(m);
     return BF_OK;
 }
@@ -197,16 +235,27 @@ static bf_status coupled_build(coupled_model **self,
     if (!m)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     m->dynamic = k->film == 0;
-    m->every = k->film_every;
+    bf_status st = film_every_key(k->film_every, &m->every, err);
+    if (st) {
+        free(m);
+        return st;
+    }
+    /* auto: the film steps by 1 to film_every_max ball steps; its stable
+     * limit is checked for each step (coupled_multirate.c) */
+    int adaptive = m->every == 0;
+    if (adaptive)
+        m->every = 1;
     m->timing = k->timing;
     m->sym = k->symmetrize;
     m->probe = k->probe;
-    bf_status st = bf_filmsys_create(&m->fs, fk, &setup->run,
+    st = bf_filmsys_create(&m->fs, fk, &setup->run,
                                      m->dynamic ? m->every : 0, err);
     if (st) {
         free(m);
         return st;
     }
+    if (adaptive)
+        bf_filmsys_step_varies(m->fs);
     const bf_coupling_keys *ck = coupling_keys(setup);
     size_t nballs;
     bf_setup_get(setup, &bf_ballsys_ball_spec, &nballs);
@@ -264,6 +313,12 @@ static bf_status coupled_build(coupled_model **self,
         coupled_destroy(m);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
+    if (adaptive && m->dynamic &&
+        (st = bf_coupled_mr_init(m, k->multirate_tol, k->film_every_max,
+                                 setup->run.nsteps, err))) {
+        coupled_destroy(m);
+        return st;
+    }
     for (int q = 0; q < BF_COUPLED_NSYM; q++)
         m->sym_t[q] = NAN;
     const bf_lyap_keys *lk = bf_setup_get(setup, &bf_lyap_spec, NULL);
@@ -305,7 +360,7 @@ static bf_status coupled_step(void *self, long n, double t, double dt,
     if (m->timing)
         c0 = bf_wall_time();
     /* mu_cpl from the balls at level n (at the start of a film step) */
-    if (m->dynamic && n % m->every == 0)
+    if (m->dynamic && bf_coupled_window_starts(m, n))
         bf_coupling_mu(m->cpl, m->nb, s->b.x, s->b.R, m->mucpl);
     if (m->timing)
         c1 = bf_wall_time();
@@ -321,9 +376,11 @@ static bf_status coupled_step(void *self, long n, double t, double dt,
     }
     if (m->timing)
         c2 = bf_wall_time();
-    if (m->dynamic && (n + 1) % m->every == 0) {
-        if ((st = bf_filmsys_step(m->fs, (double)m->every * dt, m->mucpl,
-                                   err)))
+    long K = m->dynamic ? bf_coupled_window_ends(m, n) : 0;
+    if (K) {
+        if (m->adaptive)
+            bf_coupled_mr_before(m);
+        if ((st = bf_filmsys_step(m->fs, (double)K * dt, m->mucpl, err)))
             return st;
         if (m->sym) {
             /* before the coupling's refresh reads the film */
@@ -336,6 +393,8 @@ static bf_status coupled_step(void *self, long n, double t, double dt,
         bf_coupling_refresh(m->cpl);
         bf_coupling_prepare(m->cpl, m->nb, s->b.x);
         s->ode.epoch++;
+        if (m->adaptive)
+            bf_coupled_mr_after(m, n, dt);
     } else if (m->timing) {
         c3 = c2;
     }
@@ -400,6 +459,8 @@ static bf_status coupled_output_open(void *self, bf_out *out, bf_err *err)
             "previous row: film alpha_k h (/ max h), film u (/ max |u_k|), "
             "ball x (/ max |x|), ball v (/ max |v|)");
 #undef SER
+    if ((st = bf_coupled_mr_output_open(m, out, err)))
+        return st;
     if (m->ly && (st = bf_lyap_sum_output_open(m->ly, out, err)))
         return st;
     const bf_balls *b = &m->sys->b;
@@ -441,7 +502,8 @@ static bf_status coupled_output_row(void *self, long n, double t, bf_err *err)
         bf_series_append(m->vel, m->sys->b.v) ||
         bf_series_append(m->probe_s, &pr) || bf_series_append(m->symb, &sb) ||
         bf_series_append(m->symf, &sf) ||
-        (m->sym && bf_series_append(m->symc_s, m->sym_correction)))
+        (m->sym && bf_series_append(m->symc_s, m->sym_correction)) ||
+        bf_coupled_mr_output_row(m))
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     for (int q = 0; q < 4; q++)
         m->sym_correction[q] = 0;
@@ -499,6 +561,7 @@ static void coupled_report(const void *self, FILE *f)
                 "%.3g\n",
                 m->sym_correction[4], m->sym_correction[5],
                 m->sym_correction[6], m->sym_correction[7]);
+    bf_coupled_mr_report(m, f);
     if (m->timing)
         fprintf(f, "time: balls %.3f s, film %.3f s, coupling (mu_cpl, "
                    "refresh) %.3f s\n",
@@ -556,6 +619,8 @@ static bf_status save_state(const coupled_model *m, bf_ckpt *ck,
         st = bf_coupling_save(m->cpl, ck, prefix, err);
     if (!st && m->sym)
         st = bf_ckpt_put_fields(ck, n.own, sym_fields, 1, m, err);
+    if (!st)
+        st = bf_coupled_mr_save(m, ck, n.own, err);
     return st;
 }
 
@@ -575,6 +640,8 @@ static bf_status load_state(coupled_model *m, const bf_ckpt *ck,
         st = bf_coupling_load(m->cpl, ck, prefix, err);
     if (!st && m->sym)
         st = bf_ckpt_get_fields(ck, n.own, sym_fields, 1, m, err);
+    if (!st)
+        st = bf_coupled_mr_load(m, ck, n.own, err);
     return st;
 }
 

@@ -10,6 +10,7 @@
 #define BALLFILM_MODELS_COUPLED_IMPL_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "ballfilm/h5out.h"
 #include "ballfilm/model.h"
@@ -32,7 +33,23 @@ typedef struct coupled_model {
     bf_ballsys *sys;
     bf_coupling *cpl;
     int dynamic, timing, sym;
-    long every;
+    long every;             /* film_every = K (fixed multirate) */
+    /* film_every = auto (coupled_multirate.c): the current film step, a
+     * window of win_k ball steps from step win_start, and its record */
+    int adaptive;
+    double mr_tol;          /* largest coupling-acceleration lag, cm/s^2 */
+    long mr_kmax, nsteps;   /* largest K allowed; the run's steps */
+    long win_start, win_k;
+    double mr_stable;       /* the film's stable limit (s), evaluated */
+    long mr_stable_at;      /* again at the film step ending here */
+    double *acc_old;        /* coupling acceleration of the balls at the
+                               window's end in the film before its step
+                               [nb], and after it [nb] */
+    double mr_stat[6];      /* windows, sum of K, smallest and largest K,
+                               largest lag (cm/s^2), windows over mr_tol */
+    bf_series *kser;        /* /coupled/film_every */
+    const struct coupled_model *leader; /* a Lyapunov shadow: the run whose
+                                           film steps it takes (else NULL) */
     size_t nb, map_ball, map_pivot, peak_ball;
     double probe;
     double *mucpl;          /* mu_cpl (3.11) handed to the film step */
@@ -68,6 +85,32 @@ double bf_coupled_symmetry_error(const double *x, size_t n);
  * from m->x0, m->v0 (the start) and the balls (the end). */
 bf_status bf_coupled_events(coupled_model *m, double t, double dt,
                             bf_err *err);
+
+/* ---- coupled_multirate.c ---- */
+
+/* film_every = auto: set up the first window (K = 1) for tolerance tol
+ * (cm/s^2), K at most kmax, a run of nsteps steps. */
+bf_status bf_coupled_mr_init(coupled_model *m, double tol, long kmax,
+                             long nsteps, bf_err *err);
+/* Whether the film's window starts at step n, and the number of ball steps
+ * K of the film step that ends with step n (0: none ends there). */
+int bf_coupled_window_starts(const coupled_model *m, long n);
+long bf_coupled_window_ends(const coupled_model *m, long n);
+/* Around the film step that ends with step n (balls at its end): before
+ * it, the balls' coupling acceleration in the old film; after it (the
+ * coupling refreshed), the lag and the next window's K. */
+void bf_coupled_mr_before(coupled_model *m);
+void bf_coupled_mr_after(coupled_model *m, long n, double dt);
+/* The output series /coupled/film_every, its row, the record in the
+ * report and the state in checkpoints (prefix: the entry's name). */
+bf_status bf_coupled_mr_output_open(coupled_model *m, bf_out *out,
+                                    bf_err *err);
+int bf_coupled_mr_output_row(coupled_model *m);
+void bf_coupled_mr_report(const coupled_model *m, FILE *f);
+bf_status bf_coupled_mr_save(const coupled_model *m, bf_ckpt *ck,
+                             const char *name, bf_err *err);
+bf_status bf_coupled_mr_load(coupled_model *m, const bf_ckpt *ck,
+                             const char *name, bf_err *err);
 
 /* ---- coupled_lyapunov.c ---- */
 

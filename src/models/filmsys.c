@@ -143,6 +143,7 @@ struct bf_filmsys {
     bf_film *film;
     size_t n;
     double dt, film_dt; /* [scene] dt; the film's own step (0: static) */
+    int step_varies;    /* film_dt is the first of steps chosen as it runs */
     long every;         /* film steps every `every` steps (0: static) */
     int force_dt;       /* [film] force_dt: no stable-step limit */
     long prof_every, last_step;
@@ -681,6 +682,8 @@ bf_status bf_filmsys_output_row(bf_filmsys *fs, long n, double t, bf_err *err)
     return BF_OK;
 }
 
+void bf_filmsys_step_varies(bf_filmsys *fs) { fs->step_varies = 1; }
+
 void bf_filmsys_report(const bf_filmsys *fs, FILE *out)
 {
     bf_film *f = fs->film;
@@ -706,7 +709,10 @@ void bf_filmsys_report(const bf_filmsys *fs, FILE *out)
         fprintf(out, "film: %s: %llu steps, %llu right-hand-side "
                      "evaluations, %llu rejected, %llu Newton iterations\n",
                 d, c.steps, c.evals, c.rejected, c.iterations);
-    } else if (fs->film_dt > 0)
+    } else if (fs->film_dt > 0 && fs->step_varies)
+        fprintf(out, "film: stable dt now %.4g s (film steps chosen as the "
+                     "run goes: the multirate line)\n", lim);
+    else if (fs->film_dt > 0)
         fprintf(out, "film: stable dt now %.4g s (film step %g s)\n", lim,
                 fs->film_dt);
     else

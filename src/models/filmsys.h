@@ -78,6 +78,9 @@ bf_status bf_filmsys_create(bf_filmsys **out, const bf_film_keys *k,
                             const bf_run_ctx *run, long film_every,
                             bf_err *err);
 void bf_filmsys_free(bf_filmsys *fs);
+/* The film's step is chosen by its driver step by step (the coupled
+ * model's film_every = auto): the report names no fixed film step. */
+void bf_filmsys_step_varies(bf_filmsys *fs);
 
 /* The largest [scene] dt the film's step allows (model.h's stable_dt):
  * film_every x dt must not exceed the film's stable limit of its initial

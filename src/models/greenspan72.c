@@ -35,6 +35,7 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -240,14 +241,16 @@ static double g72_count(const g72_keys *k)
  * of the per-particle outputs; 2 more per thread for the repulsion's
  * work arrays.  Measured: the smallest ulimit -v of a two-step run of
  * runs/greenspan72_large.ini grows by 306-319 B (38-40 doubles) per
- * particle from 224^2 to 448^2 particles (docs/reliability.md). */
+ * particle from 224^2 to 448^2 particles (docs/reliability.md), before
+ * the sweep's query and update lists (issue 21: 52 B = 6.5 doubles more
+ * per particle, counted from their allocations); 54 keeps the margin. */
 static void g72_memory(const bf_model_setup *setup, bf_mem_need *need)
 {
     const g72_keys *k = bf_setup_get(setup, &g72_spec, NULL);
     if (!k)
         return;
     double n = g72_count(k), threads = k->threads > 1 ? (double)k->threads : 1;
-    double per = 48.0 + 2.0 * threads;
+    double per = 54.0 + 2.0 * threads;
     need->bytes = 8.0 * per * n;
     snprintf(need->what, sizeof need->what, "%.3g particles x %.0f doubles",
              n, per);
@@ -839,6 +842,12 @@ static bf_status g72_load(void *self, const bf_ckpt *ck, bf_err *err)
     if (!st)
         st = bf_ckpt_get_fields(ck, "g72", g72_state, BF_NFIELDS(g72_state),
                                 m, err);
+    /* one output row per step at most, the initial one included (the
+     * count is incremented at each row: an edited one could overflow) */
+    if (!st && (m->rows < 0 || (unsigned long long)m->rows > m->steps + 1 ||
+                m->rows == LONG_MAX))
+        st = bf_fail(err, BF_EINPUT, "checkpoint: g72.rows = %ld output rows "
+                     "after %llu steps", m->rows, (unsigned long long)m->steps);
     if (!st && m->ode)
         st = bf_ark1_load(bf_g72_ode_arkode(m->ode), ck, "g72.ode", err);
     /* a(x) is recomputed from the restored positions; if the run had it,

@@ -424,9 +424,66 @@ static bf_status mac_model_save(const void *self, bf_ckpt *ck, bf_err *err)
     return bf_mac_save(((const mac_model *)self)->mac, ck, "mac", err);
 }
 
+/* A state read from a checkpoint is one a run can have reached: every
+ * field value finite, every cell flag one of the listing's (or 0, in the
+ * padding around the ring), every marker flag one of the listing's, every
+ * marker in use finite and within the grid widened by its own size
+ * on each side (a move is less than a cell per step, so no run puts a
+ * marker there; the bound keeps x/dx a valid cell index).  A checkpoint
+ * that passed its checksum can still hold such values if it was edited
+ * and sealed again; refused here, they never reach the solver (a NaN
+ * position would be converted to a cell index). */
+static bf_status mac_state_valid(const bf_mac *m, bf_err *err)
+{
+    int ni, nj;
+    double dx, dy;
+    bf_mac_dims(m, &ni, &nj, &dx, &dy);
+    const size_t ncell = (size_t)(ni + 2) * (size_t)(nj + 2);
+    const struct {
+        const char *name;
+        const double *f;
+    } fields[] = {{"u", bf_mac_u(m)},   {"v", bf_mac_v(m)},
+                  {"p", bf_mac_p(m)},   {"r", bf_mac_rho(m)},
+                  {"t", bf_mac_temp(m)}};
+    for (size_t q = 0; q < sizeof fields / sizeof *fields; q++)
+        for (size_t c = 0; c < ncell; c++)
+            if (!isfinite(fields[q].f[c]))
+                return bf_fail(err, BF_EINPUT, "checkpoint: mac.%s of cell "
+                               "%zu is %g", fields[q].name, c, fields[q].f[c]);
+    const int *ic = bf_mac_flags(m);
+    for (size_t c = 0; c < ncell; c++)
+        if (!(ic[c] == 0 || /* the padding around the ring */
+              (ic[c] >= BF_MAC_NOSLIP && ic[c] <= BF_MAC_FREESLIP) ||
+              (ic[c] >= BF_MAC_FULL && ic[c] <= BF_MAC_EMP)))
+            return bf_fail(err, BF_EINPUT, "checkpoint: mac.ic of cell %zu "
+                           "is %d, no cell flag", c, ic[c]);
+    const bf_particles *pt = bf_mac_particles(m);
+    const double *dens = bf_mac_particle_density(m);
+    const double w = (double)ni * dx, h = (double)nj * dy;
+    for (size_t k = 0; k < pt->n; k++) {
+        if (pt->tag[k] < BF_MAC_AVAIL || pt->tag[k] > BF_MAC_REG)
+            return bf_fail(err, BF_EINPUT, "checkpoint: mac.markers.tag of "
+                           "marker %zu is %d, no marker flag", k,
+                           (int)pt->tag[k]);
+        if (pt->tag[k] == BF_MAC_AVAIL)
+            continue;
+        const double x = pt->x[k], y = pt->y[k];
+        if (!(x >= -w && x <= 2 * w && y >= -h && y <= 2 * h) ||
+            !isfinite(pt->vx[k]) || !isfinite(pt->vy[k]) ||
+            !isfinite(pt->m[k]) || !isfinite(dens[k]))
+            return bf_fail(err, BF_EINPUT, "checkpoint: marker %zu at (%g, "
+                           "%g) with velocity (%g, %g), mass %g, density %g: "
+                           "not finite or far outside the grid", k, x, y,
+                           pt->vx[k], pt->vy[k], pt->m[k], dens[k]);
+    }
+    return BF_OK;
+}
+
 static bf_status mac_model_load(void *self, const bf_ckpt *ck, bf_err *err)
 {
-    return bf_mac_load(((mac_model *)self)->mac, ck, "mac", err);
+    const bf_mac *m = ((mac_model *)self)->mac;
+    bf_status st = bf_mac_load(((mac_model *)self)->mac, ck, "mac", err);
+    return st ? st : mac_state_valid(m, err);
 }
 
 static const bf_section_spec *const mac_specs[] = {&bf_mac_spec, NULL};

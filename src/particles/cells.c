@@ -70,17 +70,24 @@ void bf_cells_build(bf_cells *c, const double *x, const double *y,
     }
     for (size_t k = 0; k < nc; k++)
         start[k + 1] += start[k];
-    /* stable scatter: use start[k] as the running write position, then
-     * shift back */
+    /* stable scatter of the indices: use start[k] as the running write
+     * position, then shift back; then the positions gathered in slot
+     * order (one scattered store per particle instead of four: the
+     * gathers' loads overlap, scattered stores to arrays larger than the
+     * cache do not) */
     for (size_t i = 0; i < n; i++) {
         uint32_t s = start[c->cell[i]]++;
         c->idx[s] = (uint32_t)i;
         c->slot[i] = s;
+    }
+    for (size_t s = 0; s < n; s++) {
+        const uint32_t i = c->idx[s];
         c->sx[s] = x[i];
         c->sy[s] = y[i];
-        if (w)
-            c->sw[s] = w[i];
     }
+    if (w)
+        for (size_t s = 0; s < n; s++)
+            c->sw[s] = w[c->idx[s]];
     for (size_t k = nc; k > 0; k--)
         start[k] = start[k - 1];
     start[0] = 0;

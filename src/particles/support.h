@@ -47,7 +47,11 @@
  *          range of the x order, and a skip list assigns each particle its
  *          lowest empty band once.  Band K_j is non-empty if a cut square
  *          of S(P_j) overlaps the strip, else the cell list is asked (rare).
- *          The K = 0 rectangle uses the cell list.
+ *          The K = 0 rectangle uses the cell list.  The empty bands are
+ *          found first: a particle that falls freely through one asks the
+ *          sweep nothing, and each chunk's tree keeps only the levels up
+ *          to the highest one asked (the same bits as the exhaustive
+ *          sweep, bf_support_set_exhaustive; tested).
  */
 #ifndef BALLFILM_PARTICLES_SUPPORT_H
 #define BALLFILM_PARTICLES_SUPPORT_H
@@ -126,5 +130,11 @@ const bf_support_params *bf_support_params_of(const bf_support *s);
 void bf_support_eval_with(bf_support *s, bf_support_method m, const double *x,
                           const double *y, size_t n, const bf_cells *cells,
                           double *g, uint8_t *kind);
+
+/* Method fast, for tests and benchmarks: with `on`, every particle with
+ * K >= 1 asks the sweep, free falling or not, and every chunk's tree
+ * holds every level of the box, as before the free-fall skipping (issue
+ * 21); the results must be the same bits either way. */
+void bf_support_set_exhaustive(bf_support *s, int on);
 
 #endif

@@ -42,30 +42,32 @@ static inline int first_band(const bf_support *s, double b)
     return q;
 }
 
-/* Sort the indices 0..n-1 of x[] by x: counting sort into n bins, then
- * insertion sort inside each bin (ties keep the index order).  Expected
- * O(n). */
-static void sort_by_x(bf_support *s, const double *x, size_t n)
+/* ord[u0..u1) = the slots u0..u1-1 sorted by x[] (ties keep the slot
+ * order): counting sort into m = u1 - u0 bins over [xlo, xlo + w) (any
+ * binning monotone in x gives the same order), then insertion sort inside
+ * each bin.  Expected O(m). */
+static void sort_range(bf_support *s, const double *x, uint32_t u0,
+                       uint32_t u1, double xlo, double w)
 {
-    const double ax = s->p.box.ax, w = s->p.box.bx - s->p.box.ax;
-    const double scale = (double)n / w;
-    uint32_t *binc = s->binc, *ord = s->ord, *tmp = s->nxt;
-    memset(binc, 0, (n + 1) * sizeof *binc);
-    for (size_t i = 0; i < n; i++) {
-        double f = (x[i] - ax) * scale;
+    const size_t m = u1 - u0;
+    const double scale = (double)m / w;
+    uint32_t *binc = s->binc, *ord = s->ord + u0, *tmp = s->nxt;
+    memset(binc, 0, (m + 1) * sizeof *binc);
+    for (size_t i = 0; i < m; i++) {
+        double f = (x[u0 + i] - xlo) * scale;
         size_t b = f > 0 ? (size_t)f : 0;
-        if (b >= n)
-            b = n - 1;
+        if (b >= m)
+            b = m - 1;
         tmp[i] = (uint32_t)b;
         binc[b + 1]++;
     }
-    for (size_t b = 0; b < n; b++)
+    for (size_t b = 0; b < m; b++)
         binc[b + 1] += binc[b];
-    for (size_t i = 0; i < n; i++)
-        ord[binc[tmp[i]]++] = (uint32_t)i;
+    for (size_t i = 0; i < m; i++)
+        ord[binc[tmp[i]]++] = u0 + (uint32_t)i;
     /* binc[b] is now the end of bin b; insertion sort each bin */
     size_t lo = 0;
-    for (size_t b = 0; b < n; b++) {
+    for (size_t b = 0; b < m; b++) {
         size_t hi = binc[b];
         for (size_t a = lo + 1; a < hi; a++) {
             uint32_t v = ord[a];
@@ -78,6 +80,21 @@ static void sort_by_x(bf_support *s, const double *x, size_t n)
             ord[c] = v;
         }
         lo = hi;
+    }
+}
+
+/* The slots of the cell list in x order.  The cell list holds the columns
+ * of cells one after the other, and the column of a particle is monotone
+ * in x, so the x order is the columns' own x orders one after the other:
+ * each column is sorted alone, in bins that stay in the cache. */
+static void sort_by_x(bf_support *s, const bf_cells *c)
+{
+    const size_t ny = (size_t)c->ny;
+    for (int col = 0; col < c->nx; col++) {
+        const uint32_t u0 = c->start[(size_t)col * ny],
+                       u1 = c->start[(size_t)(col + 1) * ny];
+        if (u1 > u0)
+            sort_range(s, c->sx, u0, u1, c->x0 + (double)col * c->h, c->h);
     }
 }
 
@@ -145,47 +162,114 @@ static size_t bsearch_pos(const double *v, size_t lo, size_t hi, double key,
     return lo;
 }
 
-/* Lower-band areas of the particles whose strips start in the chunk
+/* The same answer as bsearch_pos(v, 0, n, key, ge), found by galloping
+ * from `hint` (v is sorted): O(log distance) when the answer is near the
+ * hint, as it is for the strips that fit a gap next to the gap's two
+ * squares (empty_bands). */
+static size_t gallop_pos(const double *v, size_t n, size_t hint, double key,
+                         int ge)
+{
+#define PAST(p) (ge ? v[p] >= key : v[p] > key)
+    if (hint > n)
+        hint = n;
+    size_t step = 1;
+    if (hint > 0 && PAST(hint - 1)) {
+        /* the answer is at or before hint - 1: gallop down */
+        size_t hi = hint - 1; /* PAST(hi) */
+        while (hi >= step && PAST(hi - step)) {
+            hi -= step;
+            step *= 2;
+        }
+        return bsearch_pos(v, hi >= step ? hi - step + 1 : 0, hi, key, ge);
+    }
+    /* the answer is at or after hint: gallop up */
+    size_t lo = hint; /* !PAST(p) for every p < lo */
+    while (lo + step - 1 < n && !PAST(lo + step - 1)) {
+        lo += step;
+        step *= 2;
+    }
+    return bsearch_pos(v, lo, lo + step - 1 < n ? lo + step - 1 : n, key, ge);
+#undef PAST
+}
+
+/* The square edges as one sequence of updates of the sweep, in the order
+ * in which the sweep meets them: the left edges (+h) and right edges (-h)
+ * merged by x, a left edge first on ties (the order of the sums in every
+ * chunk).  Squares clipped by the ceiling never enter (sweep level
+ * INT32_MAX).  Branch-free: which stream comes next is random.  Returns
+ * their number; uv[nu] = +inf ends the sequence. */
+static size_t sweep_updates(bf_support *s, size_t n)
+{
+    const double *ls = s->ls, *rs = s->rs, *ts = s->ts, *bs = s->bs;
+    const int32_t *sl = s->sl;
+    double *uv = s->uv, *uh = s->uh;
+    int32_t *ul = s->ul;
+    size_t a = 0, b = 0, u = 0;
+    while (b < n) {
+        const int left = a < n && ls[a] <= rs[b];
+        const size_t p = left ? a : b;
+        uv[u] = left ? ls[a] : rs[b];
+        uh[u] = (left ? 1.0 : -1.0) * (ts[p] - bs[p]);
+        ul[u] = sl[p];
+        u += sl[p] != INT32_MAX;
+        a += (size_t)left;
+        b += (size_t)!left;
+    }
+    uv[u] = INFINITY;
+    return u;
+}
+
+/* Lower-band areas of the asking particles (the query list qk, with their
+ * strip edges qg, qd, in x order) whose strips start in the chunk
  * [X0, X1): a sweep over the square edges in (X0, X1 + dx], in coordinates
  * relative to X0 so that the sums stay small (their round-off does not
  * grow with the box).  Squares straddling X0 enter with their left edge at
- * X0: G(x) = integral from X0 to x of the filled height. */
-static void sweep_chunk(bf_support *s, double *fen, size_t n, int mq,
-                        double X0, double X1, int last)
+ * X0: G(x) = integral from X0 to x of the filled height.  Each query at x
+ * sees the updates at or before x, in the order of sweep_updates.  The
+ * tree holds only the levels up to the highest K asked in the chunk: a
+ * node above it is never read, and every node below gets the same
+ * additions in the same order as in a taller tree, so the areas are the
+ * same bits.  qd[i] is replaced by F(delta_i) once read. */
+static void sweep_chunk(bf_support *s, double *fen, size_t n, size_t nu,
+                        size_t nq, double X0, double X1, int last)
 {
-    const double *ls = s->ls, *rs = s->rs, *gs = s->gs, *ds = s->ds;
-    size_t q0 = bsearch_pos(gs, 0, n, X0, 1);
-    size_t q1 = last ? n : bsearch_pos(gs, q0, n, X1, 1);
+    const double *ls = s->ls, *rs = s->rs, *qg = s->qg;
+    const double *uv = s->uv, *uh = s->uh;
+    const int32_t *ul = s->ul;
+    double *qd = s->qd, *fg = s->fgam;
+    const uint32_t *qk = s->qk;
+    const int32_t *qK = s->qK;
+    size_t q0 = bsearch_pos(qg, 0, nq, X0, 1);
+    size_t q1 = last ? nq : bsearch_pos(qg, q0, nq, X1, 1);
     if (q0 == q1)
         return;
+    int mq = s->exhaustive ? s->kmax + 1 : 1;
+    for (size_t i = q0; i < q1; i++)
+        mq = qK[i] > mq ? qK[i] : mq;
     memset(fen, 0, 2 * (size_t)(mq + 1) * sizeof *fen);
     /* squares with l <= X0 < r enter at X0 */
     size_t pr = bsearch_pos(rs, 0, n, X0, 0);
     size_t pl = bsearch_pos(ls, 0, n, X0, 0);
     for (size_t p = pr; p < pl; p++)
         sweep_add(s, fen, mq, p, 1.0, 0.0);
+    /* then the edges beyond X0 */
+    size_t u = bsearch_pos(uv, 0, nu, X0, 0);
     size_t pg = q0, pd = q0;
-    const double inf = INFINITY;
     while (pd < q1) {
-        double vl = pl < n ? ls[pl] : inf, vr = pr < n ? rs[pr] : inf;
-        double vg = pg < q1 ? gs[pg] : inf, vd = ds[pd];
-        if (vl <= vr && vl <= vg && vl <= vd) {
-            sweep_add(s, fen, mq, pl, 1.0, vl - X0);
-            pl++;
-        } else if (vr <= vg && vr <= vd) {
-            sweep_add(s, fen, mq, pr, -1.0, vr - X0);
-            pr++;
-        } else if (vg <= vd) {
-            if (s->ks[pg] >= 1)
-                s->fgam[pg] = sweep_eval(fen, vg - X0, s->ks[pg]);
-            pg++;
-        } else {
-            if (s->ks[pd] >= 1)
-                s->lower[pd] = sweep_eval(fen, vd - X0, s->ks[pd]) -
-                               s->fgam[pd];
-            pd++;
-        }
+        /* the next query: gamma of pg or delta of pd (gamma first on
+         * ties; the order of the reads does not matter) */
+        const int isg = (pg < q1) & (qg[pg] <= qd[pd]); /* qg[nq] exists */
+        const size_t i = isg ? pg : pd;
+        const double v = isg ? qg[pg] : qd[pd];
+        for (; uv[u] <= v; u++)
+            fen_add(fen, mq, ul[u], uh[u], uh[u] * (uv[u] - X0));
+        double *dst = isg ? fg + pg : qd + pd;
+        *dst = sweep_eval(fen, v - X0, qK[i]);
+        pg += (size_t)isg;
+        pd += (size_t)!isg;
     }
+    for (size_t i = q0; i < q1; i++)
+        s->lower[qk[i]] = qd[i] - fg[i];
 }
 
 static inline uint32_t skip_find(uint32_t *nxt, uint32_t p)
@@ -225,11 +309,16 @@ static void empty_bands(bf_support *s, size_t n, int mq)
             memcpy(bfill, bstart, (size_t)(mq + 2) * sizeof *bfill);
         }
     }
-    double wmin = INFINITY;
+    /* the narrowest strip, and the narrowest that the walls do not clip:
+     * a clipped strip (gamma = ax or delta = bx) fits only a gap that
+     * reaches the wall, so the gaps between two squares are tested
+     * against the unclipped width (about dx, where wmin is about dx/2) */
+    const double ax = s->p.box.ax, bx = s->p.box.bx;
+    double wmin = INFINITY, wint = INFINITY;
     for (size_t k = 0; k < n; k++) {
         double w = s->ds[k] - s->gs[k];
-        if (w < wmin)
-            wmin = w;
+        wmin = w < wmin ? w : wmin;
+        wint = w < wint && s->gs[k] > ax && s->ds[k] < bx ? w : wint;
         s->lowe[k] = mq + 1;
         nxt[k] = (uint32_t)k;
     }
@@ -243,10 +332,12 @@ static void empty_bands(bf_support *s, size_t n, int mq)
             double hi = k == e ? INFINITY : s->ls[blist[k]];
             /* rounding is monotone: a strip of width w fits only if the
              * rounded gap width is >= w */
-            if (!(hi - lo >= wmin))
+            if (!(hi - lo >= (lo <= ax || hi >= bx ? wmin : wint)))
                 continue;
-            size_t p0 = bsearch_pos(s->gs, 0, n, lo, 1);
-            size_t p1 = bsearch_pos(s->ds, 0, n, hi, 0);
+            /* the strips that fit lie between the gap's two squares in
+             * the x order (the searches start there) */
+            size_t p0 = k == a ? 0 : gallop_pos(s->gs, n, blist[k - 1], lo, 1);
+            size_t p1 = k == e ? n : gallop_pos(s->ds, n, blist[k], hi, 0);
             for (uint32_t j = skip_find(nxt, (uint32_t)p0); j < p1;
                  j = skip_find(nxt, j + 1)) {
                 s->lowe[j] = q;
@@ -346,7 +437,6 @@ static inline int fast_setup(bf_support *s, const double *sx,
     const bf_support_params *p = &s->p;
     uint32_t i = s->ord[k];
     double xi = sx[i], yi = sy[i];
-    s->ys[k] = yi;
     s->ls[k] = dmax(xi - s->hd, p->box.ax);
     s->rs[k] = dmin(xi + s->hd, p->box.bx);
     s->bs[k] = dmax(yi - s->hd, p->box.ay);
@@ -434,7 +524,7 @@ void bf_sup_eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
     /* the slots of the cell list in x order: the cell list is already
      * sorted by columns of cells, so the reads and writes through ord stay
      * within a column's block of slots (in the cache) */
-    sort_by_x(s, c->sx, n);
+    sort_by_x(s, c);
     int kmax = 0;
     if (pr) {
 #ifdef _OPENMP
@@ -450,7 +540,23 @@ void bf_sup_eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
             kmax = K > kmax ? K : kmax;
         }
     }
-    if (kmax >= 1) {
+    /* the empty bands first: a particle that falls freely through one
+     * asks the sweep nothing */
+    if (kmax >= 2) /* bands 1..kmax - 1, below every top band */
+        empty_bands(s, n, kmax - 1);
+    size_t nq = 0;
+    for (size_t k = 0; k < n; k++) {
+        const int K = s->ks[k];
+        s->qk[nq] = (uint32_t)k;
+        s->qK[nq] = K;
+        s->qg[nq] = s->gs[k];
+        s->qd[nq] = s->ds[k];
+        nq += K >= 1 && (s->exhaustive ||
+                         !(K >= 2 && s->lowe[k] <= K - 1)); /* fast_one */
+    }
+    s->qg[nq] = INFINITY; /* read, not used, at the end of the last chunk */
+    const size_t nu = nq > 0 ? sweep_updates(s, n) : 0;
+    if (nq > 0) {
         /* the chunks are independent (each has its own tree), so they run
          * in parallel with results independent of the thread count */
         const double w = p->box.bx - p->box.ax, chunk = 8.0 * p->dx;
@@ -463,19 +569,17 @@ void bf_sup_eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
             for (long ch = 0; ch < nch; ch++)
                 sweep_chunk(s, s->fen + (size_t)omp_get_thread_num() * fsz, n,
-                            kmax, p->box.ax + (double)ch * chunk,
+                            nu, nq, p->box.ax + (double)ch * chunk,
                             p->box.ax + (double)(ch + 1) * chunk,
                             ch == nch - 1);
 #endif
         } else {
             for (long ch = 0; ch < nch; ch++)
-                sweep_chunk(s, s->fen, n, kmax,
+                sweep_chunk(s, s->fen, n, nu, nq,
                             p->box.ax + (double)ch * chunk,
                             p->box.ax + (double)(ch + 1) * chunk,
                             ch == nch - 1);
         }
-        if (kmax >= 2) /* bands 1..kmax - 1, below every top band */
-            empty_bands(s, n, kmax - 1);
     }
     /* the sweep's results and the square edges in the order of the cell
      * list; then g in that order (neighbouring queries read neighbouring

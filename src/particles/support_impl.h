@@ -36,10 +36,16 @@ struct bf_support {
     int kmax;        /* largest K of a particle in the box */
     double *bz;      /* [kmax + 3]: the band edges z_q (line_z) */
     int threads;     /* OpenMP threads */
+    int exhaustive;  /* bf_support_set_exhaustive */
     double hd, hdx;  /* d/2, dx/2 */
     /* x-sorted order and geometry in that order (fast method) */
     uint32_t *ord, *binc; /* x order, bin counts */
-    double *ls, *rs, *bs, *ts, *gs, *ds, *ys;
+    double *ls, *rs, *bs, *ts, *gs, *ds;
+    uint32_t *qk;     /* the sorted positions that ask the sweep (x order) */
+    int32_t *qK;      /* their K */
+    double *qg, *qd;  /* their strip edges gamma, delta ([cap + 1]) */
+    double *uv, *uh;  /* the sweep's updates in order: x, signed height */
+    int32_t *ul;      /* and level (sweep_updates) */
     int32_t *ks, *mb, *mt; /* K; the first and last band with positive
                               height of the square (first_band, full_level) */
     int32_t *sl, *csl; /* sweep level: mt, or INT32_MAX for a square clipped
@@ -48,7 +54,7 @@ struct bf_support {
     double *lower; /* area of the squares entirely below z_K (the sweep) */
     double *cl, *cr, *cb, *ct; /* square edges in cell-list order */
     uint64_t *bm;              /* bands 1..64 each square reaches */
-    double *fgam;  /* F(gamma) while sweeping */
+    double *fgam;  /* F(gamma) while sweeping (by query) */
     int32_t *lowe; /* lowest empty band below the top band */
     uint32_t *nxt; /* skip list of particles without a lowest empty band */
     double *fen;   /* Fenwick tree over levels: 4 sums per node */

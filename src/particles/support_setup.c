@@ -111,7 +111,13 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->ts = malloc(k * sizeof *s->ts);
     s->gs = malloc(k * sizeof *s->gs);
     s->ds = malloc(k * sizeof *s->ds);
-    s->ys = malloc(k * sizeof *s->ys);
+    s->qk = malloc(k * sizeof *s->qk);
+    s->qK = malloc(k * sizeof *s->qK);
+    s->qg = malloc((k + 1) * sizeof *s->qg);
+    s->qd = malloc(k * sizeof *s->qd);
+    s->uv = malloc((2 * k + 1) * sizeof *s->uv);
+    s->uh = malloc((2 * k + 1) * sizeof *s->uh);
+    s->ul = malloc((2 * k + 1) * sizeof *s->ul);
     s->ks = malloc(k * sizeof *s->ks);
     s->mb = malloc(k * sizeof *s->mb);
     s->mt = malloc(k * sizeof *s->mt);
@@ -134,7 +140,8 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->area = malloc(nb * (size_t)s->threads * sizeof *s->area);
     s->cnt = malloc(nb * (size_t)s->threads * sizeof *s->cnt);
     if (!s->bz || !s->ord || !s->binc || !s->ls || !s->rs || !s->bs ||
-        !s->ts || !s->gs || !s->ds || !s->ys || !s->ks || !s->mb || !s->mt ||
+        !s->ts || !s->gs || !s->ds || !s->qk || !s->qK || !s->qg ||
+        !s->qd || !s->uv || !s->uh || !s->ul || !s->ks || !s->mb || !s->mt ||
         !s->sl || !s->csl || !s->lower || !s->cl || !s->cr || !s->cb ||
         !s->ct || !s->bm || !s->fgam ||
         !s->lowe || !s->nxt || !s->fen || !s->bstart || !s->bfill ||
@@ -147,6 +154,11 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
         s->bz[q] = line_z(&s->p, (int)q);
     *out = s;
     return BF_OK;
+}
+
+void bf_support_set_exhaustive(bf_support *s, int on)
+{
+    s->exhaustive = on != 0;
 }
 
 const bf_support_params *bf_support_params_of(const bf_support *s)
@@ -167,7 +179,13 @@ void bf_support_free(bf_support *s)
     free(s->ts);
     free(s->gs);
     free(s->ds);
-    free(s->ys);
+    free(s->qk);
+    free(s->qK);
+    free(s->qg);
+    free(s->qd);
+    free(s->uv);
+    free(s->uh);
+    free(s->ul);
     free(s->ks);
     free(s->mb);
     free(s->mt);
