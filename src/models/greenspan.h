@@ -40,4 +40,23 @@ bf_status bf_particles_set_var(bf_particles *p, const bf_box *box,
 void bf_particles_pack(const bf_particles *p, double *y);
 void bf_particles_unpack(bf_particles *p, const double *y);
 
+/* The keys of [greenspan72] and [greenspan73] integrator = arkode (ERK on
+ * the particles' ODE), rows of the section's bf_param table: members
+ * table, rtol, atol, max_step and max_steps of the keys struct T (needs
+ * ballfilm/params.h and integrators/arkode.h where it is used). */
+#define BF_PARTICLE_ARKODE_KEYS(T)                                             \
+    {"table", BF_AT(T, table, BF_ENUM), "", "ARKODE_DORMAND_PRINCE_7_4_5",    \
+     "integrator = arkode: ERK Butcher table", 0, 0, 0,                       \
+     BF_ARKODE_TABLE_CHOICES},                                                \
+    {"rtol", BF_AT(T, rtol, BF_REAL), "1", "1e-8",                             \
+     "integrator = arkode: relative tolerance", BF_POS, 0, 0, NULL},          \
+    {"atol", BF_AT(T, atol, BF_REAL), "cm, cm/s", "1e-10",                     \
+     "integrator = arkode: absolute tolerance", BF_POS, 0, 0, NULL},          \
+    {"max_step", BF_AT(T, max_step, BF_REAL), "s", "0",                        \
+     "integrator = arkode: largest internal step (0: none)", BF_NONNEG, 0, 0, \
+     NULL},                                                                   \
+    {"max_steps", BF_AT(T, max_steps, BF_INT), "1", "1000000",                 \
+     "integrator = arkode: internal steps allowed per [scene] dt", BF_MIN, 1, \
+     0, NULL}
+
 #endif

@@ -148,19 +148,7 @@ static const bf_param g72_params[] = {
      "[scene] dt, the walls applied there; its velocities are at t, not "
      "t - dt/2)",
      0, 0, 0, "leapfrog|arkode"},
-    {"table", BF_AT(g72_keys, table, BF_ENUM), "",
-     "ARKODE_DORMAND_PRINCE_7_4_5", "integrator = arkode: ERK Butcher table",
-     0, 0, 0, BF_ARKODE_TABLE_CHOICES},
-    {"rtol", BF_AT(g72_keys, rtol, BF_REAL), "1", "1e-8",
-     "integrator = arkode: relative tolerance", BF_POS, 0, 0, NULL},
-    {"atol", BF_AT(g72_keys, atol, BF_REAL), "cm, cm/s", "1e-10",
-     "integrator = arkode: absolute tolerance", BF_POS, 0, 0, NULL},
-    {"max_step", BF_AT(g72_keys, max_step, BF_REAL), "s", "0",
-     "integrator = arkode: largest internal step (0: none)", BF_NONNEG, 0, 0,
-     NULL},
-    {"max_steps", BF_AT(g72_keys, max_steps, BF_INT), "1", "1000000",
-     "integrator = arkode: internal steps allowed per [scene] dt", BF_MIN, 1,
-     0, NULL},
+    BF_PARTICLE_ARKODE_KEYS(g72_keys),
     {0},
 };
 
