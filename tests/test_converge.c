@@ -7,7 +7,8 @@
  *  - The reference is independent of the compared methods and its own
  *    error estimate is far below the errors it judges.
  *  - Failed runs are reported as failed, not dropped or averaged in.
- *  - A model without a study is refused, naming the model and why.
+ *  (Every model of the catalog has a study; the coupled one is in
+ *  test_converge_coupled.c.)
  */
 #include <math.h>
 #include <stdlib.h>
@@ -115,31 +116,6 @@ START_TEST(failed_runs_are_reported)
 }
 END_TEST
 
-/* A model without a study is refused before any run, the message naming
- * the model and why (coupled: no ARKODE reference on the whole system
- * yet); exit status 2 from the program. */
-START_TEST(model_without_study_refused_naming_why)
-{
-    const char *m[] = {"verlet"};
-    bf_converge_opts o = {.methods = m, .nmethods = 1, .repeats = -1};
-    bf_err err = {0};
-    bf_converge_result *r = NULL;
-    ck_assert_int_eq(bf_converge_file(tu_repo("runs/coupled_fig8.ini"), NULL,
-                                      0, &o, &r, &err),
-                     BF_EINPUT);
-    ck_assert(r == NULL);
-    ck_assert_msg(strstr(err.msg, "model 'coupled'") &&
-                      strstr(err.msg, "not built"),
-                  "%s", err.msg);
-    char *e = NULL;
-    int rc = tu_run(NULL, &e, "converge", tu_repo("runs/coupled_fig8.ini"),
-                    "--methods", "verlet", "-q", NULL);
-    ck_assert_msg(rc == 2 && strstr(e, "model 'coupled'"), "exit %d: %s", rc,
-                  e);
-    free(e);
-}
-END_TEST
-
 /* mac: a self-convergence study (study_mac.c; no ARKODE reference, the
  * pressure solve being a constraint).  The reservoir with a prescribed
  * inflow and the exact pressure solve over T = 0.1 (runs/stratres.ini's
@@ -198,7 +174,6 @@ Suite *suite_converge(void)
     tcase_add_test(tc, harmonic_orders_through_the_program);
     tcase_add_test(tc, reference_is_independent_and_accurate);
     tcase_add_test(tc, failed_runs_are_reported);
-    tcase_add_test(tc, model_without_study_refused_naming_why);
     tcase_add_test(tc, mac_self_convergence_first_order);
     suite_add_tcase(s, tc);
     return s;

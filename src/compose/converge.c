@@ -31,8 +31,19 @@ static bf_status method_scene(const bf_converge_priv *P, const char *method,
         bf_scene_free(sc);
         return bf_fail(err, BF_EINPUT, "bad method '%s'", method);
     }
-    snprintf(buf, sizeof buf, "%s=%.*s", P->S->method_key, (int)len, method);
-    bf_status st = bf_scene_set(sc, buf, "--methods", err);
+    /* the method's name sets method_key, or what the study's method_sets
+     * makes of it */
+    char sets[2][96] = {{0}, {0}};
+    size_t nsets = 1;
+    char name[64];
+    snprintf(name, sizeof name, "%.*s", (int)len, method);
+    if (P->S->method_sets)
+        nsets = P->S->method_sets(name, sets);
+    else
+        snprintf(sets[0], sizeof sets[0], "%s=%s", P->S->method_key, name);
+    bf_status st = BF_OK;
+    for (size_t k = 0; k < nsets && !st; k++)
+        st = bf_scene_set(sc, sets[k], "--methods", err);
     for (const char *p = colon; !st && p && *p;) {
         p++;
         const char *q = strchr(p, ':');

@@ -46,6 +46,9 @@ typedef struct bf_study_type {
      * the difference to the run at [scene] dt / (2K), which is the
      * reference's rows. */
     int self_reference;
+    /* Optional: the assignments ("section.key=value", one or two) that a
+     * method's name makes (NULL: method_key=name); returns how many. */
+    size_t (*method_sets)(const char *name, char sets[2][96]);
     /* 1 if the method of the resolved scene sc steps adaptively */
     int (*adaptive)(const bf_scene *sc);
     /* The reference's method string for this study (the driver sets its

@@ -44,6 +44,14 @@ struct bf_ark1 {
     bf_counters base; /* counted before a checkpoint was loaded */
     int failed; /* a right-hand side asked to stop */
     char msg[512];
+    /* kinks (ERK, bf_ark1_set_kinks): g, its size, the roots found, and
+     * the states at the start (prev) and end (cur) of the last step */
+    bf_root1_fn g;
+    int ng;
+    int *found;
+    double tprev, tcur;
+    double *yprev, *ycur;
+    unsigned long long restarts;
 };
 
 static int rhs_e(realtype t, N_Vector y, N_Vector yd, void *ud)
@@ -112,6 +120,9 @@ void bf_ark1_free(bf_ark1 *a)
         N_VDestroy(a->y);
     if (a->sunctx)
         SUNContext_Free(&a->sunctx);
+    free(a->found);
+    free(a->yprev);
+    free(a->ycur);
     free(a);
 }
 
@@ -205,6 +216,9 @@ static bf_status create_mri(bf_ark1 *a, bf_err *err)
         flag = ARKStepSStolerances(a->inner, a->o.rtol, a->o.atol);
     if (flag >= 0)
         flag = ARKStepSetMaxNumSteps(a->inner, a->o.max_steps);
+
+    if (flag >= 0 && a->o.max_step > 0)
+        flag = ARKStepSetMaxStep(a->inner, a->o.max_step);
     if (flag >= 0)
         flag = ARKStepCreateMRIStepInnerStepper(a->inner, &a->stepper);
     if (flag < 0)
@@ -275,9 +289,113 @@ static const stepper_fns steppers[3] = {
                      NULL},
 };
 
+/* MRI: new MRIStep and inner ARKStep memories, the counters so far kept
+ * in base.  The inner ARKStep keeps state across the resets MRIStep makes
+ * at every slow stage (its step count, on which its first-step growth
+ * depends, and its controller's error history) that a checkpoint cannot
+ * hold; made anew for every call, a run continued from a checkpoint
+ * takes the same inner steps as the run that was not interrupted. */
+static bf_status mri_renew(bf_ark1 *a, bf_err *err)
+{
+    bf_counters c;
+    bf_ark1_counters(a, &c);
+    a->base = c;
+    MRIStepFree(&a->mem);
+    MRIStepInnerStepper_Free(&a->stepper);
+    ARKStepFree(&a->inner);
+    return create_mri(a, err);
+}
+
+/* ------------------------------------------------------------ kinks */
+
+static int root_cb(realtype t, N_Vector y, realtype *g, void *ud)
+{
+    bf_ark1 *a = ud;
+    return a->g(a->ctx, t, N_VGetArrayPointer(y), g);
+}
+
+/* after every accepted step: its start and end */
+static int post_cb(realtype t, N_Vector y, void *ud)
+{
+    bf_ark1 *a = ud;
+    double *p = a->yprev;
+    a->yprev = a->ycur;
+    a->ycur = p;
+    a->tprev = a->tcur;
+    a->tcur = t;
+    memcpy(a->ycur, N_VGetArrayPointer(y), a->n * sizeof *a->ycur);
+    return 0;
+}
+
+static int roots_on(bf_ark1 *a, int on)
+{
+    int flag = ERKStepRootInit(a->mem, on ? a->ng : 0, on ? root_cb : NULL);
+    if (flag >= 0 && on)
+        flag = ERKStepSetNoInactiveRootWarn(a->mem);
+    return flag;
+}
+
+bf_status bf_ark1_set_kinks(bf_ark1 *a, int n, bf_root1_fn g, bf_err *err)
+{
+    if (a->o.kind != BF_ARK1_ERK || n < 1)
+        return bf_fail(err, BF_EINTERNAL, "kinks need the ERK kind and a "
+                       "root function");
+    a->g = g;
+    a->ng = n;
+    a->found = calloc((size_t)n, sizeof *a->found);
+    a->yprev = calloc(a->n, sizeof *a->yprev);
+    a->ycur = calloc(a->n, sizeof *a->ycur);
+    if (!a->found || !a->yprev || !a->ycur)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    int flag = roots_on(a, 1);
+    if (flag >= 0)
+        flag = ERKStepSetPostprocessStepFn(a->mem, post_cb);
+    return check(a, flag, "rootfinding setup", err);
+}
+
+/* A kink at tr inside the last step (tprev, tcur]: the state at tr is not
+ * ARKODE's interpolant (whose error across a kink is not controlled) but
+ * the integration again from the step's start to tr with tr as the stop
+ * time and no rootfinding, steps that end on the kink instead of crossing
+ * it; then ERKStep restarts at tr with the roots on. */
+static int restart_at(bf_ark1 *a, double tr, double tend)
+{
+    double h = 0.0, tret = a->tprev;
+    ERKStepGetCurrentStep(a->mem, &h);
+    memcpy(N_VGetArrayPointer(a->y), a->yprev, a->n * sizeof(double));
+    a->tcur = a->tprev;
+    memcpy(a->ycur, a->yprev, a->n * sizeof(double));
+    int flag = roots_on(a, 0);
+    if (flag >= 0)
+        flag = ERKStepSetInitStep(a->mem, h);
+    if (flag >= 0)
+        flag = ERKStepReset(a->mem, a->tprev, a->y);
+    if (flag >= 0)
+        flag = ERKStepSetStopTime(a->mem, tr);
+    if (flag >= 0 && tr > a->tprev)
+        flag = ERKStepEvolve(a->mem, tr, a->y, &tret, ARK_NORMAL);
+    if (flag >= 0)
+        flag = roots_on(a, 1);
+    if (flag >= 0)
+        flag = ERKStepReset(a->mem, tr, a->y);
+    if (flag >= 0)
+        flag = ERKStepSetStopTime(a->mem, tend);
+    a->tcur = tr;
+    memcpy(a->ycur, N_VGetArrayPointer(a->y), a->n * sizeof(double));
+    a->restarts++;
+    return flag;
+}
+
+unsigned long long bf_ark1_restarts(const bf_ark1 *a) { return a->restarts; }
+
 bf_status bf_ark1_evolve(bf_ark1 *a, double t, double tend, double *y,
                          bf_err *err)
 {
+    if (a->o.kind == BF_ARK1_MRI) {
+        bf_status st = mri_renew(a, err);
+        if (st)
+            return st;
+    }
     double *yy = N_VGetArrayPointer(a->y);
     memcpy(yy, y, a->n * sizeof *yy);
     a->failed = 0;
@@ -291,8 +409,24 @@ bf_status bf_ark1_evolve(bf_ark1 *a, double t, double tend, double *y,
         flag = S->reset(a->mem, t, a->y);
     if (flag >= 0)
         flag = S->stop_time(a->mem, tend);
-    if (flag >= 0)
+    if (a->g) {
+        a->tcur = t;
+        memcpy(a->ycur, yy, a->n * sizeof *yy);
+    }
+    /* with kinks: a restart at each root (a root that keeps coming back,
+     * 1e7 times in one call, is a failure) */
+    for (long restarts = 0; flag >= 0;) {
         flag = S->evolve(a->mem, tend, a->y, &tret, ARK_NORMAL);
+        if (flag != ARK_ROOT_RETURN || tret >= tend)
+            break;
+        if (++restarts > 10000000) {
+            flag = ARK_TOO_MUCH_WORK;
+            break;
+        }
+        flag = restart_at(a, tret, tend);
+    }
+    if (flag == ARK_ROOT_RETURN)
+        flag = ARK_SUCCESS;
     if (flag >= 0 && S->current_step)
         S->current_step(a->mem, &a->h_next);
     if (flag < 0) {
@@ -362,7 +496,7 @@ void bf_ark1_describe(const bf_ark1 *a, char *buf, size_t cap)
     else
         snprintf(buf, cap, "MRI order %d slow step %g, fast ERK %s rtol=%g",
                  a->order, a->o.slow_step, tab, a->o.rtol);
-    if (a->o.max_step > 0 && a->o.kind != BF_ARK1_MRI)
+    if (a->o.max_step > 0)
         snprintf(buf + strlen(buf), cap - strlen(buf), " hmax=%g",
                  a->o.max_step);
 }

@@ -55,6 +55,17 @@ void bf_ark1_free(bf_ark1 *a);
 bf_status bf_ark1_evolve(bf_ark1 *a, double t, double tend, double *y,
                          bf_err *err);
 
+/* Kinks of the right-hand side (ERK only): where a component of g(t, y)
+ * (n of them) changes sign inside a step, the integration restarts there:
+ * the state at the root is integrated again from the step's start with
+ * the root as the stop time, so that no step straddles it (as the balls'
+ * ARKODE adapter does at contacts, integrators/arkode.c).  Returns 0 or
+ * < 0 to stop. */
+typedef int (*bf_root1_fn)(void *ctx, double t, const double *y, double *g);
+bf_status bf_ark1_set_kinks(bf_ark1 *a, int n, bf_root1_fn g, bf_err *err);
+/* The restarts at kinks so far (not kept in checkpoints). */
+unsigned long long bf_ark1_restarts(const bf_ark1 *a);
+
 /* steps (slow steps for MRI), evaluations of fe and fi (those of the
  * difference-quotient Jacobian included), rejected steps, Newton
  * iterations (IMEX) or fast steps (MRI); summed over all calls. */

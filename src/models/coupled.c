@@ -56,6 +56,7 @@
 #include "coupling/force.h"
 #include "coupling/mu_cpl.h"
 #include "diag/lyapsum.h"
+#include "integrators/arkode.h"
 #include "models/ballsys.h"
 #include "models/coupled.h"
 #include "models/coupled_impl.h"
@@ -70,6 +71,7 @@ typedef struct coupled_keys {
     double probe;    /* cm */
     long map_ball, map_pivot, peak_ball; /* 1-based; 0: the default */
     int symmetrize, timing;
+    bf_coupled_whole_keys whole; /* scheme and its ARKODE keys */
 } coupled_keys;
 
 static const bf_param coupled_params[] = {
@@ -117,6 +119,37 @@ static const bf_param coupled_params[] = {
      "/coupled/sym_correction records the largest change. no: the paper's "
      "scheme",
      0, 0, 0, NULL},
+    {"scheme", BF_AT(coupled_keys, whole.scheme, BF_ENUM), "", "split",
+     "time integration. split: the paper's explicit coupling, the balls by "
+     "[scene] integrator, the film by [film] scheme every film_every steps; "
+     "arkode: ARKODE's adaptive ERK on the whole system (balls and the film "
+     "in method-of-lines form, one ODE) inside each [scene] dt, the "
+     "reference of the convergence study; mri: ARKODE's MRIStep, the film "
+     "the slow part at the fixed step [scene] dt, the balls the fast part "
+     "by an adaptive inner ERK (docs/models/coupled.md)",
+     0, 0, 0, "split|arkode|mri"},
+    {"table", BF_AT(coupled_keys, whole.table, BF_ENUM), "",
+     "ARKODE_DORMAND_PRINCE_7_4_5",
+     "scheme = arkode: the ERK Butcher table; mri: the inner (fast) ERK's",
+     0, 0, 0, BF_ARKODE_TABLE_CHOICES},
+    {"mri_order", BF_AT(coupled_keys, whole.mri_order, BF_INT), "1", "3",
+     "scheme = mri: order of MRIStep's slow coupling (3 or 4)",
+     BF_MIN | BF_MAX, 3, 4, NULL},
+    {"rtol", BF_AT(coupled_keys, whole.rtol, BF_REAL), "1", "1e-8",
+     "scheme = arkode, mri (its inner ERK): relative tolerance of the local "
+     "error", BF_POS, 0, 0, NULL},
+    {"atol", BF_AT(coupled_keys, whole.atol, BF_REAL), "cm, cm/s", "1e-11",
+     "scheme = arkode, mri (its inner ERK): absolute tolerance of every "
+     "component (ball x and v, film alpha_k h and u_k)", BF_POS, 0, 0, NULL},
+    {"max_step", BF_AT(coupled_keys, whole.max_step, BF_REAL), "s", "0",
+     "scheme = arkode, mri (its inner ERK): largest internal step (0: "
+     "none; a contact shorter than the steps between two stages can be "
+     "missed in free flight, whose error estimate is small)",
+     BF_NONNEG, 0, 0, NULL},
+    {"max_steps", BF_AT(coupled_keys, whole.max_steps, BF_INT), "1",
+     "1000000",
+     "scheme = arkode, mri: internal steps allowed per [scene] dt", BF_MIN, 1,
+     0, NULL},
     {"timing", BF_AT(coupled_keys, timing, BF_BOOL), "", "false",
      "measure the wall time of balls, film and coupling separately (bench)",
      BF_HIDDEN, 0, 0, NULL},
@@ -133,6 +166,7 @@ static void coupled_destroy(void *self)
     if (!m)
         return;
     coupled_destroy(m->shadow);
+    bf_coupled_whole_free(m->whole);
     free(m->ly);
     bf_ballsys_free(m->sys);
     bf_coupling_free(m->cpl);
@@ -248,13 +282,15 @@ static bf_status coupled_build(coupled_model **self,
     m->timing = k->timing;
     m->sym = k->symmetrize;
     m->probe = k->probe;
+    /* the whole-system schemes never step the film by its own scheme */
+    const int whole = k->whole.scheme != BF_COUPLED_SPLIT;
     st = bf_filmsys_create(&m->fs, fk, &setup->run,
-                                     m->dynamic ? m->every : 0, err);
+                           m->dynamic && !whole ? m->every : 0, err);
     if (st) {
         free(m);
         return st;
     }
-    if (adaptive)
+    if (adaptive || whole)
         bf_filmsys_step_varies(m->fs);
     const bf_coupling_keys *ck = coupling_keys(setup);
     size_t nballs;
@@ -313,6 +349,12 @@ static bf_status coupled_build(coupled_model **self,
         coupled_destroy(m);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
+    if (whole && (st = bf_coupled_whole_create(m, &k->whole, k->film_every,
+                                               fk->scheme, setup->run.dt,
+                                               err))) {
+        coupled_destroy(m);
+        return st;
+    }
     if (adaptive && m->dynamic &&
         (st = bf_coupled_mr_init(m, k->multirate_tol, k->film_every_max,
                                  setup->run.nsteps, err))) {
@@ -322,6 +364,12 @@ static bf_status coupled_build(coupled_model **self,
     for (int q = 0; q < BF_COUPLED_NSYM; q++)
         m->sym_t[q] = NAN;
     const bf_lyap_keys *lk = bf_setup_get(setup, &bf_lyap_spec, NULL);
+    if (whole && lk->enabled) {
+        coupled_destroy(m);
+        return bf_fail_key(err, BF_EINPUT, "lyapunov", "enabled",
+                           "the Lyapunov shadow works with [coupled] scheme "
+                           "= split only");
+    }
     if (with_shadow && lk->enabled &&
         (st = shadow_create(m, setup, err))) {
         coupled_destroy(m);
@@ -357,6 +405,10 @@ static bf_status coupled_step(void *self, long n, double t, double dt,
     double c0 = 0, c1 = 0, c2 = 0, c3 = 0;
     memcpy(m->x0, s->b.x, m->nb * sizeof(double));
     memcpy(m->v0, s->b.v, m->nb * sizeof(double));
+    if (m->whole) {
+        bf_status st = bf_coupled_whole_step(m, t, dt, err);
+        return st ? st : bf_coupled_events(m, t, dt, err);
+    }
     if (m->timing)
         c0 = bf_wall_time();
     /* mu_cpl from the balls at level n (at the start of a film step) */
@@ -538,13 +590,18 @@ static bf_status coupled_output_close(void *self, bf_out *out, bf_err *err)
 static void coupled_counters(const void *self, bf_counters *c)
 {
     const coupled_model *m = self;
-    *c = m->sys->it->count;
+    if (m->whole)
+        bf_coupled_whole_counters(m->whole, c);
+    else
+        *c = m->sys->it->count;
 }
 
 static void coupled_report(const void *self, FILE *f)
 {
     const coupled_model *m = self;
     bf_filmsys_report(m->fs, f);
+    if (m->whole)
+        bf_coupled_whole_report(m->whole, f);
     unsigned long long ex, ta;
     bf_coupling_counts(m->cpl, &ex, &ta);
     fprintf(f, "coupling: %llu exact and %llu Taylor evaluations of F; "
@@ -621,6 +678,8 @@ static bf_status save_state(const coupled_model *m, bf_ckpt *ck,
         st = bf_ckpt_put_fields(ck, n.own, sym_fields, 1, m, err);
     if (!st)
         st = bf_coupled_mr_save(m, ck, n.own, err);
+    if (!st && m->whole)
+        st = bf_coupled_whole_save(m->whole, ck, n.own, err);
     return st;
 }
 
@@ -642,6 +701,8 @@ static bf_status load_state(coupled_model *m, const bf_ckpt *ck,
         st = bf_ckpt_get_fields(ck, n.own, sym_fields, 1, m, err);
     if (!st)
         st = bf_coupled_mr_load(m, ck, n.own, err);
+    if (!st && m->whole)
+        st = bf_coupled_whole_load(m->whole, ck, n.own, err);
     return st;
 }
 
@@ -741,4 +802,39 @@ bf_status bf_coupled_sim_parts(bf_sim *sim, bf_coupled_parts *run,
     parts_of(m, run);
     parts_of(m->shadow, shadow);
     return BF_OK;
+}
+
+void bf_coupled_model_parts(void *model, bf_coupled_parts *p)
+{
+    parts_of(model, p);
+}
+
+bf_filmsys *bf_coupled_model_filmsys(void *model)
+{
+    return ((coupled_model *)model)->fs;
+}
+
+void bf_coupled_model_describe(void *model, char *buf, size_t cap,
+                               int *order)
+{
+    coupled_model *m = model;
+    if (m->whole) {
+        bf_coupled_whole_describe(m->whole, buf, cap, order);
+        return;
+    }
+    char b[200], f[200];
+    int fo = 0;
+    bf_integrator_describe(m->sys->it, b, sizeof b);
+    bf_filmsys_describe(m->fs, f, sizeof f, &fo);
+    *order = bf_integrator_order(m->sys->it);
+    if (!m->dynamic) {
+        snprintf(buf, cap, "split %s, static film", b);
+        return;
+    }
+    if (m->adaptive)
+        snprintf(buf, cap, "split %s, %s every auto steps", b, f);
+    else
+        snprintf(buf, cap, "split %s, %s every %ld steps", b, f, m->every);
+    /* the film's lag behind the balls is first order in dt */
+    *order = 1;
 }

@@ -22,4 +22,16 @@ typedef struct bf_coupled_parts {
 bf_status bf_coupled_sim_parts(bf_sim *sim, bf_coupled_parts *run,
                                bf_coupled_parts *shadow);
 
+/* The same for a model built from a scene (bf_model_from_scene; model:
+ * its self pointer, of the type bf_model_coupled), without the shadow. */
+void bf_coupled_model_parts(void *model, bf_coupled_parts *p);
+/* Its film system (the phase fluxes of the convergence study). */
+struct bf_filmsys *bf_coupled_model_filmsys(void *model);
+/* Its time integration in one line and the nominal order in dt: split,
+ * the ball integrator's with the film scheme's (the coupling's lag and the
+ * invariant film scheme are first order: 1 with a dynamic film); arkode,
+ * mri: the whole system's integrator. */
+void bf_coupled_model_describe(void *model, char *buf, size_t cap,
+                               int *order);
+
 #endif

@@ -24,6 +24,18 @@
 enum { BF_COUPLED_NSYM = 4 };
 extern const double bf_coupled_sym_levels[BF_COUPLED_NSYM];
 
+/* [coupled] scheme and the keys of its ARKODE schemes (coupled_whole.c). */
+enum { BF_COUPLED_SPLIT = 0, BF_COUPLED_ARKODE = 1, BF_COUPLED_MRI = 2 };
+typedef struct bf_coupled_whole_keys {
+    int scheme;     /* BF_COUPLED_* */
+    int table;      /* ERK table (integrators/arkode.h) */
+    long mri_order; /* 3, 4 */
+    double rtol, atol, max_step;
+    long max_steps;
+} bf_coupled_whole_keys;
+
+typedef struct bf_coupled_whole bf_coupled_whole;
+
 /* One coupled system (the run, or its Lyapunov shadow). */
 typedef struct coupled_model {
     bf_filmsys *fs;
@@ -32,6 +44,8 @@ typedef struct coupled_model {
     struct coupled_model *shadow;
     bf_ballsys *sys;
     bf_coupling *cpl;
+    /* scheme = arkode, mri: the whole system's integrator (NULL: split) */
+    bf_coupled_whole *whole;
     int dynamic, timing, sym;
     long every;             /* film_every = K (fixed multirate) */
     /* film_every = auto (coupled_multirate.c): the current film step, a
@@ -111,6 +125,35 @@ bf_status bf_coupled_mr_save(const coupled_model *m, bf_ckpt *ck,
                              const char *name, bf_err *err);
 bf_status bf_coupled_mr_load(coupled_model *m, const bf_ckpt *ck,
                              const char *name, bf_err *err);
+
+/* ---- coupled_whole.c ---- */
+
+/* scheme = arkode or mri: ARKODE on the balls and the film in
+ * method-of-lines form as one system (m's balls, film and coupling made;
+ * the film never stepped by its own scheme).  Refuses what it does not
+ * serve, naming the key: a static film, symmetrize, [lyapunov], film_every
+ * other than 1, a [film] scheme other than invariant.  dt: [scene] dt. */
+bf_status bf_coupled_whole_create(coupled_model *m,
+                                  const bf_coupled_whole_keys *k,
+                                  const char *film_every, int film_scheme,
+                                  double dt, bf_err *err);
+void bf_coupled_whole_free(bf_coupled_whole *w);
+/* The step t -> t + dt of balls and film (m->x0, m->v0 hold the start);
+ * the coupling refreshed to the film at its end. */
+bf_status bf_coupled_whole_step(coupled_model *m, double t, double dt,
+                                bf_err *err);
+void bf_coupled_whole_counters(const bf_coupled_whole *w, bf_counters *c);
+/* "arkode ERK DORMAND_PRINCE_7_4_5 rtol=... (whole system)" and the
+ * nominal order. */
+void bf_coupled_whole_describe(const bf_coupled_whole *w, char *buf,
+                               size_t cap, int *order);
+void bf_coupled_whole_report(const bf_coupled_whole *w, FILE *f);
+/* Checkpoints: the next initial step and the counters (name: the model's
+ * entry, "coupled"). */
+bf_status bf_coupled_whole_save(const bf_coupled_whole *w, bf_ckpt *ck,
+                                const char *name, bf_err *err);
+bf_status bf_coupled_whole_load(bf_coupled_whole *w, const bf_ckpt *ck,
+                                const char *name, bf_err *err);
 
 /* ---- coupled_lyapunov.c ---- */
 

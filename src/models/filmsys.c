@@ -715,6 +715,9 @@ void bf_filmsys_report(const bf_filmsys *fs, FILE *out)
     else if (fs->film_dt > 0)
         fprintf(out, "film: stable dt now %.4g s (film step %g s)\n", lim,
                 fs->film_dt);
+    else if (fs->step_varies)
+        fprintf(out, "film: integrated with the balls as one system (the "
+                     "scheme lines)\n");
     else
         fprintf(out, "film: static (never stepped)\n");
     if (fs->kink)

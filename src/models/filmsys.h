@@ -79,7 +79,8 @@ bf_status bf_filmsys_create(bf_filmsys **out, const bf_film_keys *k,
                             bf_err *err);
 void bf_filmsys_free(bf_filmsys *fs);
 /* The film's step is chosen by its driver step by step (the coupled
- * model's film_every = auto): the report names no fixed film step. */
+ * model's film_every = auto, or with film_every 0 its whole-system
+ * schemes): the report names no fixed film step. */
 void bf_filmsys_step_varies(bf_filmsys *fs);
 
 /* The largest [scene] dt the film's step allows (model.h's stable_dt):
