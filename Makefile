@@ -411,6 +411,11 @@ converge-figures: $(PROG) | deps deps-plot
 	    --dt 0.02,0.01,0.005,0.0025 -o out/converge_greenspan73.h5
 	$(PY) plots/work_precision.py out/converge_greenspan73.h5 \
 	    -o out/work_precision_greenspan73.png
+	$(PROG) converge runs/coupled_fig8.ini \
+	    --methods mv2m,rk4,mv2m:film_every=10,mv2m:film_every=auto -q \
+	    --t-end 0.25 --dt 4e-5,2e-5,1e-5,5e-6 -o out/converge_coupled.h5
+	$(PY) plots/work_precision.py out/converge_coupled.h5 --group q_d \
+	    -o out/work_precision_coupled.png
 # Yasuda Fig. 5: the perturbed kink, 1000 s at dt = 1e-3 s (10^6 steps),
 # and the space-time picture of psi.
 fig5: $(PROG) | deps deps-plot
