@@ -143,6 +143,8 @@ START_TEST(whole_system_refusals_name_the_key)
     refused("coupled.scheme=mri", "film.scheme=arkode", "[film] scheme");
     refused("coupled.scheme=arkode", "coupled.symmetrize=yes",
             "[coupled] symmetrize");
+    /* mri's slow step is [scene] dt: the film's explicit stable limit */
+    refused("coupled.scheme=mri", "scene.dt=1e-2", "film's stable limit");
 }
 END_TEST
 

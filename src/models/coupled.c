@@ -282,15 +282,22 @@ static bf_status coupled_build(coupled_model **self,
     m->timing = k->timing;
     m->sym = k->symmetrize;
     m->probe = k->probe;
-    /* the whole-system schemes never step the film by its own scheme */
+    /* the whole-system schemes never step the film by its own scheme;
+     * mri's slow step is [scene] dt, limited by the film's stable step
+     * (that of the invariant scheme, a bound for MRIStep's explicit slow
+     * stages too: both are limited by the gravity-wave CFL and the
+     * phase-separation dx^2 limit, bf_film_stable_dt), arkode chooses
+     * its own steps */
     const int whole = k->whole.scheme != BF_COUPLED_SPLIT;
-    st = bf_filmsys_create(&m->fs, fk, &setup->run,
-                           m->dynamic && !whole ? m->every : 0, err);
+    const long film_steps = !m->dynamic ? 0
+                            : !whole ? m->every
+                            : k->whole.scheme == BF_COUPLED_MRI ? 1 : 0;
+    st = bf_filmsys_create(&m->fs, fk, &setup->run, film_steps, err);
     if (st) {
         free(m);
         return st;
     }
-    if (adaptive || whole)
+    if (adaptive || (whole && film_steps == 0))
         bf_filmsys_step_varies(m->fs);
     const bf_coupling_keys *ck = coupling_keys(setup);
     size_t nballs;
