@@ -81,6 +81,13 @@ const char *bf_study_why_not(const char *model);
 void bf_study_particles_view(const bf_particles *p, int velocities,
                              bf_study_view *v);
 
+/* Shared by the film and coupled studies (study_film.c): the film's
+ * groups psi (1), h (cm), q_d, q_c (cm^2/s) appended to v, and its phase
+ * totals as the invariants; the note on a randomly perturbed start. */
+struct bf_filmsys;
+void bf_study_film_groups(struct bf_filmsys *fs, bf_study_view *v);
+void bf_study_perturbation_note(const bf_scene *sc, char *buf, size_t cap);
+
 /* Shared by the studies: the reference table among candidates (ARKODE
  * names, in order of preference) that no compared method uses.  A method
  * uses a table when its name is one of `names` (NULL-terminated: the

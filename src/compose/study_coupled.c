@@ -68,24 +68,17 @@ static void coupled_view(void *model, bf_study_view *v)
 {
     bf_coupled_parts p;
     bf_coupled_model_parts(model, &p);
-    bf_filmsys *fs = bf_coupled_model_filmsys(model);
     memset(v, 0, sizeof *v);
-    v->ngroups = 6;
-    static const char *const names[6] = {"x", "v", "psi", "h", "q_d", "q_c"};
-    static const char *const units[6] = {"cm", "cm/s", "1", "cm", "cm^2/s",
-                                         "cm^2/s"};
-    const double *data[6] = {p.sys->b.x, p.sys->b.v, bf_film_psi(p.film),
-                             bf_film_h(p.film), bf_filmsys_phase_flux(fs, 0),
-                             bf_filmsys_phase_flux(fs, 1)};
-    for (size_t g = 0; g < 6; g++) {
-        v->g[g].name = names[g];
-        v->g[g].unit = units[g];
-        v->g[g].a = data[g];
-        /* out of memory: an empty group, which the driver refuses */
-        v->g[g].n = !data[g] ? 0 : g < 2 ? p.sys->b.n : bf_film_nodes(p.film);
-    }
-    v->ninv = 2;
-    bf_film_totals(p.film, &v->inv[0], &v->inv[1]);
+    v->ngroups = 2;
+    v->g[0].name = "x";
+    v->g[0].unit = "cm";
+    v->g[0].a = p.sys->b.x;
+    v->g[0].n = p.sys->b.n;
+    v->g[1].name = "v";
+    v->g[1].unit = "cm/s";
+    v->g[1].a = p.sys->b.v;
+    v->g[1].n = p.sys->b.n;
+    bf_study_film_groups(bf_coupled_model_filmsys(model), v);
 }
 
 static void coupled_notes(const bf_scene *sc, char *buf, size_t cap)
@@ -105,16 +98,7 @@ static void coupled_notes(const bf_scene *sc, char *buf, size_t cap)
                  "integrator alone (the arkode and mri schemes refuse a "
                  "static film).\n");
     }
-    if (bf_scene_real(sc, "film", "perturbation") > 0) {
-        l = strlen(buf);
-        snprintf(buf + l, cap - l,
-                 "note: the start has a random perturbation of the volume "
-                 "fractions ([film] perturbation = %g): grid-scale noise has "
-                 "no smooth limit in dt, so the observed orders are not the "
-                 "methods' orders; --set film.perturbation=0 switches it "
-                 "off.\n",
-                 bf_scene_real(sc, "film", "perturbation"));
-    }
+    bf_study_perturbation_note(sc, buf, cap);
 }
 
 const bf_study_type bf_study_coupled = {

@@ -37,26 +37,31 @@ static int film_adaptive(const bf_scene *sc)
     return strcmp(bf_scene_str(sc, "film", "scheme"), "invariant") != 0;
 }
 
-static void film_view(void *model, bf_study_view *v)
+void bf_study_film_groups(bf_filmsys *fs, bf_study_view *v)
 {
-    const bf_film *f = bf_filmsys_film(model);
+    const bf_film *f = bf_filmsys_film(fs);
     static const char *const names[4] = {"psi", "h", "q_d", "q_c"};
     static const char *const units[4] = {"1", "cm", "cm^2/s", "cm^2/s"};
     const double *data[4] = {bf_film_psi(f), bf_film_h(f),
-                             bf_filmsys_phase_flux(model, 0),
-                             bf_filmsys_phase_flux(model, 1)};
-    memset(v, 0, sizeof *v);
-    v->ngroups = 4;
-    for (size_t g = 0; g < 4; g++) {
-        v->g[g].name = names[g];
-        v->g[g].unit = units[g];
-        v->g[g].a = data[g];
+                             bf_filmsys_phase_flux(fs, 0),
+                             bf_filmsys_phase_flux(fs, 1)};
+    for (size_t k = 0; k < 4; k++) {
+        size_t g = v->ngroups++;
+        v->g[g].name = names[k];
+        v->g[g].unit = units[k];
+        v->g[g].a = data[k];
         /* out of memory: an empty group, which the driver refuses (the
          * state's size differs from the reference's) */
-        v->g[g].n = data[g] ? bf_film_nodes(f) : 0;
+        v->g[g].n = data[k] ? bf_film_nodes(f) : 0;
     }
     v->ninv = 2;
     bf_film_totals(f, &v->inv[0], &v->inv[1]);
+}
+
+static void film_view(void *model, bf_study_view *v)
+{
+    memset(v, 0, sizeof *v);
+    bf_study_film_groups(model, v);
 }
 
 static void film_describe(void *model, char *buf, size_t cap, int *order)
@@ -72,16 +77,20 @@ static void film_notes(const bf_scene *sc, char *buf, size_t cap)
              "(dx = %g cm) in method-of-lines form, so the errors are time "
              "errors only (the space error needs runs at several dx).\n",
              bf_scene_real(sc, "film", "dx"));
-    if (bf_scene_real(sc, "film", "perturbation") > 0) {
-        l = strlen(buf);
-        snprintf(buf + l, cap - l,
-                 "note: the start has a random perturbation of the volume "
-                 "fractions ([film] perturbation = %g): grid-scale noise has "
-                 "no smooth limit in dt, so the observed orders are not the "
-                 "methods' orders; --set film.perturbation=0 switches it "
-                 "off.\n",
-                 bf_scene_real(sc, "film", "perturbation"));
-    }
+    bf_study_perturbation_note(sc, buf, cap);
+}
+
+void bf_study_perturbation_note(const bf_scene *sc, char *buf, size_t cap)
+{
+    if (!(bf_scene_real(sc, "film", "perturbation") > 0))
+        return;
+    size_t l = strlen(buf);
+    snprintf(buf + l, cap - l,
+             "note: the start has a random perturbation of the volume "
+             "fractions ([film] perturbation = %g): grid-scale noise has no "
+             "smooth limit in dt, so the observed orders are not the "
+             "methods' orders; --set film.perturbation=0 switches it off.\n",
+             bf_scene_real(sc, "film", "perturbation"));
 }
 
 const bf_study_type bf_study_film = {
