@@ -24,7 +24,7 @@
  *   acceleration: y_k = y_0 + v_0 t_k - g0 t_k^2 / 2.
  * - Same seed, same bits; another seed, other bits; restart bit-identity;
  *   results independent of the number of threads; the fast method's
- *   skipping of free-falling particles changes no bit.
+ *   skipping of free-falling particles and its cut lists change no bit.
  * - The Hertz contact ([hertz], off by default): two particles colliding
  *   head on, all pairs and through the cell list: momentum conserved to
  *   round-off, K + U during the collision and K after it to the
@@ -582,10 +582,13 @@ START_TEST(restart_bit_identical)
 END_TEST
 
 /* The fast method skips the sweep for the particles that fall freely
- * through an empty band and cuts each chunk's tree at the highest level
- * asked (support.h); both are claimed to change no bit: a skipped query
- * is a read, a node above the highest level asked is never read.  Checked
- * against the exhaustive sweep (every particle asks, every level kept):
+ * through an empty band, cuts each chunk's tree at the highest level
+ * asked and takes the squares cut by a particle's top line from lists per
+ * line (support.h); all are claimed to change no bit: a skipped query is
+ * a read, a node above the highest level asked is never read, the lists
+ * hold the squares of the cell list's window in its order.  Checked
+ * against the exhaustive path (every particle asks, every level kept,
+ * the cut squares from the window):
  * on random configurations g and the kinds are the same bits, and so are
  * the positions and velocities of two runs of 40 steps of 6400 particles,
  * one with the exhaustive sweep (so any difference in any force would

@@ -38,20 +38,21 @@
  *          F(x) = sum_{l_i<=x} H_i (x - l_i) - sum_{r_i<=x} H_i (x - r_i),
  *          evaluated by one sweep in x over the sorted square edges with a
  *          Fenwick tree over levels (each edge is one tree update).  The
- *          squares that line z_K cuts (and those clipped by the ceiling)
- *          come from the cell list: a window of height d around z_K, with
- *          the support-set test.  "Some band q <= K_j - 1 is empty" is
- *          decided exactly from the gaps between consecutive x-sorted
- *          squares of each band: a strip fits a gap iff no square of that
- *          band overlaps it; the strips that fit a gap are a contiguous
- *          range of the x order, and a skip list assigns each particle its
- *          lowest empty band once.  Band K_j is non-empty if a cut square
- *          of S(P_j) overlaps the strip, else the cell list is asked (rare).
- *          The K = 0 rectangle uses the cell list.  The empty bands are
- *          found first: a particle that falls freely through one asks the
- *          sweep nothing, and each chunk's tree keeps only the levels up
- *          to the highest one asked (the same bits as the exhaustive
- *          sweep, bf_support_set_exhaustive; tested).
+ *          squares that line z_K cuts (and those clipped by the ceiling) come
+ *          from a list of them per line and column of the cell list (the
+ *          squares of a window of height d around z_K, in the same order),
+ *          with the support-set test.  "Some band q <= K_j - 1 is empty" is
+ *          decided exactly from the gaps between consecutive x-sorted squares
+ *          of each band: a strip fits a gap iff no square of that band
+ *          overlaps it; the strips that fit a gap are a contiguous range of
+ *          the x order, and a skip list assigns each particle its lowest empty
+ *          band once.  Band K_j is non-empty if a cut square of S(P_j)
+ *          overlaps the strip, else the cell list is asked (rare).  The K = 0
+ *          rectangle uses the cell list.  The empty bands are found first: a
+ *          particle that falls freely through one asks the sweep nothing, and
+ *          each chunk's tree keeps only the levels up to the highest one asked
+ *          (the same bits as the exhaustive path, bf_support_set_exhaustive;
+ *          tested).
  */
 #ifndef BALLFILM_PARTICLES_SUPPORT_H
 #define BALLFILM_PARTICLES_SUPPORT_H
@@ -132,9 +133,10 @@ void bf_support_eval_with(bf_support *s, bf_support_method m, const double *x,
                           double *g, uint8_t *kind);
 
 /* Method fast, for tests and benchmarks: with `on`, every particle with
- * K >= 1 asks the sweep, free falling or not, and every chunk's tree
- * holds every level of the box, as before the free-fall skipping (issue
- * 21); the results must be the same bits either way. */
+ * K >= 1 asks the sweep, free falling or not, every chunk's tree holds
+ * every level of the box, and the cut squares come from the cell list's
+ * window, not from the lists of each line, as before issue 21 item 5; the
+ * results must be the same bits either way. */
 void bf_support_set_exhaustive(bf_support *s, int on);
 
 #endif

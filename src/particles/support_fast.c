@@ -1,8 +1,8 @@
 /* support_fast.c: the fast method of the support-set gravity (see
  * support.h): the squares entirely below a particle's top band from one
  * sweep in x with a Fenwick tree over levels, the squares cut by that line
- * from the cell list, the empty bands from the gaps between x-sorted
- * squares (support_impl.h).
+ * from lists of the squares each line cuts (by column of the cell list),
+ * the empty bands from the gaps between x-sorted squares (support_impl.h).
  */
 #ifdef _OPENMP
 #include <omp.h>
@@ -409,6 +409,97 @@ static inline double cut_band(const bf_support *s, const bf_cells *c,
     return acc;
 }
 
+/* Grows *v to hold `want` elements of `size` bytes (keeping *cap). */
+static int reserve(void **v, size_t *cap, size_t want, size_t size)
+{
+    if (want <= *cap)
+        return 1;
+    void *w = realloc(*v, want * size);
+    if (!w)
+        return 0;
+    *v = w;
+    *cap = want;
+    return 1;
+}
+
+/* The squares that cut_band adds for particles of top band m, listed once
+ * per line m = 1..kmax: those with csl > m and min(t, z_m) - b > 0, that
+ * is, b < z_m < t (the lines first_band(b) .. csl - 1), or, clipped by the
+ * ceiling (csl = INT32_MAX) with t > b, z_m > b (the lines from
+ * first_band(b) on): the lines cmb[u] .. cme[u] of slot u (fast_to_slots).
+ * Bucket (col, m) = col kmax + m - 1 holds those of column col of the
+ * cell list in slot order, so that the buckets of line m in the columns
+ * c0..c1, one after the other, are in slot order: the order in which
+ * cut_band adds them (its window holds all of them: the rows from
+ * hi_m - d/2 to min(y_j, hi_m + d/2) with a margin far above round-off,
+ * and the same columns c0..c1).  A query reads only the squares that its
+ * line cuts in those columns, not every square of the window's cells.
+ * Returns 0 if out of memory (cut_band is used instead). */
+static int cut_lists(bf_support *s, const bf_cells *c)
+{
+    const int L = s->kmax, nx = c->nx;
+    const size_t ny = (size_t)c->ny, nb = (size_t)L * (size_t)nx;
+    if (L < 1 ||
+        !reserve((void **)&s->cutst, &s->cutst_cap, nb + 2, sizeof *s->cutst))
+        return 0;
+    uint32_t *st = s->cutst;
+    const int32_t *cmb = s->cmb, *cme = s->cme;
+    memset(st, 0, (nb + 2) * sizeof *st);
+    for (int pass = 0; pass < 2; pass++) {
+        for (int col = 0; col < nx; col++) {
+            const uint32_t u0 = c->start[(size_t)col * ny],
+                           u1 = c->start[(size_t)(col + 1) * ny];
+            uint32_t *sc = st + (size_t)col * (size_t)L - 1; /* line m at m */
+            for (uint32_t u = u0; u < u1; u++)
+                for (int m = cmb[u]; m <= cme[u]; m++) {
+                    if (pass == 0)
+                        sc[m + 2]++;
+                    else
+                        s->cutv[sc[m + 1]++] = u;
+                }
+        }
+        if (pass == 0) {
+            /* st[k + 1]: the start of bucket k, the end after pass 1 */
+            for (size_t k = 0; k < nb; k++)
+                st[k + 2] += st[k + 1];
+            if (!reserve((void **)&s->cutv, &s->cutv_cap,
+                         st[nb + 1] ? st[nb + 1] : 1, sizeof *s->cutv))
+                return 0;
+        }
+    }
+    return 1; /* bucket k is st[k] .. st[k + 1] - 1 */
+}
+
+/* cut_band from the cut lists: the same squares, added in the same order
+ * with the same expressions, so the same bits. */
+static inline double cut_list_band(const bf_support *s, const bf_cells *c,
+                                   const stripq *q, uint32_t tj,
+                                   uint32_t *count)
+{
+    const double hd = s->hd;
+    const double *restrict cl = s->cl, *restrict cr = s->cr,
+                           *restrict cb = s->cb, *restrict ct = s->ct,
+                           *restrict sy = c->sy;
+    const uint32_t *restrict v = s->cutv;
+    int c0 = bf_cells_col(c, q->gam - hd), c1 = bf_cells_col(c, q->del + hd);
+    double acc = 0.0;
+    uint32_t cnt = 0;
+    for (int col = c0; col <= c1; col++) {
+        const uint32_t *st = s->cutst + (size_t)col * (size_t)s->kmax +
+                             (size_t)(q->K - 1);
+        for (uint32_t k = st[0]; k < st[1]; k++) {
+            const uint32_t u = v[k];
+            double f2 = dmin(cr[u], q->del) - dmax(cl[u], q->gam);
+            double hh = dmin(ct[u], q->hi) - cb[u];
+            int ok = (f2 > 0) & (sy[u] <= q->ytop) & (u != tj);
+            acc += ok ? f2 * hh : 0.0;
+            cnt += (uint32_t)ok;
+        }
+    }
+    *count = cnt;
+    return acc;
+}
+
 /* Is band K of particle j non-empty: a square of S(P_j) with positive area
  * in it (those cut by z_K are not enough when cut_band counted none: the
  * squares of sweep level K count too)?  Only asked when cut_band found
@@ -460,13 +551,19 @@ static inline void fast_to_slots(bf_support *s, size_t k)
     s->fgam[t] = s->lower[k];
     s->ks[t] = s->lowe[k];
     s->csl[t] = s->sl[k];
+    /* the lines whose cut lists hold the square (cut_lists) */
+    const int cap = s->kmax;
+    s->cmb[t] = s->mb[k];
+    s->cme[t] = !(s->ts[k] > s->bs[k]) ? 0
+                : s->sl[k] == INT32_MAX || s->sl[k] > cap ? cap
+                                                          : s->sl[k] - 1;
 }
 
 /* g of the particle in slot t: lower (the sweep) and lowe (the lowest
  * empty band) are in the order of the cell list. */
 static inline void fast_one(const bf_support *s, const bf_cells *c,
                             const double *lower, const int32_t *lowe,
-                            size_t t, double *g, uint8_t *kind)
+                            int lists, size_t t, double *g, uint8_t *kind)
 {
     const bf_support_params *p = &s->p;
     uint32_t j = c->idx[t];
@@ -492,7 +589,8 @@ static inline void fast_one(const bf_support *s, const bf_cells *c,
             const stripq q =
                 stripq_of(gam, del, band_hi(s, K), band_lo(s, K),
                           p->tie ? yj : nextafter(yj, -INFINITY), K);
-            area = cut_band(s, c, &q, (uint32_t)t, yj, &cnt);
+            area = lists ? cut_list_band(s, c, &q, (uint32_t)t, &cnt)
+                         : cut_band(s, c, &q, (uint32_t)t, yj, &cnt);
             if (cnt == 0 && band_filled(s, c, &q, (uint32_t)t, yj))
                 cnt = 1;
         }
@@ -587,20 +685,25 @@ void bf_sup_eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
     bf_sup_slot_edges(s, c, n, 0);
     if (pr) {
 #ifdef _OPENMP
-#pragma omp parallel num_threads(nt)
-        {
-#pragma omp for schedule(static)
-            for (size_t k = 0; k < n; k++)
-                fast_to_slots(s, k);
-#pragma omp for schedule(dynamic, 256)
-            for (size_t t = 0; t < n; t++)
-                fast_one(s, c, s->fgam, s->ks, t, g, kind);
-        }
+#pragma omp parallel for schedule(static) num_threads(nt)
+        for (size_t k = 0; k < n; k++)
+            fast_to_slots(s, k);
 #endif
     } else {
         for (size_t k = 0; k < n; k++)
             fast_to_slots(s, k);
+    }
+    /* the cut squares by line (the exhaustive mode asks the cell list's
+     * window, as before the lists) */
+    const int lists = !s->exhaustive && cut_lists(s, c);
+    if (pr) {
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 256) num_threads(nt)
         for (size_t t = 0; t < n; t++)
-            fast_one(s, c, s->fgam, s->ks, t, g, kind);
+            fast_one(s, c, s->fgam, s->ks, lists, t, g, kind);
+#endif
+    } else {
+        for (size_t t = 0; t < n; t++)
+            fast_one(s, c, s->fgam, s->ks, lists, t, g, kind);
     }
 }

@@ -59,6 +59,14 @@ struct bf_support {
     uint32_t *nxt; /* skip list of particles without a lowest empty band */
     double *fen;   /* Fenwick tree over levels: 4 sums per node */
     uint32_t *bstart, *bfill, *blist;
+    /* the squares that the sweep at level m leaves out and that reach band
+     * m, by column of the cell list and line m (support_fast.c, cut_lists):
+     * the lines cmb..cme of each slot's square, the slots of each bucket
+     * (cutv) and where the buckets start (cutst); cutv and cutst are
+     * allocated on first use (their sizes depend on the cell list) */
+    int32_t *cmb, *cme;
+    uint32_t *cutv, *cutst;
+    size_t cutv_cap, cutst_cap;
     /* per-band sums for one particle (naive and cell) */
     double *area;
     uint32_t *cnt;

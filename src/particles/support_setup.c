@@ -124,6 +124,8 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->sl = malloc(k * sizeof *s->sl);
     s->csl = malloc(k * sizeof *s->csl);
     s->lower = malloc(k * sizeof *s->lower);
+    s->cmb = malloc(k * sizeof *s->cmb);
+    s->cme = malloc(k * sizeof *s->cme);
     s->cl = malloc(k * sizeof *s->cl);
     s->cr = malloc(k * sizeof *s->cr);
     s->cb = malloc(k * sizeof *s->cb);
@@ -142,8 +144,8 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     if (!s->bz || !s->ord || !s->binc || !s->ls || !s->rs || !s->bs ||
         !s->ts || !s->gs || !s->ds || !s->qk || !s->qK || !s->qg ||
         !s->qd || !s->uv || !s->uh || !s->ul || !s->ks || !s->mb || !s->mt ||
-        !s->sl || !s->csl || !s->lower || !s->cl || !s->cr || !s->cb ||
-        !s->ct || !s->bm || !s->fgam ||
+        !s->sl || !s->csl || !s->lower || !s->cmb || !s->cme || !s->cl ||
+        !s->cr || !s->cb || !s->ct || !s->bm || !s->fgam ||
         !s->lowe || !s->nxt || !s->fen || !s->bstart || !s->bfill ||
         !s->blist || !s->area || !s->cnt) {
         bf_support_free(s);
@@ -206,6 +208,10 @@ void bf_support_free(bf_support *s)
     free(s->blist);
     free(s->area);
     free(s->cnt);
+    free(s->cmb);
+    free(s->cme);
+    free(s->cutv);
+    free(s->cutst);
     free(s);
 }
 
