@@ -568,8 +568,18 @@ static int watched_run(bf_sim *s, long watcher, int energy_in_run, long k,
     }
     s->n += *done;
     s->steps_this_run += *done;
-    if (*st)
+    if (*st) {
+        /* an event noted before the failing step (`above` does not end a
+         * run) is the observer's all the same, as if the run had ended
+         * there */
+        if (o && (w.fired & BF_WATCH_ABOVE)) {
+            bf_err e2 = {0};
+            w.fired = BF_WATCH_ABOVE;
+            o->t->watched(o->self, &w, s->n, (double)s->n * s->dt, s->dt,
+                          &e2);
+        }
         return 1;
+    }
     if (o && (w.fired & (BF_WATCH_LOW | BF_WATCH_ABOVE)) &&
         (*st = o->t->watched(o->self, &w, s->n, (double)(s->n - 1) * s->dt,
                              s->dt, err))) {

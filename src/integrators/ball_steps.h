@@ -188,8 +188,11 @@ BF_ALWAYS_INLINE double bf_vec_pick(const double *a, long i, size_t n)
  * step's start (xs, vs) and end (x, v): the time loop's energy check, with
  * its arithmetic (K summed over the balls from 0, then K + V; the relative
  * error of diag/energy.h), and the events an analysis waits for (vs: the
- * velocities at the step's start).  Returns the BF_WATCH_* bits that
- * fired. */
+ * velocities at the step's start).  Returns the BF_WATCH_* bits that end
+ * the run.  The `above` event does not end it: it goes into w->fired and
+ * its check is off for the rest of the run (w->above = -1), unless the
+ * step is a lowest point, which ends the run with x[above] at the step's
+ * end for the observer to see. */
 BF_ALWAYS_INLINE unsigned bf_watch_check(bf_ball_watch *w, const double *m,
                                          double pot, const double *vs,
                                          const double *x, const double *v,
@@ -211,8 +214,11 @@ BF_ALWAYS_INLINE unsigned bf_watch_check(bf_ball_watch *w, const double *m,
     if (w->low >= 0 && bf_vec_pick(vs, w->low, n) < 0 &&
         bf_vec_pick(v, w->low, n) >= 0)
         fired |= BF_WATCH_LOW;
-    if (w->above >= 0 && bf_vec_pick(x, w->above, n) >= w->above_x)
-        fired |= BF_WATCH_ABOVE;
+    if (w->above >= 0 && !(fired & BF_WATCH_LOW) &&
+        bf_vec_pick(x, w->above, n) >= w->above_x) {
+        w->fired |= BF_WATCH_ABOVE;
+        w->above = -1;
+    }
     return fired;
 }
 
@@ -261,7 +267,7 @@ BF_ALWAYS_INLINE int bf_watch_fixed_end(bf_watch_fixed *r, double pot,
 {
     unsigned fired = bf_watch_check(&r->w, r->F->b.m, pot, r->vs, x, v, n);
     if (fired) {
-        r->w.fired = fired;
+        r->w.fired |= fired;
         return 1;
     }
     bf_vec_copy(r->xs, x, n);
@@ -335,7 +341,7 @@ static inline unsigned bf_watch_any_end(bf_ball_watch *w,
                                        f->eff, f->neff, f->b, t, x)
                                  : 0.0;
     unsigned fired = bf_watch_check(w, f->b->m, pot, w->v_start, x, v, n);
-    w->fired = fired;
+    w->fired |= fired;
     if (!fired) {
         bf_vec_copy(w->x_start, x, n);
         bf_vec_copy(w->v_start, v, n);
@@ -381,7 +387,7 @@ static inline bf_status bf_ball_steps_watched(bf_ball_step_fn step,
         unsigned fired = bf_watch_check(w, f->b->m, pot, w->v_start, f->b->x,
                                         f->b->v, n);
         if (fired) {
-            w->fired = fired;
+            w->fired |= fired;
             *done = j + 1;
             return BF_OK;
         }
