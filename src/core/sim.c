@@ -377,11 +377,8 @@ static bf_status write_row(bf_sim *s, bf_err *err)
     if (s->mt->output_row)
         st = s->mt->output_row(s->model, s->n, t, err);
     EACH_OBSERVER(s, st, output_row, s->n, t, err);
-    if (!st) {
-        bf_h5_lock();
+    if (!st) /* takes the HDF5 lock when it flushes */
         st = bf_out_maybe_flush(s->out, s->flush_seconds, err);
-        bf_h5_unlock();
-    }
     s->last_row = s->n;
     return st;
 }

@@ -21,6 +21,7 @@
 #include "base/clock.h"
 #include "base/utf8.h"
 #include "ballfilm/h5out.h"
+#include "h5lock.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -600,10 +601,14 @@ bf_status bf_out_flush(bf_out *out, bf_err *err)
 
 bf_status bf_out_maybe_flush(bf_out *out, double seconds, bf_err *err)
 {
-    if (out->buffered_bytes > FLUSH_BYTES ||
-        bf_coarse_time() - out->last_flush > seconds)
-        return bf_out_flush(out, err);
-    return BF_OK;
+    if (!(out->buffered_bytes > FLUSH_BYTES ||
+          bf_coarse_time() - out->last_flush > seconds))
+        return BF_OK;
+    /* the test above touches no HDF5 state: the lock only for a flush */
+    bf_h5_lock();
+    bf_status st = bf_out_flush(out, err);
+    bf_h5_unlock();
+    return st;
 }
 
 static bf_status write_array(bf_out *out, const char *path, const void *data,
