@@ -301,11 +301,12 @@ START_TEST(lyapunov_refuses_adaptive)
 }
 END_TEST
 
-/* The slope's zero by two halvings per pass (diag/hermite.h,
- * bf_hermite_slope_root) is the plain bisection's, one halving at a time,
- * to the bit: on random steps, on zeros near 0 (where the 60-halving cap,
- * not adjacency, ends the search) and near 1, and where the slope is 0 at
- * theta = 1. */
+/* The slope's zero by two halvings per pass after the proved shortcut
+ * (diag/hermite.h, bf_hermite_slope_root) is the plain bisection's, one
+ * halving at a time from [0, 1], to the bit: on random steps, on zeros
+ * near 0 (where the 60-halving cap, not adjacency, ends the search) and
+ * near 1, where the slope is 0 at theta = 1, on steps like the balls' and
+ * on slopes made to defeat the shortcut. */
 static double bisect_one_at_a_time(double D, double d0, double d1)
 {
     double lo = 0, hi = 1;
@@ -321,19 +322,36 @@ static double bisect_one_at_a_time(double D, double d0, double d1)
     return 0.5 * (lo + hi);
 }
 
+/* xorshift64: a uniform double in [0, 1) */
+static double uniform(unsigned long long *seed)
+{
+    *seed ^= *seed << 13;
+    *seed ^= *seed >> 7;
+    *seed ^= *seed << 17;
+    return (double)(*seed >> 11) * 0x1p-53;
+}
+
+/* the zero of one slope both ways, to the bit; 1 if the shortcut of
+ * bf_hermite_slope_skip was taken */
+static int same_root(double D, double d0, double d1)
+{
+    double a = bf_hermite_slope_root(D, d0, d1),
+           b = bisect_one_at_a_time(D, d0, d1);
+    if (memcmp(&a, &b, sizeof a) != 0)
+        ck_abort_msg("D = %a, d0 = %a, d1 = %a: %a against %a", D, d0, d1, a,
+                     b);
+    double lo = 0, hi = 1;
+    int k = 0;
+    bf_hermite_slope_skip(D, d0, d1, &lo, &hi, &k);
+    return k > 0;
+}
+
 START_TEST(slope_root_is_the_bisection)
 {
     unsigned long long seed = 88172645463325252ull;
-    long same = 0, cases = 0;
+    long skipped = 0, cases = 0;
     for (int c = 0; c < 200000; c++) {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        double u1 = (double)(seed >> 11) * 0x1p-53, u2, u3;
-        seed ^= seed << 13, seed ^= seed >> 7, seed ^= seed << 17;
-        u2 = (double)(seed >> 11) * 0x1p-53;
-        seed ^= seed << 13, seed ^= seed >> 7, seed ^= seed << 17;
-        u3 = (double)(seed >> 11) * 0x1p-53;
+        double u1 = uniform(&seed), u2 = uniform(&seed), u3 = uniform(&seed);
         /* d0 < 0 <= d1 over many scales; the mean slope anywhere */
         double d0 = -pow(10.0, 8 * u1 - 6), d1 = pow(10.0, 8 * u2 - 6) - 1e-6;
         double D = (u3 - 0.5) * 2e2;
@@ -343,16 +361,36 @@ START_TEST(slope_root_is_the_bisection)
             d1 = 0.0; /* the zero at theta = 1 */
         if (!(d1 >= 0))
             d1 = 0.0;
-        cases++;
-        double a = bf_hermite_slope_root(D, d0, d1),
-               b = bisect_one_at_a_time(D, d0, d1);
-        if (memcmp(&a, &b, sizeof a) == 0)
-            same++;
-        else
-            ck_abort_msg("D = %a, d0 = %a, d1 = %a: %a against %a", D, d0, d1,
-                         a, b);
+        same_root(D, d0, d1);
     }
-    ck_assert_int_eq(same, cases);
+    /* Steps like the balls' lowest points (q nearly linear from d0 to d1,
+     * over many scales): the shortcut must be taken nearly always.  Then
+     * slopes made to defeat it: q' nearly 0 at theta = 0 or 1 (either
+     * sign), a double zero inside (q = A (th - p)^2 - e), the zero within
+     * a few ulps of 0 or 1. */
+    for (int c = 0; c < 200000; c++) {
+        double u1 = uniform(&seed), u2 = uniform(&seed), u3 = uniform(&seed),
+               u4 = uniform(&seed);
+        double s = pow(10.0, 12 * u4 - 6);
+        double d0 = -s * (0.01 + u1), d1 = s * (0.01 + u2);
+        double D = 0.5 * (d0 + d1) + s * 0.1 * (u3 - 0.5);
+        cases++;
+        skipped += same_root(D, d0, d1);
+        double g = s * pow(10.0, -16 * u3) * (u1 < 0.5 ? -1 : 1);
+        same_root((2 * d0 + 4 * d1 - g) / 6, d0, d1); /* q'(1) = g */
+        same_root((g + 4 * d0 + 2 * d1) / 6, d0, d1); /* q'(0) = g */
+        double A = s, p = u3, e = A * p * p * (1 + pow(10.0, -15 * u2));
+        /* q = A th^2 - 2Ap th + (Ap^2 - e): d0, d1 and D from A, B, C */
+        double C = A * p * p - e, Bq = -2 * A * p;
+        double q1 = A + Bq + C;
+        if (q1 >= 0)
+            same_root((Bq + 4 * C + 2 * q1) / 6, C, q1);
+        same_root(D, -s * 0x1p-52 * u1, d1);
+        same_root(D, d0, s * 0x1p-52 * u2);
+    }
+    ck_assert_msg(skipped > cases * 9 / 10,
+                  "shortcut taken in %ld of %ld ball-like steps", skipped,
+                  cases);
 }
 END_TEST
 

@@ -90,7 +90,8 @@ bf_status bf_out_attr_int(bf_out *out, const char *obj, const char *name,
 
 bf_status bf_out_flush(bf_out *out, bf_err *err);
 /* Flush if more than `seconds` of wall time passed since the last flush or
- * more than a few MiB are buffered. */
+ * more than a few MiB are buffered (under the library's HDF5 lock: runs in
+ * several threads of one process may call it). */
 bf_status bf_out_maybe_flush(bf_out *out, double seconds, bf_err *err);
 
 /* ---- reading back (tests, restarts, initial profiles) ---- */

@@ -127,11 +127,15 @@ typedef struct bf_ball_watch {
     double e0, bound;      /* erg; 1 */
     double max_rel, last_rel; /* in and out */
     /* events: the run ends after a step in which v[low] went from < 0 to
-     * >= 0 (low >= 0), or that ends with x[above] >= above_x (above >= 0) */
+     * >= 0 (low >= 0).  A step that ends with x[above] >= above_x (above
+     * >= 0) does not end it: BF_WATCH_ABOVE goes into `fired` and the run
+     * goes on without that check (not when the step is also one of `low`:
+     * then only BF_WATCH_LOW, and x[above] is the end state's) */
     long low, above;
     double above_x; /* cm */
-    /* out: what ended the run (BF_WATCH_* bits, 0: it took its k steps),
-     * and then the state at the start of its last step: n values each in
+    /* out: what ended the run or was noted in it (BF_WATCH_* bits, 0:
+     * nothing, it took its k steps), and then the state at the start of
+     * its last step: n values each in
      * arrays the model provides (bf_ballsys_advance points them at its
      * own); the run also uses them as scratch */
     unsigned fired;

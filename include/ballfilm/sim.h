@@ -123,10 +123,14 @@ typedef struct bf_observer_type {
      * where a check of the ball state fires.  `watch` fills the events of
      * w (low, above, above_x) for the next run of steps and returns 1, or
      * returns 0 when it needs every step for now; after a run that ended
-     * on an event the loop calls `watched` with the run's watch (the state
-     * at the start of the last step in w->x_start, w->v_start) in place of
-     * before_step/after_step around that step.  At most one observer of a
-     * run is watched this way (more: every step is taken one at a time). */
+     * on an event or noted one (w->fired: BF_WATCH_ABOVE does not end a
+     * run, integrator.h) the loop calls `watched` with the run's watch
+     * (the state at the start of the last step in w->x_start, w->v_start)
+     * in place of before_step/after_step around the steps of its events,
+     * and also after a run that failed having noted BF_WATCH_ABOVE (then
+     * that bit alone; what it returns is not looked at).  At most one
+     * observer of a run is watched this way (more: every step is taken
+     * one at a time). */
     int (*watch)(void *self, bf_ball_watch *w);
     bf_status (*watched)(void *self, const bf_ball_watch *w, long n_done,
                          double t, double dt, bf_err *err);

@@ -235,8 +235,9 @@ static bf_status retmap_after_step(void *self, long n_done, double t,
 }
 
 /* Runs of steps may find the map's events themselves (sim.h, watch): a
- * lowest point of the trigger ball (its velocity from < 0 to >= 0) and,
- * while a candidate is pending, the end of its floor contact.  Not with an
+ * lowest point of the trigger ball (its velocity from < 0 to >= 0), which
+ * ends the run, and, while a candidate is pending, the end of its floor
+ * contact, which the run notes and goes on.  Not with an
  * integrator that locates the lowest points inside its steps (BF_INT_ROOTS):
  * its candidates arrive during a step. */
 static int retmap_watch(void *self, bf_ball_watch *w)
@@ -252,12 +253,23 @@ static int retmap_watch(void *self, bf_ball_watch *w)
     return 1;
 }
 
-/* after a run that ended on an event: the step's start from the run, then
- * what after_step does */
+/* After a run that found an event.  The end of the contact (`above`) does
+ * not end a run: the point pending then is the one to emit, whichever
+ * step of the run it was (the run watches for it once; a step that is
+ * also a lowest point ends the run and after_step sees both, in its
+ * order).  A lowest point ends the run at its step: the step's start from
+ * the run, then what after_step does. */
 static bf_status retmap_watched(void *self, const bf_ball_watch *w,
                                 long n_done, double t, double dt, bf_err *err)
 {
     bf_retmap *rm = self;
+    if ((w->fired & BF_WATCH_ABOVE) && rm->pending) {
+        bf_status st = emit(rm, err);
+        if (st)
+            return st;
+    }
+    if (!(w->fired & BF_WATCH_LOW))
+        return BF_OK;
     memcpy(rm->x0, w->x_start, rm->n * sizeof *rm->x0);
     memcpy(rm->v0, w->v_start, rm->n * sizeof *rm->v0);
     return retmap_after_step(self, n_done, t, dt, err);

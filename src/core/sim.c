@@ -377,11 +377,8 @@ static bf_status write_row(bf_sim *s, bf_err *err)
     if (s->mt->output_row)
         st = s->mt->output_row(s->model, s->n, t, err);
     EACH_OBSERVER(s, st, output_row, s->n, t, err);
-    if (!st) {
-        bf_h5_lock();
+    if (!st) /* takes the HDF5 lock when it flushes */
         st = bf_out_maybe_flush(s->out, s->flush_seconds, err);
-        bf_h5_unlock();
-    }
     s->last_row = s->n;
     return st;
 }
@@ -568,8 +565,18 @@ static int watched_run(bf_sim *s, long watcher, int energy_in_run, long k,
     }
     s->n += *done;
     s->steps_this_run += *done;
-    if (*st)
+    if (*st) {
+        /* an event noted before the failing step (`above` does not end a
+         * run) is the observer's all the same, as if the run had ended
+         * there */
+        if (o && (w.fired & BF_WATCH_ABOVE)) {
+            bf_err e2 = {0};
+            w.fired = BF_WATCH_ABOVE;
+            o->t->watched(o->self, &w, s->n, (double)s->n * s->dt, s->dt,
+                          &e2);
+        }
         return 1;
+    }
     if (o && (w.fired & (BF_WATCH_LOW | BF_WATCH_ABOVE)) &&
         (*st = o->t->watched(o->self, &w, s->n, (double)(s->n - 1) * s->dt,
                              s->dt, err))) {

@@ -26,6 +26,15 @@ static inline double bf_rel_error(double x, double x0)
     return x0 != 0.0 ? fabs(x - x0) / fabs(x0) : fabs(x - x0);
 }
 
+/* The divisor of bf_rel_error for a fixed x0, formed once: |x0|, or 1
+ * when x0 = 0 (|x - x0|/1 is |x - x0| exactly), so that
+ * fabs(x - x0) / bf_rel_divisor(x0) is bf_rel_error(x, x0) to the bit
+ * without a test of x0 at each use. */
+static inline double bf_rel_divisor(double x0)
+{
+    return x0 != 0.0 ? fabs(x0) : 1.0;
+}
+
 typedef struct bf_energy_diag {
     double e0;       /* energy at the start, erg */
     double last_rel; /* relative error at the last check */

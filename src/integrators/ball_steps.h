@@ -188,12 +188,15 @@ BF_ALWAYS_INLINE double bf_vec_pick(const double *a, long i, size_t n)
  * step's start (xs, vs) and end (x, v): the time loop's energy check, with
  * its arithmetic (K summed over the balls from 0, then K + V; the relative
  * error of diag/energy.h), and the events an analysis waits for (vs: the
- * velocities at the step's start).  Returns the BF_WATCH_* bits that
- * fired. */
+ * velocities at the step's start).  Returns the BF_WATCH_* bits that end
+ * the run.  The `above` event does not end it: it goes into w->fired and
+ * its check is off for the rest of the run (w->above = -1), unless the
+ * step is a lowest point, which ends the run with x[above] at the step's
+ * end for the observer to see. */
 BF_ALWAYS_INLINE unsigned bf_watch_check(bf_ball_watch *w, const double *m,
-                                         double pot, const double *vs,
-                                         const double *x, const double *v,
-                                         size_t n)
+                                         double pot, double e0d,
+                                         const double *vs, const double *x,
+                                         const double *v, size_t n)
 {
     unsigned fired = 0;
     if (w->energy) {
@@ -201,7 +204,8 @@ BF_ALWAYS_INLINE unsigned bf_watch_check(bf_ball_watch *w, const double *m,
         BF_UNROLL
         for (size_t i = 0; i < n; i++)
             kin += 0.5 * m[i] * v[i] * v[i];
-        const double rel = bf_rel_error(kin + pot, w->e0);
+        /* bf_rel_error(kin + pot, w->e0), e0d = bf_rel_divisor(w->e0) */
+        const double rel = fabs(kin + pot - w->e0) / e0d;
         if (!(rel <= w->max_rel))
             w->max_rel = isnan(rel) ? INFINITY : rel;
         w->last_rel = rel;
@@ -211,8 +215,11 @@ BF_ALWAYS_INLINE unsigned bf_watch_check(bf_ball_watch *w, const double *m,
     if (w->low >= 0 && bf_vec_pick(vs, w->low, n) < 0 &&
         bf_vec_pick(v, w->low, n) >= 0)
         fired |= BF_WATCH_LOW;
-    if (w->above >= 0 && bf_vec_pick(x, w->above, n) >= w->above_x)
-        fired |= BF_WATCH_ABOVE;
+    if (w->above >= 0 && !(fired & BF_WATCH_LOW) &&
+        bf_vec_pick(x, w->above, n) >= w->above_x) {
+        w->fired |= BF_WATCH_ABOVE;
+        w->above = -1;
+    }
     return fired;
 }
 
@@ -225,6 +232,7 @@ typedef struct bf_watch_fixed {
     const bf_fixed_forces *F;
     double xs[2], vs[2];
     double mg[2]; /* m_i g, g cm/s^2: gravity's potential is sum mg_i x_i */
+    double e0d;   /* bf_rel_divisor(w.e0), formed once per run */
 } bf_watch_fixed;
 
 BF_ALWAYS_INLINE void bf_watch_fixed_begin(bf_watch_fixed *r,
@@ -235,6 +243,7 @@ BF_ALWAYS_INLINE void bf_watch_fixed_begin(bf_watch_fixed *r,
 {
     r->w = *w;
     r->w.fired = 0;
+    r->e0d = bf_rel_divisor(w->e0);
     r->F = F;
     for (size_t i = 0; i < n; i++)
         r->mg[i] = F->b.m[i] * F->gravity->g;
@@ -259,9 +268,10 @@ BF_ALWAYS_INLINE int bf_watch_fixed_end(bf_watch_fixed *r, double pot,
                                         const double *x, const double *v,
                                         size_t n)
 {
-    unsigned fired = bf_watch_check(&r->w, r->F->b.m, pot, r->vs, x, v, n);
+    unsigned fired =
+        bf_watch_check(&r->w, r->F->b.m, pot, r->e0d, r->vs, x, v, n);
     if (fired) {
-        r->w.fired = fired;
+        r->w.fired |= fired;
         return 1;
     }
     bf_vec_copy(r->xs, x, n);
@@ -334,8 +344,9 @@ static inline unsigned bf_watch_any_end(bf_ball_watch *w,
     const double pot = w->energy ? bf_effects_potential_inline(
                                        f->eff, f->neff, f->b, t, x)
                                  : 0.0;
-    unsigned fired = bf_watch_check(w, f->b->m, pot, w->v_start, x, v, n);
-    w->fired = fired;
+    unsigned fired = bf_watch_check(w, f->b->m, pot, bf_rel_divisor(w->e0),
+                                    w->v_start, x, v, n);
+    w->fired |= fired;
     if (!fired) {
         bf_vec_copy(w->x_start, x, n);
         bf_vec_copy(w->v_start, v, n);
@@ -378,10 +389,11 @@ static inline bf_status bf_ball_steps_watched(bf_ball_step_fn step,
                                      f->eff, f->neff, f->b,
                                      (double)(n0 + j + 1) * dt, f->b->x)
                                : 0.0;
-        unsigned fired = bf_watch_check(w, f->b->m, pot, w->v_start, f->b->x,
-                                        f->b->v, n);
+        unsigned fired = bf_watch_check(w, f->b->m, pot,
+                                        bf_rel_divisor(w->e0), w->v_start,
+                                        f->b->x, f->b->v, n);
         if (fired) {
-            w->fired = fired;
+            w->fired |= fired;
             *done = j + 1;
             return BF_OK;
         }

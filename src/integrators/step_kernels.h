@@ -187,15 +187,16 @@ BF_ALWAYS_INLINE bf_status bf_verlet_run(BF_RUN_KERNEL_PARAMS)
     return st;
 }
 
-/* The loop of a run kernel whose core takes (accel, ctx, n, t, dt, x, v,
- * work, &evals) and counts its own evaluations (MV2M, RKN6): steps j = 0..k-1
+/* The loop of a run kernel whose core takes (accel, ctx, n, t, STEP, x, v,
+ * work, &evals), STEP dt or what the core forms from dt once per run, and
+ * counts its own evaluations (MV2M, RKN6): steps j = 0..k-1
  * from t = (n0 + j) dt while st is BF_OK, ending after a step that `stop`
  * flags; then the counters.  A macro, not a function of a core pointer,
  * so that the core is inlined for certain. */
-#define BF_CORE_RUN_LOOP(CORE)                                                \
+#define BF_CORE_RUN_LOOP(CORE, STEP)                                          \
     do {                                                                      \
         while (!st && j < k) {                                                \
-            if (CORE(accel, ctx, n, (double)(n0 + j) * dt, dt, x, v, work,    \
+            if (CORE(accel, ctx, n, (double)(n0 + j) * dt, STEP, x, v, work,  \
                      &evals)) {                                               \
                 st = bf_ode_eval_failed(err);                                 \
                 break;                                                        \
@@ -210,21 +211,44 @@ BF_ALWAYS_INLINE bf_status bf_verlet_run(BF_RUN_KERNEL_PARAMS)
 
 /* ---- MV2M ---- */
 
-/* One step (eqs 2.19-2.21, 2.24; increments formed first, see mv2m.c):
- * three evaluations, each counted in *evals before it is made.  Non-zero
- * if the force fails (x, v unchanged then).  work holds 5n doubles. */
-BF_ALWAYS_INLINE int bf_mv2m_core(bf_accel_fn accel, void *ctx, size_t n,
-                                  double t, double dt, double *restrict x,
-                                  double *restrict v, double *restrict work,
-                                  unsigned long long *evals)
+/* The step's multiples of dt, formed once per run: the compiler does not
+ * move them out of a run's loop by itself (a division may trap, and the
+ * loop may take no step), and two divisions per step cost more than the
+ * step's sums (the same values however often they are formed). */
+typedef struct bf_mv2m_coef {
+    double dt, hdt, hdt2, edt2, dt6, dt26;
+} bf_mv2m_coef;
+
+BF_ALWAYS_INLINE bf_mv2m_coef bf_mv2m_coefs(double dt)
+{
+    const double dt2 = dt * dt;
+    bf_mv2m_coef c;
+    c.dt = dt;
+    c.hdt = 0.5 * dt;
+    c.hdt2 = 0.5 * dt2;
+    c.edt2 = 0.125 * dt2;
+    c.dt6 = dt / 6.0;
+    c.dt26 = dt2 / 6.0;
+    return c;
+}
+
+/* One step (eqs 2.19-2.21, 2.24; increments formed first, see mv2m.c)
+ * with the multiples of dt in c: three evaluations, each counted in *evals
+ * before it is made.  Non-zero if the force fails (x, v unchanged then).
+ * work holds 5n doubles. */
+BF_ALWAYS_INLINE int bf_mv2m_core_c(bf_accel_fn accel, void *ctx, size_t n,
+                                    double t, const bf_mv2m_coef *c,
+                                    double *restrict x, double *restrict v,
+                                    double *restrict work,
+                                    unsigned long long *evals)
 {
     double *a0 = work, *aV = work + n, *aT = work + 2 * n, *xV = work + 3 * n,
            *xT = work + 4 * n;
+    const double dt = c->dt, hdt = c->hdt, hdt2 = c->hdt2, edt2 = c->edt2,
+                 dt6 = c->dt6, dt26 = c->dt26;
     ++*evals;
     if (accel(ctx, t, x, v, a0))
         return 1;
-    const double dt2 = dt * dt, hdt = 0.5 * dt, hdt2 = 0.5 * dt2,
-                 edt2 = 0.125 * dt2, dt6 = dt / 6.0, dt26 = dt2 / 6.0;
     BF_KUNROLL
     for (size_t i = 0; i < n; i++) {
         xV[i] = x[i] + (dt * v[i] + hdt2 * a0[i]);
@@ -249,6 +273,16 @@ BF_ALWAYS_INLINE int bf_mv2m_core(bf_accel_fn accel, void *ctx, size_t n,
     return 0;
 }
 
+/* one step from dt itself */
+BF_ALWAYS_INLINE int bf_mv2m_core(bf_accel_fn accel, void *ctx, size_t n,
+                                  double t, double dt, double *restrict x,
+                                  double *restrict v, double *restrict work,
+                                  unsigned long long *evals)
+{
+    const bf_mv2m_coef c = bf_mv2m_coefs(dt);
+    return bf_mv2m_core_c(accel, ctx, n, t, &c, x, v, work, evals);
+}
+
 /* One step; work holds 5n doubles. */
 BF_ALWAYS_INLINE bf_status bf_mv2m_kernel(BF_STEP_KERNEL_PARAMS)
 {
@@ -270,7 +304,8 @@ BF_ALWAYS_INLINE bf_status bf_mv2m_run(BF_RUN_KERNEL_PARAMS)
     unsigned long long evals = 0;
     long j = 0;
     bf_status st = BF_OK;
-    BF_CORE_RUN_LOOP(bf_mv2m_core);
+    const bf_mv2m_coef c = bf_mv2m_coefs(dt);
+    BF_CORE_RUN_LOOP(bf_mv2m_core_c, &c);
     *done = j;
     return st;
 }
@@ -367,7 +402,7 @@ BF_ALWAYS_INLINE bf_status bf_rkn6_run(BF_RUN_KERNEL_PARAMS)
         if (accel(ctx, (double)n0 * dt, x, v, work))
             st = bf_ode_eval_failed(err);
     }
-    BF_CORE_RUN_LOOP(bf_rkn6_core);
+    BF_CORE_RUN_LOOP(bf_rkn6_core, dt);
     if (j > 0)
         bf_verlet_cache_put(it, ode, n, x, work);
     *done = j;
