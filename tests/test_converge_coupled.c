@@ -43,18 +43,27 @@ static size_t group(const bf_converge_result *r, const char *name)
     return 0;
 }
 
+/* the study of runs/coupled_fig8.ini: nm methods at the three steps dts
+ * to t_end, 5 rows compared */
+static bf_converge_result *study(const char **m, size_t nm,
+                                 const double *dts, double t_end)
+{
+    bf_converge_opts o = {.methods = m, .nmethods = nm, .dts = dts,
+                          .ndts = 3, .t_end = t_end, .rows = 5,
+                          .repeats = -1};
+    bf_err err = {0};
+    bf_converge_result *r = NULL;
+    ck_assert_msg(bf_converge_file(tu_repo("runs/coupled_fig8.ini"), NULL, 0,
+                                   &o, &r, &err) == BF_OK,
+                  "%s", err.msg);
+    return r;
+}
+
 START_TEST(split_first_order_against_the_whole_system)
 {
     const char *m[] = {"mv2m", "rk4", "mv2m:film_every=4"};
     const double dts[] = {4e-5, 2e-5, 1e-5};
-    bf_converge_opts o = {.methods = m, .nmethods = 3, .dts = dts,
-                          .ndts = 3, .t_end = 0.02, .rows = 5,
-                          .repeats = -1};
-    bf_err err = {0};
-    bf_converge_result *r;
-    ck_assert_msg(bf_converge_file(tu_repo("runs/coupled_fig8.ini"), NULL, 0,
-                                   &o, &r, &err) == BF_OK,
-                  "%s", err.msg);
+    bf_converge_result *r = study(m, 3, dts, 0.02);
     ck_assert_uint_eq(r->nrows, 9);
     ck_assert_uint_eq(r->ngroups, 6);
     ck_assert(strstr(r->ref_label, "whole system"));
@@ -87,14 +96,7 @@ START_TEST(mri_third_order_in_the_film)
 {
     const char *m[] = {"mri:rtol=1e-10"};
     const double dts[] = {4e-4, 2e-4, 1e-4};
-    bf_converge_opts o = {.methods = m, .nmethods = 1, .dts = dts,
-                          .ndts = 3, .t_end = 0.05, .rows = 5,
-                          .repeats = -1};
-    bf_err err = {0};
-    bf_converge_result *r;
-    ck_assert_msg(bf_converge_file(tu_repo("runs/coupled_fig8.ini"), NULL, 0,
-                                   &o, &r, &err) == BF_OK,
-                  "%s", err.msg);
+    bf_converge_result *r = study(m, 1, dts, 0.05);
     ck_assert_uint_eq(r->nrows, 3);
     const char *tested[] = {"psi", "h", "q_d"};
     for (size_t k = 0; k < r->nrows; k++) {

@@ -81,6 +81,10 @@ const char *bf_study_why_not(const char *model);
 void bf_study_particles_view(const bf_particles *p, int velocities,
                              bf_study_view *v);
 
+/* Shared by the balls and coupled studies (study_balls.c): the balls'
+ * groups x (cm) and v (cm/s) appended to v. */
+void bf_study_balls_groups(const bf_balls *b, bf_study_view *v);
+
 /* Shared by the film and coupled studies (study_film.c): the film's
  * groups psi (1), h (cm), q_d, q_c (cm^2/s) appended to v, and its phase
  * totals as the invariants; the note on a randomly perturbed start. */

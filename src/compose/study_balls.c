@@ -57,19 +57,24 @@ static double balls_max_step(const bf_scene *sc)
     return hertz(sc) ? 10 * bf_scene_real(sc, "scene", "dt") : 0.0;
 }
 
+void bf_study_balls_groups(const bf_balls *b, bf_study_view *v)
+{
+    static const char *const names[2] = {"x", "v"};
+    static const char *const units[2] = {"cm", "cm/s"};
+    const double *data[2] = {b->x, b->v};
+    for (size_t k = 0; k < 2; k++) {
+        size_t g = v->ngroups++;
+        v->g[g].name = names[k];
+        v->g[g].unit = units[k];
+        v->g[g].a = data[k];
+        v->g[g].n = b->n;
+    }
+}
+
 static void balls_view(void *model, bf_study_view *v)
 {
-    const bf_ballsys *s = bf_balls_model_system(model);
     memset(v, 0, sizeof *v);
-    v->ngroups = 2;
-    v->g[0].name = "x";
-    v->g[0].unit = "cm";
-    v->g[0].a = s->b.x;
-    v->g[0].n = s->b.n;
-    v->g[1].name = "v";
-    v->g[1].unit = "cm/s";
-    v->g[1].a = s->b.v;
-    v->g[1].n = s->b.n;
+    bf_study_balls_groups(&bf_balls_model_system(model)->b, v);
 }
 
 static void balls_describe(void *model, char *buf, size_t cap, int *order)

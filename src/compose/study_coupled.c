@@ -69,15 +69,7 @@ static void coupled_view(void *model, bf_study_view *v)
     bf_coupled_parts p;
     bf_coupled_model_parts(model, &p);
     memset(v, 0, sizeof *v);
-    v->ngroups = 2;
-    v->g[0].name = "x";
-    v->g[0].unit = "cm";
-    v->g[0].a = p.sys->b.x;
-    v->g[0].n = p.sys->b.n;
-    v->g[1].name = "v";
-    v->g[1].unit = "cm/s";
-    v->g[1].a = p.sys->b.v;
-    v->g[1].n = p.sys->b.n;
+    bf_study_balls_groups(&p.sys->b, v);
     bf_study_film_groups(bf_coupled_model_filmsys(model), v);
 }
 
