@@ -84,6 +84,9 @@ void bf_study_particles_view(const bf_particles *p, int velocities,
 /* Shared by the balls and coupled studies (study_balls.c): the balls'
  * groups x (cm) and v (cm/s) appended to v. */
 void bf_study_balls_groups(const bf_balls *b, bf_study_view *v);
+/* The largest internal step of adaptive ball runs: 10 x [scene] dt on a
+ * scene with Hertz contacts (effects floor or contact), else 0 (none). */
+double bf_study_hertz_max_step(const bf_scene *sc);
 
 /* Shared by the film and coupled studies (study_film.c): the film's
  * groups psi (1), h (cm), q_d, q_c (cm^2/s) appended to v, and its phase

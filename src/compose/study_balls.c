@@ -52,7 +52,7 @@ static bf_status balls_reference(const bf_scene *sc,
                                      method, cap, err);
 }
 
-static double balls_max_step(const bf_scene *sc)
+double bf_study_hertz_max_step(const bf_scene *sc)
 {
     return hertz(sc) ? 10 * bf_scene_real(sc, "scene", "dt") : 0.0;
 }
@@ -137,7 +137,7 @@ const bf_study_type bf_study_balls = {
     .max_ref_rtol = 1e-12,
     .adaptive = balls_adaptive,
     .reference = balls_reference,
-    .max_step = balls_max_step,
+    .max_step = bf_study_hertz_max_step,
     .view = balls_view,
     .describe = balls_describe,
     .watch = balls_watch,

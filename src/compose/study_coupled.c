@@ -21,9 +21,10 @@
  * split scheme, so the errors are time errors (the coupling's lag and the
  * film scheme's), not the film's space error.  Its estimated error on
  * runs/coupled_fig8.ini over 0.25 s (four contacts): x 5e-11 cm at rtol
- * 1e-12 (the difference to 1e-13), 4e-9 cm at 1e-10, 1.6e-7 at 1e-8.  Its largest internal step is 10 x [scene] dt with
- * Hertz contacts, as for the balls (study_balls.c): in a free flight the
- * balls' error estimate is small and a step could jump over a contact. */
+ * 1e-12 (the difference to 1e-13), 4e-9 cm at 1e-10, 1.6e-7 at 1e-8.
+ * Its largest internal step is 10 x [scene] dt with Hertz contacts, as
+ * for the balls (bf_study_hertz_max_step): in a free flight the balls'
+ * error estimate is small and a step could jump over a contact. */
 #include <stdio.h>
 #include <string.h>
 
@@ -51,17 +52,6 @@ static size_t coupled_method_sets(const char *name, char sets[2][96])
 static int coupled_adaptive(const bf_scene *sc)
 {
     return strcmp(bf_scene_str(sc, "coupled", "scheme"), "arkode") == 0;
-}
-
-static int hertz(const bf_scene *sc)
-{
-    return bf_scene_has_name(sc, "scene", "effects", "contact") ||
-           bf_scene_has_name(sc, "scene", "effects", "floor");
-}
-
-static double coupled_max_step(const bf_scene *sc)
-{
-    return hertz(sc) ? 10 * bf_scene_real(sc, "scene", "dt") : 0.0;
 }
 
 static void coupled_view(void *model, bf_study_view *v)
@@ -103,7 +93,7 @@ const bf_study_type bf_study_coupled = {
     .method_sets = coupled_method_sets,
     .adaptive = coupled_adaptive,
     .reference = bf_study_arkode_erk,
-    .max_step = coupled_max_step,
+    .max_step = bf_study_hertz_max_step,
     .view = coupled_view,
     .describe = bf_coupled_model_describe,
     .notes = coupled_notes,

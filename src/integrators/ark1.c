@@ -44,11 +44,9 @@ struct bf_ark1 {
     bf_counters base; /* counted before a checkpoint was loaded */
     int failed; /* a right-hand side asked to stop */
     char msg[512];
-    /* kinks (ERK, bf_ark1_set_kinks): g, its size, the roots found, and
-     * the states at the start (prev) and end (cur) of the last step */
+    /* kinks (ERK, bf_ark1_set_kinks): g, its size, and the states at the start (prev) and end (cur) of the last step */
     bf_root1_fn g;
     int ng;
-    int *found;
     double tprev, tcur;
     double *yprev, *ycur;
     unsigned long long restarts;
@@ -120,7 +118,6 @@ void bf_ark1_free(bf_ark1 *a)
         N_VDestroy(a->y);
     if (a->sunctx)
         SUNContext_Free(&a->sunctx);
-    free(a->found);
     free(a->yprev);
     free(a->ycur);
     free(a);
@@ -216,7 +213,6 @@ static bf_status create_mri(bf_ark1 *a, bf_err *err)
         flag = ARKStepSStolerances(a->inner, a->o.rtol, a->o.atol);
     if (flag >= 0)
         flag = ARKStepSetMaxNumSteps(a->inner, a->o.max_steps);
-
     if (flag >= 0 && a->o.max_step > 0)
         flag = ARKStepSetMaxStep(a->inner, a->o.max_step);
     if (flag >= 0)
@@ -342,10 +338,9 @@ bf_status bf_ark1_set_kinks(bf_ark1 *a, int n, bf_root1_fn g, bf_err *err)
                        "root function");
     a->g = g;
     a->ng = n;
-    a->found = calloc((size_t)n, sizeof *a->found);
     a->yprev = calloc(a->n, sizeof *a->yprev);
     a->ycur = calloc(a->n, sizeof *a->ycur);
-    if (!a->found || !a->yprev || !a->ycur)
+    if (!a->yprev || !a->ycur)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     int flag = roots_on(a, 1);
     if (flag >= 0)

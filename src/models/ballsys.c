@@ -212,7 +212,9 @@ static bf_status check_initial_energy(const bf_ballsys *s, bf_err *err)
  * code here runs and every result is as before. */
 enum { MAX_PIECES = 100000, MAX_TRIALS = 60 };
 
-static bf_status events_setup(bf_ballsys *s, bf_err *err)
+/* which gaps the effects make (every ball system: the coupled model's
+ * whole-system ARKODE restarts at them too) */
+static void gaps_setup(bf_ballsys *s)
 {
     const size_t n = s->b.n;
     for (size_t k = 0; k < s->neff; k++) {
@@ -220,6 +222,11 @@ static bf_status events_setup(bf_ballsys *s, bf_err *err)
         s->gap_pair |= s->eff[k].type->kernel == BF_KERNEL_CONTACT && n > 1;
     }
     s->ngaps = (s->gap_floor ? (int)n : 0) + (s->gap_pair ? (int)n - 1 : 0);
+}
+
+static bf_status events_setup(bf_ballsys *s, bf_err *err)
+{
+    const size_t n = s->b.n;
     const size_t m = (size_t)s->ngaps;
     s->ev_work = calloc(6 * n + 4 * m + 1, sizeof *s->ev_work);
     s->ev_side = calloc(m + 1, sizeof *s->ev_side);
@@ -588,6 +595,7 @@ bf_status bf_ballsys_create(bf_ballsys **out, const bf_model_setup *setup,
     s->forces = (bf_ball_forces){&s->b, s->eff, s->neff};
     if (s->it->type->balls)
         s->it->type->balls->pick(&s->forces, &s->fast_step, &s->fast_advance);
+    gaps_setup(s);
     if (s->it->split_events && (st = events_setup(s, err))) {
         bf_ballsys_free(s);
         return st;

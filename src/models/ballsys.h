@@ -42,7 +42,8 @@ typedef struct bf_ballsys {
     bf_ball_advance_fn fast_advance;
     /* Contact events ([integrator] events = yes; ballsys.c, "Event
      * splitting").  The gaps: x_i - R_i per ball with a floor effect,
-     * (x_{i+1} - x_i) - (R_i + R_{i+1}) per pair with a contact effect. */
+     * (x_{i+1} - x_i) - (R_i + R_{i+1}) per pair with a contact effect
+     * (set for every system: bf_ballsys_gaps_fn serves others too). */
     int split;      /* fixed-step integrator: split each step at them */
     int gap_floor, gap_pair;
     int ngaps;
@@ -72,7 +73,8 @@ int bf_ballsys_accel(void *ctx, double t, const double *x, const double *v,
 int bf_ballsys_daccel(void *ctx, double t, const double *x, const double *xn,
                       double *abar);
 
-/* The gaps of the event splitting at x (bf_root_fn; ctx: the bf_ballsys). */
+/* The s->ngaps gaps of the event splitting at x (bf_root_fn; ctx: the
+ * bf_ballsys; v is not read). */
 int bf_ballsys_gaps_fn(void *ctx, double t, const double *x, const double *v,
                        double *g);
 

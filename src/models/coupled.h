@@ -9,7 +9,9 @@
 #include "models/ballsys.h"
 
 /* The parts of a coupled system: its balls, its film and the film's
- * coupling chemical potential mu_cpl (eq. 3.11, nodes 0..N). */
+ * coupling chemical potential mu_cpl (eq. 3.11, nodes 0..N) for the split
+ * scheme's next film step (the whole-system schemes form it in every
+ * evaluation and leave this one at zero). */
 typedef struct bf_coupled_parts {
     bf_ballsys *sys;
     bf_film *film;

@@ -58,8 +58,8 @@ struct bf_coupled_whole {
     double *y;      /* [x, v, film] */
     double *mu;     /* mu_cpl of a stage (nodes) */
     double *synced; /* the film part last put into the film (nf) */
+    double *film0;  /* the film part at the step's start (nf) */
     int have_synced;
-    int gap_floor, gap_pair; /* the kinks: Hertz onsets and releases */
     unsigned long long refreshes;
 };
 
@@ -120,23 +120,13 @@ static int rhs_parts(bf_coupled_whole *w, double t, const double *y,
     return 0;
 }
 
-/* The contact gaps (cm) at the balls of y: x_p - R_p per ball with a
- * floor, (x_(p+1) - x_p) - (R_p + R_(p+1)) per pair with contacts.  The
- * Hertz force is C^1 but not C^2 where a gap crosses 0; ERKStep restarts
- * there (bf_ark1_set_kinks), so that its steps keep their order. */
+/* The contact gaps of the balls of y (bf_ballsys_gaps_fn, cm): the Hertz
+ * force is C^1 but not C^2 where one crosses 0; ERKStep restarts there
+ * (bf_ark1_set_kinks), so that its steps keep their order. */
 static int gaps(void *ctx, double t, const double *y, double *g)
 {
-    (void)t;
     const bf_coupled_whole *w = ctx;
-    const double *R = w->m->sys->b.R;
-    int k = 0;
-    if (w->gap_floor)
-        for (size_t p = 0; p < w->nb; p++)
-            g[k++] = y[p] - R[p];
-    if (w->gap_pair)
-        for (size_t p = 0; p + 1 < w->nb; p++)
-            g[k++] = (y[p + 1] - y[p]) - (R[p] + R[p + 1]);
-    return 0;
+    return bf_ballsys_gaps_fn(w->m->sys, t, y, NULL, g);
 }
 
 static int rhs_all(void *ctx, double t, const double *y, double *ydot)
@@ -195,7 +185,8 @@ bf_status bf_coupled_whole_create(coupled_model *m,
     w->y = calloc(w->n, sizeof *w->y);
     w->mu = calloc(bf_film_nodes(f), sizeof *w->mu);
     w->synced = calloc(w->nf, sizeof *w->synced);
-    if (!w->y || !w->mu || !w->synced)
+    w->film0 = calloc(w->nf, sizeof *w->film0);
+    if (!w->y || !w->mu || !w->synced || !w->film0)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     const int mri = k->scheme == BF_COUPLED_MRI;
     bf_ark1_opts o = {
@@ -213,17 +204,9 @@ bf_status bf_coupled_whole_create(coupled_model *m,
                         mri ? rhs_fast : NULL, w, &o, err);
     if (st == BF_EINPUT)
         bf_err_prefix(err, "[coupled] table");
-    if (st || mri)
+    if (st || mri || m->sys->ngaps == 0)
         return st;
-    const bf_ballsys *s = m->sys;
-    for (size_t e = 0; e < s->neff; e++) {
-        w->gap_floor |= s->eff[e].type->kernel == BF_KERNEL_FLOOR;
-        w->gap_pair |= s->eff[e].type->kernel == BF_KERNEL_CONTACT &&
-                       w->nb > 1;
-    }
-    int ng = (w->gap_floor ? (int)w->nb : 0) +
-             (w->gap_pair ? (int)w->nb - 1 : 0);
-    return ng > 0 ? bf_ark1_set_kinks(w->ark, ng, gaps, err) : BF_OK;
+    return bf_ark1_set_kinks(w->ark, m->sys->ngaps, gaps, err);
 }
 
 void bf_coupled_whole_free(bf_coupled_whole *w)
@@ -235,6 +218,7 @@ void bf_coupled_whole_free(bf_coupled_whole *w)
     free(w->y);
     free(w->mu);
     free(w->synced);
+    free(w->film0);
     free(w);
 }
 
@@ -249,6 +233,7 @@ bf_status bf_coupled_whole_step(coupled_model *m, double t, double dt,
     memcpy(w->y, s->b.x, nb * sizeof *w->y);
     memcpy(w->y + nb, s->b.v, nb * sizeof *w->y);
     bf_film_mol_pack(f, yf);
+    memcpy(w->film0, yf, w->nf * sizeof *yf);
     /* A fresh coupling at every step's start: its Taylor anchors
      * (coupling.h) are then those of this step's evaluations only, as in
      * a run continued from a checkpoint, which refreshes after the load. */
@@ -257,18 +242,18 @@ bf_status bf_coupled_whole_step(coupled_model *m, double t, double dt,
     if (!st)
         st = bf_film_mol_check(w->mol, yf, err);
     if (st) {
-        /* the stages left a trial film in the model's: back to the start */
+        /* the stages left a trial film in the model's: back to the film
+         * at the step's start (the balls were not touched) */
         w->have_synced = 0;
-        bf_film_mol_pack(f, yf); /* (unchanged by a failed evolve) */
-        sync_film(w, yf);
+        sync_film(w, w->film0);
         return st;
     }
     bf_film_mol_vanish(w->mol, yf);
     memcpy(s->b.x, w->y, nb * sizeof *w->y);
     memcpy(s->b.v, w->y + nb, nb * sizeof *w->y);
     sync_film(w, yf);
-    /* mu_cpl of the end state: what a checkpoint and the output keep */
-    bf_coupling_mu(m->cpl, nb, s->b.x, s->b.R, m->mucpl);
+    /* (m->mucpl, the split scheme's mu_cpl for its next film step, is not
+     * used here: each stage forms its own) */
     return BF_OK;
 }
 
