@@ -98,18 +98,37 @@ static void sort_by_x(bf_support *s, const bf_cells *c)
     }
 }
 
-/* Fenwick tree over levels 1..m of 2 sums (A, B), stored side by side
- * (with SSE2 both in one register: the same additions, the same bits). */
-static inline void fen_add(double *fen, int m, int level, double a, double b)
+/* The sweep's two prefix sums over levels (A = sum h, B = sum h e of the
+ * squares entered so far at each level), kept as a Fenwick tree laid out
+ * by depth: block j of depth t holds the levels j 2^t + 1 .. (j + 1) 2^t
+ * (at fen + 2 (foff[t] + j), A and B side by side).  An update of level L
+ * adds to the block of depth t that holds L, for every depth t < depth; a
+ * prefix sum over the levels 1..K adds, for every bit t set in K from the
+ * lowest up, the block of depth t that ends at level (K >> t) 2^t.  These
+ * are the nodes of a Fenwick tree (node k is block k / 2^t - 1 of depth t,
+ * 2^t the lowest bit of k), visited in the Fenwick tree's order, and the
+ * blocks that are not nodes of it (j + 1 even) are never read: the same
+ * additions in the same order, so the same bits.  Unlike the Fenwick loops
+ * (k += k & -k), whose trip counts change with every level, both loops run
+ * `depth` times, the same number for every update and query of a chunk:
+ * no mispredicted branches; a bit that is not set adds +0.0 (the sum
+ * starts at +0.0 and is never -0.0, so adding +0.0 changes nothing).  With
+ * SSE2 A and B share one register (the same additions). */
+static inline void fen_add(const bf_support *s, double *fen, int depth,
+                           int level, double a, double b)
 {
+    const unsigned i = (unsigned)level - 1u;
 #if defined(__SSE2__)
     const __m128d ab = _mm_set_pd(b, a);
-    for (int k = level; k <= m; k += k & -k)
-        _mm_storeu_pd(fen + 2 * k, _mm_add_pd(_mm_loadu_pd(fen + 2 * k), ab));
+    for (int t = 0; t < depth; t++) {
+        double *nd = fen + 2 * (s->foff[t] + (i >> t));
+        _mm_storeu_pd(nd, _mm_add_pd(_mm_loadu_pd(nd), ab));
+    }
 #else
-    for (int k = level; k <= m; k += k & -k) {
-        fen[2 * k] += a;
-        fen[2 * k + 1] += b;
+    for (int t = 0; t < depth; t++) {
+        double *nd = fen + 2 * (s->foff[t] + (i >> t));
+        nd[0] += a;
+        nd[1] += b;
     }
 #endif
 }
@@ -119,30 +138,42 @@ static inline void fen_add(double *fen, int m, int level, double a, double b)
  * with its full height h at every level m whose line z_m = ay + m dx is at
  * or above its top (m >= sl[p]; a square clipped by the ceiling never
  * counts); squares cut by the line z_m are added by the cell-list query of
- * the particle asking (cut_band). */
-static inline void sweep_add(const bf_support *s, double *fen, int mq,
-                             size_t p, double sigma, double e)
+ * the particle asking (cut_band).  Levels above mq are never asked. */
+static inline void sweep_add(const bf_support *s, double *fen, int depth,
+                             int mq, size_t p, double sigma, double e)
 {
     const int mt = s->sl[p];
     if (mt <= mq) {
         double h = sigma * (s->ts[p] - s->bs[p]);
-        fen_add(fen, mq, mt, h, h * e);
+        fen_add(s, fen, depth, mt, h, h * e);
     }
 }
 
-/* G(x) = x A - B at level m (local coordinates). */
-static inline double sweep_eval(const double *fen, double x, int m)
+/* G(x) = x A - B over the levels 1..m (local coordinates). */
+static inline double sweep_eval(const bf_support *s, const double *fen,
+                                int depth, double x, int m)
 {
+    const unsigned P = (unsigned)m;
 #if defined(__SSE2__)
     __m128d ab = _mm_setzero_pd();
-    for (int k = m; k > 0; k -= k & -k)
-        ab = _mm_add_pd(ab, _mm_loadu_pd(fen + 2 * k));
+    for (int t = 0; t < depth; t++) {
+        const unsigned q = P >> t;
+        const __m128d on =
+            _mm_castsi128_pd(_mm_set1_epi64x(-(long long)(q & 1u)));
+        ab = _mm_add_pd(ab, _mm_and_pd(on, _mm_loadu_pd(
+                                               fen + 2 * (s->foff[t] +
+                                                          (q & ~1u)))));
+    }
     return x * _mm_cvtsd_f64(ab) - _mm_cvtsd_f64(_mm_unpackhi_pd(ab, ab));
 #else
     double a = 0, b = 0;
-    for (int k = m; k > 0; k -= k & -k) {
-        a += fen[2 * k];
-        b += fen[2 * k + 1];
+    for (int t = 0; t < depth; t++) {
+        const unsigned q = P >> t;
+        if (q & 1u) {
+            const double *nd = fen + 2 * (s->foff[t] + q - 1u);
+            a += nd[0];
+            b += nd[1];
+        }
     }
     return x * a - b;
 #endif
@@ -226,8 +257,9 @@ static size_t sweep_updates(bf_support *s, size_t n)
  * grow with the box).  Squares straddling X0 enter with their left edge at
  * X0: G(x) = integral from X0 to x of the filled height.  Each query at x
  * sees the updates at or before x, in the order of sweep_updates.  The
- * tree holds only the levels up to the highest K asked in the chunk: a
- * node above it is never read, and every node below gets the same
+ * tree keeps only the depths that the highest K asked in the chunk reads,
+ * and only squares of levels up to that K enter at X0: a block it does
+ * not read may hold anything, and every block it reads gets the same
  * additions in the same order as in a taller tree, so the areas are the
  * same bits.  qd[i] is replaced by F(delta_i) once read. */
 static void sweep_chunk(bf_support *s, double *fen, size_t n, size_t nu,
@@ -246,12 +278,17 @@ static void sweep_chunk(bf_support *s, double *fen, size_t n, size_t nu,
     int mq = s->exhaustive ? s->kmax + 1 : 1;
     for (size_t i = q0; i < q1; i++)
         mq = qK[i] > mq ? qK[i] : mq;
-    memset(fen, 0, 2 * (size_t)(mq + 1) * sizeof *fen);
+    /* the depths that a query of a level <= mq reads (its highest bit);
+     * updates of higher levels go into blocks that no query reads */
+    int depth = 1;
+    while ((mq >> depth) > 0)
+        depth++;
+    memset(fen, 0, 2 * s->foff[depth] * sizeof *fen);
     /* squares with l <= X0 < r enter at X0 */
     size_t pr = bsearch_pos(rs, 0, n, X0, 0);
     size_t pl = bsearch_pos(ls, 0, n, X0, 0);
     for (size_t p = pr; p < pl; p++)
-        sweep_add(s, fen, mq, p, 1.0, 0.0);
+        sweep_add(s, fen, depth, mq, p, 1.0, 0.0);
     /* then the edges beyond X0 */
     size_t u = bsearch_pos(uv, 0, nu, X0, 0);
     size_t pg = q0, pd = q0;
@@ -262,9 +299,9 @@ static void sweep_chunk(bf_support *s, double *fen, size_t n, size_t nu,
         const size_t i = isg ? pg : pd;
         const double v = isg ? qg[pg] : qd[pd];
         for (; uv[u] <= v; u++)
-            fen_add(fen, mq, ul[u], uh[u], uh[u] * (uv[u] - X0));
+            fen_add(s, fen, depth, ul[u], uh[u], uh[u] * (uv[u] - X0));
         double *dst = isg ? fg + pg : qd + pd;
-        *dst = sweep_eval(fen, v - X0, qK[i]);
+        *dst = sweep_eval(s, fen, depth, v - X0, qK[i]);
         pg += (size_t)isg;
         pd += (size_t)!isg;
     }
@@ -661,7 +698,7 @@ void bf_sup_eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
         long nch = (long)ceil(w / chunk);
         if (nch < 1)
             nch = 1;
-        const size_t fsz = 2 * ((size_t)s->kmax + 3);
+        const size_t fsz = s->fsz;
         if (pr) {
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)

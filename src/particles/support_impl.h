@@ -57,7 +57,12 @@ struct bf_support {
     double *fgam;  /* F(gamma) while sweeping (by query) */
     int32_t *lowe; /* lowest empty band below the top band */
     uint32_t *nxt; /* skip list of particles without a lowest empty band */
-    double *fen;   /* Fenwick tree over levels: 4 sums per node */
+    /* the sweep's prefix sums over levels (support_fast.c, fen_add): the
+     * blocks of 2^t levels of depth t = 0..fdepth - 1 start at foff[t];
+     * fsz doubles per thread */
+    double *fen;
+    int fdepth;
+    size_t foff[34], fsz;
     uint32_t *bstart, *bfill, *blist;
     /* the squares that the sweep at level m leaves out and that reach band
      * m, by column of the cell list and line m (support_fast.c, cut_lists):

@@ -134,7 +134,17 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->fgam = malloc(k * sizeof *s->fgam);
     s->lowe = malloc(k * sizeof *s->lowe);
     s->nxt = malloc((k + 1) * sizeof *s->nxt);
-    s->fen = malloc(2 * nb * (size_t)s->threads * sizeof *s->fen);
+    /* depth t has the blocks 0 .. nb >> t of 2^t levels (support_fast.c) */
+    size_t fo = 0;
+    s->fdepth = 0;
+    while ((nb >> s->fdepth) > 0) {
+        s->foff[s->fdepth] = fo;
+        fo += (nb >> s->fdepth) + 1;
+        s->fdepth++;
+    }
+    s->foff[s->fdepth] = fo;
+    s->fsz = 2 * fo;
+    s->fen = calloc(s->fsz * (size_t)s->threads, sizeof *s->fen);
     s->bstart = malloc((nb + 1) * sizeof *s->bstart);
     s->bfill = malloc((nb + 1) * sizeof *s->bfill);
     /* a square of height <= 2 dx has positive area in at most 3 bands */
