@@ -446,16 +446,14 @@ static inline double cut_band(const bf_support *s, const bf_cells *c,
     return acc;
 }
 
-/* Grows *v to hold `want` elements of `size` bytes (keeping *cap). */
-static int reserve(void **v, size_t *cap, size_t want, size_t size)
+/* Grows *v to hold `want` elements of `size` bytes (*v keeps its size
+ * if that fails). */
+static int grow(void **v, size_t want, size_t size)
 {
-    if (want <= *cap)
-        return 1;
     void *w = realloc(*v, want * size);
     if (!w)
         return 0;
     *v = w;
-    *cap = want;
     return 1;
 }
 
@@ -464,74 +462,96 @@ static int reserve(void **v, size_t *cap, size_t want, size_t size)
  * is, b < z_m < t (the lines first_band(b) .. csl - 1), or, clipped by the
  * ceiling (csl = INT32_MAX) with t > b, z_m > b (the lines from
  * first_band(b) on): the lines cmb[u] .. cme[u] of slot u (fast_to_slots).
- * Bucket (col, m) = col kmax + m - 1 holds those of column col of the
+ * Bucket (m, col) = (m - 1) nx + col holds those of column col of the
  * cell list in slot order, so that the buckets of line m in the columns
- * c0..c1, one after the other, are in slot order: the order in which
+ * c0..c1 are one run of entries in slot order: the order in which
  * cut_band adds them (its window holds all of them: the rows from
  * hi_m - d/2 to min(y_j, hi_m + d/2) with a margin far above round-off,
  * and the same columns c0..c1).  A query reads only the squares that its
- * line cuts in those columns, not every square of the window's cells.
- * Returns 0 if out of memory (cut_band is used instead). */
+ * line cuts in those columns, not every square of the window's cells, and
+ * reads them from one run of memory: each entry holds what the query
+ * needs, the height min(t, z_m) - b below the line already formed (the
+ * same expression cut_band forms).  Returns 0 if out of memory (cut_band
+ * is used instead). */
 static int cut_lists(bf_support *s, const bf_cells *c)
 {
     const int L = s->kmax, nx = c->nx;
     const size_t ny = (size_t)c->ny, nb = (size_t)L * (size_t)nx;
-    if (L < 1 ||
-        !reserve((void **)&s->cutst, &s->cutst_cap, nb + 2, sizeof *s->cutst))
+    if (L < 1)
         return 0;
+    if (nb + 2 > s->cutst_cap) {
+        if (!grow((void **)&s->cutst, nb + 2, sizeof *s->cutst))
+            return 0;
+        s->cutst_cap = nb + 2;
+    }
     uint32_t *st = s->cutst;
     const int32_t *cmb = s->cmb, *cme = s->cme;
+    const double *cl = s->cl, *cr = s->cr, *cb = s->cb, *ct = s->ct,
+                 *sy = c->sy, *bz = s->bz;
     memset(st, 0, (nb + 2) * sizeof *st);
-    for (int pass = 0; pass < 2; pass++) {
-        for (int col = 0; col < nx; col++) {
-            const uint32_t u0 = c->start[(size_t)col * ny],
-                           u1 = c->start[(size_t)(col + 1) * ny];
-            uint32_t *sc = st + (size_t)col * (size_t)L - 1; /* line m at m */
-            for (uint32_t u = u0; u < u1; u++)
-                for (int m = cmb[u]; m <= cme[u]; m++) {
-                    if (pass == 0)
-                        sc[m + 2]++;
-                    else
-                        s->cutv[sc[m + 1]++] = u;
-                }
-        }
-        if (pass == 0) {
-            /* st[k + 1]: the start of bucket k, the end after pass 1 */
-            for (size_t k = 0; k < nb; k++)
-                st[k + 2] += st[k + 1];
-            if (!reserve((void **)&s->cutv, &s->cutv_cap,
-                         st[nb + 1] ? st[nb + 1] : 1, sizeof *s->cutv))
-                return 0;
-        }
+    /* bucket (m, col) counted at st[(m - 1) nx + col + 2] */
+    for (int col = 0; col < nx; col++) {
+        const uint32_t u0 = c->start[(size_t)col * ny],
+                       u1 = c->start[(size_t)(col + 1) * ny];
+        uint32_t *sc = st + col + 2 - nx; /* line m at m nx */
+        for (uint32_t u = u0; u < u1; u++)
+            for (int m = cmb[u]; m <= cme[u]; m++)
+                sc[(size_t)m * (size_t)nx]++;
+    }
+    /* st[k + 1]: the start of bucket k, the end after the filling */
+    for (size_t k = 0; k < nb; k++)
+        st[k + 2] += st[k + 1];
+    const size_t ne = st[nb + 1] ? st[nb + 1] : 1;
+    if (ne > s->cutv_cap) {
+        if (!grow((void **)&s->cutv, ne, sizeof *s->cutv) ||
+            !grow((void **)&s->cutl, ne, sizeof *s->cutl) ||
+            !grow((void **)&s->cutr, ne, sizeof *s->cutr) ||
+            !grow((void **)&s->cuth, ne, sizeof *s->cuth) ||
+            !grow((void **)&s->cuty, ne, sizeof *s->cuty))
+            return 0;
+        s->cutv_cap = ne;
+    }
+    for (int col = 0; col < nx; col++) {
+        const uint32_t u0 = c->start[(size_t)col * ny],
+                       u1 = c->start[(size_t)(col + 1) * ny];
+        uint32_t *sc = st + col + 1 - nx;
+        for (uint32_t u = u0; u < u1; u++)
+            for (int m = cmb[u]; m <= cme[u]; m++) {
+                const uint32_t e = sc[(size_t)m * (size_t)nx]++;
+                s->cutv[e] = u;
+                s->cutl[e] = cl[u];
+                s->cutr[e] = cr[u];
+                s->cuth[e] = dmin(ct[u], bz[m]) - cb[u];
+                s->cuty[e] = sy[u];
+            }
     }
     return 1; /* bucket k is st[k] .. st[k + 1] - 1 */
 }
 
 /* cut_band from the cut lists: the same squares, added in the same order
- * with the same expressions, so the same bits. */
+ * with the same expressions, so the same bits.  Every entry has positive
+ * height (b < z_K), so its term is positive or, where it does not count,
+ * +0.0 (the sum starts at +0.0): the select is a mask, not a branch. */
 static inline double cut_list_band(const bf_support *s, const bf_cells *c,
                                    const stripq *q, uint32_t tj,
                                    uint32_t *count)
 {
     const double hd = s->hd;
-    const double *restrict cl = s->cl, *restrict cr = s->cr,
-                           *restrict cb = s->cb, *restrict ct = s->ct,
-                           *restrict sy = c->sy;
-    const uint32_t *restrict v = s->cutv;
-    int c0 = bf_cells_col(c, q->gam - hd), c1 = bf_cells_col(c, q->del + hd);
+    const double *restrict el = s->cutl, *restrict er = s->cutr,
+                           *restrict eh = s->cuth, *restrict ey = s->cuty;
+    const uint32_t *restrict ev = s->cutv;
+    const int c0 = bf_cells_col(c, q->gam - hd),
+              c1 = bf_cells_col(c, q->del + hd);
+    const uint32_t *st =
+        s->cutst + (size_t)(q->K - 1) * (size_t)c->nx;
+    const uint32_t k1 = st[c1 + 1];
     double acc = 0.0;
     uint32_t cnt = 0;
-    for (int col = c0; col <= c1; col++) {
-        const uint32_t *st = s->cutst + (size_t)col * (size_t)s->kmax +
-                             (size_t)(q->K - 1);
-        for (uint32_t k = st[0]; k < st[1]; k++) {
-            const uint32_t u = v[k];
-            double f2 = dmin(cr[u], q->del) - dmax(cl[u], q->gam);
-            double hh = dmin(ct[u], q->hi) - cb[u];
-            int ok = (f2 > 0) & (sy[u] <= q->ytop) & (u != tj);
-            acc += ok ? f2 * hh : 0.0;
-            cnt += (uint32_t)ok;
-        }
+    for (uint32_t k = st[c0]; k < k1; k++) {
+        double f2 = dmin(er[k], q->del) - dmax(el[k], q->gam);
+        int ok = (f2 > 0) & (ey[k] <= q->ytop) & (ev[k] != tj);
+        acc += (double)ok * (f2 * eh[k]);
+        cnt += (uint32_t)ok;
     }
     *count = cnt;
     return acc;

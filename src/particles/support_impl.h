@@ -65,12 +65,15 @@ struct bf_support {
     size_t foff[34], fsz;
     uint32_t *bstart, *bfill, *blist;
     /* the squares that the sweep at level m leaves out and that reach band
-     * m, by column of the cell list and line m (support_fast.c, cut_lists):
-     * the lines cmb..cme of each slot's square, the slots of each bucket
-     * (cutv) and where the buckets start (cutst); cutv and cutst are
-     * allocated on first use (their sizes depend on the cell list) */
+     * m, by line m and column of the cell list (support_fast.c,
+     * cut_lists): the lines cmb..cme of each slot's square; per entry of a
+     * bucket the slot (cutv), the square's edges l, r (cutl, cutr), its
+     * height below z_m (cuth) and its centre's y (cuty); where the buckets
+     * start (cutst).  Allocated on first use (their sizes depend on the
+     * cell list) */
     int32_t *cmb, *cme;
     uint32_t *cutv, *cutst;
+    double *cutl, *cutr, *cuth, *cuty;
     size_t cutv_cap, cutst_cap;
     /* per-band sums for one particle (naive and cell) */
     double *area;

@@ -221,6 +221,10 @@ void bf_support_free(bf_support *s)
     free(s->cmb);
     free(s->cme);
     free(s->cutv);
+    free(s->cutl);
+    free(s->cutr);
+    free(s->cuth);
+    free(s->cuty);
     free(s->cutst);
     free(s);
 }
