@@ -337,6 +337,74 @@ START_TEST(repulsion_pair_by_hand_and_cells)
 }
 END_TEST
 
+/* The cell list's repulsion in batches (a column of cells, cut where the
+ * lists outgrow the buffers) and with the AVX-512 kernels where the
+ * processor has them: against all pairs to round-off, and the AVX-512
+ * kernels against the SSE2 ones bit for bit.  A dense box (about 150
+ * neighbours a particle), so that batches are cut many times, and a
+ * sparse one. */
+START_TEST(repulsion_batches_and_wide_kernels)
+{
+    bf_repulsion rp = {.alpha = 2.0, .xi = 0.1, .d = 5.0, .p = 2, .beta = 2,
+                       .cutoff = 10.0, .use_cells = 1, .inv_d = 0.2};
+    const size_t n = 3000;
+    gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(r, 20261204);
+    double *px = malloc(n * sizeof *px), *py = malloc(n * sizeof *py),
+           *pm = malloc(n * sizeof *pm), *a1 = malloc(n * sizeof *a1),
+           *b1 = malloc(n * sizeof *b1), *a2 = malloc(n * sizeof *a2),
+           *b2 = malloc(n * sizeof *b2), *a3 = malloc(n * sizeof *a3),
+           *b3 = malloc(n * sizeof *b3);
+    const double sides[] = {40.0, 300.0};
+    for (int k = 0; k < 2; k++) {
+        const double L = sides[k];
+        for (size_t i = 0; i < n; i++) {
+            px[i] = L * gsl_rng_uniform(r);
+            py[i] = L * gsl_rng_uniform(r);
+            pm[i] = i % 4 ? 0.25 : 1.0;
+        }
+        size_t bi, bj;
+        bf_repulsion_all_pairs(&rp, px, py, pm, n, a1, b1, &bi, &bj);
+        bf_err err = {0};
+        bf_cells c;
+        bf_repulsion_work w;
+        ck_assert(bf_cells_init(&c, 0, 0, L, L, 10.0, n, &err) == BF_OK);
+        ck_assert(bf_repulsion_work_init(&w, n, 1, &err) == BF_OK);
+        bf_cells_build(&c, px, py, pm, n);
+        ck_assert_int_eq(bf_repulsion_cells(&rp, &c, &w, a2, b2, &bi, &bj), 0);
+        for (size_t i = 0; i < n; i++) {
+            /* sums of the same terms in another order */
+            double s = 1e-12 * (1.0 + fabs(a1[i]) + fabs(b1[i]));
+            ck_assert_msg(fabs(a1[i] - a2[i]) <= s && fabs(b1[i] - b2[i]) <= s,
+                          "L %g particle %zu: (%g, %g) vs (%g, %g)", L, i,
+                          a2[i], b2[i], a1[i], b1[i]);
+        }
+        const int wide = w.wide;
+        w.wide = !wide;
+        ck_assert_int_eq(bf_repulsion_cells(&rp, &c, &w, a3, b3, &bi, &bj), 0);
+        w.wide = wide;
+        if (!wide)
+            fprintf(stderr, "repulsion: no AVX-512 here, the SSE2 kernels "
+                            "only\n");
+        else
+            ck_assert(memcmp(a2, a3, n * sizeof *a2) == 0 &&
+                      memcmp(b2, b3, n * sizeof *b2) == 0);
+        bf_repulsion_work_free(&w);
+        bf_cells_free(&c);
+    }
+    gsl_rng_free(r);
+    free(px);
+    free(py);
+    free(pm);
+    free(a1);
+    free(b1);
+    free(a2);
+    free(b2);
+    free(a3);
+    free(b3);
+}
+END_TEST
+
 /* ---------------------------------------------------------------- walls */
 
 static void one_particle(bf_particles *p, double x, double y, double vx,
@@ -874,6 +942,7 @@ Suite *suite_greenspan72(void)
     tcase_add_test(tc, support_by_hand);
     tcase_add_test(tc, support_fast_and_cell_equal_naive);
     tcase_add_test(tc, repulsion_pair_by_hand_and_cells);
+    tcase_add_test(tc, repulsion_batches_and_wide_kernels);
     tcase_add_test(tc, walls_by_hand);
     tcase_add_test(tc, particles_never_leave_the_box);
     tcase_add_test(tc, lone_particle_falls_exactly);

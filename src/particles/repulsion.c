@@ -16,9 +16,17 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define BF_REP_AVX512 1
+#endif
 
 /* Small kernels that must be inlined with constant arguments. */
 #define HOT static inline __attribute__((always_inline))
+
+/* Entries of room past the end of a list of neighbours (the AVX-512 copy
+ * of neighbours writes up to 7 past it). */
+enum { NB_PAD = 8 };
 
 /* At most NRUN columns in a neighbourhood: reach <= NRUN - 1, i.e. cells
  * of at least cutoff / (NRUN - 1) (bf_repulsion_from_keys refuses smaller
@@ -140,6 +148,8 @@ int bf_repulsion_all_pairs(const bf_repulsion *r, const double *x,
     return 0;
 }
 
+static int have_avx512(void);
+
 bf_status bf_repulsion_work_init(bf_repulsion_work *w, size_t cap, int threads,
                                  bf_err *err)
 {
@@ -151,10 +161,12 @@ bf_status bf_repulsion_work_init(bf_repulsion_work *w, size_t cap, int threads,
 #endif
     size_t k = cap ? cap : 1, nt = (size_t)w->threads;
     w->cap = cap;
+    w->wide = have_avx512();
     w->sa = malloc(2 * k * sizeof *w->sa);
-    w->r2 = malloc(nt * k * sizeof *w->r2);
-    w->nb = malloc(nt * k * sizeof *w->nb);
-    if (!w->sa || !w->r2 || !w->nb) {
+    w->r2 = malloc(nt * (k + NB_PAD) * sizeof *w->r2);
+    w->nb = malloc(nt * (k + NB_PAD) * sizeof *w->nb);
+    w->bat = malloc(nt * 2 * (k + 1) * sizeof *w->bat);
+    if (!w->sa || !w->r2 || !w->nb || !w->bat) {
         bf_repulsion_work_free(w);
         return bf_fail(err, BF_EINTERNAL, "out of memory (repulsion)");
     }
@@ -166,8 +178,9 @@ void bf_repulsion_work_free(bf_repulsion_work *w)
     free(w->sa);
     free(w->r2);
     free(w->nb);
+    free(w->bat);
     w->sa = w->r2 = NULL;
-    w->nb = NULL;
+    w->nb = w->bat = NULL;
 }
 
 #if defined(__SSE2__)
@@ -341,17 +354,194 @@ static void pair_forces(const double *restrict sx, const double *restrict sy,
 #endif
 }
 
+#if defined(BF_REP_AVX512)
+/* AVX-512 copies of neighbours and law_factors (eight lanes instead of
+ * two), chosen at run time on processors that have AVX-512F and VL.  Each
+ * lane does the same IEEE operations in the same order as the scalar and
+ * SSE2 code (no fused multiply-adds: the intrinsics name every operation),
+ * and the compress stores keep the candidates in their order, so the
+ * lists, the factors and the sums are the same bits. */
+#define AVX512 __attribute__((target("avx512f,avx512vl")))
+
+AVX512 static inline __m512d ipow_512(__m512d b, int e)
+{
+    switch (e) {
+    case 0:
+        return _mm512_set1_pd(1.0);
+    case 1:
+        return b;
+    case 2:
+        return _mm512_mul_pd(b, b);
+    case 3:
+        return _mm512_mul_pd(_mm512_mul_pd(b, b), b);
+    case 4: {
+        __m512d b2 = _mm512_mul_pd(b, b);
+        return _mm512_mul_pd(b2, b2);
+    }
+    case 5: {
+        __m512d b2 = _mm512_mul_pd(b, b);
+        return _mm512_mul_pd(_mm512_mul_pd(b2, b2), b);
+    }
+    default: {
+        __m512d r = _mm512_set1_pd(1.0);
+        while (e) {
+            if (e & 1)
+                r = _mm512_mul_pd(r, b);
+            b = _mm512_mul_pd(b, b);
+            e >>= 1;
+        }
+        return r;
+    }
+    }
+}
+
+/* law_factors_pb, eight pairs at a time; the lanes past m compute on 0
+ * and are neither stored nor tested. */
+AVX512 static inline int law_factors_512_pb(const law *L, double *restrict v,
+                                            size_t m, int p, int beta)
+{
+    const __m512d XI = _mm512_set1_pd(L->xi), ID = _mm512_set1_pd(L->inv_d),
+                  DD = _mm512_set1_pd(L->d), A = _mm512_set1_pd(L->alpha),
+                  ONE = _mm512_set1_pd(1.0), Z = _mm512_setzero_pd();
+    __mmask8 zero = 0;
+    for (size_t k = 0; k < m; k += 8) {
+        const __mmask8 lanes =
+            m - k >= 8 ? (__mmask8)0xff : (__mmask8)((1u << (m - k)) - 1u);
+        __m512d r2 = _mm512_maskz_loadu_pd(lanes, v + k);
+        __m512d d = _mm512_sqrt_pd(r2);
+        __m512d s = _mm512_add_pd(d, XI);
+        __m512d D = ipow_512(s, p), B = ipow_512(_mm512_mul_pd(s, ID), beta);
+        const __mmask8 in = _mm512_cmp_pd_mask(d, DD, _CMP_LT_OQ);
+        D = _mm512_mul_pd(D, _mm512_mask_blend_pd(in, ONE, B));
+        __m512d f = _mm512_div_pd(A, D);
+        zero |= _mm512_mask_cmp_pd_mask(lanes, D, Z, _CMP_NGT_UQ);
+        _mm512_mask_storeu_pd(v + k, lanes, f);
+    }
+    return zero != 0;
+}
+
+AVX512 static int law_factors_512(const law *L, double *restrict v, size_t m)
+{
+    if (L->p == 2 && L->beta == 2)
+        return law_factors_512_pb(L, v, m, 2, 2);
+    if (L->p == 2 && L->beta == 5)
+        return law_factors_512_pb(L, v, m, 2, 5);
+    return law_factors_512_pb(L, v, m, L->p, L->beta);
+}
+
+/* neighbours, eight candidates at a time. */
+AVX512 static size_t neighbours_512(const double *restrict sx,
+                                    const double *restrict sy, double xs,
+                                    double ys, double rc2, const uint32_t *t0,
+                                    const uint32_t *t1, int nrun,
+                                    uint32_t *restrict nb,
+                                    double *restrict r2)
+{
+    size_t m = 0;
+    const __m512d XS = _mm512_set1_pd(xs), YS = _mm512_set1_pd(ys),
+                  RC = _mm512_set1_pd(rc2);
+    const __m512i STEP = _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0);
+    for (int k = 0; k < nrun; k++) {
+        const uint32_t e = t1[k];
+        for (uint32_t t = t0[k]; t < e; t += 8) {
+            const __mmask8 lanes = e - t >= 8
+                                       ? (__mmask8)0xff
+                                       : (__mmask8)((1u << (e - t)) - 1u);
+            __m512d dx = _mm512_sub_pd(XS, _mm512_maskz_loadu_pd(lanes, sx + t)),
+                    dy = _mm512_sub_pd(YS, _mm512_maskz_loadu_pd(lanes, sy + t));
+            __m512d q = _mm512_add_pd(_mm512_mul_pd(dx, dx),
+                                      _mm512_mul_pd(dy, dy));
+            const __mmask8 in =
+                _mm512_mask_cmp_pd_mask(lanes, q, RC, _CMP_LT_OQ);
+            const unsigned cnt = (unsigned)__builtin_popcount((unsigned)in);
+            /* compressed in registers and stored whole (a compressing
+             * store to memory is slow on some processors): up to 7
+             * entries past the list are written, which the buffers have
+             * room for (NB_PAD) */
+            _mm512_storeu_pd(r2 + m, _mm512_maskz_compress_pd(in, q));
+            __m256i idx = _mm512_cvtepi64_epi32(
+                _mm512_add_epi64(_mm512_set1_epi64((long long)t), STEP));
+            _mm256_storeu_si256((__m256i *)(void *)(nb + m),
+                                _mm256_maskz_compress_epi32(in, idx));
+            m += cnt;
+        }
+    }
+    return m;
+}
+#endif
+
+/* 1 if the AVX-512 copies can run here. */
+static int have_avx512(void)
+{
+#if defined(BF_REP_AVX512)
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx512f") &&
+           __builtin_cpu_supports("avx512vl");
+#else
+    return 0;
+#endif
+}
+
+/* The pairs of a batch of particles: the factors of all their pairs in
+ * one loop (so that the square roots and divisions of many particles
+ * overlap: one particle has only a few neighbours), then, particle by
+ * particle in their order, both accelerations of each pair.  bat[2b] is
+ * the slot of the batch's particle b, bat[2b + 1] where its pairs start
+ * in nb and f (bat[2 nbat + 1] = m, their end).  A coincident pair (law
+ * D = 0) gets factor 0; the first in the order of the pairs is reported
+ * through bad. */
+static void batch_forces(const law *L, const double *restrict sx,
+                         const double *restrict sy, const double *restrict sw,
+                         const uint32_t *restrict bat, size_t nbat,
+                         const uint32_t *restrict nb, double *restrict f,
+                         size_t m, int wide, double *restrict sa,
+                         uint32_t bad[2], int *found)
+{
+    int zero;
+#if defined(BF_REP_AVX512)
+    if (wide)
+        zero = law_factors_512(L, f, m);
+    else
+#endif
+        zero = law_factors(L, f, m);
+    (void)wide;
+    for (size_t b = 0; b < nbat; b++) {
+        const uint32_t s = bat[2 * b], k0 = bat[2 * b + 1],
+                       k1 = bat[2 * b + 3];
+        const double xs = sx[s], ys = sy[s];
+        if (zero)
+            /* rare (r = 0 with xi = 0): which pairs */
+            for (uint32_t k = k0; k < k1; k++) {
+                const uint32_t t = nb[k];
+                double dx = xs - sx[t], dy = ys - sy[t];
+                if (law_D(L, dx * dx + dy * dy, L->p, L->beta) > 0)
+                    continue;
+                if (!*found) {
+                    *found = 1;
+                    bad[0] = s;
+                    bad[1] = t;
+                }
+                f[k] = 0.0;
+            }
+        pair_forces(sx, sy, sw, s, xs, ys, sw[s], nb + k0, f + k0, k1 - k0,
+                    sa);
+    }
+}
+
 /* Columns [x0, x1) of the cell list; the first coincident pair found is
  * reported through bad (slots).  For each particle s, in slot order: the
  * neighbours in half of its neighbourhood (its own column: the slots after
  * s up to row cy + reach; the columns to the right: rows cy - reach ..
- * cy + reach), their factors in one loop (the square roots and divisions of
- * different pairs overlap), then both accelerations of each pair.  The
- * sums run in the order of one loop over the pairs. */
+ * cy + reach); the particles of a column of cells are one batch
+ * (batch_forces), cut where their lists would not fit in the cap entries
+ * of nb and f.  The sums run in the order of one loop over the pairs, as
+ * if each particle's pairs were done before the next one's: a pair's
+ * factor depends on its distance only. */
 static void cols_pairs(const bf_repulsion *r, const bf_cells *c, int reach,
                        int x0, int x1, double *restrict f,
-                       uint32_t *restrict nb, double *restrict sa,
-                       uint32_t bad[2], int *found)
+                       uint32_t *restrict nb, uint32_t *restrict bat,
+                       size_t cap, double *restrict sa, uint32_t bad[2],
+                       int *found, int wide)
 {
     const law L = {r->alpha, r->xi, r->d, r->inv_d, r->p, r->beta};
     const double rc2 = r->cutoff * r->cutoff;
@@ -361,6 +551,7 @@ static void cols_pairs(const bf_repulsion *r, const bf_cells *c, int reach,
     uint32_t t0[NRUN], t1[NRUN];
     for (int cx = x0; cx < x1; cx++) {
         const int nrun = cx + reach < nx ? reach + 1 : nx - cx;
+        size_t m = 0, nbat = 0;
         for (int cy = 0; cy < ny; cy++) {
             uint32_t a0, a1;
             bf_cells_run(c, cx, cy, cy, &a0, &a1);
@@ -370,30 +561,37 @@ static void cols_pairs(const bf_repulsion *r, const bf_cells *c, int reach,
                       yhi = cy + reach >= ny ? ny - 1 : cy + reach;
             /* the same runs for every particle of the cell, but for the
              * start of the first (s + 1) */
-            for (int ox = 0; ox < nrun; ox++)
+            size_t others = 0; /* the candidates of the other columns */
+            for (int ox = 0; ox < nrun; ox++) {
                 bf_cells_run(c, cx + ox, ox == 0 ? cy : ylo, yhi, &t0[ox],
                              &t1[ox]);
-            for (uint32_t s = a0; s < a1; s++) {
-                const double xs = sx[s], ys = sy[s];
-                t0[0] = s + 1;
-                size_t m = neighbours(sx, sy, xs, ys, rc2, t0, t1, nrun, nb,
-                                      f);
-                if (law_factors(&L, f, m))
-                    /* rare (r = 0 with xi = 0): which pairs */
-                    for (size_t k = 0; k < m; k++) {
-                        const uint32_t t = nb[k];
-                        double dx = xs - sx[t], dy = ys - sy[t];
-                        if (law_D(&L, dx * dx + dy * dy, L.p, L.beta) > 0)
-                            continue;
-                        if (!*found) {
-                            *found = 1;
-                            bad[0] = s;
-                            bad[1] = t;
-                        }
-                        f[k] = 0.0;
-                    }
-                pair_forces(sx, sy, sw, s, xs, ys, sw[s], nb, f, m, sa);
+                others += ox > 0 ? t1[ox] - t0[ox] : 0;
             }
+            for (uint32_t s = a0; s < a1; s++) {
+                t0[0] = s + 1;
+                if (m + others + (t1[0] - t0[0]) > cap) {
+                    bat[2 * nbat + 1] = (uint32_t)m;
+                    batch_forces(&L, sx, sy, sw, bat, nbat, nb, f, m, wide,
+                                 sa, bad, found);
+                    m = nbat = 0;
+                }
+                bat[2 * nbat] = s;
+                bat[2 * nbat + 1] = (uint32_t)m;
+                nbat++;
+#if defined(BF_REP_AVX512)
+                if (wide)
+                    m += neighbours_512(sx, sy, sx[s], sy[s], rc2, t0, t1,
+                                        nrun, nb + m, f + m);
+                else
+#endif
+                    m += neighbours(sx, sy, sx[s], sy[s], rc2, t0, t1, nrun,
+                                    nb + m, f + m);
+            }
+        }
+        if (nbat) {
+            bat[2 * nbat + 1] = (uint32_t)m;
+            batch_forces(&L, sx, sy, sw, bat, nbat, nb, f, m, wide, sa, bad,
+                         found);
         }
     }
 }
@@ -451,6 +649,7 @@ int bf_repulsion_cells(const bf_repulsion *r, const bf_cells *c,
     }
     const int nx = c->nx, width = reach + 1;
     const int nstripes = (nx + width - 1) / width;
+    const int wide = w->wide;
     memset(w->sa, 0, 2 * n * sizeof *w->sa);
     /* the first coincident pair in stripe order (thread-count independent) */
     uint32_t bad[2] = {0, 0};
@@ -465,8 +664,10 @@ int bf_repulsion_cells(const bf_repulsion *r, const bf_cells *c,
                 int f = 0;
                 int x1 = (k + 1) * width < nx ? (k + 1) * width : nx;
                 cols_pairs(r, c, reach, k * width, x1,
-                           w->r2 + (size_t)tid * n, w->nb + (size_t)tid * n,
-                           w->sa, b, &f);
+                           w->r2 + (size_t)tid * (n + NB_PAD),
+                           w->nb + (size_t)tid * (n + NB_PAD),
+                           w->bat + (size_t)tid * 2 * (n + 1), n, w->sa, b,
+                           &f, wide);
                 if (f) {
 #pragma omp critical(bf_repulsion_bad)
                     if (!found || b[0] < bad[0]) {
@@ -486,8 +687,8 @@ int bf_repulsion_cells(const bf_repulsion *r, const bf_cells *c,
                 int x1 = (k + 1) * width < nx ? (k + 1) * width : nx;
                 uint32_t b[2];
                 int f = 0;
-                cols_pairs(r, c, reach, k * width, x1, w->r2, w->nb, w->sa, b,
-                           &f);
+                cols_pairs(r, c, reach, k * width, x1, w->r2, w->nb, w->bat,
+                           n, w->sa, b, &f, wide);
                 if (f && (!found || b[0] < bad[0])) {
                     found = 1;
                     bad[0] = b[0];

@@ -63,13 +63,15 @@ int bf_repulsion_all_pairs(const bf_repulsion *r, const double *x,
                            double *ax, double *ay, size_t *bi, size_t *bj);
 
 /* Scratch for bf_repulsion_cells: accelerations in slot order (x and y of
- * slot s at sa[2s], sa[2s + 1]) and, per thread, the list of neighbours of
- * one particle. */
+ * slot s at sa[2s], sa[2s + 1]) and, per thread, the lists of neighbours
+ * of a batch of particles (nb, r2) and where each particle's list starts
+ * (bat). */
 typedef struct bf_repulsion_work {
     size_t cap;
     int threads; /* OpenMP threads (1 without OpenMP) */
+    int wide;    /* 1: the AVX-512 kernels (the same bits; repulsion.c) */
     double *sa, *r2;
-    uint32_t *nb;
+    uint32_t *nb, *bat; /* bat: a batch's particles (repulsion.c) */
 } bf_repulsion_work;
 
 /* threads <= 0: OpenMP's default. */
