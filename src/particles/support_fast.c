@@ -318,21 +318,39 @@ static inline uint32_t skip_find(uint32_t *nxt, uint32_t p)
     return p;
 }
 
+/* The strips of sorted positions [p0, p1) that no lower band has taken
+ * get band q as their lowest empty band; returns how many. */
+static inline size_t take_strips(bf_support *s, uint32_t *nxt, size_t p0,
+                                 size_t p1, int q)
+{
+    size_t got = 0;
+    for (uint32_t j = skip_find(nxt, (uint32_t)p0); j < p1;
+         j = skip_find(nxt, j + 1)) {
+        s->lowe[j] = q;
+        nxt[j] = j + 1;
+        got++;
+    }
+    return got;
+}
+
 /* For every sorted position, the lowest band q <= mq in which no square
  * overlaps its strip with positive area (lowe), or a value > mq. */
 static void empty_bands(bf_support *s, size_t n, int mq)
 {
     uint32_t *bstart = s->bstart, *bfill = s->bfill, *blist = s->blist;
+    double *bel = s->bel, *ber = s->ber;
     uint32_t *nxt = s->nxt;
+    const int32_t *mb = s->mb, *mt = s->mt;
+    const double *ts = s->ts, *bs = s->bs, *ls = s->ls, *rs = s->rs;
+    /* squares per band, in x order, with their edges: f1 > 0 exactly in
+     * the bands mb..mt (z_{q-1} < t and z_q > b), unless the square has
+     * no height */
     memset(bstart, 0, (size_t)(mq + 2) * sizeof *bstart);
-    /* squares per band, in x order */
     for (int pass = 0; pass < 2; pass++) {
         for (size_t k = 0; k < n; k++) {
-            /* f1 > 0 exactly in the bands mb..mt (z_{q-1} < t and
-             * z_q > b), unless the square has no height */
-            if (!(s->ts[k] > s->bs[k]))
+            if (!(ts[k] > bs[k]))
                 continue;
-            const int qa = s->mb[k], qb = s->mt[k] < mq ? s->mt[k] : mq;
+            const int qa = mb[k], qb = mt[k] < mq ? mt[k] : mq;
             for (int q = qa; q <= qb; q++) {
                 if (pass == 0)
                     bstart[q + 1]++;
@@ -345,6 +363,12 @@ static void empty_bands(bf_support *s, size_t n, int mq)
                 bstart[q + 1] += bstart[q];
             memcpy(bfill, bstart, (size_t)(mq + 2) * sizeof *bfill);
         }
+    }
+    /* their edges in that order, each gap's two ends side by side */
+    const uint32_t ne = bstart[mq + 1];
+    for (uint32_t e = 0; e < ne; e++) {
+        bel[e] = ls[blist[e]];
+        ber[e] = rs[blist[e]];
     }
     /* the narrowest strip, and the narrowest that the walls do not clip:
      * a clipped strip (gamma = ax or delta = bx) fits only a gap that
@@ -361,28 +385,55 @@ static void empty_bands(bf_support *s, size_t n, int mq)
     }
     nxt[n] = (uint32_t)n;
     size_t left = n;
+#define GAP_FITS(lo, hi) ((hi) - (lo) >= ((lo) <= ax || (hi) >= bx ? wmin : wint))
     for (int q = 1; q <= mq && left; q++) {
-        uint32_t a = bstart[q], e = bstart[q + 1];
-        /* gaps: (-inf, l_first], [r_k, l_{k+1}], [r_last, +inf) */
-        for (uint32_t k = a; k <= e; k++) {
-            double lo = k == a ? -INFINITY : s->rs[blist[k - 1]];
-            double hi = k == e ? INFINITY : s->ls[blist[k]];
-            /* rounding is monotone: a strip of width w fits only if the
-             * rounded gap width is >= w */
-            if (!(hi - lo >= (lo <= ax || hi >= bx ? wmin : wint)))
-                continue;
-            /* the strips that fit lie between the gap's two squares in
-             * the x order (the searches start there) */
-            size_t p0 = k == a ? 0 : gallop_pos(s->gs, n, blist[k - 1], lo, 1);
-            size_t p1 = k == e ? n : gallop_pos(s->ds, n, blist[k], hi, 0);
-            for (uint32_t j = skip_find(nxt, (uint32_t)p0); j < p1;
-                 j = skip_find(nxt, j + 1)) {
-                s->lowe[j] = q;
-                nxt[j] = j + 1;
-                left--;
+        const uint32_t a = bstart[q], e = bstart[q + 1];
+        /* gaps: (-inf, l_first], [r_k, l_{k+1}], [r_last, +inf); rounding
+         * is monotone: a strip of width w fits only if the rounded gap
+         * width is >= w.  The strips that fit lie between the gap's two
+         * squares in the x order (the searches start there). */
+        if (a == e) { /* no square: every strip fits */
+            left -= take_strips(s, nxt, 0, n, q);
+            continue;
+        }
+        if (GAP_FITS(-INFINITY, bel[a]))
+            left -= take_strips(s, nxt, 0,
+                                gallop_pos(s->ds, n, blist[a], bel[a], 0), q);
+        /* the gaps between two squares, two at a time: most do not fit
+         * where the fluid is packed, so a pair is mostly one test */
+        uint32_t k = a + 1;
+#if defined(__SSE2__)
+        const __m128d AX = _mm_set1_pd(ax), BX = _mm_set1_pd(bx),
+                      WMIN = _mm_set1_pd(wmin), WINT = _mm_set1_pd(wint);
+        for (; k + 2 <= e; k += 2) {
+            const __m128d lo = _mm_loadu_pd(ber + k - 1),
+                          hi = _mm_loadu_pd(bel + k);
+            const __m128d wall = _mm_or_pd(_mm_cmple_pd(lo, AX),
+                                           _mm_cmpge_pd(hi, BX));
+            const __m128d w = _mm_or_pd(_mm_and_pd(wall, WMIN),
+                                        _mm_andnot_pd(wall, WINT));
+            int fit = _mm_movemask_pd(_mm_cmpge_pd(_mm_sub_pd(hi, lo), w));
+            while (fit) {
+                const uint32_t g = k + (uint32_t)__builtin_ctz((unsigned)fit);
+                fit &= fit - 1;
+                const size_t p0 = gallop_pos(s->gs, n, blist[g - 1],
+                                             ber[g - 1], 1),
+                             p1 = gallop_pos(s->ds, n, blist[g], bel[g], 0);
+                left -= take_strips(s, nxt, p0, p1, q);
             }
         }
+#endif
+        for (; k < e; k++)
+            if (GAP_FITS(ber[k - 1], bel[k]))
+                left -= take_strips(
+                    s, nxt, gallop_pos(s->gs, n, blist[k - 1], ber[k - 1], 1),
+                    gallop_pos(s->ds, n, blist[k], bel[k], 0), q);
+        if (GAP_FITS(ber[e - 1], INFINITY))
+            left -= take_strips(
+                s, nxt, gallop_pos(s->gs, n, blist[e - 1], ber[e - 1], 1), n,
+                q);
     }
+#undef GAP_FITS
 }
 
 /* Slots [u, u1): is there a square of S(P_j) with positive area in the

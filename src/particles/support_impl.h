@@ -63,7 +63,10 @@ struct bf_support {
     double *fen;
     int fdepth;
     size_t foff[34], fsz;
+    /* the squares of each band in x order (empty_bands): where a band's
+     * entries start, their sorted positions and their edges l, r */
     uint32_t *bstart, *bfill, *blist;
+    double *bel, *ber;
     /* the squares that the sweep at level m leaves out and that reach band
      * m, by line m and column of the cell list (support_fast.c,
      * cut_lists): the lines cmb..cme of each slot's square; per entry of a

@@ -145,10 +145,12 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->foff[s->fdepth] = fo;
     s->fsz = 2 * fo;
     s->fen = calloc(s->fsz * (size_t)s->threads, sizeof *s->fen);
-    s->bstart = malloc((nb + 1) * sizeof *s->bstart);
-    s->bfill = malloc((nb + 1) * sizeof *s->bfill);
+    s->bstart = malloc((nb + 4) * sizeof *s->bstart);
+    s->bfill = malloc((nb + 4) * sizeof *s->bfill);
     /* a square of height <= 2 dx has positive area in at most 3 bands */
-    s->blist = malloc(3 * k * sizeof *s->blist);
+    s->blist = malloc((3 * k + 1) * sizeof *s->blist);
+    s->bel = malloc((3 * k + 1) * sizeof *s->bel);
+    s->ber = malloc((3 * k + 1) * sizeof *s->ber);
     s->area = malloc(nb * (size_t)s->threads * sizeof *s->area);
     s->cnt = malloc(nb * (size_t)s->threads * sizeof *s->cnt);
     if (!s->bz || !s->ord || !s->binc || !s->ls || !s->rs || !s->bs ||
@@ -157,7 +159,7 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
         !s->sl || !s->csl || !s->lower || !s->cmb || !s->cme || !s->cl ||
         !s->cr || !s->cb || !s->ct || !s->bm || !s->fgam ||
         !s->lowe || !s->nxt || !s->fen || !s->bstart || !s->bfill ||
-        !s->blist || !s->area || !s->cnt) {
+        !s->blist || !s->bel || !s->ber || !s->area || !s->cnt) {
         bf_support_free(s);
         return bf_fail(err, BF_EINTERNAL, "out of memory (support, %zu "
                        "particles)", cap);
@@ -216,6 +218,8 @@ void bf_support_free(bf_support *s)
     free(s->bstart);
     free(s->bfill);
     free(s->blist);
+    free(s->bel);
+    free(s->ber);
     free(s->area);
     free(s->cnt);
     free(s->cmb);
