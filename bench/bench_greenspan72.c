@@ -15,10 +15,9 @@
  * 4. At N = 65536 and 262144: the step with the fast method's free-fall
  *    skipping and cut lists against the exhaustive path (every particle
  *    asks the sweep, the cut squares from the cell list's window; the same
- *    bits, tested), 5 alternating pairs of 10 steps, the median ratio;
- *    and today's figure beside main's before issue 21 item 5 (a752c43),
- *    measured on this machine with the same procedure
- *    (docs/performance.md names the machine and the command).
+ *    bits, tested), 5 alternating pairs of 10 steps, the median ratio.
+ *    (Today against main before issue 21 item 5, a752c43, both built and
+ *    measured in one run: bench/g72_vs_a752c43.sh.)
  *
  * Times are CPU times of the process (one thread) except where two
  * threads run, where they are wall times: on a shared machine CPU time
@@ -35,13 +34,6 @@
 #include "ballfilm/scene.h"
 #include "ballfilm/model.h"
 #include "ballfilm/run.h"
-
-/* Particle-steps per second of main at a752c43 (before issue 21 item 5)
- * on the machine of docs/performance.md, with this procedure (100 steps,
- * then the minimum of 3 runs of 20 steps, CPU time): the median of 5
- * runs alternated with this branch's (docs/performance.md). */
-#define A752C43_65536 1.95e6
-#define A752C43_262144 2.02e6
 
 /* Seconds of CPU time of the process, or wall time (two threads). */
 static int use_wall;
@@ -263,21 +255,14 @@ int main(void)
     printf("(goal: N = 65536 at >= 3e6 particle-steps/s; cost/(N log2 N) "
            "not growing)\n");
 
-    /* ---- 4. the free-fall skipping and the cut lists, and today against
-     * a752c43 */
+    /* ---- 4. the free-fall skipping and the cut lists */
     printf("\nFree-fall skipping and cut lists against the exhaustive path "
-           "(same bits), "
-           "and against main before it (a752c43, this machine, the same "
-           "procedure: docs/performance.md):\n");
-    printf("%8s %14s %16s %18s %14s\n", "N", "particle-st/s",
-           "exhaustive/skip", "a752c43 part-st/s", "now/a752c43");
-    const struct {
-        int n;
-        double before; /* particle-steps/s of a752c43 (docs/performance.md) */
-    } big[] = {{256, A752C43_65536}, {512, A752C43_262144}};
+           "(same bits; today against a752c43: bench/g72_vs_a752c43.sh):\n");
+    printf("%8s %14s %16s\n", "N", "particle-st/s", "exhaustive/skip");
+    const int big[] = {256, 512};
     for (size_t k = 0; k < sizeof big / sizeof big[0]; k++) {
-        double N = (double)big[k].n * big[k].n, rat[5];
-        bf_scene *sc = load(NULL, scaled_scene(big[k].n, 1), &err);
+        double N = (double)big[k] * big[k], rat[5];
+        bf_scene *sc = load(NULL, scaled_scene(big[k], 1), &err);
         run r = start(sc);
         bf_support *s = bf_greenspan72_support(r.m);
         advance(&r, 100);
@@ -294,15 +279,13 @@ int main(void)
                 rat[b] = rat[b - 1];
                 rat[b - 1] = t;
             }
-        printf("%8.0f %14.3g %16.3f %18.3g %14.2f\n", N, N / per, rat[2],
-               big[k].before, N / per / big[k].before);
+        printf("%8.0f %14.3g %16.3f\n", N, N / per, rat[2]);
         motion(&r, 10.0);
         fflush(stdout);
         r.mt->destroy(r.m);
         bf_setup_free(r.setup);
         bf_scene_free(sc);
     }
-    printf("(goal of issue 21 item 5: now/a752c43 >= 2)\n");
 
     /* ---- 3. two threads at N = 65536 (pays only if the other core is
      * free; the results are the same bits, see tests) */

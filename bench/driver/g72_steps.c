@@ -1,0 +1,95 @@
+/* g72_steps.c: the time of a step of the Greenspan 1972 model at large N,
+ * for bench/g72_vs_a752c43.sh, which builds it against two versions of
+ * the library (this one and main at a752c43, before issue 21 item 5) and
+ * runs them alternately.  It uses only what both versions have.
+ *
+ *   g72_steps n
+ *
+ * The scene of bench_greenspan72 (Example 2's local physics on an n x n
+ * grid in a box of side 6.25 n cm, the top quarter heavy, support method
+ * fast, one thread, no output): 100 warm-up steps, then the shortest of 3
+ * runs of 20 steps in CPU time of the process.  Prints
+ *
+ *   N=<n^2> s_per_step=<CPU s> hash=<FNV-1a of the positions' bits>
+ *
+ * so that the script can check that both versions end in the same state.
+ */
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "ballfilm/model.h"
+#include "ballfilm/run.h"
+#include "ballfilm/scene.h"
+#include "models/greenspan.h"
+
+static double cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int main(int argc, char **argv)
+{
+    const int n = argc > 1 ? atoi(argv[1]) : 0;
+    if (n < 8 || n > 4096) {
+        fprintf(stderr, "usage: g72_steps n   (8 <= n <= 4096; N = n^2)\n");
+        return 2;
+    }
+    char text[2048];
+    const double L = 6.25 * n;
+    snprintf(text, sizeof text,
+             "[scene]\nmodel = greenspan72\ndt = 0.01\nt_end = 1e9\n"
+             "[greenspan72]\nwidth = %.17g\nheight = %.17g\ninterface = "
+             "%.17g\nd = 5\nm_heavy = 1\nm_light = 0.25\nlayout = grid\n"
+             "grid_nx = %d\ngrid_ny = %d\nv_random = 500\nseed = 1972\n"
+             "output = diagnostics\nthreads = 1\n"
+             "[repulsion]\nxi = 0.1\np = 2\nbeta = 2\ncutoff = 10\n"
+             "[support]\ndx = 6.25\nmethod = fast\n[walls]\nomega = 0.9\n",
+             L, L, 0.75 * L, n, n);
+    bf_err err = {0};
+    bf_scene *sc = NULL;
+    bf_setup *setup = NULL;
+    void *m = NULL;
+    if (bf_scene_load_string(&sc, "g72_steps.ini", text, &err) ||
+        bf_catalog_resolve(bf_catalog_builtin(), sc, &err) ||
+        bf_model_from_scene(bf_catalog_builtin(), sc, &setup, &m, &err)) {
+        fprintf(stderr, "g72_steps: %s\n", err.msg);
+        return 1;
+    }
+    const bf_model_type *mt =
+        bf_catalog_model(bf_catalog_builtin(), "greenspan72");
+    const double dt = 0.01;
+    long k = 0;
+    double best = 1e300;
+    for (int run = -1; run < 3; run++) {
+        const long steps = run < 0 ? 100 : 20; /* run -1: the warm-up */
+        const double t0 = cpu_now();
+        for (long s = 0; s < steps; s++, k++)
+            if (mt->step(m, k, (double)k * dt, dt, &err)) {
+                fprintf(stderr, "g72_steps: step %ld: %s\n", k, err.msg);
+                return 1;
+            }
+        const double per = (cpu_now() - t0) / (double)steps;
+        if (run >= 0 && per < best)
+            best = per;
+    }
+    const bf_particles *p = bf_greenspan72_particles(m);
+    uint64_t h = 1469598103934665603ULL;
+    for (size_t i = 0; i < p->n; i++) {
+        uint64_t a, b;
+        memcpy(&a, &p->x[i], sizeof a);
+        memcpy(&b, &p->y[i], sizeof b);
+        h = (h ^ a) * 1099511628211ULL;
+        h = (h ^ b) * 1099511628211ULL;
+    }
+    printf("N=%d s_per_step=%.6g hash=%016llx\n", n * n, best,
+           (unsigned long long)h);
+    mt->destroy(m);
+    bf_setup_free(setup);
+    bf_scene_free(sc);
+    return 0;
+}

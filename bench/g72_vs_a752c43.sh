@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# bench/g72_vs_a752c43.sh: the Greenspan 1972 step at N = 65536 and 262144
+# now against main at a752c43 (before issue 21 item 5), both measured here,
+# in this run, on this machine.
+#
+# The library of a752c43 is built from this repository's history (git
+# archive; needs the commit, so a full clone) in a temporary directory;
+# bench/driver/g72_steps.c is built against it and against build/
+# libballfilm.a.  The two run alternately (the order swapped in every
+# pair), 5 pairs at N = 65536 and 3 at N = 262144; each run takes 100
+# warm-up steps, then the shortest of 3 runs of 20 steps, in CPU time of
+# the process (one thread).  Printed: each one's median particle-steps per
+# second, the median of the pairwise speed-ups (a752c43 time / now; goal 2,
+# issue 21 item 5) and whether the two end in the same positions, bit for
+# bit (they must: every change since was made with the same arithmetic).
+# Run by make bench (about 3 minutes, most of it the old library's build).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+OLD=a752c43
+if ! git cat-file -e "$OLD^{commit}" 2>/dev/null; then
+    echo "g72_vs_a752c43: commit $OLD is not in this clone (a shallow one?);"
+    echo "  fetch the history (git fetch --unshallow) to compare against it"
+    exit 0
+fi
+tmp=$(mktemp -d /tmp/ballfilm-bench-g72.XXXXXX)
+trap 'rm -rf "$tmp"' EXIT
+mkdir "$tmp/old"
+git archive "$OLD" | tar -x -C "$tmp/old"
+echo "building the library of $OLD in $tmp/old ..."
+make -C "$tmp/old" -j2 build/libballfilm.a > "$tmp/old-build.log" 2>&1 ||
+    { tail -20 "$tmp/old-build.log"; exit 1; }
+CFLAGS="-std=c11 -O2 -Wall -Wextra -Werror -ffp-contract=off -D_POSIX_C_SOURCE=200809L"
+INC="$(pkg-config --cflags hdf5-serial gsl)"
+LIBS="$(pkg-config --libs hdf5-serial) -lhdf5_hl -lsundials_arkode \
+  -lsundials_nvecserial -linih $(pkg-config --libs gsl) -lm -fopenmp"
+# shellcheck disable=SC2086
+gcc $CFLAGS -I"$tmp/old/include" -I"$tmp/old/src" $INC \
+    bench/driver/g72_steps.c "$tmp/old/build/libballfilm.a" $LIBS -o "$tmp/old_steps"
+# shellcheck disable=SC2086
+gcc $CFLAGS -Iinclude -Isrc $INC bench/driver/g72_steps.c build/libballfilm.a \
+    $LIBS -o "$tmp/new_steps"
+/usr/bin/python3 - "$tmp/old_steps" "$tmp/new_steps" "$OLD" <<'PY'
+import re, statistics, subprocess, sys
+old, new, name = sys.argv[1:4]
+
+def run(prog, n):
+    out = subprocess.run([prog, str(n)], capture_output=True, text=True,
+                         check=True).stdout
+    m = re.search(r"s_per_step=(\S+) hash=(\S+)", out)
+    return float(m.group(1)), m.group(2)
+
+print("Greenspan 1972 at large N: now against main at %s, both built and "
+      "run here, alternately (one thread, CPU time)" % name)
+print("%8s %16s %16s %22s %6s" % ("N", name + " part-st/s", "now part-st/s",
+                                   "speed-up (median)", "same"))
+for n, pairs in ((256, 5), (512, 3)):
+    N = n * n
+    to, tn, sp, same = [], [], [], True
+    for k in range(pairs):
+        if k % 2 == 0:
+            a, ha = run(old, n); b, hb = run(new, n)
+        else:
+            b, hb = run(new, n); a, ha = run(old, n)
+        to.append(a); tn.append(b); sp.append(a / b); same &= ha == hb
+    print("%8d %16.3g %16.3g %10.2f (%.2f-%.2f) %6s"
+          % (N, N / statistics.median(to), N / statistics.median(tn),
+             statistics.median(sp), min(sp), max(sp),
+             "yes" if same else "NO"))
+print("(goal of issue 21 item 5: a speed-up of 2 at both sizes)")
+PY
