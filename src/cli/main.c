@@ -86,6 +86,7 @@ static void install_handlers(void)
 int main(int argc, char **argv)
 {
     install_handlers();
+    bf_cli_warm_heap();
     if (argc < 2) {
         usage(stderr);
         return 2;
