@@ -259,6 +259,21 @@ START_TEST(support_fast_and_cell_equal_naive)
 }
 END_TEST
 
+/* The accelerations (a2, b2) of n particles against (a1, b1), sums of the
+ * same terms in another order: equal to a relative tol (what names the
+ * case in a failure). */
+static void same_sums(const double *a1, const double *b1, const double *a2,
+                      const double *b2, size_t n, double tol, const char *what,
+                      double value)
+{
+    for (size_t i = 0; i < n; i++) {
+        double s = tol * (1.0 + fabs(a1[i]) + fabs(b1[i]));
+        ck_assert_msg(fabs(a1[i] - a2[i]) <= s && fabs(b1[i] - b2[i]) <= s,
+                      "%s %g particle %zu: (%g, %g) vs (%g, %g)", what, value,
+                      i, a2[i], b2[i], a1[i], b1[i]);
+    }
+}
+
 /* ------------------------------------------------------------ repulsion */
 
 START_TEST(repulsion_pair_by_hand_and_cells)
@@ -316,13 +331,7 @@ START_TEST(repulsion_pair_by_hand_and_cells)
         ck_assert(bf_repulsion_work_init(&w, n, 1, &err) == BF_OK);
         bf_cells_build(&c, px, py, pm, n);
         ck_assert_int_eq(bf_repulsion_cells(&rp, &c, &w, a2, b2, &bi, &bj), 0);
-        for (size_t i = 0; i < n; i++) {
-            /* sums of the same terms in another order */
-            double s = 1e-13 * (1.0 + fabs(a1[i]) + fabs(b1[i]));
-            ck_assert_msg(fabs(a1[i] - a2[i]) <= s && fabs(b1[i] - b2[i]) <= s,
-                          "h %g particle %zu: (%g, %g) vs (%g, %g)", hs[k], i,
-                          a2[i], b2[i], a1[i], b1[i]);
-        }
+        same_sums(a1, b1, a2, b2, n, 1e-13, "h", hs[k]);
         bf_repulsion_work_free(&w);
         bf_cells_free(&c);
     }
@@ -372,13 +381,7 @@ START_TEST(repulsion_batches_and_wide_kernels)
         ck_assert(bf_repulsion_work_init(&w, n, 1, &err) == BF_OK);
         bf_cells_build(&c, px, py, pm, n);
         ck_assert_int_eq(bf_repulsion_cells(&rp, &c, &w, a2, b2, &bi, &bj), 0);
-        for (size_t i = 0; i < n; i++) {
-            /* sums of the same terms in another order */
-            double s = 1e-12 * (1.0 + fabs(a1[i]) + fabs(b1[i]));
-            ck_assert_msg(fabs(a1[i] - a2[i]) <= s && fabs(b1[i] - b2[i]) <= s,
-                          "L %g particle %zu: (%g, %g) vs (%g, %g)", L, i,
-                          a2[i], b2[i], a1[i], b1[i]);
-        }
+        same_sums(a1, b1, a2, b2, n, 1e-13, "L", L);
         const int wide = w.wide;
         w.wide = !wide;
         ck_assert_int_eq(bf_repulsion_cells(&rp, &c, &w, a3, b3, &bi, &bj), 0);
