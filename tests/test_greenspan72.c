@@ -359,11 +359,12 @@ START_TEST(repulsion_batches_and_wide_kernels)
     const size_t n = 3000;
     gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
     gsl_rng_set(r, 20261204);
-    double *px = malloc(n * sizeof *px), *py = malloc(n * sizeof *py),
-           *pm = malloc(n * sizeof *pm), *a1 = malloc(n * sizeof *a1),
-           *b1 = malloc(n * sizeof *b1), *a2 = malloc(n * sizeof *a2),
-           *b2 = malloc(n * sizeof *b2), *a3 = malloc(n * sizeof *a3),
-           *b3 = malloc(n * sizeof *b3);
+    /* positions, masses and three results of n particles in one block */
+    double *buf = malloc(9 * n * sizeof *buf);
+    ck_assert(buf != NULL);
+    double *px = buf, *py = buf + n, *pm = buf + 2 * n, *a1 = buf + 3 * n,
+           *b1 = buf + 4 * n, *a2 = buf + 5 * n, *b2 = buf + 6 * n,
+           *a3 = buf + 7 * n, *b3 = buf + 8 * n;
     const double sides[] = {40.0, 300.0};
     for (int k = 0; k < 2; k++) {
         const double L = sides[k];
@@ -396,15 +397,7 @@ START_TEST(repulsion_batches_and_wide_kernels)
         bf_cells_free(&c);
     }
     gsl_rng_free(r);
-    free(px);
-    free(py);
-    free(pm);
-    free(a1);
-    free(b1);
-    free(a2);
-    free(b2);
-    free(a3);
-    free(b3);
+    free(buf);
 }
 END_TEST
 
