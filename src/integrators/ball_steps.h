@@ -463,6 +463,20 @@ static inline bf_status bf_ball_steps(bf_ball_step_fn step, bf_integrator *it,
     }
 
 /* the signature of every generated advance (bf_ball_advance_fn) */
+/* The runs of steps are also built for AVX-512 and chosen at load time
+ * (the film's passes do the same): with its 32 vector registers the state,
+ * the constants and the watch stay in registers for the whole run instead
+ * of being spilled to the stack in every step (mv2m_advance_gfc2: 796
+ * stack accesses in the code, 1 in the AVX-512 copy).  The arithmetic is
+ * the same scalar IEEE operations in the same order (no fused
+ * multiply-adds: -ffp-contract=off), so the same bits; compare_runs.sh
+ * checks every scene. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define BF_BALL_RUN_CLONES __attribute__((target_clones("avx512f", "default")))
+#else
+#define BF_BALL_RUN_CLONES
+#endif
+
 #define BF_BALL_ADVANCE_SIGNATURE(NAME)                                        \
     BF_BALL_HOT static bf_status NAME(bf_integrator *it, const bf_ode *ode,   \
                                       const bf_ball_forces *f, long n0,       \
@@ -474,7 +488,13 @@ static inline bf_status bf_ball_steps(bf_ball_step_fn step, bf_integrator *it,
  * stop.  A run that ends in a state that is not finite is undone (also
  * what the watch recorded) and taken again one step at a time. */
 #define BF_BALL_ADVANCE_FIXED(NAME, RUN, NWORK, ACCEL, N, STEP, WATCH_STOP)    \
-    BF_BALL_ADVANCE_SIGNATURE(NAME)                                           \
+    /* the run, in its clones; the pickable function below only calls it   \
+     * (GCC 12 warns of a dangling pointer where a clone's address is      \
+     * taken) */                                                           \
+    BF_BALL_HOT BF_BALL_RUN_CLONES static bf_status NAME##_body(             \
+        bf_integrator *it, const bf_ode *ode, const bf_ball_forces *f,       \
+        long n0, long k, double dt, bf_ball_watch *watch, long *done,        \
+        bf_err *err)                                                          \
     {                                                                         \
         if (k == 1 && !watch)                                                 \
             return bf_ball_steps(STEP, it, ode, f, n0, k, dt, done, err);     \
@@ -513,6 +533,10 @@ static inline bf_status bf_ball_steps(bf_ball_step_fn step, bf_integrator *it,
         bf_vec_copy(f->b->v, v, N);                                           \
         *done = j;                                                            \
         return st;                                                            \
+    }                                                                         \
+    BF_BALL_ADVANCE_SIGNATURE(NAME)                                           \
+    {                                                                         \
+        return NAME##_body(it, ode, f, n0, k, dt, watch, done, err);          \
     }
 
 /* Any effects, any n: only the dispatch is inlined; the scratch is the
