@@ -30,6 +30,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "driver/g72_scene.h"
 #include "models/greenspan.h"
 #include "ballfilm/scene.h"
 #include "ballfilm/model.h"
@@ -182,20 +183,10 @@ static void motion(run *r, double h)
     free(s1);
 }
 
-static char *scaled_scene(int n, int threads)
+static const char *scaled_scene(int n, int threads)
 {
     static char buf[2048];
-    double L = 6.25 * n;
-    snprintf(buf, sizeof buf,
-             "[scene]\nmodel = greenspan72\ndt = 0.01\nt_end = 1e9\n"
-             "[greenspan72]\nwidth = %.17g\nheight = %.17g\ninterface = "
-             "%.17g\nd = 5\nm_heavy = 1\nm_light = 0.25\nlayout = grid\n"
-             "grid_nx = %d\ngrid_ny = %d\nv_random = 500\nseed = 1972\n"
-             "output = diagnostics\nthreads = %d\n"
-             "[repulsion]\nxi = 0.1\np = 2\nbeta = 2\ncutoff = 10\n"
-             "[support]\ndx = 6.25\nmethod = fast\n[walls]\nomega = 0.9\n",
-             L, L, 0.75 * L, n, n, threads);
-    return buf;
+    return g72_scene_text(buf, sizeof buf, n, threads);
 }
 
 int main(void)

@@ -5,12 +5,11 @@
  *
  *   g72_steps n
  *
- * The scene of bench_greenspan72 (Example 2's local physics on an n x n
- * grid in a box of side 6.25 n cm, the top quarter heavy, support method
- * fast, one thread, no output): 100 warm-up steps, then the shortest of 3
- * runs of 20 steps in CPU time of the process; then the support-set
- * gravity alone on the state reached (a cell list of side 10 cm built
- * on it, as the model's), the shortest of 5 evaluations.  Prints
+ * The scene of bench_greenspan72 (g72_scene.h), one thread: 100 warm-up
+ * steps, then the shortest of 3 runs of 20 steps in CPU time of the
+ * process; then the support-set gravity alone on the state reached (a
+ * cell list of side 10 cm built on it, as the model's), the shortest of 5
+ * evaluations.  Prints
  *
  *   N=<n^2> s_per_step=<CPU s> s_support=<CPU s> hash=<FNV-1a of the
  *   positions' bits> ghash=<FNV-1a of g's bits>
@@ -26,6 +25,7 @@
 #include "ballfilm/model.h"
 #include "ballfilm/run.h"
 #include "ballfilm/scene.h"
+#include "g72_scene.h"
 #include "models/greenspan.h"
 #include "particles/cells.h"
 #include "particles/support.h"
@@ -45,16 +45,7 @@ int main(int argc, char **argv)
         return 2;
     }
     char text[2048];
-    const double L = 6.25 * n;
-    snprintf(text, sizeof text,
-             "[scene]\nmodel = greenspan72\ndt = 0.01\nt_end = 1e9\n"
-             "[greenspan72]\nwidth = %.17g\nheight = %.17g\ninterface = "
-             "%.17g\nd = 5\nm_heavy = 1\nm_light = 0.25\nlayout = grid\n"
-             "grid_nx = %d\ngrid_ny = %d\nv_random = 500\nseed = 1972\n"
-             "output = diagnostics\nthreads = 1\n"
-             "[repulsion]\nxi = 0.1\np = 2\nbeta = 2\ncutoff = 10\n"
-             "[support]\ndx = 6.25\nmethod = fast\n[walls]\nomega = 0.9\n",
-             L, L, 0.75 * L, n, n);
+    g72_scene_text(text, sizeof text, n, 1);
     bf_err err = {0};
     bf_scene *sc = NULL;
     bf_setup *setup = NULL;

@@ -58,10 +58,9 @@ struct bf_support {
     int32_t *lowe; /* lowest empty band below the top band */
     uint32_t *nxt; /* skip list of particles without a lowest empty band */
     /* the sweep's prefix sums over levels (support_fast.c, fen_add): the
-     * blocks of 2^t levels of depth t = 0..fdepth - 1 start at foff[t];
-     * fsz doubles per thread */
+     * blocks of 2^t levels of depth t start at foff[t], as many depths as
+     * kmax + 3 has bits; fsz doubles per thread */
     double *fen;
-    int fdepth;
     size_t foff[34], fsz;
     /* the squares of each band in x order (empty_bands): where a band's
      * entries start, their sorted positions and their edges l, r */

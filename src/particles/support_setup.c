@@ -136,21 +136,20 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->nxt = malloc((k + 1) * sizeof *s->nxt);
     /* depth t has the blocks 0 .. nb >> t of 2^t levels (support_fast.c) */
     size_t fo = 0;
-    s->fdepth = 0;
-    while ((nb >> s->fdepth) > 0) {
-        s->foff[s->fdepth] = fo;
-        fo += (nb >> s->fdepth) + 1;
-        s->fdepth++;
+    int t = 0;
+    for (; (nb >> t) > 0; t++) {
+        s->foff[t] = fo;
+        fo += (nb >> t) + 1;
     }
-    s->foff[s->fdepth] = fo;
+    s->foff[t] = fo;
     s->fsz = 2 * fo;
     s->fen = calloc(s->fsz * (size_t)s->threads, sizeof *s->fen);
-    s->bstart = malloc((nb + 4) * sizeof *s->bstart);
-    s->bfill = malloc((nb + 4) * sizeof *s->bfill);
+    s->bstart = malloc((nb + 1) * sizeof *s->bstart);
+    s->bfill = malloc((nb + 1) * sizeof *s->bfill);
     /* a square of height <= 2 dx has positive area in at most 3 bands */
-    s->blist = malloc((3 * k + 1) * sizeof *s->blist);
-    s->bel = malloc((3 * k + 1) * sizeof *s->bel);
-    s->ber = malloc((3 * k + 1) * sizeof *s->ber);
+    s->blist = malloc(3 * k * sizeof *s->blist);
+    s->bel = malloc(3 * k * sizeof *s->bel);
+    s->ber = malloc(3 * k * sizeof *s->ber);
     s->area = malloc(nb * (size_t)s->threads * sizeof *s->area);
     s->cnt = malloc(nb * (size_t)s->threads * sizeof *s->cnt);
     if (!s->bz || !s->ord || !s->binc || !s->ls || !s->rs || !s->bs ||

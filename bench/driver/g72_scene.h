@@ -1,0 +1,29 @@
+/* g72_scene.h: the scaled Greenspan 1972 scene of the benchmarks
+ * (bench_greenspan72.c, and driver/g72_steps.c, which bench/
+ * g72_vs_a752c43.sh builds against today's library and a752c43's):
+ * Example 2's local physics (d = 5 cm, dx = 6.25 cm, cutoff 10 cm,
+ * V = 500 cm/s, dt = 0.01 s, omega = 0.9) on an n x n grid in a box of
+ * side 6.25 n cm, the top quarter heavy, support method fast, no output.
+ * Written into buf (size bytes); returns buf. */
+#ifndef BALLFILM_BENCH_G72_SCENE_H
+#define BALLFILM_BENCH_G72_SCENE_H
+
+#include <stdio.h>
+
+static inline const char *g72_scene_text(char *buf, size_t size, int n,
+                                         int threads)
+{
+    const double L = 6.25 * n;
+    snprintf(buf, size,
+             "[scene]\nmodel = greenspan72\ndt = 0.01\nt_end = 1e9\n"
+             "[greenspan72]\nwidth = %.17g\nheight = %.17g\ninterface = "
+             "%.17g\nd = 5\nm_heavy = 1\nm_light = 0.25\nlayout = grid\n"
+             "grid_nx = %d\ngrid_ny = %d\nv_random = 500\nseed = 1972\n"
+             "output = diagnostics\nthreads = %d\n"
+             "[repulsion]\nxi = 0.1\np = 2\nbeta = 2\ncutoff = 10\n"
+             "[support]\ndx = 6.25\nmethod = fast\n[walls]\nomega = 0.9\n",
+             L, L, 0.75 * L, n, n, threads);
+    return buf;
+}
+
+#endif
