@@ -337,6 +337,9 @@ static bf_status open_output(bf_sim *s, const char *path, bf_err *err)
     unlink(s->ckpt_path);
     bf_out *o = s->out;
     bf_out_set_compression(o, s->compress);
+    /* the output rows of the whole run: row 0, every out_every-th step
+     * and the last */
+    bf_out_expect_rows(o, (size_t)(s->nsteps / s->out_every) + 2);
     if ((st = bf_out_attr_str(o, "/", "version", bf_version_string(), err)) ||
         (st = bf_out_attr_str(o, "/", "scene_file", s->scene_path, err)) ||
         (st = bf_out_attr_str(o, "/", "scene_text", s->scene_text, err)) ||

@@ -64,6 +64,8 @@ struct bf_out {
                               the test after every row is one compare */
     double last_flush;
     int deflate; /* level of new datasets' deflate filter (0: none) */
+    size_t expect_rows; /* rows the series are expected to reach (0: not
+                           known), for the size of their chunks */
 };
 
 /* Arrays above this size are compressed when compression is on. */
@@ -73,6 +75,8 @@ void bf_out_set_compression(bf_out *out, int level)
 {
     out->deflate = level < 0 ? 0 : level > 9 ? 9 : level;
 }
+
+void bf_out_expect_rows(bf_out *out, size_t rows) { out->expect_rows = rows; }
 
 /* Shuffle (bytes of a value grouped, which deflate packs better) and
  * deflate on a chunked dataset's creation properties. */
@@ -380,6 +384,13 @@ bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
         rows = 1;
     if (rows > 8192)
         rows = 8192;
+    if (out->expect_rows) {
+        size_t fit = BF_OUT_MIN_CHUNK_ROWS;
+        while (fit < out->expect_rows && fit < rows)
+            fit *= 2;
+        if (fit < rows)
+            rows = fit;
+    }
     hsize_t chunk[2] = {rows, ncols};
     s->rpc = rows;
     /* A series is appended to: only its last, partial chunk is ever
