@@ -48,8 +48,16 @@ STATIC_LIBS  := hdf5_hl hdf5 sundials_arkode sundials_nvecserial inih gsl \
                 gslcblas sz aec z
 STATIC_FOUND := $(foreach l,$(STATIC_LIBS),$(firstword $(wildcard \
                   $(foreach d,$(ARCHIVE_DIRS),$(d)/lib$(l).a))))
+# The program is linked at a fixed address (-no-pie): its 3200 relative
+# relocations (every pointer in a table of functions or names) are then
+# resolved by the linker instead of at every start, which wrote to some 20
+# pages of the binary before main (bench/startup.sh: about 0.3 ms of the
+# 10 ms of a small run on the AMD machine of docs/performance.md).  The
+# price: the program's own code is not at a random address (its libraries,
+# heap and stack still are); it reads files and writes files, it serves
+# no one.  The library (libballfilm.a, .so) is unchanged.
 ifeq ($(words $(STATIC_FOUND)),$(words $(STATIC_LIBS)))
-PROG_LDLIBS = $(STATIC_FOUND) -lm -fopenmp -ldl
+PROG_LDLIBS = $(STATIC_FOUND) -lm -fopenmp -ldl -no-pie
 else
 PROG_LDLIBS = $(LDLIBS)
 endif
