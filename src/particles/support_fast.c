@@ -628,28 +628,64 @@ static int band_filled(const bf_support *s, const bf_cells *c, const stripq *q,
     return 0;
 }
 
-/* The square, strip and levels of the particle at sorted position k (slot
- * ord[k] of the cell list, positions sx, sy); returns its K. */
-static inline int fast_setup(bf_support *s, const double *sx,
-                             const double *sy, size_t k)
+/* The squares, strips and levels of the particles at sorted positions
+ * [k0, k1) (slots ord[k] of the cell list, positions sx, sy); returns the
+ * largest K among them (0 if none).  The expressions of k_of, first_band
+ * and full_level, with the workspace's pointers and constants held in
+ * locals: through s, every store to an int32 array made the compiler load
+ * s's fields again (an int32 store may alias s->kmax). */
+static int fast_setup(bf_support *s, const double *sx, const double *sy,
+                      size_t k0, size_t k1)
 {
     const bf_support_params *p = &s->p;
-    uint32_t i = s->ord[k];
-    double xi = sx[i], yi = sy[i];
-    s->ls[k] = dmax(xi - s->hd, p->box.ax);
-    s->rs[k] = dmin(xi + s->hd, p->box.bx);
-    s->bs[k] = dmax(yi - s->hd, p->box.ay);
-    s->ts[k] = dmin(yi + s->hd, p->box.by);
-    s->gs[k] = dmax(xi - s->hdx, p->box.ax);
-    s->ds[k] = dmin(xi + s->hdx, p->box.bx);
-    int K = k_of(p, yi);
-    s->ks[k] = K;
-    s->mb[k] = first_band(s, s->bs[k]);
-    s->mt[k] = full_level(s, s->ts[k]);
-    s->sl[k] = yi + s->hd > p->box.by ? INT32_MAX : s->mt[k];
-    s->lower[k] = 0.0;
-    s->lowe[k] = INT32_MAX;
-    return K;
+    const uint32_t *restrict ord = s->ord;
+    double *restrict ls = s->ls, *restrict rs = s->rs, *restrict bs = s->bs,
+                     *restrict ts = s->ts, *restrict gs = s->gs,
+                     *restrict ds = s->ds, *restrict lower = s->lower;
+    int32_t *restrict ks = s->ks, *restrict mb = s->mb, *restrict mt = s->mt,
+                      *restrict sl = s->sl, *restrict lowe = s->lowe;
+    const double *restrict bz = s->bz;
+    const double hd = s->hd, hdx = s->hdx, ax = p->box.ax, bx = p->box.bx,
+                 ay = p->box.ay, by = p->box.by, inv_dx = p->inv_dx;
+    const int kcap = s->kmax + 1;
+    int kmax = 0;
+    for (size_t k = k0; k < k1; k++) {
+        const uint32_t i = ord[k];
+        const double xi = sx[i], yi = sy[i];
+        const double b = dmax(yi - hd, ay), t = dmin(yi + hd, by);
+        ls[k] = dmax(xi - hd, ax);
+        rs[k] = dmin(xi + hd, bx);
+        bs[k] = b;
+        ts[k] = t;
+        gs[k] = dmax(xi - hdx, ax);
+        ds[k] = dmin(xi + hdx, bx);
+        const double fy = (yi - ay) * inv_dx; /* k_of */
+        const int K = fy > 0 ? (int)fy : 0;
+        ks[k] = K;
+        kmax = K > kmax ? K : kmax;
+        /* first_band(b) */
+        const double fb = (b - ay) * inv_dx;
+        int q = (fb > 0 ? (int)fb : 0) + 1;
+        while (q > 1 && bz[q - 1] > b)
+            q--;
+        while (q <= kcap && !(bz[q] > b)) /* bounded for NaN */
+            q++;
+        mb[k] = q;
+        /* full_level(t) */
+        const double ft = (t - ay) * inv_dx;
+        int m = ft > 0 ? (int)ft : 0;
+        if (m < 1)
+            m = 1;
+        while (m > 1 && bz[m - 1] >= t)
+            m--;
+        while (bz[m] < t)
+            m++;
+        mt[k] = m;
+        sl[k] = yi + hd > by ? INT32_MAX : m;
+        lower[k] = 0.0;
+        lowe[k] = INT32_MAX;
+    }
+    return kmax;
 }
 
 /* The results of sorted position k into the order of the cell list. */
@@ -734,17 +770,16 @@ void bf_sup_eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
     int kmax = 0;
     if (pr) {
 #ifdef _OPENMP
+        const size_t blk = 4096, nblk = (n + blk - 1) / blk;
 #pragma omp parallel for schedule(static) num_threads(nt) reduction(max : kmax)
-        for (size_t k = 0; k < n; k++) {
-            int K = fast_setup(s, c->sx, c->sy, k);
+        for (size_t b = 0; b < nblk; b++) {
+            const size_t k1 = (b + 1) * blk < n ? (b + 1) * blk : n;
+            int K = fast_setup(s, c->sx, c->sy, b * blk, k1);
             kmax = K > kmax ? K : kmax;
         }
 #endif
     } else {
-        for (size_t k = 0; k < n; k++) {
-            int K = fast_setup(s, c->sx, c->sy, k);
-            kmax = K > kmax ? K : kmax;
-        }
+        kmax = fast_setup(s, c->sx, c->sy, 0, n);
     }
     /* the empty bands first: a particle that falls freely through one
      * asks the sweep nothing */
