@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# bench/support_ab.sh REV [n] [pairs]: the support-set gravity's fast
+# method of this tree against src/particles/support_fast.c as it was at
+# REV (a commit, tag or branch), both compiled into one program
+# (bench/driver/g72_support_ab.c) and run alternately in one process on
+# the Greenspan 1972 benchmark scene at N = n^2 (default n = 256), `pairs`
+# pairs of evaluations (default 30).  Prints both times, the median of the
+# pairs' ratios (REV / this tree) and whether g and the kinds are the same
+# bits (exit 1 if not).  For work on src/particles/support_fast.c: REV's
+# file must use the same workspace (support_impl.h) as this tree's.
+# Builds build/libballfilm.a first.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if [ $# -lt 1 ]; then
+    echo "usage: bench/support_ab.sh REV [n] [pairs]" >&2
+    exit 2
+fi
+REV=$1
+N=${2:-256}
+PAIRS=${3:-30}
+tmp=$(mktemp -d /tmp/ballfilm-support-ab.XXXXXX)
+trap 'rm -rf "$tmp"' EXIT
+git show "$REV:src/particles/support_fast.c" > "$tmp/other.c"
+make --no-print-directory -j2 build/libballfilm.a > "$tmp/build.log" 2>&1 ||
+    { tail -20 "$tmp/build.log"; exit 1; }
+CFLAGS="-std=c11 -O2 -Wall -Wextra -Werror -ffp-contract=off -D_POSIX_C_SOURCE=200809L -fopenmp"
+INC="$(pkg-config --cflags hdf5-serial gsl)"
+LIBS="$(pkg-config --libs hdf5-serial) -lhdf5_hl -lsundials_arkode \
+  -lsundials_nvecserial -linih $(pkg-config --libs gsl) -lm -fopenmp"
+# shellcheck disable=SC2086
+gcc $CFLAGS -Iinclude -Isrc $INC -Dbf_sup_eval_fast=bf_sup_eval_fast_other \
+    -c "$tmp/other.c" -o "$tmp/other.o"
+# shellcheck disable=SC2086
+gcc $CFLAGS -Iinclude -Isrc -Ibench/driver $INC bench/driver/g72_support_ab.c \
+    "$tmp/other.o" build/libballfilm.a $LIBS -o "$tmp/g72_support_ab"
+echo "support-set gravity, this tree against support_fast.c of $REV:"
+"$tmp/g72_support_ab" "$N" "$PAIRS"
