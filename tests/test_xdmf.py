@@ -149,6 +149,18 @@ def main(prog, work):
     check(2 <= len(times) <= 10 and float(times[-1]) == t_last,
           "xdmf --max-steps 10: at most 10 steps, the last row kept",
           "%d steps, last %s" % (len(times), times[-1:] or None))
+    # a longer sidecar written over by a shorter one (the file is written
+    # in place and then cut to its new length): the same bytes as the
+    # shorter one written afresh
+    over = os.path.join(work, "over.xmf")
+    r1 = run([prog, "xdmf", h5, "-o", over, "--all"])
+    long_size = os.path.getsize(over) if r1.returncode == 0 else 0
+    r2 = run([prog, "xdmf", h5, "-o", over, "--max-steps", "10"])
+    same = r2.returncode == 0 and open(over, "rb").read() == \
+        open(thin, "rb").read()
+    check(long_size > os.path.getsize(thin) and same,
+          "xdmf over a longer sidecar: the bytes of a fresh one",
+          "%s %s %d bytes before" % (r1.stderr, r2.stderr, long_size))
     return CK.done()
 
 
