@@ -4,11 +4,15 @@
  * Example 2's local physics (d = 5 cm, dx = 6.25 cm, cutoff 10 cm,
  * V = 500 cm/s, dt = 0.01 s, omega = 0.9) on an n x n grid in a box of
  * side 6.25 n cm, the top quarter heavy, support method fast, no output.
- * Written into buf (size bytes); returns buf. */
+ * Written into buf (size bytes); returns buf.  g72_scene_model builds it. */
 #ifndef BALLFILM_BENCH_G72_SCENE_H
 #define BALLFILM_BENCH_G72_SCENE_H
 
 #include <stdio.h>
+
+#include "ballfilm/model.h"
+#include "ballfilm/run.h"
+#include "ballfilm/scene.h"
 
 static inline const char *g72_scene_text(char *buf, size_t size, int n,
                                          int threads)
@@ -24,6 +28,23 @@ static inline const char *g72_scene_text(char *buf, size_t size, int n,
              "[support]\ndx = 6.25\nmethod = fast\n[walls]\nomega = 0.9\n",
              L, L, 0.75 * L, n, n, threads);
     return buf;
+}
+
+/* That scene with n x n particles and one thread, read (named `name` in
+ * messages) and built into a greenspan72 model; *sc, *setup and *model
+ * are the caller's to free.  Returns 0, or 1 with err set. */
+static inline int g72_scene_model(int n, const char *name, bf_scene **sc,
+                                  bf_setup **setup, void **model,
+                                  bf_err *err)
+{
+    char text[2048];
+    g72_scene_text(text, sizeof text, n, 1);
+    *sc = NULL;
+    *setup = NULL;
+    *model = NULL;
+    return bf_scene_load_string(sc, name, text, err) ||
+           bf_catalog_resolve(bf_catalog_builtin(), *sc, err) ||
+           bf_model_from_scene(bf_catalog_builtin(), *sc, setup, model, err);
 }
 
 #endif

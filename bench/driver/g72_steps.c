@@ -44,15 +44,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "usage: g72_steps n   (8 <= n <= 4096; N = n^2)\n");
         return 2;
     }
-    char text[2048];
-    g72_scene_text(text, sizeof text, n, 1);
     bf_err err = {0};
-    bf_scene *sc = NULL;
-    bf_setup *setup = NULL;
-    void *m = NULL;
-    if (bf_scene_load_string(&sc, "g72_steps.ini", text, &err) ||
-        bf_catalog_resolve(bf_catalog_builtin(), sc, &err) ||
-        bf_model_from_scene(bf_catalog_builtin(), sc, &setup, &m, &err)) {
+    bf_scene *sc;
+    bf_setup *setup;
+    void *m;
+    if (g72_scene_model(n, "g72_steps.ini", &sc, &setup, &m, &err)) {
         fprintf(stderr, "g72_steps: %s\n", err.msg);
         return 1;
     }
