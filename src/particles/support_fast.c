@@ -14,17 +14,34 @@
 
 #include "particles/support_impl.h"
 
+/* The band edges and constants that first_band and full_level read (in
+ * locals of their caller's loop: read through the workspace, every int32
+ * store of the loop might have changed s->kmax and made the compiler
+ * load them again). */
+typedef struct band_edges {
+    const double *bz; /* z_q = bz[q] (band_hi) */
+    double ay, inv_dx;
+    int kcap; /* kmax + 1 */
+} band_edges;
+
+/* K(y) as k_of: floor((y - ay)/dx) >= 0 with the reciprocal of dx. */
+HOT int edges_k(const band_edges *e, double y)
+{
+    const double k = (y - e->ay) * e->inv_dx;
+    return k > 0 ? (int)k : 0;
+}
+
 /* The lowest level m >= 1 whose line z_m = band_hi(m) is at or above t:
  * exact with respect to band_hi, so that "full below z_m" (the sweep) and
  * "cut by z_m" (t > z_m, the cell query) never disagree. */
-static inline int full_level(const bf_support *s, double t)
+HOT int full_level(const band_edges *e, double t)
 {
-    int m = k_of(&s->p, t);
+    int m = edges_k(e, t);
     if (m < 1)
         m = 1;
-    while (m > 1 && band_hi(s, m - 1) >= t)
+    while (m > 1 && e->bz[m - 1] >= t)
         m--;
-    while (band_hi(s, m) < t)
+    while (e->bz[m] < t)
         m++;
     return m;
 }
@@ -32,12 +49,12 @@ static inline int full_level(const bf_support *s, double t)
 /* The lowest band q >= 1 whose top z_q is above b: with full_level, a
  * square reaches (positive height, if t > b) exactly the bands
  * first_band(b) .. full_level(t). */
-static inline int first_band(const bf_support *s, double b)
+HOT int first_band(const band_edges *e, double b)
 {
-    int q = k_of(&s->p, b) + 1;
-    while (q > 1 && band_hi(s, q - 1) > b)
+    int q = edges_k(e, b) + 1;
+    while (q > 1 && e->bz[q - 1] > b)
         q--;
-    while (q <= s->kmax + 1 && !(band_hi(s, q) > b)) /* bounded for NaN */
+    while (q <= e->kcap && !(e->bz[q] > b)) /* bounded for NaN */
         q++;
     return q;
 }
@@ -630,10 +647,8 @@ static int band_filled(const bf_support *s, const bf_cells *c, const stripq *q,
 
 /* The squares, strips and levels of the particles at sorted positions
  * [k0, k1) (slots ord[k] of the cell list, positions sx, sy); returns the
- * largest K among them (0 if none).  The expressions of k_of, first_band
- * and full_level, with the workspace's pointers and constants held in
- * locals: through s, every store to an int32 array made the compiler load
- * s's fields again (an int32 store may alias s->kmax). */
+ * largest K among them (0 if none).  The workspace's pointers and
+ * constants are held in locals (see band_edges). */
 static int fast_setup(bf_support *s, const double *sx, const double *sy,
                       size_t k0, size_t k1)
 {
@@ -644,10 +659,9 @@ static int fast_setup(bf_support *s, const double *sx, const double *sy,
                      *restrict ds = s->ds, *restrict lower = s->lower;
     int32_t *restrict ks = s->ks, *restrict mb = s->mb, *restrict mt = s->mt,
                       *restrict sl = s->sl, *restrict lowe = s->lowe;
-    const double *restrict bz = s->bz;
+    const band_edges e = {s->bz, p->box.ay, p->inv_dx, s->kmax + 1};
     const double hd = s->hd, hdx = s->hdx, ax = p->box.ax, bx = p->box.bx,
-                 ay = p->box.ay, by = p->box.by, inv_dx = p->inv_dx;
-    const int kcap = s->kmax + 1;
+                 ay = p->box.ay, by = p->box.by;
     int kmax = 0;
     for (size_t k = k0; k < k1; k++) {
         const uint32_t i = ord[k];
@@ -659,27 +673,11 @@ static int fast_setup(bf_support *s, const double *sx, const double *sy,
         ts[k] = t;
         gs[k] = dmax(xi - hdx, ax);
         ds[k] = dmin(xi + hdx, bx);
-        const double fy = (yi - ay) * inv_dx; /* k_of */
-        const int K = fy > 0 ? (int)fy : 0;
+        const int K = edges_k(&e, yi);
         ks[k] = K;
         kmax = K > kmax ? K : kmax;
-        /* first_band(b) */
-        const double fb = (b - ay) * inv_dx;
-        int q = (fb > 0 ? (int)fb : 0) + 1;
-        while (q > 1 && bz[q - 1] > b)
-            q--;
-        while (q <= kcap && !(bz[q] > b)) /* bounded for NaN */
-            q++;
-        mb[k] = q;
-        /* full_level(t) */
-        const double ft = (t - ay) * inv_dx;
-        int m = ft > 0 ? (int)ft : 0;
-        if (m < 1)
-            m = 1;
-        while (m > 1 && bz[m - 1] >= t)
-            m--;
-        while (bz[m] < t)
-            m++;
+        mb[k] = first_band(&e, b);
+        const int m = full_level(&e, t);
         mt[k] = m;
         sl[k] = yi + hd > by ? INT32_MAX : m;
         lower[k] = 0.0;
@@ -770,7 +768,10 @@ void bf_sup_eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
     int kmax = 0;
     if (pr) {
 #ifdef _OPENMP
-        const size_t blk = 4096, nblk = (n + blk - 1) / blk;
+        /* four blocks a thread, of at least 1024 particles */
+        size_t blk = (n + 4 * (size_t)nt - 1) / (4 * (size_t)nt);
+        blk = blk < 1024 ? 1024 : blk;
+        const size_t nblk = (n + blk - 1) / blk;
 #pragma omp parallel for schedule(static) num_threads(nt) reduction(max : kmax)
         for (size_t b = 0; b < nblk; b++) {
             const size_t k1 = (b + 1) * blk < n ? (b + 1) * blk : n;
