@@ -14,7 +14,10 @@ Ends with 'xdmf: N passed, N failed'; exit 1 on a failure."""
 import json
 import os
 import re
+import resource
 import shutil
+import signal
+import subprocess
 import sys
 
 import h5py
@@ -161,6 +164,25 @@ def main(prog, work):
     check(long_size > os.path.getsize(thin) and same,
           "xdmf over a longer sidecar: the bytes of a fresh one",
           "%s %s %d bytes before" % (r1.stderr, r2.stderr, long_size))
+    # not a regular file: nothing to cut, and not an error
+    r = run([prog, "xdmf", h5, "-o", os.devnull])
+    check(r.returncode == 0, "xdmf -o /dev/null", r.stderr)
+    # a write that fails half way (file size limit of 4 KiB) over a whole
+    # sidecar: exit 5 and an empty file, not the new start followed by the
+    # old sidecar's tail (which would end in a well-formed </Xdmf>)
+
+    def small_files():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (4096, 4096))
+
+    r = subprocess.run([prog, "xdmf", h5, "-o", over, "--all"],
+                       capture_output=True, text=True,
+                       preexec_fn=small_files)
+    check(long_size > 4096 and r.returncode == 5 and
+          os.path.getsize(over) == 0,
+          "xdmf failing half way over a sidecar: exit 5, an empty file",
+          "exit %d, %d bytes: %s" % (r.returncode, os.path.getsize(over),
+                                     r.stderr))
     return CK.done()
 
 

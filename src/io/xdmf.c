@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 typedef struct dset {
@@ -685,8 +686,16 @@ bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
     if (st && err)
         bf_err_prefix(err, "%s", xmf_path);
     if (x.f) {
-        long end = fflush(x.f) ? -1 : ftell(x.f);
-        int bad = end < 0 || ftruncate(fd, (off_t)end) || ferror(x.f);
+        /* cut a regular file to what was written (a pipe or a device is
+         * not cut); after a failure, to nothing, so that no earlier
+         * sidecar's tail makes a partial one look complete */
+        struct stat sb;
+        const int regular = !fstat(fd, &sb) && S_ISREG(sb.st_mode);
+        const int flushed = !fflush(x.f);
+        const off_t end = regular && flushed ? ftello(x.f) : 0;
+        int bad = !flushed || end < 0 || ferror(x.f);
+        if (regular && ftruncate(fd, st || bad ? 0 : end))
+            bad = 1;
         if ((fclose(x.f) | bad) && !st)
             st = bf_fail(err, BF_EIO, "%s: writing the XDMF file failed "
                          "(disk full?)", xmf_path);
