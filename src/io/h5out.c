@@ -402,6 +402,15 @@ bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
     if (out->append && H5Lexists(out->file, path, H5P_DEFAULT) > 0) {
         s->dset = H5Dopen2(out->file, path, dapl);
         H5Pclose(dapl);
+        /* the rows per chunk of the file (the run that made it may have
+         * had another hint): what flush_need reserves for */
+        hid_t dc = s->dset >= 0 ? H5Dget_create_plist(s->dset) : -1;
+        hsize_t fc[2] = {0, 0};
+        if (dc >= 0 && H5Pget_layout(dc) == H5D_CHUNKED &&
+            H5Pget_chunk(dc, 2, fc) >= 1 && fc[0] > 0)
+            s->rpc = (size_t)fc[0];
+        if (dc >= 0)
+            H5Pclose(dc);
         hid_t fsp = s->dset >= 0 ? H5Dget_space(s->dset) : -1;
         hsize_t have[2] = {0, 0};
         int hrank = fsp >= 0 ? H5Sget_simple_extent_ndims(fsp) : -1;
