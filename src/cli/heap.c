@@ -12,7 +12,9 @@
  * huge page (MADV_HUGEPAGE: one entry for the whole page; honoured where
  * transparent huge pages are "always" or "madvise", the Linux default)
  * and asks the kernel for it at once (MADV_POPULATE_WRITE, Linux 5.14 and
- * later; elsewhere either call fails and nothing changes).  Blocks below
+ * later; elsewhere either call fails and nothing changes; where the kernel
+ * has no free huge page it may compact memory first, "defrag", or give
+ * 4 KiB pages).  Blocks below
  * 4 MiB stay in the heap (M_MMAP_THRESHOLD) and freed ones there
  * (M_TRIM_THRESHOLD), so that a second file open reuses the pages of the
  * first.  The library does not do this: how the heap of a process is run
@@ -37,7 +39,7 @@
 #define MADV_POPULATE_WRITE 23 /* linux/mman.h, Linux 5.14 */
 #endif
 
-enum { HUGE_PAGE = 2 << 20, HEAP_BLOCKS = 4 << 20, PAGE = 4096 };
+enum { HUGE_PAGE = 2 << 20, HEAP_BLOCKS = 4 << 20, PAGE = 4096, PROBE = 128 << 10 };
 
 /* Holds the bytes between the heap's top at start-up and the next 2 MiB
  * boundary, so that the heap goes on from the boundary; never freed, and
@@ -51,11 +53,14 @@ void bf_cli_warm_heap(void)
     if (!mallopt(M_MMAP_THRESHOLD, HEAP_BLOCKS) ||
         !mallopt(M_TRIM_THRESHOLD, 2 * HEAP_BLOCKS))
         return;
-    /* where the heap ends now: a small block comes from its top */
-    char *probe = malloc(1);
+    /* where the heap ends now: a block larger than any freed before main
+     * (libgomp's constructor frees some) and than glibc's caches of small
+     * blocks comes from the top of the heap, and goes back to it when
+     * freed */
+    char *probe = malloc(PROBE);
     if (!probe)
         return;
-    const uintptr_t top = (uintptr_t)probe + 64;
+    const uintptr_t top = (uintptr_t)probe;
     free(probe);
     const uintptr_t edge = (top + HUGE_PAGE - 1) & ~(uintptr_t)(HUGE_PAGE - 1);
     if (edge - top > 2 * PAGE)
