@@ -46,12 +46,15 @@ bf_status bf_out_open_append(bf_out **out, const char *path, bf_err *err);
 void bf_out_set_compression(bf_out *out, int level);
 /* The number of rows the series of this run are expected to reach (0, the
  * default: not known).  A series created from now on is stored in chunks
- * of at most about 64 KiB (8192 rows of one value); with a hint below
- * that, in chunks of the next power of two at or above it, and at least
- * BF_OUT_MIN_CHUNK_ROWS rows, so that a short run writes a small file (a
- * chunk is written whole) while a series that outgrows the hint (a run
- * continued further) still grows by chunks of 4 KiB or more.  The values
- * stored do not depend on it, only their layout in the file. */
+ * of about 64 KiB (8192 rows of one value, fewer rows of wider ones);
+ * with a hint below that, in chunks of the next power of two at or above
+ * the hint but at least BF_OUT_MIN_CHUNK_ROWS rows (or the 64 KiB rule's
+ * rows, if fewer), so that a short run writes a small file (a chunk is
+ * written whole) while a series that outgrows the hint (a run continued
+ * further, or events such as return-map points and Lyapunov
+ * renormalisations, which come at their own pace) still grows by chunks
+ * of 4 KiB or more.  The values stored do not depend on it, only their
+ * layout in the file. */
 #define BF_OUT_MIN_CHUNK_ROWS 512
 void bf_out_expect_rows(bf_out *out, size_t rows);
 /* Flush, close and rename PATH.part to PATH; *out is freed even on
