@@ -394,9 +394,13 @@ bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
     hsize_t chunk[2] = {rows, ncols};
     s->rpc = rows;
     /* A series is appended to: only its last, partial chunk is ever
-     * written again, so the chunk cache holds one chunk (HDF5's default,
-     * 1 MiB per dataset, filled up with finished chunks and made a long
-     * run's memory grow with its length), finished chunks evicted first. */
+     * written again, so the chunk cache holds one chunk of a 2-D series
+     * (HDF5's default, 1 MiB per dataset, filled up with finished chunks
+     * and made a long run's memory grow with its length), finished chunks
+     * evicted first.  A 1-D series (ncols 0) gets 64 bytes, no room for a
+     * chunk: each flush reads its partial chunk back, and a long run's
+     * memory stays close to a short one's (caching a 64 KiB chunk per 1-D
+     * series took bench/memory.sh's difference from 1.3 to 1.9 MiB). */
     hid_t dapl = H5Pcreate(H5P_DATASET_ACCESS);
     H5Pset_chunk_cache(dapl, 7, rows * 8 * ncols + 64, 1.0);
     if (out->append && H5Lexists(out->file, path, H5P_DEFAULT) > 0) {
