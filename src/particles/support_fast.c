@@ -14,29 +14,22 @@
 
 #include "particles/support_impl.h"
 
-/* The band edges and constants that first_band and full_level read (in
- * locals of their caller's loop: read through the workspace, every int32
- * store of the loop might have changed s->kmax and made the compiler
- * load them again). */
+/* What first_band and full_level read, held by their caller (through the
+ * workspace, every int32 store of the set-up loop might have changed
+ * s->kmax and made the compiler load the fields again; the parameters are
+ * doubles, which an int32 store cannot change). */
 typedef struct band_edges {
-    const double *bz; /* z_q = bz[q] (band_hi) */
-    double ay, inv_dx;
-    int kcap; /* kmax + 1 */
+    const bf_support_params *p; /* ay, 1/dx (k_of) */
+    const double *bz;           /* z_q = bz[q] (band_hi) */
+    int kcap;                   /* kmax + 1 */
 } band_edges;
-
-/* K(y) as k_of: floor((y - ay)/dx) >= 0 with the reciprocal of dx. */
-HOT int edges_k(const band_edges *e, double y)
-{
-    const double k = (y - e->ay) * e->inv_dx;
-    return k > 0 ? (int)k : 0;
-}
 
 /* The lowest level m >= 1 whose line z_m = band_hi(m) is at or above t:
  * exact with respect to band_hi, so that "full below z_m" (the sweep) and
  * "cut by z_m" (t > z_m, the cell query) never disagree. */
 HOT int full_level(const band_edges *e, double t)
 {
-    int m = edges_k(e, t);
+    int m = k_of(e->p, t);
     if (m < 1)
         m = 1;
     while (m > 1 && e->bz[m - 1] >= t)
@@ -51,7 +44,7 @@ HOT int full_level(const band_edges *e, double t)
  * first_band(b) .. full_level(t). */
 HOT int first_band(const band_edges *e, double b)
 {
-    int q = edges_k(e, b) + 1;
+    int q = k_of(e->p, b) + 1;
     while (q > 1 && e->bz[q - 1] > b)
         q--;
     while (q <= e->kcap && !(e->bz[q] > b)) /* bounded for NaN */
@@ -659,7 +652,7 @@ static int fast_setup(bf_support *s, const double *sx, const double *sy,
                      *restrict ds = s->ds, *restrict lower = s->lower;
     int32_t *restrict ks = s->ks, *restrict mb = s->mb, *restrict mt = s->mt,
                       *restrict sl = s->sl, *restrict lowe = s->lowe;
-    const band_edges e = {s->bz, p->box.ay, p->inv_dx, s->kmax + 1};
+    const band_edges e = {p, s->bz, s->kmax + 1};
     const double hd = s->hd, hdx = s->hdx, ax = p->box.ax, bx = p->box.bx,
                  ay = p->box.ay, by = p->box.by;
     int kmax = 0;
@@ -673,7 +666,7 @@ static int fast_setup(bf_support *s, const double *sx, const double *sy,
         ts[k] = t;
         gs[k] = dmax(xi - hdx, ax);
         ds[k] = dmin(xi + hdx, bx);
-        const int K = edges_k(&e, yi);
+        const int K = k_of(p, yi);
         ks[k] = K;
         kmax = K > kmax ? K : kmax;
         mb[k] = first_band(&e, b);
