@@ -19,8 +19,9 @@ int bf_cmd_info(int argc, char **argv);
 /* Write OUT.xmf beside OUT.h5 after a run; a failure is a warning. */
 void bf_cli_write_xdmf(const char *h5_path);
 
-/* heap.c: the first pages of the heap in one system call, and freed
- * blocks kept for reuse (a small run's start-up is mostly page faults). */
+/* heap.c: the start of the heap on one 2 MiB page made ready at once, and
+ * freed blocks kept for reuse (a small run's start-up is mostly first
+ * touches of memory). */
 void bf_cli_warm_heap(void);
 /* Create ./out if missing; 0 on success (else prints why). */
 int bf_cli_mkdir_out(void);

@@ -6,19 +6,20 @@
  * parameter as an attribute, and the heap grows page by page.  The first
  * write to a 4 KiB page is cheap on bare metal and expensive in some
  * virtual machines: on the AMD machine of docs/performance.md (a PVM
- * guest) about 5 us a page even after the kernel has mapped it (the
- * hypervisor builds its own entry on first use), so clearing half a MiB
- * took 0.75 ms.  So the program lays the start of its heap on one 2 MiB
- * huge page (MADV_HUGEPAGE: one entry for the whole page; honoured where
+ * guest) bench/bench_pages prints about 9.6 us a page faulted in by the
+ * write, 0.7-0.9 us for a page asked for at once (MADV_POPULATE_WRITE)
+ * and then written, and 0.12 us for a 4 KiB part of a 2 MiB huge page.
+ * So the program lays the start of its heap on one 2 MiB huge page
+ * (MADV_HUGEPAGE: one entry for the whole page; honoured where
  * transparent huge pages are "always" or "madvise", the Linux default)
  * and asks the kernel for it at once (MADV_POPULATE_WRITE, Linux 5.14 and
  * later; elsewhere either call fails and nothing changes; where the kernel
  * has no free huge page it may compact memory first, "defrag", or give
- * 4 KiB pages).  Blocks below
- * 4 MiB stay in the heap (M_MMAP_THRESHOLD) and freed ones there
- * (M_TRIM_THRESHOLD), so that a second file open reuses the pages of the
- * first.  The library does not do this: how the heap of a process is run
- * is its program's choice.  Only the command line calls it.
+ * 4 KiB pages).  Blocks below 4 MiB stay in the heap (M_MMAP_THRESHOLD)
+ * and freed ones there (M_TRIM_THRESHOLD), so that a second file open
+ * reuses the pages of the first.  The library does not do this: how the
+ * heap of a process is run is its program's choice.  Only the command
+ * line calls it.
  *
  * Measured with bench/startup.sh's scene run alternately with and without
  * the huge page (150 pairs): 12.8 -> 9.8 ms wall time at best, 15.6 ->
