@@ -344,42 +344,28 @@ static inline size_t take_strips(bf_support *s, uint32_t *nxt, size_t p0,
 }
 
 /* For every sorted position, the lowest band q <= mq in which no square
- * overlaps its strip with positive area (lowe), or a value > mq. */
+ * overlaps its strip with positive area (lowe), or a value > mq.
+ *
+ * One pass over the squares in x order finds every band's gaps: f1 > 0
+ * exactly in the bands mb..mt (z_{q-1} < t and z_q > b), unless the square
+ * has no height, and the gap of band q before square k is [r, l_k] with r
+ * the right edge of the band's previous square (r = min(x + d/2, bx) grows
+ * with x), which the pass keeps per band (gr; a few KB, in the cache).  A
+ * gap that a strip may fit (GAP_FITS) is written down with its band and
+ * the sorted positions of its two squares; the band's first gap
+ * (-inf, l_first] and last [r_last, +inf) always are.  Then the gaps are
+ * taken band by band from the lowest, and a strip that fits one gets its
+ * band unless a lower one took it: the same lowe as looking at every
+ * band's squares in x order. */
 static void empty_bands(bf_support *s, size_t n, int mq)
 {
-    uint32_t *bstart = s->bstart, *bfill = s->bfill, *blist = s->blist;
-    double *bel = s->bel, *ber = s->ber;
-    uint32_t *nxt = s->nxt;
+    uint32_t *nxt = s->nxt, *gcnt = s->gcnt, *gord = s->gord, *gk = s->gk,
+             *gkl = s->gkl, *gkh = s->gkh;
+    int32_t *gq = s->gq;
+    double *glo = s->glo, *ghi = s->ghi, *gr = s->gr;
     const int32_t *mb = s->mb, *mt = s->mt;
-    const double *ts = s->ts, *bs = s->bs, *ls = s->ls, *rs = s->rs;
-    /* squares per band, in x order, with their edges: f1 > 0 exactly in
-     * the bands mb..mt (z_{q-1} < t and z_q > b), unless the square has
-     * no height */
-    memset(bstart, 0, (size_t)(mq + 2) * sizeof *bstart);
-    for (int pass = 0; pass < 2; pass++) {
-        for (size_t k = 0; k < n; k++) {
-            if (!(ts[k] > bs[k]))
-                continue;
-            const int qa = mb[k], qb = mt[k] < mq ? mt[k] : mq;
-            for (int q = qa; q <= qb; q++) {
-                if (pass == 0)
-                    bstart[q + 1]++;
-                else
-                    blist[bfill[q]++] = (uint32_t)k;
-            }
-        }
-        if (pass == 0) {
-            for (int q = 1; q <= mq; q++)
-                bstart[q + 1] += bstart[q];
-            memcpy(bfill, bstart, (size_t)(mq + 2) * sizeof *bfill);
-        }
-    }
-    /* their edges in that order, each gap's two ends side by side */
-    const uint32_t ne = bstart[mq + 1];
-    for (uint32_t e = 0; e < ne; e++) {
-        bel[e] = ls[blist[e]];
-        ber[e] = rs[blist[e]];
-    }
+    const double *ts = s->ts, *bs = s->bs, *ls = s->ls, *rs = s->rs,
+                 *gs = s->gs, *ds = s->ds;
     /* the narrowest strip, and the narrowest that the walls do not clip:
      * a clipped strip (gamma = ax or delta = bx) fits only a gap that
      * reaches the wall, so the gaps between two squares are tested
@@ -387,61 +373,76 @@ static void empty_bands(bf_support *s, size_t n, int mq)
     const double ax = s->p.box.ax, bx = s->p.box.bx;
     double wmin = INFINITY, wint = INFINITY;
     for (size_t k = 0; k < n; k++) {
-        double w = s->ds[k] - s->gs[k];
+        double w = ds[k] - gs[k];
         wmin = w < wmin ? w : wmin;
-        wint = w < wint && s->gs[k] > ax && s->ds[k] < bx ? w : wint;
+        wint = w < wint && gs[k] > ax && ds[k] < bx ? w : wint;
         s->lowe[k] = mq + 1;
         nxt[k] = (uint32_t)k;
     }
     nxt[n] = (uint32_t)n;
-    size_t left = n;
 #define GAP_FITS(lo, hi) ((hi) - (lo) >= ((lo) <= ax || (hi) >= bx ? wmin : wint))
-    for (int q = 1; q <= mq && left; q++) {
-        const uint32_t a = bstart[q], e = bstart[q + 1];
-        /* gaps: (-inf, l_first], [r_k, l_{k+1}], [r_last, +inf); rounding
-         * is monotone: a strip of width w fits only if the rounded gap
-         * width is >= w.  The strips that fit lie between the gap's two
-         * squares in the x order (the searches start there). */
-        if (a == e) { /* no square: every strip fits */
-            left -= take_strips(s, nxt, 0, n, q);
+    for (int q = 0; q <= mq + 1; q++) {
+        gr[q] = -INFINITY;
+        gk[q] = UINT32_MAX;
+        gcnt[q] = 0;
+    }
+    size_t ng = 0;
+    /* the gap of band q before square k; then k is the band's last */
+#define BAND_GAP(q, k)                                                      \
+    do {                                                                    \
+        const double lo_ = gr[q], hi_ = ls[k];                              \
+        if (GAP_FITS(lo_, hi_)) {                                           \
+            glo[ng] = lo_;                                                  \
+            ghi[ng] = hi_;                                                  \
+            gkl[ng] = gk[q];                                                \
+            gkh[ng] = (uint32_t)(k);                                        \
+            gq[ng++] = (q);                                                 \
+            gcnt[q]++;                                                      \
+        }                                                                   \
+        gr[q] = rs[k];                                                      \
+        gk[q] = (uint32_t)(k);                                              \
+    } while (0)
+    for (size_t k = 0; k < n; k++) {
+        const int qa = mb[k], qb = mt[k] < mq ? mt[k] : mq;
+        if (!(ts[k] > bs[k]) || qb < qa)
             continue;
-        }
-        if (GAP_FITS(-INFINITY, bel[a]))
-            left -= take_strips(s, nxt, 0,
-                                gallop_pos(s->ds, n, blist[a], bel[a], 0), q);
-        /* the gaps between two squares, two at a time: most do not fit
-         * where the fluid is packed, so a pair is mostly one test */
-        uint32_t k = a + 1;
-#if defined(__SSE2__)
-        const __m128d AX = _mm_set1_pd(ax), BX = _mm_set1_pd(bx),
-                      WMIN = _mm_set1_pd(wmin), WINT = _mm_set1_pd(wint);
-        for (; k + 2 <= e; k += 2) {
-            const __m128d lo = _mm_loadu_pd(ber + k - 1),
-                          hi = _mm_loadu_pd(bel + k);
-            const __m128d wall = _mm_or_pd(_mm_cmple_pd(lo, AX),
-                                           _mm_cmpge_pd(hi, BX));
-            const __m128d w = _mm_or_pd(_mm_and_pd(wall, WMIN),
-                                        _mm_andnot_pd(wall, WINT));
-            int fit = _mm_movemask_pd(_mm_cmpge_pd(_mm_sub_pd(hi, lo), w));
-            while (fit) {
-                const uint32_t g = k + (uint32_t)__builtin_ctz((unsigned)fit);
-                fit &= fit - 1;
-                const size_t p0 = gallop_pos(s->gs, n, blist[g - 1],
-                                             ber[g - 1], 1),
-                             p1 = gallop_pos(s->ds, n, blist[g], bel[g], 0);
-                left -= take_strips(s, nxt, p0, p1, q);
-            }
-        }
-#endif
-        for (; k < e; k++)
-            if (GAP_FITS(ber[k - 1], bel[k]))
-                left -= take_strips(
-                    s, nxt, gallop_pos(s->gs, n, blist[k - 1], ber[k - 1], 1),
-                    gallop_pos(s->ds, n, blist[k], bel[k], 0), q);
-        if (GAP_FITS(ber[e - 1], INFINITY))
-            left -= take_strips(
-                s, nxt, gallop_pos(s->gs, n, blist[e - 1], ber[e - 1], 1), n,
-                q);
+        BAND_GAP(qa, k);
+        for (int q = qa + 1; q <= qb; q++)
+            BAND_GAP(q, k);
+    }
+#undef BAND_GAP
+    /* every band's last gap, [r_last, +inf) (the whole line if the band
+     * has no square) */
+    for (int q = 1; q <= mq; q++) {
+        glo[ng] = gr[q];
+        ghi[ng] = INFINITY;
+        gkl[ng] = gk[q];
+        gkh[ng] = UINT32_MAX;
+        gq[ng++] = q;
+        gcnt[q]++;
+    }
+    /* the gaps by band, in x order within a band */
+    uint32_t at = 0;
+    for (int q = 0; q <= mq; q++) {
+        const uint32_t c = gcnt[q];
+        gcnt[q] = at;
+        at += c;
+    }
+    for (size_t g = 0; g < ng; g++)
+        gord[gcnt[gq[g]]++] = (uint32_t)g;
+    size_t left = n;
+    for (size_t e = 0; e < ng && left; e++) {
+        const uint32_t g = gord[e];
+        /* the strips that fit lie between the gap's two squares in the x
+         * order (the searches start there); rounding is monotone: a strip
+         * of width w fits only if the rounded gap width is >= w */
+        const size_t p0 = gkl[g] == UINT32_MAX
+                              ? 0
+                              : gallop_pos(gs, n, gkl[g], glo[g], 1),
+                     p1 = gkh[g] == UINT32_MAX
+                              ? n
+                              : gallop_pos(ds, n, gkh[g], ghi[g], 0);
+        left -= take_strips(s, nxt, p0, p1, gq[g]);
     }
 #undef GAP_FITS
 }

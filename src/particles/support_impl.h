@@ -62,10 +62,16 @@ struct bf_support {
      * kmax + 3 has bits; fsz doubles per thread */
     double *fen;
     size_t foff[34], fsz;
-    /* the squares of each band in x order (empty_bands): where a band's
-     * entries start, their sorted positions and their edges l, r */
-    uint32_t *bstart, *bfill, *blist;
-    double *bel, *ber;
+    /* the bands' gaps (empty_bands): per band the right edge and sorted
+     * position of its last square so far (gr, gk, [kmax + 4]) and its
+     * number of gaps (gcnt); per gap ([3 cap + kmax + 3]: a square reaches
+     * at most 3 bands, and each band has a last gap) its ends glo, ghi,
+     * the sorted positions of its two squares gkl, gkh (UINT32_MAX: none,
+     * the gap reaches -inf or +inf), its band gq, and the gaps in order of
+     * band (gord) */
+    double *gr, *glo, *ghi;
+    uint32_t *gk, *gcnt, *gkl, *gkh, *gord;
+    int32_t *gq;
     /* the squares that the sweep at level m leaves out and that reach band
      * m, by line m and column of the cell list (support_fast.c,
      * cut_lists): the lines cmb..cme of each slot's square; per entry of a

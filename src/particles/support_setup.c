@@ -144,12 +144,18 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->foff[t] = fo;
     s->fsz = 2 * fo;
     s->fen = calloc(s->fsz * (size_t)s->threads, sizeof *s->fen);
-    s->bstart = malloc((nb + 1) * sizeof *s->bstart);
-    s->bfill = malloc((nb + 1) * sizeof *s->bfill);
-    /* a square of height <= 2 dx has positive area in at most 3 bands */
-    s->blist = malloc(3 * k * sizeof *s->blist);
-    s->bel = malloc(3 * k * sizeof *s->bel);
-    s->ber = malloc(3 * k * sizeof *s->ber);
+    s->gr = malloc((nb + 1) * sizeof *s->gr);
+    s->gk = malloc((nb + 1) * sizeof *s->gk);
+    s->gcnt = malloc((nb + 1) * sizeof *s->gcnt);
+    /* a square of height <= 2 dx has positive area in at most 3 bands,
+     * and the gap before it in each; every band has a last gap */
+    const size_t ngap = 3 * k + nb;
+    s->glo = malloc(ngap * sizeof *s->glo);
+    s->ghi = malloc(ngap * sizeof *s->ghi);
+    s->gkl = malloc(ngap * sizeof *s->gkl);
+    s->gkh = malloc(ngap * sizeof *s->gkh);
+    s->gord = malloc(ngap * sizeof *s->gord);
+    s->gq = malloc(ngap * sizeof *s->gq);
     s->area = malloc(nb * (size_t)s->threads * sizeof *s->area);
     s->cnt = malloc(nb * (size_t)s->threads * sizeof *s->cnt);
     if (!s->bz || !s->ord || !s->binc || !s->ls || !s->rs || !s->bs ||
@@ -157,8 +163,9 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
         !s->qd || !s->uv || !s->uh || !s->ul || !s->ks || !s->mb || !s->mt ||
         !s->sl || !s->csl || !s->lower || !s->cmb || !s->cme || !s->cl ||
         !s->cr || !s->cb || !s->ct || !s->bm || !s->fgam ||
-        !s->lowe || !s->nxt || !s->fen || !s->bstart || !s->bfill ||
-        !s->blist || !s->bel || !s->ber || !s->area || !s->cnt) {
+        !s->lowe || !s->nxt || !s->fen || !s->gr || !s->gk || !s->gcnt ||
+        !s->glo || !s->ghi || !s->gkl || !s->gkh || !s->gord || !s->gq ||
+        !s->area || !s->cnt) {
         bf_support_free(s);
         return bf_fail(err, BF_EINTERNAL, "out of memory (support, %zu "
                        "particles)", cap);
@@ -214,11 +221,15 @@ void bf_support_free(bf_support *s)
     free(s->lowe);
     free(s->nxt);
     free(s->fen);
-    free(s->bstart);
-    free(s->bfill);
-    free(s->blist);
-    free(s->bel);
-    free(s->ber);
+    free(s->gr);
+    free(s->gk);
+    free(s->gcnt);
+    free(s->glo);
+    free(s->ghi);
+    free(s->gkl);
+    free(s->gkh);
+    free(s->gord);
+    free(s->gq);
     free(s->area);
     free(s->cnt);
     free(s->cmb);
