@@ -237,8 +237,12 @@ static size_t gallop_pos(const double *v, size_t n, size_t hint, double key,
  * in which the sweep meets them: the left edges (+h) and right edges (-h)
  * merged by x, a left edge first on ties (the order of the sums in every
  * chunk).  Squares clipped by the ceiling never enter (sweep level
- * INT32_MAX).  Branch-free: which stream comes next is random.  Returns
- * their number; uv[nu] = +inf ends the sequence. */
+ * INT32_MAX).  Returns their number; uv[nu] = +inf ends the sequence.
+ * Which stream comes next is random, so the merge must not branch on it:
+ * gcc turns the selects of the scalar code into a branch, and the SSE2
+ * code selects with masks (+h or -h: the sign flipped, as the product with
+ * -1.0).  In either, a ceiling square's entry is written and then written
+ * over by the next. */
 static size_t sweep_updates(bf_support *s, size_t n)
 {
     const double *ls = s->ls, *rs = s->rs, *ts = s->ts, *bs = s->bs;
@@ -246,6 +250,25 @@ static size_t sweep_updates(bf_support *s, size_t n)
     double *uv = s->uv, *uh = s->uh;
     int32_t *ul = s->ul;
     size_t a = 0, b = 0, u = 0;
+#if defined(__SSE2__)
+    const __m128d SIGN = _mm_set_sd(-0.0), INF = _mm_set_sd(INFINITY);
+    while (b < n) {
+        const __m128d la = a < n ? _mm_load_sd(ls + a) : INF,
+                      rb = _mm_load_sd(rs + b);
+        const __m128d left = _mm_cmple_sd(la, rb);
+        const size_t l = (size_t)(_mm_movemask_pd(left) & 1);
+        const size_t p = b ^ ((a ^ b) & (0 - l));
+        _mm_store_sd(uv + u, _mm_or_pd(_mm_and_pd(left, la),
+                                       _mm_andnot_pd(left, rb)));
+        _mm_store_sd(uh + u, _mm_xor_pd(_mm_sub_sd(_mm_load_sd(ts + p),
+                                                   _mm_load_sd(bs + p)),
+                                        _mm_andnot_pd(left, SIGN)));
+        ul[u] = sl[p];
+        u += sl[p] != INT32_MAX;
+        a += l;
+        b += 1 - l;
+    }
+#else
     while (b < n) {
         const int left = a < n && ls[a] <= rs[b];
         const size_t p = left ? a : b;
@@ -256,6 +279,7 @@ static size_t sweep_updates(bf_support *s, size_t n)
         a += (size_t)left;
         b += (size_t)!left;
     }
+#endif
     uv[u] = INFINITY;
     return u;
 }
@@ -304,16 +328,29 @@ static void sweep_chunk(bf_support *s, double *fen, size_t n, size_t nu,
     size_t pg = q0, pd = q0;
     while (pd < q1) {
         /* the next query: gamma of pg or delta of pd (gamma first on
-         * ties; the order of the reads does not matter) */
-        const int isg = (pg < q1) & (qg[pg] <= qd[pd]); /* qg[nq] exists */
-        const size_t i = isg ? pg : pd;
+         * ties; the order of the reads does not matter).  Which one is
+         * random: selected with masks (with SSE2; gcc makes a branch of
+         * the scalar selects) */
+#if defined(__SSE2__)
+        const __m128d g = _mm_load_sd(qg + pg), dd = _mm_load_sd(qd + pd);
+        const size_t isg = (size_t)(_mm_movemask_pd(_mm_cmple_sd(g, dd)) &
+                                    (pg < q1)); /* qg[nq] exists */
+        const __m128d m = _mm_castsi128_pd(_mm_set1_epi64x(-(long long)isg));
+        const double v = _mm_cvtsd_f64(
+            _mm_or_pd(_mm_and_pd(m, g), _mm_andnot_pd(m, dd)));
+        const uintptr_t og = (uintptr_t)(fg + pg), od = (uintptr_t)(qd + pd);
+        double *dst = (double *)(od ^ ((og ^ od) & (0 - (uintptr_t)isg)));
+#else
+        const size_t isg = (pg < q1) & (qg[pg] <= qd[pd]);
         const double v = isg ? qg[pg] : qd[pd];
+        double *dst = isg ? fg + pg : qd + pd;
+#endif
+        const size_t i = pd ^ ((pg ^ pd) & (0 - isg));
         for (; uv[u] <= v; u++)
             fen_add(s, fen, depth, ul[u], uh[u], uh[u] * (uv[u] - X0));
-        double *dst = isg ? fg + pg : qd + pd;
         *dst = sweep_eval(s, fen, depth, v - X0, qK[i]);
-        pg += (size_t)isg;
-        pd += (size_t)!isg;
+        pg += isg;
+        pd += 1 - isg;
     }
     for (size_t i = q0; i < q1; i++)
         s->lower[qk[i]] = qd[i] - fg[i];
