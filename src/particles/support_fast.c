@@ -189,50 +189,6 @@ static inline double sweep_eval(const bf_support *s, const double *fen,
 #endif
 }
 
-/* First sorted position p in [lo, hi) with v[p] > key (or >= if ge). */
-static size_t bsearch_pos(const double *v, size_t lo, size_t hi, double key,
-                          int ge)
-{
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (ge ? v[mid] >= key : v[mid] > key)
-            hi = mid;
-        else
-            lo = mid + 1;
-    }
-    return lo;
-}
-
-/* The same answer as bsearch_pos(v, 0, n, key, ge), found by galloping
- * from `hint` (v is sorted): O(log distance) when the answer is near the
- * hint, as it is for the strips that fit a gap next to the gap's two
- * squares (empty_bands). */
-static size_t gallop_pos(const double *v, size_t n, size_t hint, double key,
-                         int ge)
-{
-#define PAST(p) (ge ? v[p] >= key : v[p] > key)
-    if (hint > n)
-        hint = n;
-    size_t step = 1;
-    if (hint > 0 && PAST(hint - 1)) {
-        /* the answer is at or before hint - 1: gallop down */
-        size_t hi = hint - 1; /* PAST(hi) */
-        while (hi >= step && PAST(hi - step)) {
-            hi -= step;
-            step *= 2;
-        }
-        return bsearch_pos(v, hi >= step ? hi - step + 1 : 0, hi, key, ge);
-    }
-    /* the answer is at or after hint: gallop up */
-    size_t lo = hint; /* !PAST(p) for every p < lo */
-    while (lo + step - 1 < n && !PAST(lo + step - 1)) {
-        lo += step;
-        step *= 2;
-    }
-    return bsearch_pos(v, lo, lo + step - 1 < n ? lo + step - 1 : n, key, ge);
-#undef PAST
-}
-
 /* The square edges as one sequence of updates of the sweep, in the order
  * in which the sweep meets them: the left edges (+h) and right edges (-h)
  * merged by x, a left edge first on ties (the order of the sums in every
@@ -354,134 +310,6 @@ static void sweep_chunk(bf_support *s, double *fen, size_t n, size_t nu,
     }
     for (size_t i = q0; i < q1; i++)
         s->lower[qk[i]] = qd[i] - fg[i];
-}
-
-static inline uint32_t skip_find(uint32_t *nxt, uint32_t p)
-{
-    while (nxt[p] != p) {
-        nxt[p] = nxt[nxt[p]];
-        p = nxt[p];
-    }
-    return p;
-}
-
-/* The strips of sorted positions [p0, p1) that no lower band has taken
- * get band q as their lowest empty band; returns how many. */
-static inline size_t take_strips(bf_support *s, uint32_t *nxt, size_t p0,
-                                 size_t p1, int q)
-{
-    size_t got = 0;
-    for (uint32_t j = skip_find(nxt, (uint32_t)p0); j < p1;
-         j = skip_find(nxt, j + 1)) {
-        s->lowe[j] = q;
-        nxt[j] = j + 1;
-        got++;
-    }
-    return got;
-}
-
-/* For every sorted position, the lowest band q <= mq in which no square
- * overlaps its strip with positive area (lowe), or a value > mq.
- *
- * One pass over the squares in x order finds every band's gaps: f1 > 0
- * exactly in the bands mb..mt (z_{q-1} < t and z_q > b), unless the square
- * has no height, and the gap of band q before square k is [r, l_k] with r
- * the right edge of the band's previous square (r = min(x + d/2, bx) grows
- * with x), which the pass keeps per band (gr; a few KB, in the cache).  A
- * gap that a strip may fit (GAP_FITS) is written down with its band and
- * the sorted positions of its two squares; the band's first gap
- * (-inf, l_first] and last [r_last, +inf) always are.  Then the gaps are
- * taken band by band from the lowest, and a strip that fits one gets its
- * band unless a lower one took it: the same lowe as looking at every
- * band's squares in x order. */
-static void empty_bands(bf_support *s, size_t n, int mq)
-{
-    uint32_t *nxt = s->nxt, *gcnt = s->gcnt, *gord = s->gord, *gk = s->gk,
-             *gkl = s->gkl, *gkh = s->gkh;
-    int32_t *gq = s->gq;
-    double *glo = s->glo, *ghi = s->ghi, *gr = s->gr;
-    const int32_t *mb = s->mb, *mt = s->mt;
-    const double *ts = s->ts, *bs = s->bs, *ls = s->ls, *rs = s->rs,
-                 *gs = s->gs, *ds = s->ds;
-    /* the narrowest strip, and the narrowest that the walls do not clip:
-     * a clipped strip (gamma = ax or delta = bx) fits only a gap that
-     * reaches the wall, so the gaps between two squares are tested
-     * against the unclipped width (about dx, where wmin is about dx/2) */
-    const double ax = s->p.box.ax, bx = s->p.box.bx;
-    double wmin = INFINITY, wint = INFINITY;
-    for (size_t k = 0; k < n; k++) {
-        double w = ds[k] - gs[k];
-        wmin = w < wmin ? w : wmin;
-        wint = w < wint && gs[k] > ax && ds[k] < bx ? w : wint;
-        s->lowe[k] = mq + 1;
-        nxt[k] = (uint32_t)k;
-    }
-    nxt[n] = (uint32_t)n;
-#define GAP_FITS(lo, hi) ((hi) - (lo) >= ((lo) <= ax || (hi) >= bx ? wmin : wint))
-    for (int q = 0; q <= mq + 1; q++) {
-        gr[q] = -INFINITY;
-        gk[q] = UINT32_MAX;
-        gcnt[q] = 0;
-    }
-    size_t ng = 0;
-    /* the gap of band q before square k; then k is the band's last */
-#define BAND_GAP(q, k)                                                      \
-    do {                                                                    \
-        const double lo_ = gr[q], hi_ = ls[k];                              \
-        if (GAP_FITS(lo_, hi_)) {                                           \
-            glo[ng] = lo_;                                                  \
-            ghi[ng] = hi_;                                                  \
-            gkl[ng] = gk[q];                                                \
-            gkh[ng] = (uint32_t)(k);                                        \
-            gq[ng++] = (q);                                                 \
-            gcnt[q]++;                                                      \
-        }                                                                   \
-        gr[q] = rs[k];                                                      \
-        gk[q] = (uint32_t)(k);                                              \
-    } while (0)
-    for (size_t k = 0; k < n; k++) {
-        const int qa = mb[k], qb = mt[k] < mq ? mt[k] : mq;
-        if (!(ts[k] > bs[k]) || qb < qa)
-            continue;
-        BAND_GAP(qa, k);
-        for (int q = qa + 1; q <= qb; q++)
-            BAND_GAP(q, k);
-    }
-#undef BAND_GAP
-    /* every band's last gap, [r_last, +inf) (the whole line if the band
-     * has no square) */
-    for (int q = 1; q <= mq; q++) {
-        glo[ng] = gr[q];
-        ghi[ng] = INFINITY;
-        gkl[ng] = gk[q];
-        gkh[ng] = UINT32_MAX;
-        gq[ng++] = q;
-        gcnt[q]++;
-    }
-    /* the gaps by band, in x order within a band */
-    uint32_t at = 0;
-    for (int q = 0; q <= mq; q++) {
-        const uint32_t c = gcnt[q];
-        gcnt[q] = at;
-        at += c;
-    }
-    for (size_t g = 0; g < ng; g++)
-        gord[gcnt[gq[g]]++] = (uint32_t)g;
-    size_t left = n;
-    for (size_t e = 0; e < ng && left; e++) {
-        const uint32_t g = gord[e];
-        /* the strips that fit lie between the gap's two squares in the x
-         * order (the searches start there); rounding is monotone: a strip
-         * of width w fits only if the rounded gap width is >= w */
-        const size_t p0 = gkl[g] == UINT32_MAX
-                              ? 0
-                              : gallop_pos(gs, n, gkl[g], glo[g], 1),
-                     p1 = gkh[g] == UINT32_MAX
-                              ? n
-                              : gallop_pos(ds, n, gkh[g], ghi[g], 0);
-        left -= take_strips(s, nxt, p0, p1, gq[g]);
-    }
-#undef GAP_FITS
 }
 
 /* Slots [u, u1): is there a square of S(P_j) with positive area in the
@@ -816,7 +644,7 @@ void bf_sup_eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
     /* the empty bands first: a particle that falls freely through one
      * asks the sweep nothing */
     if (kmax >= 2) /* bands 1..kmax - 1, below every top band */
-        empty_bands(s, n, kmax - 1);
+        bf_sup_empty_bands(s, n, kmax - 1);
     size_t nq = 0;
     for (size_t k = 0; k < n; k++) {
         const int K = s->ks[k];

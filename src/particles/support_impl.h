@@ -6,7 +6,10 @@
  *                   per-band sums of one particle (also the cell method's
  *                   fallback), the dispatch;
  *   support_cell.c  the cell method (one 64-bit mask of bands per square);
- *   support_fast.c  the fast method (the sweep, the empty-band gaps).
+ *   support_fast.c  the fast method (the x order, the sweep, the cut
+ *                   squares, g);
+ *   support_gaps.c  its empty bands (the gaps between the squares of each
+ *                   band).
  *
  * Every method decides "square i overlaps strip j in band q with positive
  * area" with the same two floating-point expressions,
@@ -62,7 +65,7 @@ struct bf_support {
      * kmax + 3 has bits; fsz doubles per thread */
     double *fen;
     size_t foff[34], fsz;
-    /* the bands' gaps (empty_bands): per band the right edge and sorted
+    /* the bands' gaps (bf_sup_empty_bands): per band the right edge and sorted
      * position of its last square so far (gr, gk, [kmax + 4]) and its
      * number of gaps (gcnt); per gap ([3 cap + kmax + 3]: a square reaches
      * at most 3 bands, and each band has a last gap) its ends glo, ghi,
@@ -113,6 +116,51 @@ static inline int k_of(const bf_support_params *p, double y)
 static inline int resting(const bf_support *s, double yj, int K)
 {
     return K == 0 && yj - s->p.box.ay <= s->p.d;
+}
+
+/* --------------------------------------------- sorted searches */
+
+/* First sorted position p in [lo, hi) with v[p] > key (or >= if ge). */
+static inline size_t bsearch_pos(const double *v, size_t lo, size_t hi, double key,
+                          int ge)
+{
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (ge ? v[mid] >= key : v[mid] > key)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return lo;
+}
+
+/* The same answer as bsearch_pos(v, 0, n, key, ge), found by galloping
+ * from `hint` (v is sorted): O(log distance) when the answer is near the
+ * hint, as it is for the strips that fit a gap (support_gaps.c). */
+static inline size_t gallop_pos(const double *v, size_t n, size_t hint, double key,
+                         int ge)
+{
+#define PAST(p) (ge ? v[p] >= key : v[p] > key)
+    if (hint > n)
+        hint = n;
+    size_t step = 1;
+    if (hint > 0 && PAST(hint - 1)) {
+        /* the answer is at or before hint - 1: gallop down */
+        size_t hi = hint - 1; /* PAST(hi) */
+        while (hi >= step && PAST(hi - step)) {
+            hi -= step;
+            step *= 2;
+        }
+        return bsearch_pos(v, hi >= step ? hi - step + 1 : 0, hi, key, ge);
+    }
+    /* the answer is at or after hint: gallop up */
+    size_t lo = hint; /* !PAST(p) for every p < lo */
+    while (lo + step - 1 < n && !PAST(lo + step - 1)) {
+        lo += step;
+        step *= 2;
+    }
+    return bsearch_pos(v, lo, lo + step - 1 < n ? lo + step - 1 : n, key, ge);
+#undef PAST
 }
 
 /* OpenMP only pays from a few thousand particles on, and only with more
@@ -237,6 +285,12 @@ double bf_sup_one_particle(const bf_support *s, const bf_cells *c,
                            const double *x, const double *y, size_t n,
                            size_t j, double *area, uint32_t *cnt,
                            uint8_t *kind);
+
+/* The lowest empty band of every strip (support_gaps.c, the fast
+ * method): lowe[k] for sorted position k, the lowest band q <= mq in which
+ * no square overlaps strip k with positive area, or a value > mq; nxt is
+ * its scratch. */
+void bf_sup_empty_bands(bf_support *s, size_t n, int mq);
 
 /* support_cell.c: the square edges in cell-list order (and, with masks,
  * the bands 1..64 each reaches); the cell method. */
