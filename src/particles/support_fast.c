@@ -143,6 +143,19 @@ static inline void fen_add(const bf_support *s, double *fen, int depth,
 #endif
 }
 
+#if defined(__SSE2__)
+/* fen_add with (a, b) in one register. */
+static inline void fen_add_v(const bf_support *s, double *fen, int depth,
+                             int level, __m128d ab)
+{
+    const unsigned i = (unsigned)level - 1u;
+    for (int t = 0; t < depth; t++) {
+        double *nd = fen + 2 * (s->foff[t] + (i >> t));
+        _mm_storeu_pd(nd, _mm_add_pd(_mm_loadu_pd(nd), ab));
+    }
+}
+#endif
+
 /* The square at sorted position p, with its left (sigma = +1) or right
  * (sigma = -1) edge at local coordinate e, enters the sweep.  It counts
  * with its full height h at every level m whose line z_m = ay + m dx is at
@@ -236,7 +249,9 @@ static size_t sweep_updates(bf_support *s, size_t n)
         b += (size_t)!left;
     }
 #endif
-    uv[u] = INFINITY;
+    uv[u] = INFINITY; /* with a level and a height that sweep_chunk reads */
+    uh[u] = 0.0;
+    ul[u] = 1;
     return u;
 }
 
@@ -302,6 +317,23 @@ static void sweep_chunk(bf_support *s, double *fen, size_t n, size_t nu,
         double *dst = isg ? fg + pg : qd + pd;
 #endif
         const size_t i = pd ^ ((pg ^ pd) & (0 - isg));
+#if defined(__SSE2__)
+        /* the first update before the query, taken or not without a
+         * branch (a query is preceded by 0, 1, 2 ... updates at random;
+         * most by at most one): not taken, it adds +0.0 to the blocks of
+         * the next update's level, which changes none of them (a block's
+         * sum starts at +0.0 and is never -0.0) */
+        {
+            const __m128d e = _mm_load_sd(uv + u);
+            const __m128d mk = _mm_cmple_sd(e, _mm_set_sd(v));
+            const size_t take = (size_t)(_mm_movemask_pd(mk) & 1);
+            const __m128d h = _mm_and_pd(mk, _mm_load_sd(uh + u)),
+                          x = _mm_and_pd(mk, _mm_sub_sd(e, _mm_set_sd(X0)));
+            fen_add_v(s, fen, depth, ul[u],
+                      _mm_unpacklo_pd(h, _mm_mul_sd(h, x)));
+            u += take;
+        }
+#endif
         for (; uv[u] <= v; u++)
             fen_add(s, fen, depth, ul[u], uh[u], uh[u] * (uv[u] - X0));
         *dst = sweep_eval(s, fen, depth, v - X0, qK[i]);
