@@ -592,55 +592,75 @@ static inline void fast_to_slots(bf_support *s, size_t k)
                                                           : s->sl[k] - 1;
 }
 
-/* g of the particle in slot t: lower (the sweep) and lowe (the lowest
- * empty band) are in the order of the cell list. */
-static inline void fast_one(const bf_support *s, const bf_cells *c,
-                            const double *lower, const int32_t *lowe,
-                            int lists, size_t t, double *g, uint8_t *kind)
+/* g of particle j in slot t with K >= 1 and no empty band below its top
+ * band, or with K = 0 and not resting: the K = 0 rectangle, or the squares
+ * that the sweep at level K leaves out and the test of band K.  lower (the
+ * sweep) is in the order of the cell list.  Not inlined: most particles
+ * rest or fall freely (fast_g), and their loop should not pay for this
+ * one's registers. */
+static __attribute__((noinline)) void
+fast_strip(const bf_support *s, const bf_cells *c, const double *lower,
+           int lists, size_t t, uint32_t j, double yj, int K, double *g,
+           uint8_t *kind)
 {
     const bf_support_params *p = &s->p;
-    uint32_t j = c->idx[t];
-    const double xj = c->sx[t], yj = c->sy[t];
-    const int K = k_of(p, yj);
-    uint8_t kd = BF_SUP_REST;
+    const double xj = c->sx[t];
+    uint8_t kd;
     double gj;
-    if (resting(s, yj, K)) {
-        gj = 0.0;
-    } else if (K >= 2 && lowe[t] <= K - 1) {
+    double gam = dmax(xj - s->hdx, p->box.ax);
+    double del = dmin(xj + s->hdx, p->box.bx);
+    double area = 0.0;
+    uint32_t cnt = 0;
+    if (K == 0) {
+        bf_sup_column(s, c, j, yj, gam, del, 0, 0, 0, &area, &cnt);
+    } else {
+        const stripq q =
+            stripq_of(gam, del, band_hi(s, K), band_lo(s, K),
+                      p->tie ? yj : nextafter(yj, -INFINITY), K);
+        area = lists ? cut_list_band(s, c, &q, (uint32_t)t, &cnt)
+                     : cut_band(s, c, &q, (uint32_t)t, yj, &cnt);
+        if (cnt == 0 && band_filled(s, c, &q, (uint32_t)t, yj))
+            cnt = 1;
+    }
+    if (cnt == 0) {
         gj = -p->g0;
         kd = BF_SUP_FREE;
     } else {
-        /* the K = 0 rectangle, or the squares that the sweep at level K
-         * leaves out and the test of band K */
-        double gam = dmax(xj - s->hdx, p->box.ax);
-        double del = dmin(xj + s->hdx, p->box.bx);
-        double area = 0.0;
-        uint32_t cnt = 0;
-        if (K == 0) {
-            bf_sup_column(s, c, j, yj, gam, del, 0, 0, 0, &area, &cnt);
-        } else {
-            const stripq q =
-                stripq_of(gam, del, band_hi(s, K), band_lo(s, K),
-                          p->tie ? yj : nextafter(yj, -INFINITY), K);
-            area = lists ? cut_list_band(s, c, &q, (uint32_t)t, &cnt)
-                         : cut_band(s, c, &q, (uint32_t)t, yj, &cnt);
-            if (cnt == 0 && band_filled(s, c, &q, (uint32_t)t, yj))
-                cnt = 1;
-        }
-        if (cnt == 0) {
-            gj = -p->g0;
-            kd = BF_SUP_FREE;
-        } else {
-            double tot = (K >= 1 ? lower[t] : 0.0) + area;
-            double den = K == 0 ? (del - gam) * (yj - p->box.ay)
-                                : (del - gam) * ((double)K * p->dx);
-            gj = -p->g0 * (1.0 - tot / (den + p->eps));
-            kd = gj > 0 ? BF_SUP_ANTI : BF_SUP_PARTIAL;
-        }
+        double tot = (K >= 1 ? lower[t] : 0.0) + area;
+        double den = K == 0 ? (del - gam) * (yj - p->box.ay)
+                            : (del - gam) * ((double)K * p->dx);
+        gj = -p->g0 * (1.0 - tot / (den + p->eps));
+        kd = gj > 0 ? BF_SUP_ANTI : BF_SUP_PARTIAL;
     }
     g[j] = gj;
     if (kind)
         kind[j] = kd;
+}
+
+/* g of the particles in slots [t0, t1): lowe (the lowest empty band) in
+ * the order of the cell list. */
+static void fast_g(const bf_support *s, const bf_cells *c,
+                   const double *lower, const int32_t *lowe, int lists,
+                   size_t t0, size_t t1, double *g, uint8_t *kind)
+{
+    const bf_support_params *p = &s->p;
+    const double g0 = p->g0;
+    for (size_t t = t0; t < t1; t++) {
+        const uint32_t j = c->idx[t];
+        const double yj = c->sy[t];
+        const int K = k_of(p, yj);
+        if (resting(s, yj, K)) {
+            g[j] = 0.0;
+            if (kind)
+                kind[j] = BF_SUP_REST;
+        } else if (K >= 2 && lowe[t] <= K - 1) {
+            g[j] = -g0;
+            if (kind)
+                kind[j] = BF_SUP_FREE;
+        } else {
+            fast_strip(s, c, lower, lists, t, j, yj, K, g, kind);
+        }
+    }
 }
 
 /* (The positions come from the cell list, which holds them in its order.) */
@@ -685,7 +705,7 @@ void bf_sup_eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
         s->qg[nq] = s->gs[k];
         s->qd[nq] = s->ds[k];
         nq += K >= 1 && (s->exhaustive ||
-                         !(K >= 2 && s->lowe[k] <= K - 1)); /* fast_one */
+                         !(K >= 2 && s->lowe[k] <= K - 1)); /* fast_g */
     }
     s->qg[nq] = INFINITY; /* read, not used, at the end of the last chunk */
     const size_t nu = nq > 0 ? sweep_updates(s, n) : 0;
@@ -733,12 +753,13 @@ void bf_sup_eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
     const int lists = !s->exhaustive && cut_lists(s, c);
     if (pr) {
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 256) num_threads(nt)
-        for (size_t t = 0; t < n; t++)
-            fast_one(s, c, s->fgam, s->ks, lists, t, g, kind);
+        const size_t nb = (n + 255) / 256;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+        for (size_t b = 0; b < nb; b++)
+            fast_g(s, c, s->fgam, s->ks, lists, 256 * b,
+                   256 * (b + 1) < n ? 256 * (b + 1) : n, g, kind);
 #endif
     } else {
-        for (size_t t = 0; t < n; t++)
-            fast_one(s, c, s->fgam, s->ks, lists, t, g, kind);
+        fast_g(s, c, s->fgam, s->ks, lists, 0, n, g, kind);
     }
 }
