@@ -43,18 +43,21 @@ static inline size_t take_strips(bf_support *s, uint32_t *nxt, size_t p0,
  * has no height, and the gap of band q before square k is [r, l_k] with r
  * the right edge of the band's previous square (r = min(x + d/2, bx) grows
  * with x), which the pass keeps per band (gr; a few KB, in the cache).  A
- * gap that a strip may fit (GAP_FITS) is written down with its band and
- * the sorted positions of its two squares; the band's first gap
- * (-inf, l_first] and last [r_last, +inf) always are.  Then the gaps are
- * taken band by band from the lowest, and a strip that fits one gets its
- * band unless a lower one took it: the same lowe as looking at every
- * band's squares in x order. */
+ * gap that a strip may fit (GAP_FITS) is written down with its band, its
+ * left end and p1, the first sorted position whose strip ends beyond its
+ * right end l_k (ds > l_k), found by a pointer that only moves forward (l_k
+ * grows with k); the band's first gap (-inf, l_first] and last [r_last,
+ * +inf) always are.  Then the gaps are taken band by band from the lowest:
+ * the strips that fit are the positions p0..p1-1 with gs >= the left end,
+ * so p0 is found by galloping down from p1 (as far as there are strips
+ * that fit, mostly none), and a strip gets the band unless a lower one
+ * took it: the same lowe as looking at every band's squares in x order. */
 void bf_sup_empty_bands(bf_support *s, size_t n, int mq)
 {
-    uint32_t *nxt = s->nxt, *gcnt = s->gcnt, *gord = s->gord, *gk = s->gk,
-             *gkl = s->gkl, *gkh = s->gkh;
+    uint32_t *nxt = s->nxt, *gcnt = s->gcnt, *gord = s->gord,
+             *gp1 = s->gp1;
     int32_t *gq = s->gq;
-    double *glo = s->glo, *ghi = s->ghi, *gr = s->gr;
+    double *glo = s->glo, *gr = s->gr;
     const int32_t *mb = s->mb, *mt = s->mt;
     const double *ts = s->ts, *bs = s->bs, *ls = s->ls, *rs = s->rs,
                  *gs = s->gs, *ds = s->ds;
@@ -75,24 +78,22 @@ void bf_sup_empty_bands(bf_support *s, size_t n, int mq)
 #define GAP_FITS(lo, hi) ((hi) - (lo) >= ((lo) <= ax || (hi) >= bx ? wmin : wint))
     for (int q = 0; q <= mq + 1; q++) {
         gr[q] = -INFINITY;
-        gk[q] = UINT32_MAX;
         gcnt[q] = 0;
     }
-    size_t ng = 0;
+    size_t ng = 0, p1 = 0;
     /* the gap of band q before square k; then k is the band's last */
 #define BAND_GAP(q, k)                                                      \
     do {                                                                    \
         const double lo_ = gr[q], hi_ = ls[k];                              \
         if (GAP_FITS(lo_, hi_)) {                                           \
+            while (p1 < n && !(ds[p1] > hi_))                               \
+                p1++;                                                       \
             glo[ng] = lo_;                                                  \
-            ghi[ng] = hi_;                                                  \
-            gkl[ng] = gk[q];                                                \
-            gkh[ng] = (uint32_t)(k);                                        \
+            gp1[ng] = (uint32_t)p1;                                         \
             gq[ng++] = (q);                                                 \
             gcnt[q]++;                                                      \
         }                                                                   \
         gr[q] = rs[k];                                                      \
-        gk[q] = (uint32_t)(k);                                              \
     } while (0)
     for (size_t k = 0; k < n; k++) {
         const int qa = mb[k], qb = mt[k] < mq ? mt[k] : mq;
@@ -107,9 +108,7 @@ void bf_sup_empty_bands(bf_support *s, size_t n, int mq)
      * has no square) */
     for (int q = 1; q <= mq; q++) {
         glo[ng] = gr[q];
-        ghi[ng] = INFINITY;
-        gkl[ng] = gk[q];
-        gkh[ng] = UINT32_MAX;
+        gp1[ng] = (uint32_t)n;
         gq[ng++] = q;
         gcnt[q]++;
     }
@@ -125,16 +124,11 @@ void bf_sup_empty_bands(bf_support *s, size_t n, int mq)
     size_t left = n;
     for (size_t e = 0; e < ng && left; e++) {
         const uint32_t g = gord[e];
-        /* the strips that fit lie between the gap's two squares in the x
-         * order (the searches start there); rounding is monotone: a strip
-         * of width w fits only if the rounded gap width is >= w */
-        const size_t p0 = gkl[g] == UINT32_MAX
-                              ? 0
-                              : gallop_pos(gs, n, gkl[g], glo[g], 1),
-                     p1 = gkh[g] == UINT32_MAX
-                              ? n
-                              : gallop_pos(ds, n, gkh[g], ghi[g], 0);
-        left -= take_strips(s, nxt, p0, p1, gq[g]);
+        /* rounding is monotone: a strip of width w fits only if the
+         * rounded gap width is >= w */
+        const size_t p0 =
+            glo[g] == -INFINITY ? 0 : gallop_pos(gs, n, gp1[g], glo[g], 1);
+        left -= take_strips(s, nxt, p0, gp1[g], gq[g]);
     }
 #undef GAP_FITS
 }

@@ -65,15 +65,13 @@ struct bf_support {
      * kmax + 3 has bits; fsz doubles per thread */
     double *fen;
     size_t foff[34], fsz;
-    /* the bands' gaps (bf_sup_empty_bands): per band the right edge and sorted
-     * position of its last square so far (gr, gk, [kmax + 4]) and its
-     * number of gaps (gcnt); per gap ([3 cap + kmax + 3]: a square reaches
-     * at most 3 bands, and each band has a last gap) its ends glo, ghi,
-     * the sorted positions of its two squares gkl, gkh (UINT32_MAX: none,
-     * the gap reaches -inf or +inf), its band gq, and the gaps in order of
-     * band (gord) */
-    double *gr, *glo, *ghi;
-    uint32_t *gk, *gcnt, *gkl, *gkh, *gord;
+    /* the bands' gaps (bf_sup_empty_bands): per band the right edge of its last
+     * square so far (gr, [kmax + 4]) and its number of gaps (gcnt); per
+     * gap ([3 cap + kmax + 3]: a square reaches at most 3 bands, and each
+     * band has a last gap) its left end glo, the end p1 of the strips that
+     * fit it (gp1), its band gq, and the gaps in order of band (gord) */
+    double *gr, *glo;
+    uint32_t *gcnt, *gp1, *gord;
     int32_t *gq;
     /* the squares that the sweep at level m leaves out and that reach band
      * m, by line m and column of the cell list (support_fast.c,

@@ -145,15 +145,12 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
     s->fsz = 2 * fo;
     s->fen = calloc(s->fsz * (size_t)s->threads, sizeof *s->fen);
     s->gr = malloc((nb + 1) * sizeof *s->gr);
-    s->gk = malloc((nb + 1) * sizeof *s->gk);
     s->gcnt = malloc((nb + 1) * sizeof *s->gcnt);
     /* a square of height <= 2 dx has positive area in at most 3 bands,
      * and the gap before it in each; every band has a last gap */
     const size_t ngap = 3 * k + nb;
     s->glo = malloc(ngap * sizeof *s->glo);
-    s->ghi = malloc(ngap * sizeof *s->ghi);
-    s->gkl = malloc(ngap * sizeof *s->gkl);
-    s->gkh = malloc(ngap * sizeof *s->gkh);
+    s->gp1 = malloc(ngap * sizeof *s->gp1);
     s->gord = malloc(ngap * sizeof *s->gord);
     s->gq = malloc(ngap * sizeof *s->gq);
     s->area = malloc(nb * (size_t)s->threads * sizeof *s->area);
@@ -163,8 +160,8 @@ bf_status bf_support_create(bf_support **out, const bf_support_params *p,
         !s->qd || !s->uv || !s->uh || !s->ul || !s->ks || !s->mb || !s->mt ||
         !s->sl || !s->csl || !s->lower || !s->cmb || !s->cme || !s->cl ||
         !s->cr || !s->cb || !s->ct || !s->bm || !s->fgam ||
-        !s->lowe || !s->nxt || !s->fen || !s->gr || !s->gk || !s->gcnt ||
-        !s->glo || !s->ghi || !s->gkl || !s->gkh || !s->gord || !s->gq ||
+        !s->lowe || !s->nxt || !s->fen || !s->gr || !s->gcnt ||
+        !s->glo || !s->gp1 || !s->gord || !s->gq ||
         !s->area || !s->cnt) {
         bf_support_free(s);
         return bf_fail(err, BF_EINTERNAL, "out of memory (support, %zu "
@@ -222,12 +219,9 @@ void bf_support_free(bf_support *s)
     free(s->nxt);
     free(s->fen);
     free(s->gr);
-    free(s->gk);
     free(s->gcnt);
     free(s->glo);
-    free(s->ghi);
-    free(s->gkl);
-    free(s->gkh);
+    free(s->gp1);
     free(s->gord);
     free(s->gq);
     free(s->area);
