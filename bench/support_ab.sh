@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# bench/support_ab.sh REV [n] [pairs]: the support-set gravity's fast
+# bench/support_ab.sh REV|FILE [n] [pairs]: the support-set gravity's fast
 # method of this tree against src/particles/support_fast.c as it was at
-# REV (a commit, tag or branch), both compiled into one program
+# REV (a commit, tag or branch; or the path of a file, such as a copy of
+# support_fast.c kept before a change), both compiled into one program
 # (bench/driver/g72_support_ab.c) and run alternately in one process on
 # the Greenspan 1972 benchmark scene at N = n^2 (default n = 256), `pairs`
 # pairs of evaluations (default 30).  Prints both times, the median of the
@@ -10,17 +11,23 @@
 # file must use the same workspace (support_impl.h) as this tree's.
 # Builds build/libballfilm.a first.
 set -euo pipefail
-cd "$(dirname "$0")/.."
 if [ $# -lt 1 ]; then
-    echo "usage: bench/support_ab.sh REV [n] [pairs]" >&2
+    echo "usage: bench/support_ab.sh REV|FILE [n] [pairs]" >&2
     exit 2
 fi
 REV=$1
+# a file is named from where the script was called
+if [ -f "$REV" ]; then REV=$(realpath "$REV"); fi
+cd "$(dirname "$0")/.."
 N=${2:-256}
 PAIRS=${3:-30}
 tmp=$(mktemp -d /tmp/ballfilm-support-ab.XXXXXX)
 trap 'rm -rf "$tmp"' EXIT
-git show "$REV:src/particles/support_fast.c" > "$tmp/other.c"
+if [ -f "$REV" ]; then
+    cp "$REV" "$tmp/other.c"
+else
+    git show "$REV:src/particles/support_fast.c" > "$tmp/other.c"
+fi
 make --no-print-directory -j2 build/libballfilm.a > "$tmp/build.log" 2>&1 ||
     { tail -20 "$tmp/build.log"; exit 1; }
 CFLAGS="-std=c11 -O2 -Wall -Wextra -Werror -ffp-contract=off -D_POSIX_C_SOURCE=200809L -fopenmp"
