@@ -5,7 +5,13 @@
 # 10 ms and 10 MiB, issue 21), and the shared objects the program loads.
 # Absolute times depend on the machine: the CPU model and the load are
 # printed with them.  Run by make bench.
+#
+#   bench/startup.sh [PROGRAM]   (default bin/ballfilm; another build of
+#                                 the program, to compare on one machine)
 set -euo pipefail
+shown=${1:-bin/ballfilm}
+prog=$shown
+if [ -e "$prog" ]; then prog=$(realpath "$prog"); fi
 cd "$(dirname "$0")/.."
 tmp=$(mktemp -d /tmp/ballfilm-bench-startup.XXXXXX)
 trap 'rm -rf "$tmp"' EXIT
@@ -17,9 +23,9 @@ t_end = 1e-3
 [ball.1]
 position = 1
 INI
-/usr/bin/python3 - bin/ballfilm "$tmp" <<'PY'
+/usr/bin/python3 - "$prog" "$tmp" "$shown" <<'PY'
 import os, subprocess, sys, time
-prog, tmp = sys.argv[1], sys.argv[2]
+prog, tmp, shown = sys.argv[1], sys.argv[2], sys.argv[3]
 cmd = [prog, "run", os.path.join(tmp, "tiny.ini"), "-q", "-o",
        os.path.join(tmp, "tiny.h5")]
 best, peak = float("inf"), 0.0
@@ -38,7 +44,7 @@ nlib = sum(1 for l in libs.splitlines() if "=>" in l or l.strip().startswith("/"
 cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo")
             if l.startswith("model name")), "unknown CPU")
 load = open("/proc/loadavg").read().split()[0]
-print("start-up of a small run (1 ball, 10 steps, output file), 30 runs")
+print("start-up of a small run (1 ball, 10 steps, output file), 30 runs of %s" % shown)
 print("  shortest wall time: %6.1f ms   (goal < 10 ms)" % (best * 1e3))
 print("  peak resident set:  %6.1f MiB  (goal < 10 MiB)" % peak)
 print("  shared objects loaded: %d" % nlib)
