@@ -8,7 +8,10 @@
 # pairs of evaluations (default 30).  Prints both times, the median of the
 # pairs' ratios (REV / this tree) and whether g and the kinds are the same
 # bits (exit 1 if not).  For work on src/particles/support_fast.c: REV's
-# file must use the same workspace (support_impl.h) as this tree's.
+# file must use the same workspace (support_impl.h) as this tree's, and
+# both use this tree's empty bands (support_gaps.c; a file from before
+# 60ec7b8, which split them off, defines the searches that support_impl.h
+# now holds and does not compile here).
 # Builds build/libballfilm.a first.
 set -euo pipefail
 if [ $# -lt 1 ]; then
