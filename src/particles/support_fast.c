@@ -123,27 +123,8 @@ static void sort_by_x(bf_support *s, const bf_cells *c)
  * no mispredicted branches; a bit that is not set adds +0.0 (the sum
  * starts at +0.0 and is never -0.0, so adding +0.0 changes nothing).  With
  * SSE2 A and B share one register (the same additions). */
-static inline void fen_add(const bf_support *s, double *fen, int depth,
-                           int level, double a, double b)
-{
-    const unsigned i = (unsigned)level - 1u;
 #if defined(__SSE2__)
-    const __m128d ab = _mm_set_pd(b, a);
-    for (int t = 0; t < depth; t++) {
-        double *nd = fen + 2 * (s->foff[t] + (i >> t));
-        _mm_storeu_pd(nd, _mm_add_pd(_mm_loadu_pd(nd), ab));
-    }
-#else
-    for (int t = 0; t < depth; t++) {
-        double *nd = fen + 2 * (s->foff[t] + (i >> t));
-        nd[0] += a;
-        nd[1] += b;
-    }
-#endif
-}
-
-#if defined(__SSE2__)
-/* fen_add with (a, b) in one register. */
+/* The update with (a, b) in one register (lane 0: a). */
 static inline void fen_add_v(const bf_support *s, double *fen, int depth,
                              int level, __m128d ab)
 {
@@ -154,6 +135,21 @@ static inline void fen_add_v(const bf_support *s, double *fen, int depth,
     }
 }
 #endif
+
+static inline void fen_add(const bf_support *s, double *fen, int depth,
+                           int level, double a, double b)
+{
+#if defined(__SSE2__)
+    fen_add_v(s, fen, depth, level, _mm_set_pd(b, a));
+#else
+    const unsigned i = (unsigned)level - 1u;
+    for (int t = 0; t < depth; t++) {
+        double *nd = fen + 2 * (s->foff[t] + (i >> t));
+        nd[0] += a;
+        nd[1] += b;
+    }
+#endif
+}
 
 /* The square at sorted position p, with its left (sigma = +1) or right
  * (sigma = -1) edge at local coordinate e, enters the sweep.  It counts

@@ -75,7 +75,8 @@ void bf_sup_empty_bands(bf_support *s, size_t n, int mq)
         nxt[k] = (uint32_t)k;
     }
     nxt[n] = (uint32_t)n;
-#define GAP_FITS(lo, hi) ((hi) - (lo) >= ((lo) <= ax || (hi) >= bx ? wmin : wint))
+#define GAP_FITS(lo, hi)                                                    \
+    ((hi) - (lo) >= ((lo) <= ax || (hi) >= bx ? wmin : wint))
     for (int q = 0; q <= mq + 1; q++) {
         gr[q] = -INFINITY;
         gcnt[q] = 0;

@@ -65,11 +65,12 @@ struct bf_support {
      * kmax + 3 has bits; fsz doubles per thread */
     double *fen;
     size_t foff[34], fsz;
-    /* the bands' gaps (bf_sup_empty_bands): per band the right edge of its last
-     * square so far (gr, [kmax + 4]) and its number of gaps (gcnt); per
-     * gap ([3 cap + kmax + 3]: a square reaches at most 3 bands, and each
-     * band has a last gap) its left end glo, the end p1 of the strips that
-     * fit it (gp1), its band gq, and the gaps in order of band (gord) */
+    /* the bands' gaps (bf_sup_empty_bands): per band the right edge of
+     * its last square so far (gr, [kmax + 4]) and its number of gaps
+     * (gcnt); per gap ([3 cap + kmax + 3]: a square reaches at most 3
+     * bands, and each band has a last gap) its left end glo, the end p1 of
+     * the strips that fit it (gp1), its band gq, and the gaps in order of
+     * band (gord) */
     double *gr, *glo;
     uint32_t *gcnt, *gp1, *gord;
     int32_t *gq;
@@ -119,8 +120,8 @@ static inline int resting(const bf_support *s, double yj, int K)
 /* --------------------------------------------- sorted searches */
 
 /* First sorted position p in [lo, hi) with v[p] > key (or >= if ge). */
-static inline size_t bsearch_pos(const double *v, size_t lo, size_t hi, double key,
-                          int ge)
+static inline size_t bsearch_pos(const double *v, size_t lo, size_t hi,
+                                 double key, int ge)
 {
     while (lo < hi) {
         size_t mid = lo + (hi - lo) / 2;
@@ -135,8 +136,8 @@ static inline size_t bsearch_pos(const double *v, size_t lo, size_t hi, double k
 /* The same answer as bsearch_pos(v, 0, n, key, ge), found by galloping
  * from `hint` (v is sorted): O(log distance) when the answer is near the
  * hint, as it is for the strips that fit a gap (support_gaps.c). */
-static inline size_t gallop_pos(const double *v, size_t n, size_t hint, double key,
-                         int ge)
+static inline size_t gallop_pos(const double *v, size_t n, size_t hint,
+                                double key, int ge)
 {
 #define PAST(p) (ge ? v[p] >= key : v[p] > key)
     if (hint > n)
