@@ -1,13 +1,15 @@
 /* test_sweep.c: parameter sweeps.  The same cases give bit-identical files
  * run one after another, on a pool of two processes, and on two MPI ranks;
  * a failing case is recorded without stopping the sweep; a sweep run again
- * runs only the cases that did not finish. */
+ * runs only the cases that did not finish; a sweep of 10^4 values along
+ * one axis is defined (its manifest is not cut at a fixed size). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "ballfilm/sweep.h"
 #include "testutil.h"
 
 #define NCASES 4
@@ -126,12 +128,46 @@ START_TEST(failed_case_recorded_and_rerun_completes_missing)
 }
 END_TEST
 
+/* The manifest (sweep.txt) holds every value: with 10^4 values of 20-odd
+ * characters it is some 200 KB, where a fixed 16 KB buffer refused any
+ * axis of more than about 800 values ("sweep definition too long").  The
+ * same definition is accepted again (a rerun), one other value is not. */
+START_TEST(long_axis_defined_and_checked)
+{
+    const char *scene = tu_repo("runs/two_balls_B.ini");
+    char d[512], path[700];
+    snprintf(d, sizeof d, "%s", tu_tmp("sw_long"));
+    const char *vary[] = {"ball.1.mass=0.5:2.0:10000"};
+    const char *other[] = {"ball.1.mass=0.5:2.5:10000"};
+    bf_sweep sw;
+    bf_err err = {0};
+    ck_assert_msg(bf_sweep_init(&sw, scene, NULL, 0, vary, 1, d, &err) ==
+                      BF_OK,
+                  "%s", err.msg);
+    ck_assert_int_eq((long)sw.ncases, 10000);
+    bf_sweep_free(&sw);
+    snprintf(path, sizeof path, "%s/sweep.txt", d);
+    struct stat st;
+    ck_assert(stat(path, &st) == 0);
+    ck_assert_msg(st.st_size > 10000 * 17, "%lld bytes",
+                  (long long)st.st_size);
+    ck_assert_msg(bf_sweep_init(&sw, scene, NULL, 0, vary, 1, d, &err) ==
+                      BF_OK,
+                  "%s", err.msg);
+    bf_sweep_free(&sw);
+    ck_assert_int_eq(bf_sweep_init(&sw, scene, NULL, 0, other, 1, d, &err),
+                     BF_EINPUT);
+    ck_assert_msg(strstr(err.msg, "holds a different sweep"), "%s", err.msg);
+}
+END_TEST
+
 Suite *suite_sweep(void)
 {
     Suite *s = suite_create("sweep");
     TCase *tc = tu_tcase("cases");
     tcase_add_test(tc, serial_pool_and_mpi_identical);
     tcase_add_test(tc, failed_case_recorded_and_rerun_completes_missing);
+    tcase_add_test(tc, long_axis_defined_and_checked);
     suite_add_tcase(s, tc);
     return s;
 }

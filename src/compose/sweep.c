@@ -9,6 +9,8 @@
 #include <fcntl.h>
 #include <hdf5.h>
 #include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -106,38 +108,98 @@ static void case_path(const bf_sweep *sw, long k, const char *ext, char *buf,
     snprintf(buf, cap, "%s/case_%05ld.%s", sw->dir, k, ext);
 }
 
-/* The manifest ties a directory to one sweep definition. */
+/* A growing text (the manifest below): what appendf could not add leaves
+ * it as it was and sets `failed`. */
+typedef struct text_buf {
+    char *s;
+    size_t len, cap;
+    int failed;
+} text_buf;
+
+static void appendf(text_buf *t, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
+static void appendf(text_buf *t, const char *fmt, ...)
+{
+    if (t->failed)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(t->s ? t->s + t->len : NULL,
+                      t->s ? t->cap - t->len : 0, fmt, ap);
+    va_end(ap);
+    if (n < 0) {
+        t->failed = 1;
+        return;
+    }
+    if (t->s && (size_t)n < t->cap - t->len) {
+        t->len += (size_t)n;
+        return;
+    }
+    size_t cap = t->cap ? t->cap : 4096;
+    while (cap <= t->len + (size_t)n)
+        cap *= 2;
+    char *s = realloc(t->s, cap);
+    if (!s) {
+        t->failed = 1;
+        return;
+    }
+    t->s = s;
+    t->cap = cap;
+    va_start(ap, fmt);
+    vsnprintf(t->s + t->len, t->cap - t->len, fmt, ap);
+    va_end(ap);
+    t->len += (size_t)n;
+}
+
+/* The whole of file f as a string (NULL if out of memory or unreadable). */
+static char *read_all(FILE *f)
+{
+    text_buf t = {0};
+    char chunk[8192];
+    size_t n;
+    appendf(&t, "%s", "");
+    while (!t.failed && (n = fread(chunk, 1, sizeof chunk, f)) > 0)
+        appendf(&t, "%.*s", (int)n, chunk);
+    if (t.failed || ferror(f)) {
+        free(t.s);
+        return NULL;
+    }
+    return t.s;
+}
+
+/* The manifest ties a directory to one sweep definition: the scene, its
+ * hash, the overrides and every value of every axis (as many as given:
+ * a sweep of 10^4 cases along one axis is 10^4 values). */
 static bf_status check_manifest(const bf_sweep *sw, const char *const *sets,
                                 size_t nsets, bf_err *err)
 {
-    char path[1200], want[16384];
+    char path[1200];
     const char *text = bf_scene_text(sw->base);
     unsigned long long h = bf_hash64(BF_HASH_INIT, text, strlen(text));
-    size_t used = (size_t)snprintf(want, sizeof want,
-                                   "scene %s\nscene_hash %016llx\n",
-                                   sw->scene_path, h);
-    for (size_t k = 0; k < nsets && used < sizeof want; k++)
-        used += (size_t)snprintf(want + used, sizeof want - used, "set %s\n",
-                                 sets[k]);
-    for (size_t a = 0; a < sw->naxis && used < sizeof want; a++) {
-        used += (size_t)snprintf(want + used, sizeof want - used, "vary %s",
-                                 sw->axis[a].key);
-        for (size_t k = 0; k < sw->axis[a].n && used < sizeof want; k++)
-            used += (size_t)snprintf(want + used, sizeof want - used, " %.17g",
-                                     sw->axis[a].values[k]);
-        if (used < sizeof want)
-            used += (size_t)snprintf(want + used, sizeof want - used, "\n");
+    text_buf want = {0};
+    appendf(&want, "scene %s\nscene_hash %016llx\n", sw->scene_path, h);
+    for (size_t k = 0; k < nsets; k++)
+        appendf(&want, "set %s\n", sets[k]);
+    for (size_t a = 0; a < sw->naxis; a++) {
+        appendf(&want, "vary %s", sw->axis[a].key);
+        for (size_t k = 0; k < sw->axis[a].n; k++)
+            appendf(&want, " %.17g", sw->axis[a].values[k]);
+        appendf(&want, "\n");
     }
-    if (used >= sizeof want)
-        return bf_fail(err, BF_EINPUT, "sweep definition too long");
+    if (want.failed) {
+        free(want.s);
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
     snprintf(path, sizeof path, "%s/sweep.txt", sw->dir);
     FILE *f = fopen(path, "r");
     if (f) {
-        char have[16384];
-        size_t n = fread(have, 1, sizeof have - 1, f);
-        have[n] = '\0';
+        char *have = read_all(f);
         fclose(f);
-        if (strcmp(have, want))
+        const int same = have && !strcmp(have, want.s);
+        free(have);
+        free(want.s);
+        if (!same)
             return bf_fail(err, BF_EINPUT, "%s holds a different sweep (see "
                            "%s: another scene, scene contents, overrides or "
                            "values); use another -o directory",
@@ -145,7 +207,9 @@ static bf_status check_manifest(const bf_sweep *sw, const char *const *sets,
         return BF_OK;
     }
     f = fopen(path, "w");
-    if (!f || fputs(want, f) < 0) {
+    const int bad = !f || fwrite(want.s, 1, want.len, f) != want.len;
+    free(want.s);
+    if (bad) {
         if (f)
             fclose(f);
         return bf_fail(err, BF_EIO, "%s: cannot write (%s)", path,
