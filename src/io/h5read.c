@@ -1,0 +1,115 @@
+/* h5read.c: reading back what h5out.c wrote (h5out.h, "reading back"):
+ * whole float64 datasets and single attributes, for tests, restarts,
+ * initial profiles and sweeps.  Every call opens the file read-only and
+ * reports a missing file, dataset or attribute through err, naming it. */
+#include <hdf5.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ballfilm/h5out.h"
+
+static void quiet_hdf5(void)
+{
+    /* We report errors ourselves, with the file and dataset named. */
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+}
+
+bf_status bf_h5_read(const char *file, const char *path, double **data,
+                     size_t *n0, size_t *n1, bf_err *err)
+{
+    quiet_hdf5();
+    *data = NULL;
+    hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", file);
+    hid_t d = H5Dopen2(f, path, H5P_DEFAULT);
+    if (d < 0) {
+        H5Fclose(f);
+        return bf_fail(err, BF_EIO, "%s: no dataset %s", file, path);
+    }
+    hid_t sp = H5Dget_space(d);
+    int rank = H5Sget_simple_extent_ndims(sp);
+    hsize_t dims[2] = {0, 0};
+    bf_status st = BF_OK;
+    if (rank < 1 || rank > 2) {
+        st = bf_fail(err, BF_EIO, "%s: %s has rank %d (want 1 or 2)", file, path,
+                     rank);
+    } else {
+        H5Sget_simple_extent_dims(sp, dims, NULL);
+        size_t total = (size_t)dims[0] * (rank == 2 ? (size_t)dims[1] : 1);
+        double *buf = malloc((total ? total : 1) * sizeof *buf);
+        if (!buf)
+            st = bf_fail(err, BF_EINTERNAL, "out of memory");
+        else if (total && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL,
+                                  H5P_DEFAULT, buf) < 0) {
+            free(buf);
+            st = bf_fail(err, BF_EIO, "%s: cannot read %s", file, path);
+        } else {
+            *data = buf;
+            *n0 = (size_t)dims[0];
+            *n1 = rank == 2 ? (size_t)dims[1] : 0;
+        }
+    }
+    H5Sclose(sp);
+    H5Dclose(d);
+    H5Fclose(f);
+    return st;
+}
+
+/* Open FILE read-only (*f) and its attribute NAME on OBJ (*a, negative if
+ * it has none); an error only if the file cannot be opened. */
+static bf_status open_attr(const char *file, const char *obj, const char *name,
+                           hid_t *f, hid_t *a, bf_err *err)
+{
+    quiet_hdf5();
+    *a = -1;
+    *f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (*f < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", file);
+    *a = H5Aopen_by_name(*f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+    return BF_OK;
+}
+
+bf_status bf_h5_read_attr_real(const char *file, const char *obj,
+                               const char *name, double *value, bf_err *err)
+{
+    hid_t f, a;
+    bf_status st = open_attr(file, obj, name, &f, &a, err);
+    if (st)
+        return st;
+    if (a < 0 || H5Aread(a, H5T_NATIVE_DOUBLE, value) < 0)
+        st = bf_fail(err, BF_EIO, "%s: no numeric attribute %s on %s", file,
+                     name, obj);
+    if (a >= 0)
+        H5Aclose(a);
+    H5Fclose(f);
+    return st;
+}
+
+bf_status bf_h5_read_attr_str(const char *file, const char *obj,
+                              const char *name, char **value, bf_err *err)
+{
+    *value = NULL;
+    hid_t f, a;
+    bf_status st = open_attr(file, obj, name, &f, &a, err);
+    if (st)
+        return st;
+    if (a < 0) {
+        st = bf_fail(err, BF_EIO, "%s: no attribute %s on %s", file, name, obj);
+    } else {
+        hid_t t = H5Tcopy(H5T_C_S1);
+        H5Tset_size(t, H5T_VARIABLE);
+        H5Tset_cset(t, H5T_CSET_UTF8);
+        char *v = NULL;
+        if (H5Aread(a, t, &v) < 0 || !v) {
+            st = bf_fail(err, BF_EIO, "%s: cannot read attribute %s", file, name);
+        } else {
+            *value = strdup(v);
+            H5free_memory(v);
+        }
+        H5Tclose(t);
+        H5Aclose(a);
+    }
+    H5Fclose(f);
+    return st;
+}
