@@ -118,6 +118,18 @@ bf_status bf_h5_read_attr_real(const char *file, const char *obj,
 bf_status bf_h5_read_attr_str(const char *file, const char *obj,
                               const char *name, char **value, bf_err *err);
 
+/* Several reads from one file opened once (each call above opens and
+ * closes the file: a sweep reading four things of every case paid four
+ * opens).  The same results and messages as the calls above. */
+typedef struct bf_h5_reader bf_h5_reader;
+bf_status bf_h5_reader_open(bf_h5_reader **r, const char *file, bf_err *err);
+bf_status bf_h5_reader_read(bf_h5_reader *r, const char *path, double **data,
+                            size_t *n0, size_t *n1, bf_err *err);
+bf_status bf_h5_reader_attr_real(bf_h5_reader *r, const char *obj,
+                                 const char *name, double *value,
+                                 bf_err *err);
+void bf_h5_reader_close(bf_h5_reader *r); /* NULL is fine */
+
 /* What a file holds (`ballfilm info`): every dataset, ordered by path. */
 typedef struct bf_h5_dataset {
     char path[256];

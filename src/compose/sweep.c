@@ -463,37 +463,46 @@ bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
         }
         row->energy_error = bf_sim_max_energy_error(sim);
         row->steps = bf_sim_steps_done(sim);
-        /* what the model measured, from the case's own file */
+        /* what the model measured, from the case's own file (opened
+         * once for all of it) */
         double v;
         bf_err ignore = {0};
-        if (!bf_h5_read_attr_real(out, "/", "lyapunov_exponent", &v, &ignore))
-            row->lyapunov = v;
-        if (!bf_h5_read_attr_real(out, "/", "return_map_points", &v, &ignore))
-            row->map_points = v;
+        bf_h5_reader *rd = NULL;
         double *z = NULL, *vz = NULL, *m3 = NULL;
         size_t nz, nz1, nv, nv1;
-        if (!bf_h5_read(out, "/return_map/z", &z, &nz, &nz1, &ignore) &&
-            !bf_h5_read(out, "/return_map/v", &vz, &nv, &nv1, &ignore) &&
-            nz == nv) {
-            row->map_fill = bf_sweep_map_fill(z, vz, nz);
-        } else if (!bf_h5_read(out, "/coupled/return_map", &m3, &nz, &nz1,
-                               &ignore) &&
-                   nz1 == 3) {
-            /* the coupled model's map: rows of (t, x, v) */
-            free(z);
-            free(vz);
-            z = malloc((nz ? nz : 1) * sizeof *z);
-            vz = malloc((nz ? nz : 1) * sizeof *vz);
-            if (z && vz) {
-                for (size_t q = 0; q < nz; q++) {
-                    z[q] = m3[3 * q + 1];
-                    vz[q] = m3[3 * q + 2];
-                }
+        if (!bf_h5_reader_open(&rd, out, &ignore)) {
+            if (!bf_h5_reader_attr_real(rd, "/", "lyapunov_exponent", &v,
+                                        &ignore))
+                row->lyapunov = v;
+            if (!bf_h5_reader_attr_real(rd, "/", "return_map_points", &v,
+                                        &ignore))
+                row->map_points = v;
+            if (!bf_h5_reader_read(rd, "/return_map/z", &z, &nz, &nz1,
+                                   &ignore) &&
+                !bf_h5_reader_read(rd, "/return_map/v", &vz, &nv, &nv1,
+                                   &ignore) &&
+                nz == nv) {
                 row->map_fill = bf_sweep_map_fill(z, vz, nz);
-                if (isnan(row->map_points))
-                    row->map_points = (double)nz;
+            } else if (!bf_h5_reader_read(rd, "/coupled/return_map", &m3,
+                                          &nz, &nz1, &ignore) &&
+                       nz1 == 3) {
+                /* the coupled model's map: rows of (t, x, v) */
+                free(z);
+                free(vz);
+                z = malloc((nz ? nz : 1) * sizeof *z);
+                vz = malloc((nz ? nz : 1) * sizeof *vz);
+                if (z && vz) {
+                    for (size_t q = 0; q < nz; q++) {
+                        z[q] = m3[3 * q + 1];
+                        vz[q] = m3[3 * q + 2];
+                    }
+                    row->map_fill = bf_sweep_map_fill(z, vz, nz);
+                    if (isnan(row->map_points))
+                        row->map_points = (double)nz;
+                }
+                free(m3);
             }
-            free(m3);
+            bf_h5_reader_close(rd);
         }
         free(z);
         free(vz);

@@ -1,7 +1,8 @@
 /* h5read.c: reading back what h5out.c wrote (h5out.h, "reading back"):
  * whole float64 datasets and single attributes, for tests, restarts,
- * initial profiles and sweeps.  Every call opens the file read-only and
- * reports a missing file, dataset or attribute through err, naming it. */
+ * initial profiles and sweeps.  Every call opens the file read-only (or
+ * reads from a bf_h5_reader, one open for several reads) and reports a
+ * missing file, dataset or attribute through err, naming it. */
 #include <hdf5.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,19 +15,47 @@ static void quiet_hdf5(void)
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
 }
 
-bf_status bf_h5_read(const char *file, const char *path, double **data,
-                     size_t *n0, size_t *n1, bf_err *err)
+struct bf_h5_reader {
+    hid_t file;
+    char *name; /* for messages */
+};
+
+bf_status bf_h5_reader_open(bf_h5_reader **r, const char *file, bf_err *err)
 {
     quiet_hdf5();
-    *data = NULL;
-    hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
-    if (f < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", file);
-    hid_t d = H5Dopen2(f, path, H5P_DEFAULT);
-    if (d < 0) {
-        H5Fclose(f);
-        return bf_fail(err, BF_EIO, "%s: no dataset %s", file, path);
+    *r = calloc(1, sizeof **r);
+    if (!*r || !((*r)->name = strdup(file))) {
+        free(*r);
+        *r = NULL;
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
+    (*r)->file = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if ((*r)->file < 0) {
+        bf_h5_reader_close(*r);
+        *r = NULL;
+        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", file);
+    }
+    return BF_OK;
+}
+
+void bf_h5_reader_close(bf_h5_reader *r)
+{
+    if (!r)
+        return;
+    if (r->file >= 0)
+        H5Fclose(r->file);
+    free(r->name);
+    free(r);
+}
+
+bf_status bf_h5_reader_read(bf_h5_reader *r, const char *path, double **data,
+                            size_t *n0, size_t *n1, bf_err *err)
+{
+    const char *file = r->name;
+    *data = NULL;
+    hid_t d = H5Dopen2(r->file, path, H5P_DEFAULT);
+    if (d < 0)
+        return bf_fail(err, BF_EIO, "%s: no dataset %s", file, path);
     hid_t sp = H5Dget_space(d);
     int rank = H5Sget_simple_extent_ndims(sp);
     hsize_t dims[2] = {0, 0};
@@ -52,7 +81,44 @@ bf_status bf_h5_read(const char *file, const char *path, double **data,
     }
     H5Sclose(sp);
     H5Dclose(d);
-    H5Fclose(f);
+    return st;
+}
+
+bf_status bf_h5_reader_attr_real(bf_h5_reader *r, const char *obj,
+                                 const char *name, double *value, bf_err *err)
+{
+    hid_t a = H5Aopen_by_name(r->file, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+    bf_status st = BF_OK;
+    if (a < 0 || H5Aread(a, H5T_NATIVE_DOUBLE, value) < 0)
+        st = bf_fail(err, BF_EIO, "%s: no numeric attribute %s on %s", r->name,
+                     name, obj);
+    if (a >= 0)
+        H5Aclose(a);
+    return st;
+}
+
+bf_status bf_h5_read(const char *file, const char *path, double **data,
+                     size_t *n0, size_t *n1, bf_err *err)
+{
+    bf_h5_reader *r;
+    *data = NULL;
+    bf_status st = bf_h5_reader_open(&r, file, err);
+    if (st)
+        return st;
+    st = bf_h5_reader_read(r, path, data, n0, n1, err);
+    bf_h5_reader_close(r);
+    return st;
+}
+
+bf_status bf_h5_read_attr_real(const char *file, const char *obj,
+                               const char *name, double *value, bf_err *err)
+{
+    bf_h5_reader *r;
+    bf_status st = bf_h5_reader_open(&r, file, err);
+    if (st)
+        return st;
+    st = bf_h5_reader_attr_real(r, obj, name, value, err);
+    bf_h5_reader_close(r);
     return st;
 }
 
@@ -68,22 +134,6 @@ static bf_status open_attr(const char *file, const char *obj, const char *name,
         return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", file);
     *a = H5Aopen_by_name(*f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
     return BF_OK;
-}
-
-bf_status bf_h5_read_attr_real(const char *file, const char *obj,
-                               const char *name, double *value, bf_err *err)
-{
-    hid_t f, a;
-    bf_status st = open_attr(file, obj, name, &f, &a, err);
-    if (st)
-        return st;
-    if (a < 0 || H5Aread(a, H5T_NATIVE_DOUBLE, value) < 0)
-        st = bf_fail(err, BF_EIO, "%s: no numeric attribute %s on %s", file,
-                     name, obj);
-    if (a >= 0)
-        H5Aclose(a);
-    H5Fclose(f);
-    return st;
 }
 
 bf_status bf_h5_read_attr_str(const char *file, const char *obj,
