@@ -52,6 +52,7 @@ struct bf_series {
 
 struct bf_out {
     hid_t file;
+    hid_t root; /* "/", held open for its attributes (open_obj; -1: not) */
     int append; /* opened to continue a run */
     char *path; /* the result's path */
     char *part; /* the file written: path + ".part" */
@@ -176,6 +177,7 @@ static bf_status open_part(bf_out **out, const char *path, int append,
     bf_out *o = calloc(1, sizeof *o);
     if (!o)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
+    o->root = -1;
     bf_status st = claim(o, path, err);
     if (st) {
         release(o);
@@ -198,6 +200,10 @@ static bf_status open_part(bf_out **out, const char *path, int append,
         return st;
     }
     o->append = append;
+    /* a run writes some hundred attributes on "/" (its parameters), and
+     * opening and closing the root group for each was a tenth of a small
+     * run's output time */
+    o->root = H5Oopen(o->file, "/", H5P_DEFAULT);
     o->last_flush = bf_coarse_time();
     *out = o;
     return BF_OK;
@@ -253,6 +259,8 @@ static bf_status finish(bf_out *out, bf_err *err)
     free(out->series);
     out->series = NULL;
     out->nseries = 0;
+    if (!out->failed && out->root >= 0)
+        H5Oclose(out->root);
     if (!out->failed && H5Fclose(out->file) < 0)
         st = bf_fail(err, BF_EIO, "%s: closing the HDF5 file failed", out->part);
     /* give back the space reserved beyond the end and not used */
@@ -721,16 +729,25 @@ bf_status bf_out_array_i64(bf_out *out, const char *path, const int64_t *data,
 }
 
 /* Open an object for attributes, creating groups as needed. */
+/* The object obj of the file (created as a group if it does not exist),
+ * to be given back with close_obj. */
 static hid_t open_obj(bf_out *out, const char *obj)
 {
     if (!strcmp(obj, "/"))
-        return H5Oopen(out->file, "/", H5P_DEFAULT);
+        return out->root >= 0 ? out->root
+                              : H5Oopen(out->file, "/", H5P_DEFAULT);
     if (H5Lexists(out->file, obj, H5P_DEFAULT) > 0)
         return H5Oopen(out->file, obj, H5P_DEFAULT);
     hid_t lcpl = lcpl_intermediate();
     hid_t g = H5Gcreate2(out->file, obj, lcpl, H5P_DEFAULT, H5P_DEFAULT);
     H5Pclose(lcpl);
     return g;
+}
+
+static void close_obj(bf_out *out, hid_t o)
+{
+    if (o != out->root)
+        H5Oclose(o);
 }
 
 bf_status bf_out_attr_str(bf_out *out, const char *obj, const char *name,
@@ -742,7 +759,7 @@ bf_status bf_out_attr_str(bf_out *out, const char *obj, const char *name,
     if (o < 0)
         return bf_fail(err, BF_EIO, "%s: cannot open %s", out->path, obj);
     bf_status st = set_str_attr(o, name, value);
-    H5Oclose(o);
+    close_obj(out, o);
     if (st)
         return bf_fail(err, BF_EIO, "%s: cannot write attribute %s of %s",
                        out->path, name, obj);
@@ -765,7 +782,7 @@ static bf_status num_attr(bf_out *out, const char *obj, const char *name,
     if (a >= 0)
         H5Aclose(a);
     H5Sclose(sp);
-    H5Oclose(o);
+    close_obj(out, o);
     if (rc < 0)
         return bf_fail(err, BF_EIO, "%s: cannot write attribute %s of %s",
                        out->path, name, obj);
