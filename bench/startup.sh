@@ -67,8 +67,9 @@ t0 = time.perf_counter()
 r = subprocess.run(sweep, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
 wall = time.perf_counter() - t0
 if r.returncode:
-    print("  sweep of %d such cases: failed: %s"
-          % (ncase, r.stderr.decode().strip().splitlines()[-1]))
+    why = r.stderr.decode().strip().splitlines() or ["exit status %d"
+                                                      % r.returncode]
+    print("  sweep of %d such cases: failed: %s" % (ncase, why[-1]))
 else:
     print("  sweep of %d such cases in one process: %.1f s, %.2f ms a case "
           "(each writes its file)" % (ncase, wall, wall / ncase * 1e3))
