@@ -197,8 +197,11 @@ static bf_status check_manifest(const bf_sweep *sw, const char *const *sets,
         char *have = read_all(f);
         fclose(f);
         const int same = have && !strcmp(have, want.s);
-        free(have);
         free(want.s);
+        if (!have)
+            return bf_fail(err, BF_EIO, "%s: cannot read it (out of memory "
+                           "or a read error)", path);
+        free(have);
         if (!same)
             return bf_fail(err, BF_EINPUT, "%s holds a different sweep (see "
                            "%s: another scene, scene contents, overrides or "
