@@ -201,8 +201,8 @@ static bf_status open_part(bf_out **out, const char *path, int append,
     }
     o->append = append;
     /* a run writes some hundred attributes on "/" (its parameters), and
-     * opening and closing the root group for each was a tenth of a small
-     * run's output time */
+     * opening and closing the root group for each cost about a twentieth
+     * of a small case of a sweep (docs/performance.md, "Sweeps") */
     o->root = H5Oopen(o->file, "/", H5P_DEFAULT);
     o->last_flush = bf_coarse_time();
     *out = o;
