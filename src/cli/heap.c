@@ -40,7 +40,12 @@
 #define MADV_POPULATE_WRITE 23 /* linux/mman.h, Linux 5.14 */
 #endif
 
-enum { HUGE_PAGE = 2 << 20, HEAP_BLOCKS = 4 << 20, PAGE = 4096, PROBE = 128 << 10 };
+enum {
+    HUGE_PAGE = 2 << 20,
+    HEAP_BLOCKS = 4 << 20,
+    PAGE = 4096,
+    PROBE = 128 << 10
+};
 
 /* Holds the bytes between the heap's top at start-up and the next 2 MiB
  * boundary, so that the heap goes on from the boundary; never freed, and

@@ -728,7 +728,6 @@ bf_status bf_out_array_i64(bf_out *out, const char *path, const int64_t *data,
     return write_array(out, path, data, n0, n1, 1, unit, doc, err);
 }
 
-/* Open an object for attributes, creating groups as needed. */
 /* The object obj of the file (created as a group if it does not exist),
  * to be given back with close_obj. */
 static hid_t open_obj(bf_out *out, const char *obj)

@@ -122,28 +122,15 @@ bf_status bf_h5_read_attr_real(const char *file, const char *obj,
     return st;
 }
 
-/* Open FILE read-only (*f) and its attribute NAME on OBJ (*a, negative if
- * it has none); an error only if the file cannot be opened. */
-static bf_status open_attr(const char *file, const char *obj, const char *name,
-                           hid_t *f, hid_t *a, bf_err *err)
-{
-    quiet_hdf5();
-    *a = -1;
-    *f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
-    if (*f < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", file);
-    *a = H5Aopen_by_name(*f, obj, name, H5P_DEFAULT, H5P_DEFAULT);
-    return BF_OK;
-}
-
 bf_status bf_h5_read_attr_str(const char *file, const char *obj,
                               const char *name, char **value, bf_err *err)
 {
     *value = NULL;
-    hid_t f, a;
-    bf_status st = open_attr(file, obj, name, &f, &a, err);
+    bf_h5_reader *r;
+    bf_status st = bf_h5_reader_open(&r, file, err);
     if (st)
         return st;
+    hid_t a = H5Aopen_by_name(r->file, obj, name, H5P_DEFAULT, H5P_DEFAULT);
     if (a < 0) {
         st = bf_fail(err, BF_EIO, "%s: no attribute %s on %s", file, name, obj);
     } else {
@@ -160,6 +147,6 @@ bf_status bf_h5_read_attr_str(const char *file, const char *obj,
         H5Tclose(t);
         H5Aclose(a);
     }
-    H5Fclose(f);
+    bf_h5_reader_close(r);
     return st;
 }
