@@ -4,11 +4,13 @@
  * Example 2's local physics (d = 5 cm, dx = 6.25 cm, cutoff 10 cm,
  * V = 500 cm/s, dt = 0.01 s, omega = 0.9) on an n x n grid in a box of
  * side 6.25 n cm, the top quarter heavy, support method fast, no output.
- * Written into buf (size bytes); returns buf.  g72_scene_model builds it. */
+ * Written into buf (size bytes); returns buf.  g72_scene_model builds it;
+ * g72_cpu_now is the drivers' clock. */
 #ifndef BALLFILM_BENCH_G72_SCENE_H
 #define BALLFILM_BENCH_G72_SCENE_H
 
 #include <stdio.h>
+#include <time.h>
 
 #include "ballfilm/model.h"
 #include "ballfilm/run.h"
@@ -45,6 +47,14 @@ static inline int g72_scene_model(int n, const char *name, bf_scene **sc,
     return bf_scene_load_string(sc, name, text, err) ||
            bf_catalog_resolve(bf_catalog_builtin(), *sc, err) ||
            bf_model_from_scene(bf_catalog_builtin(), *sc, setup, model, err);
+}
+
+/* CPU time of the process, s (the drivers run one thread). */
+static inline double g72_cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 #endif

@@ -25,7 +25,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "ballfilm/model.h"
 #include "ballfilm/run.h"
@@ -41,13 +40,6 @@ void bf_sup_eval_fast_other(bf_support *s, size_t n, const bf_cells *c,
                             double *g, uint8_t *kind);
 
 enum { MAX_PAIRS = 1000 };
-
-static double cpu_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static int by_value(const void *a, const void *b)
 {
@@ -99,13 +91,13 @@ int main(int argc, char **argv)
         /* the order swapped in every pair: the second of two evaluations
          * finds the caches as the first left them */
         for (int which = 0; which < 2; which++) {
-            const double t0 = cpu_now();
+            const double t0 = g72_cpu_now();
             if ((which ^ k) & 1)
                 bf_sup_eval_fast_other(sup, p->n, &c, g2, kd2);
             else
                 bf_support_eval_with(sup, BF_SUPPORT_FAST, p->x, p->y, p->n,
                                      &c, g, kd);
-            const double t = cpu_now() - t0;
+            const double t = g72_cpu_now() - t0;
             if ((which ^ k) & 1)
                 to[k] = t;
             else
