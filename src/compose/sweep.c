@@ -3,6 +3,7 @@
  * decides who runs which case. */
 #include "base/clock.h"
 #include "base/hash.h"
+#include "base/xalloc.h"
 #include "ballfilm/sweep.h"
 
 #include <errno.h>
@@ -152,22 +153,6 @@ static void appendf(text_buf *t, const char *fmt, ...)
     t->len += (size_t)n;
 }
 
-/* The whole of file f as a string (NULL if out of memory or unreadable). */
-static char *read_all(FILE *f)
-{
-    text_buf t = {0};
-    char chunk[8192];
-    size_t n;
-    appendf(&t, "%s", "");
-    while (!t.failed && (n = fread(chunk, 1, sizeof chunk, f)) > 0)
-        appendf(&t, "%.*s", (int)n, chunk);
-    if (t.failed || ferror(f)) {
-        free(t.s);
-        return NULL;
-    }
-    return t.s;
-}
-
 /* The manifest ties a directory to one sweep definition: the scene, its
  * hash, the overrides and every value of every axis (as many as given:
  * a sweep of 10^4 cases along one axis is 10^4 values). */
@@ -194,13 +179,15 @@ static bf_status check_manifest(const bf_sweep *sw, const char *const *sets,
     snprintf(path, sizeof path, "%s/sweep.txt", sw->dir);
     FILE *f = fopen(path, "r");
     if (f) {
-        char *have = read_all(f);
+        size_t n;
+        int too_long;
+        char *have = bf_xread_all(f, (size_t)1 << 30, &n, &too_long);
         fclose(f);
-        const int same = have && !strcmp(have, want.s);
+        const int same = have && n == want.len && !memcmp(have, want.s, n);
         free(want.s);
         if (!have)
-            return bf_fail(err, BF_EIO, "%s: cannot read it (out of memory "
-                           "or a read error)", path);
+            return bf_fail(err, BF_EIO, "%s: cannot read it (%s)", path,
+                           too_long ? "larger than 1 GiB" : "a read error");
         free(have);
         if (!same)
             return bf_fail(err, BF_EINPUT, "%s holds a different sweep (see "

@@ -294,30 +294,16 @@ bf_status bf_scene_load(bf_scene **out, const char *path, bf_err *err)
     if (!f)
         return bf_fail(err, BF_EINPUT, "%s: error: cannot open scene file: %s",
                        path, strerror(errno));
-    size_t cap = 4096, n = 0;
-    char *buf = bf_xrealloc(NULL, cap);
-    size_t got;
-    while ((got = fread(buf + n, 1, cap - n - 1, f)) > 0) {
-        n += got;
-        if (n + 1 == cap) {
-            if (cap > (64u << 20)) {
-                fclose(f);
-                free(buf);
-                return bf_fail(err, BF_EINPUT,
-                               "%s: error: scene file larger than 64 MiB", path);
-            }
-            cap *= 2;
-            buf = bf_xrealloc(buf, cap);
-        }
-    }
-    int bad = ferror(f);
+    size_t n;
+    int too_long;
+    char *buf = bf_xread_all(f, 64u << 20, &n, &too_long);
     fclose(f);
-    if (bad) {
-        free(buf);
+    if (too_long)
+        return bf_fail(err, BF_EINPUT,
+                       "%s: error: scene file larger than 64 MiB", path);
+    if (!buf)
         return bf_fail(err, BF_EINPUT, "%s: error: cannot read scene file",
                        path);
-    }
-    buf[n] = '\0';
     const char *nul = memchr(buf, '\0', n);
     if (nul) {
         int line = 1;
