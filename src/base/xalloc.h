@@ -1,8 +1,8 @@
 /* xalloc.h: allocation that cannot fail quietly, for the scene parser,
  * the parameter tables and a sweep's manifest (private to the library).
- * All hold small texts read once at start-up; running out of memory there leaves nothing to
- * recover, so these report it and abort instead of threading an error
- * through every string operation. */
+ * All hold small texts read once at start-up; running out of memory there
+ * leaves nothing to recover, so these report it and abort instead of
+ * threading an error through every string operation. */
 #ifndef BALLFILM_BASE_XALLOC_H
 #define BALLFILM_BASE_XALLOC_H
 

@@ -10,7 +10,6 @@
 #include <fcntl.h>
 #include <hdf5.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -109,50 +108,6 @@ static void case_path(const bf_sweep *sw, long k, const char *ext, char *buf,
     snprintf(buf, cap, "%s/case_%05ld.%s", sw->dir, k, ext);
 }
 
-/* A growing text (the manifest below): what appendf could not add leaves
- * it as it was and sets `failed`. */
-typedef struct text_buf {
-    char *s;
-    size_t len, cap;
-    int failed;
-} text_buf;
-
-static void appendf(text_buf *t, const char *fmt, ...)
-    __attribute__((format(printf, 2, 3)));
-
-static void appendf(text_buf *t, const char *fmt, ...)
-{
-    if (t->failed)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(t->s ? t->s + t->len : NULL,
-                      t->s ? t->cap - t->len : 0, fmt, ap);
-    va_end(ap);
-    if (n < 0) {
-        t->failed = 1;
-        return;
-    }
-    if (t->s && (size_t)n < t->cap - t->len) {
-        t->len += (size_t)n;
-        return;
-    }
-    size_t cap = t->cap ? t->cap : 4096;
-    while (cap <= t->len + (size_t)n)
-        cap *= 2;
-    char *s = realloc(t->s, cap);
-    if (!s) {
-        t->failed = 1;
-        return;
-    }
-    t->s = s;
-    t->cap = cap;
-    va_start(ap, fmt);
-    vsnprintf(t->s + t->len, t->cap - t->len, fmt, ap);
-    va_end(ap);
-    t->len += (size_t)n;
-}
-
 /* The manifest ties a directory to one sweep definition: the scene, its
  * hash, the overrides and every value of every axis (as many as given:
  * a sweep of 10^4 cases along one axis is 10^4 values). */
@@ -162,18 +117,25 @@ static bf_status check_manifest(const bf_sweep *sw, const char *const *sets,
     char path[1200];
     const char *text = bf_scene_text(sw->base);
     unsigned long long h = bf_hash64(BF_HASH_INIT, text, strlen(text));
-    text_buf want = {0};
-    appendf(&want, "scene %s\nscene_hash %016llx\n", sw->scene_path, h);
+    /* written into memory first: it is compared with, or becomes, the
+     * file */
+    char *want = NULL;
+    size_t want_len = 0;
+    FILE *m = open_memstream(&want, &want_len);
+    if (!m)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    fprintf(m, "scene %s\nscene_hash %016llx\n", sw->scene_path, h);
     for (size_t k = 0; k < nsets; k++)
-        appendf(&want, "set %s\n", sets[k]);
+        fprintf(m, "set %s\n", sets[k]);
     for (size_t a = 0; a < sw->naxis; a++) {
-        appendf(&want, "vary %s", sw->axis[a].key);
+        fprintf(m, "vary %s", sw->axis[a].key);
         for (size_t k = 0; k < sw->axis[a].n; k++)
-            appendf(&want, " %.17g", sw->axis[a].values[k]);
-        appendf(&want, "\n");
+            fprintf(m, " %.17g", sw->axis[a].values[k]);
+        fprintf(m, "\n");
     }
-    if (want.failed) {
-        free(want.s);
+    const int failed = ferror(m);
+    if (fclose(m) || failed) {
+        free(want);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
     snprintf(path, sizeof path, "%s/sweep.txt", sw->dir);
@@ -183,8 +145,8 @@ static bf_status check_manifest(const bf_sweep *sw, const char *const *sets,
         int too_long;
         char *have = bf_xread_all(f, (size_t)1 << 30, &n, &too_long);
         fclose(f);
-        const int same = have && n == want.len && !memcmp(have, want.s, n);
-        free(want.s);
+        const int same = have && n == want_len && !memcmp(have, want, n);
+        free(want);
         if (!have)
             return bf_fail(err, BF_EIO, "%s: cannot read it (%s)", path,
                            too_long ? "larger than 1 GiB" : "a read error");
@@ -197,8 +159,8 @@ static bf_status check_manifest(const bf_sweep *sw, const char *const *sets,
         return BF_OK;
     }
     f = fopen(path, "w");
-    const int bad = !f || fwrite(want.s, 1, want.len, f) != want.len;
-    free(want.s);
+    const int bad = !f || fwrite(want, 1, want_len, f) != want_len;
+    free(want);
     if (bad) {
         if (f)
             fclose(f);
