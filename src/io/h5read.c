@@ -9,12 +9,6 @@
 
 #include "ballfilm/h5out.h"
 
-static void quiet_hdf5(void)
-{
-    /* We report errors ourselves, with the file and dataset named. */
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-}
-
 struct bf_h5_reader {
     hid_t file;
     char *name; /* for messages */
@@ -22,7 +16,9 @@ struct bf_h5_reader {
 
 bf_status bf_h5_reader_open(bf_h5_reader **r, const char *file, bf_err *err)
 {
-    quiet_hdf5();
+    /* errors are reported through err, naming the file and the object,
+     * not printed by HDF5 (as in h5out.c, xdmf.c and checkpoint.c) */
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
     *r = calloc(1, sizeof **r);
     if (!*r || !((*r)->name = strdup(file))) {
         free(*r);
