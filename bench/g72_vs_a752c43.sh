@@ -32,16 +32,14 @@ git archive "$OLD" | tar -x -C "$tmp/old"
 echo "building the library of $OLD in $tmp/old ..."
 make -C "$tmp/old" -j2 build/libballfilm.a > "$tmp/old-build.log" 2>&1 ||
     { tail -20 "$tmp/old-build.log"; exit 1; }
-CFLAGS="-std=c11 -O2 -Wall -Wextra -Werror -ffp-contract=off -D_POSIX_C_SOURCE=200809L"
-INC="$(pkg-config --cflags hdf5-serial gsl)"
-LIBS="$(pkg-config --libs hdf5-serial) -lhdf5_hl -lsundials_arkode \
-  -lsundials_nvecserial -linih $(pkg-config --libs gsl) -lm -fopenmp"
+. bench/driver/build.sh
 # shellcheck disable=SC2086
-gcc $CFLAGS -I"$tmp/old/include" -I"$tmp/old/src" $INC \
-    bench/driver/g72_steps.c "$tmp/old/build/libballfilm.a" $LIBS -o "$tmp/old_steps"
+gcc $DRIVER_CFLAGS -I"$tmp/old/include" -I"$tmp/old/src" $DRIVER_INC \
+    bench/driver/g72_steps.c "$tmp/old/build/libballfilm.a" $DRIVER_LIBS \
+    -o "$tmp/old_steps"
 # shellcheck disable=SC2086
-gcc $CFLAGS -Iinclude -Isrc $INC bench/driver/g72_steps.c build/libballfilm.a \
-    $LIBS -o "$tmp/new_steps"
+gcc $DRIVER_CFLAGS -Iinclude -Isrc $DRIVER_INC bench/driver/g72_steps.c \
+    build/libballfilm.a $DRIVER_LIBS -o "$tmp/new_steps"
 /usr/bin/python3 - "$tmp/old_steps" "$tmp/new_steps" "$OLD" <<'PY'
 import re, statistics, subprocess, sys
 old, new, name = sys.argv[1:4]

@@ -31,17 +31,15 @@ if [ -f "$REV" ]; then
 else
     git show "$REV:src/particles/support_fast.c" > "$tmp/other.c"
 fi
-make --no-print-directory -j2 build/libballfilm.a > "$tmp/build.log" 2>&1 ||
-    { tail -20 "$tmp/build.log"; exit 1; }
-CFLAGS="-std=c11 -O2 -Wall -Wextra -Werror -ffp-contract=off -D_POSIX_C_SOURCE=200809L -fopenmp"
-INC="$(pkg-config --cflags hdf5-serial gsl)"
-LIBS="$(pkg-config --libs hdf5-serial) -lhdf5_hl -lsundials_arkode \
-  -lsundials_nvecserial -linih $(pkg-config --libs gsl) -lm -fopenmp"
+. bench/driver/build.sh
+driver_library "$tmp"
 # shellcheck disable=SC2086
-gcc $CFLAGS -Iinclude -Isrc $INC -Dbf_sup_eval_fast=bf_sup_eval_fast_other \
-    -c "$tmp/other.c" -o "$tmp/other.o"
+gcc $DRIVER_CFLAGS -fopenmp -Iinclude -Isrc $DRIVER_INC \
+    -Dbf_sup_eval_fast=bf_sup_eval_fast_other -c "$tmp/other.c" \
+    -o "$tmp/other.o"
 # shellcheck disable=SC2086
-gcc $CFLAGS -Iinclude -Isrc -Ibench/driver $INC bench/driver/g72_support_ab.c \
-    "$tmp/other.o" build/libballfilm.a $LIBS -o "$tmp/g72_support_ab"
+gcc $DRIVER_CFLAGS -fopenmp -Iinclude -Isrc -Ibench/driver $DRIVER_INC \
+    bench/driver/g72_support_ab.c "$tmp/other.o" build/libballfilm.a \
+    $DRIVER_LIBS -o "$tmp/g72_support_ab"
 echo "support-set gravity, this tree against support_fast.c of $REV:"
 "$tmp/g72_support_ab" "$N" "$PAIRS"

@@ -11,15 +11,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 tmp=$(mktemp -d /tmp/ballfilm-support-tiles.XXXXXX)
 trap 'rm -rf "$tmp"' EXIT
-make --no-print-directory -j2 build/libballfilm.a > "$tmp/build.log" 2>&1 ||
-    { tail -20 "$tmp/build.log"; exit 1; }
-CFLAGS="-std=c11 -O2 -Wall -Wextra -Werror -ffp-contract=off -D_POSIX_C_SOURCE=200809L"
-INC="$(pkg-config --cflags hdf5-serial gsl)"
-LIBS="$(pkg-config --libs hdf5-serial) -lhdf5_hl -lsundials_arkode \
-  -lsundials_nvecserial -linih $(pkg-config --libs gsl) -lm -fopenmp"
+. bench/driver/build.sh
+driver_library "$tmp"
 # shellcheck disable=SC2086
-gcc $CFLAGS -Iinclude -Isrc -Ibench/driver $INC \
-    bench/driver/g72_support_tiles.c build/libballfilm.a $LIBS \
+gcc $DRIVER_CFLAGS -Iinclude -Isrc -Ibench/driver $DRIVER_INC \
+    bench/driver/g72_support_tiles.c build/libballfilm.a $DRIVER_LIBS \
     -o "$tmp/g72_support_tiles"
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2-)," \
      "load average $(cut -d' ' -f1-3 /proc/loadavg)"

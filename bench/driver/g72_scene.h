@@ -4,12 +4,14 @@
  * Example 2's local physics (d = 5 cm, dx = 6.25 cm, cutoff 10 cm,
  * V = 500 cm/s, dt = 0.01 s, omega = 0.9) on an n x n grid in a box of
  * side 6.25 n cm, the top quarter heavy, support method fast, no output.
- * Written into buf (size bytes); returns buf.  g72_scene_model builds it;
- * g72_cpu_now is the drivers' clock. */
+ * Written into buf (size bytes); returns buf.  g72_scene_model builds it,
+ * g72_scene_warm_model also takes the warm-up steps; g72_cpu_now is the
+ * drivers' clock. */
 #ifndef BALLFILM_BENCH_G72_SCENE_H
 #define BALLFILM_BENCH_G72_SCENE_H
 
 #include <stdio.h>
+#include <string.h>
 #include <time.h>
 
 #include "ballfilm/model.h"
@@ -47,6 +49,29 @@ static inline int g72_scene_model(int n, const char *name, bf_scene **sc,
     return bf_scene_load_string(sc, name, text, err) ||
            bf_catalog_resolve(bf_catalog_builtin(), *sc, err) ||
            bf_model_from_scene(bf_catalog_builtin(), *sc, setup, model, err);
+}
+
+/* That model (g72_scene_model), then `steps` steps of the scene's dt =
+ * 0.01 s from t = 0: the state on which the drivers measure.  Returns 0,
+ * or 1 with err set (a failed step's message starting with its number). */
+static inline int g72_scene_warm_model(int n, const char *name, long steps,
+                                       bf_scene **sc, bf_setup **setup,
+                                       void **model, bf_err *err)
+{
+    if (g72_scene_model(n, name, sc, setup, model, err))
+        return 1;
+    const bf_model_type *mt =
+        bf_catalog_model(bf_catalog_builtin(), "greenspan72");
+    const double dt = 0.01;
+    for (long k = 0; k < steps; k++)
+        if (mt->step(*model, k, (double)k * dt, dt, err)) {
+            char msg[sizeof err->msg + 32];
+            snprintf(msg, sizeof msg, "step %ld: %s", k, err->msg);
+            memcpy(err->msg, msg, sizeof err->msg - 1);
+            err->msg[sizeof err->msg - 1] = '\0';
+            return 1;
+        }
+    return 0;
 }
 
 /* CPU time of the process, s (the drivers run one thread). */

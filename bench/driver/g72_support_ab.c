@@ -60,18 +60,11 @@ int main(int argc, char **argv)
     bf_scene *sc;
     bf_setup *setup;
     void *m;
-    if (g72_scene_model(n, "g72_support_ab.ini", &sc, &setup, &m, &err)) {
+    if (g72_scene_warm_model(n, "g72_support_ab.ini", 160, &sc, &setup, &m,
+                             &err)) {
         fprintf(stderr, "g72_support_ab: %s\n", err.msg);
         return 1;
     }
-    const bf_model_type *mt =
-        bf_catalog_model(bf_catalog_builtin(), "greenspan72");
-    const double dt = 0.01;
-    for (long k = 0; k < 160; k++)
-        if (mt->step(m, k, (double)k * dt, dt, &err)) {
-            fprintf(stderr, "g72_support_ab: step %ld: %s\n", k, err.msg);
-            return 1;
-        }
     bf_particles *p = bf_greenspan72_particles(m);
     bf_support *sup = bf_greenspan72_support(m);
     const bf_support_params *sp = bf_support_params_of(sup);
@@ -120,7 +113,7 @@ int main(int argc, char **argv)
     free(g2);
     free(kd);
     free(kd2);
-    mt->destroy(m);
+    bf_catalog_model(bf_catalog_builtin(), "greenspan72")->destroy(m);
     bf_setup_free(setup);
     bf_scene_free(sc);
     return same ? 0 : 1;

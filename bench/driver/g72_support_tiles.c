@@ -99,18 +99,11 @@ int main(int argc, char **argv)
     bf_scene *sc;
     bf_setup *setup;
     void *m;
-    if (g72_scene_model(n, "g72_support_tiles.ini", &sc, &setup, &m, &err)) {
+    if (g72_scene_warm_model(n, "g72_support_tiles.ini", 100, &sc, &setup,
+                             &m, &err)) {
         fprintf(stderr, "g72_support_tiles: %s\n", err.msg);
         return 1;
     }
-    const bf_model_type *mt =
-        bf_catalog_model(bf_catalog_builtin(), "greenspan72");
-    const double dt = 0.01;
-    for (long k = 0; k < 100; k++)
-        if (mt->step(m, k, (double)k * dt, dt, &err)) {
-            fprintf(stderr, "g72_support_tiles: step %ld: %s\n", k, err.msg);
-            return 1;
-        }
     const bf_particles *p = bf_greenspan72_particles(m);
     const bf_support_params *sp0 =
         bf_support_params_of(bf_greenspan72_support(m));
@@ -192,7 +185,7 @@ int main(int argc, char **argv)
         free(tl[k].y);
         free(tl[k].g);
     }
-    mt->destroy(m);
+    bf_catalog_model(bf_catalog_builtin(), "greenspan72")->destroy(m);
     bf_setup_free(setup);
     bf_scene_free(sc);
     return 0;
