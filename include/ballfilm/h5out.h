@@ -5,8 +5,11 @@
  * bf_out_flush(), which writes every buffered row of every series, updates
  * the extents and calls H5Fflush.  Between flushes the file on disk is
  * therefore exactly the state of the last flush, so a run killed with SIGKILL
- * leaves a file that opens and holds every flushed row.  bf_out_maybe_flush()
- * flushes when a wall-clock interval has passed or the buffers grow large.
+ * leaves a file that opens and holds every flushed row (a kill inside a
+ * flush may leave that flush's rows partly written, some datasets longer
+ * than others: HDF5 orders none of its writes; docs/reliability.md, "What
+ * is not promised").  bf_out_maybe_flush() flushes when a wall-clock
+ * interval has passed or the buffers grow large.
  *
  * Every dataset carries "unit" and "description" attributes.
  *
