@@ -14,20 +14,20 @@
  * particles, N = T n^2, and with it the size of every array that the
  * method streams, grows.  For each T the fast method (one thread) is
  * evaluated on a cell list of side 10 cm built on the copies, as the
- * model's; the copies' T's are taken in turn, 3 evaluations each, in 7
- * rounds.  Printed per T: N, the memory that the copies, their cell list
- * and the method's workspace took (the growth of the resident set,
- * /proc/self/statm, from before the copies were made to after their first
- * evaluation), the CPU time per particle (median over the rounds of each
- * round's shortest), the median over the rounds of the ratio to the first
- * T's time in the same round, the share of particles falling freely and
- * the highest level K.
+ * model's; the T's are taken in turn, 3 evaluations each, in 7 rounds.
+ * Printed: the highest level K of the state, and per T: N, the memory
+ * that the copies, their cell list and the method's workspace took (the
+ * growth of the resident set, /proc/self/statm, from before the copies
+ * were made to after their first evaluation), the CPU time per particle
+ * (median over the rounds of each round's shortest), the median over the
+ * rounds of the ratio to the first T's time per particle in the same
+ * round, and the share of particles falling freely.
  *
  * If the time per particle stays flat from a few thousand particles
- * (every array in the 1 MiB second-level cache) to a quarter of a million
- * (tens of MiB), the method is not bound by memory traffic, and doing it
- * chunk by chunk of x to keep a chunk's arrays in the cache cannot make
- * it faster.
+ * (every array in the second-level cache: 1 MiB on the AMD machine of
+ * docs/performance.md) to a quarter of a million (tens of MiB), the
+ * method is not bound by memory traffic, and doing it chunk by chunk of x
+ * to keep a chunk's arrays in the cache cannot make it faster.
  */
 #include <stdint.h>
 #include <stdio.h>
