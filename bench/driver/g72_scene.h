@@ -6,11 +6,12 @@
  * side 6.25 n cm, the top quarter heavy, support method fast, no output.
  * Written into buf (size bytes); returns buf.  g72_scene_model builds it,
  * g72_scene_warm_model also takes the warm-up steps; g72_cpu_now is the
- * drivers' clock. */
+ * drivers' clock, g72_sort their sort. */
 #ifndef BALLFILM_BENCH_G72_SCENE_H
 #define BALLFILM_BENCH_G72_SCENE_H
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -72,6 +73,19 @@ static inline int g72_scene_warm_model(int n, const char *name, long steps,
             return 1;
         }
     return 0;
+}
+
+/* v[0..n) sorted in increasing order (the drivers' shortest times and
+ * medians). */
+static inline int g72_by_value(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static inline void g72_sort(double *v, size_t n)
+{
+    qsort(v, n, sizeof *v, g72_by_value);
 }
 
 /* CPU time of the process, s (the drivers run one thread). */

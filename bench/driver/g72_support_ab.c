@@ -41,12 +41,6 @@ void bf_sup_eval_fast_other(bf_support *s, size_t n, const bf_cells *c,
 
 enum { MAX_PAIRS = 1000 };
 
-static int by_value(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 int main(int argc, char **argv)
 {
     const int n = argc > 1 ? atoi(argv[1]) : 0;
@@ -100,9 +94,9 @@ int main(int argc, char **argv)
         same = same && !memcmp(g, g2, p->n * sizeof *g) &&
                !memcmp(kd, kd2, p->n);
     }
-    qsort(tt, (size_t)pairs, sizeof *tt, by_value);
-    qsort(to, (size_t)pairs, sizeof *to, by_value);
-    qsort(ratio, (size_t)pairs, sizeof *ratio, by_value);
+    g72_sort(tt, (size_t)pairs);
+    g72_sort(to, (size_t)pairs);
+    g72_sort(ratio, (size_t)pairs);
     printf("N=%d pairs=%d this: shortest %.3f ms, median %.3f ms; other: "
            "shortest %.3f ms, median %.3f ms; other/this (median of the "
            "pairs) %.3f; g and kinds the same bits: %s\n",

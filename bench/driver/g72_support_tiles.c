@@ -68,15 +68,9 @@ static double resident_mib(void)
     return (double)res * (double)sysconf(_SC_PAGESIZE) / 1048576.0;
 }
 
-static int by_value(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static double median(double *v, int k)
 {
-    qsort(v, (size_t)k, sizeof *v, by_value);
+    g72_sort(v, (size_t)k);
     return k % 2 ? v[k / 2] : 0.5 * (v[k / 2 - 1] + v[k / 2]);
 }
 

@@ -7,8 +7,8 @@
  * therefore exactly the state of the last flush, so a run killed with SIGKILL
  * leaves a file that opens and holds every flushed row (a kill inside a
  * flush may leave that flush's rows partly written, some datasets longer
- * than others: HDF5 orders none of its writes; docs/reliability.md, "What
- * is not promised").  bf_out_maybe_flush() flushes when a wall-clock
+ * than others: HDF5, outside its SWMR mode, keeps no order among the
+ * writes of a flush; docs/reliability.md, "What is not promised").  bf_out_maybe_flush() flushes when a wall-clock
  * interval has passed or the buffers grow large.
  *
  * Every dataset carries "unit" and "description" attributes.
