@@ -689,12 +689,21 @@ survey-length: $(PROG) | deps deps-plot
 	    --label "film length [cm]" --maps 11
 
 # ---------------------------------------------------------------- tests
-build-tests: $(PROG) $(RUNNER) $(MPI_PROG)
+# A kill at a chosen write of HDF5 (tests/killwrite.c), preloaded into the
+# program by test_h5out.c; without sanitizers whatever the build, since it
+# is loaded before their runtime.
+KILLWRITE := $(BUILD)/tests/killwrite.so
+$(KILLWRITE): tests/killwrite.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CSTD) -shared -fPIC -o $@ $<
+
+build-tests: $(PROG) $(RUNNER) $(MPI_PROG) $(KILLWRITE)
 
 # Tests get the program, the repository and the compiler flags (the
 # fp-contract test compiles a probe with them).
 TEST_ENV = BALLFILM_ROOT=$(CURDIR) BALLFILM_CC="$(CC)" \
-           BALLFILM_CFLAGS="$(CSTD) $(SANITIZE)"
+           BALLFILM_CFLAGS="$(CSTD) $(SANITIZE)" \
+           BALLFILM_KILLWRITE=$(abspath $(KILLWRITE))
 
 test-run: build-tests
 	$(TEST_ENV) BALLFILM_BIN=$(abspath $(PROG)) \
@@ -752,8 +761,9 @@ PY_TEST_PKGS := python3-pytest python3-numpy python3-h5py
 deps-python:
 	$(call need_pkgs,$(PY_TEST_PKGS))
 
-test-python: $(PROG) $(SHLIB) | deps-python
+test-python: $(PROG) $(SHLIB) $(KILLWRITE) | deps-python
 	BALLFILM_BIN=$(abspath $(PROG)) BALLFILM_LIB=$(abspath $(SHLIB)) \
+	  BALLFILM_KILLWRITE=$(abspath $(KILLWRITE)) \
 	  $(PY) -m pytest -q -p no:cacheprovider tests/python
 
 # ASAN_LEAKS=0 turns off LeakSanitizer only (for containers that forbid

@@ -1,0 +1,64 @@
+/* killwrite.c: a kill at a chosen write, for tests/test_h5out.c
+ * (kill_at_every_write_keeps_the_file).
+ *
+ * Preloaded into bin/ballfilm (LD_PRELOAD=build/tests/killwrite.so), it
+ * wraps pwrite, by which HDF5's default file driver writes, and raises
+ * SIGKILL before the BF_KILL_AT_WRITE-th write after the file entered
+ * HDF5's SWMR mode: the write of a version 2 or 3 superblock (the format's
+ * signature at offset 0) whose "file consistency flags" (byte 11) carry
+ * the SWMR-writer bit 0x04.  Writes before that are not counted, so that
+ * a number names the same place in the stepping run however long its
+ * set-up took.  With BF_KILL_FROM_START=1 every write counts, from the
+ * first (for a program that never enters SWMR mode: tests/killpoints.py).
+ * Without BF_KILL_AT_WRITE, every write passes. */
+#define _GNU_SOURCE /* RTLD_NEXT */
+#include <dlfcn.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/types.h>
+#include <unistd.h>
+
+typedef ssize_t (*pwrite_fn)(int, const void *, size_t, off_t);
+
+static long kill_at = -1; /* 0: never */
+static long counted;      /* writes since SWMR mode began */
+static int in_swmr;
+
+static void before_write(const void *buf, size_t n, off_t off)
+{
+    if (kill_at < 0) {
+        const char *e = getenv("BF_KILL_AT_WRITE");
+        kill_at = e ? atol(e) : 0;
+    }
+    if (!kill_at)
+        return;
+    if (!in_swmr && getenv("BF_KILL_FROM_START"))
+        in_swmr = 1;
+    const unsigned char *b = buf;
+    if (!in_swmr && off == 0 && n >= 12 && !memcmp(b, "\211HDF\r\n\032\n", 8) &&
+        b[8] >= 2 && (b[11] & 0x04)) {
+        in_swmr = 1;
+        return; /* the write that enters SWMR mode is not counted */
+    }
+    if (in_swmr && ++counted == kill_at)
+        raise(SIGKILL);
+}
+
+ssize_t pwrite(int fd, const void *buf, size_t n, off_t off)
+{
+    static pwrite_fn next;
+    if (!next)
+        next = (pwrite_fn)dlsym(RTLD_NEXT, "pwrite");
+    before_write(buf, n, off);
+    return next(fd, buf, n, off);
+}
+
+ssize_t pwrite64(int fd, const void *buf, size_t n, off_t off)
+{
+    static pwrite_fn next;
+    if (!next)
+        next = (pwrite_fn)dlsym(RTLD_NEXT, "pwrite64");
+    before_write(buf, n, off);
+    return next(fd, buf, n, off);
+}
