@@ -1,5 +1,7 @@
 /* test_h5out.c: what is written reads back exactly, and a run killed with
- * SIGKILL leaves a file that opens and holds every flushed row. */
+ * SIGKILL while it steps, at a random moment or before any chosen write of
+ * a flush, leaves a file that opens and holds, in every series, the rows
+ * of the last complete flush. */
 #include <math.h>
 #include <signal.h>
 #include <stdint.h>
@@ -105,6 +107,20 @@ START_TEST(run_file_layout)
 }
 END_TEST
 
+/* The first row of a killed two-ball run (output every 10 steps of 1e-4
+ * s) that is not a real one, or n: step 10 k at t = step dt, the balls
+ * above the floor and in order.  (A loop of ck_asserts would send a
+ * message to the runner for each of some 10^5 rows.) */
+static size_t first_unreal_row(const double *t, const double *step,
+                               const double *x, size_t n)
+{
+    for (size_t k = 0; k < n; k++)
+        if (!(step[k] == 10.0 * (double)k && t[k] == step[k] * 1e-4 &&
+              isfinite(x[2 * k]) && x[2 * k] > 0 && x[2 * k + 1] > x[2 * k]))
+            return k;
+    return n;
+}
+
 START_TEST(sigkill_leaves_readable_file)
 {
     const char *out = tu_tmp("killed.h5");
@@ -121,8 +137,8 @@ START_TEST(sigkill_leaves_readable_file)
         _exit(127);
     }
     /* killed once its file holds a few hundred flushed rows (read while it
-     * is written: a read in the middle of a flush may fail, and is
-     * retried) */
+     * is written, which it can be once it is in SWMR mode, 50 ms into the
+     * run: h5out.h; a read that fails is retried) */
     char marker[600];
     snprintf(marker, sizeof marker, "%s.part", out);
     tu_wait_for_file(marker, 0);
@@ -148,14 +164,95 @@ START_TEST(sigkill_leaves_readable_file)
     /* rows were flushed, all datasets agree, and every row is a real row */
     ck_assert_msg(n > 100, "only %zu rows survived", n);
     ck_assert(ns == n && nx == n && nx1 == 2);
-    for (size_t k = 0; k < n; k++) {
-        ck_assert(step[k] == 10.0 * (double)k);
-        ck_assert(t[k] == step[k] * 1e-4);
-        ck_assert(isfinite(x[2 * k]) && x[2 * k] > 0 && x[2 * k + 1] > x[2 * k]);
-    }
+    size_t bad = first_unreal_row(t, step, x, n);
+    ck_assert_msg(bad == n, "row %zu of %zu is step %g at t = %g", bad, n,
+                  bad < n ? step[bad] : 0.0, bad < n ? t[bad] : 0.0);
     free(t);
     free(step);
     free(x);
+}
+END_TEST
+
+/* A kill inside a flush.  tests/killwrite.c, preloaded into the program,
+ * kills it before its K-th write to the file after the file entered SWMR
+ * mode (h5out.h, bf_out_start_appending); a flush of this run is about 35
+ * to 50 writes (the rows, the chunk indices, the lengths, the superblock,
+ * the flush log), so K = 1, 3, ..., 95 falls in every part of two or
+ * three flushes.  Before SWMR mode a kill among a flush's writes left
+ * files that did not open ("addr overflow"), or datasets of different
+ * lengths and rows of zeros, at about a third of these places. */
+START_TEST(kill_at_every_write_keeps_the_file)
+{
+    const char *bin = getenv("BALLFILM_BIN");
+    const char *shim = getenv("BALLFILM_KILLWRITE");
+    ck_assert_msg(shim && access(shim, R_OK) == 0,
+                  "BALLFILM_KILLWRITE (build/tests/killwrite.so, made by "
+                  "make build-tests) is not set or not there: %s",
+                  shim ? shim : "(unset)");
+    const char *out = tu_tmp("killwrite.h5");
+    char part[600];
+    snprintf(part, sizeof part, "%s.part", out);
+    for (int k = 1; k <= 95; k += 2) {
+        unlink(part);
+        pid_t pid = fork();
+        ck_assert(pid >= 0);
+        if (pid == 0) {
+            char at[32], asan[512];
+            snprintf(at, sizeof at, "%d", k);
+            /* the sanitizers' runtime wants to be loaded first */
+            const char *a = getenv("ASAN_OPTIONS");
+            snprintf(asan, sizeof asan, "%s%sverify_asan_link_order=0",
+                     a ? a : "", a && *a ? ":" : "");
+            setenv("ASAN_OPTIONS", asan, 1);
+            setenv("BF_KILL_AT_WRITE", at, 1);
+            setenv("LD_PRELOAD", shim, 1);
+            if (!freopen("/dev/null", "w", stdout) ||
+                !freopen("/dev/null", "w", stderr))
+                _exit(126);
+            execl(bin ? bin : "bin/ballfilm", "ballfilm", "run",
+                  tu_repo("runs/two_balls_B.ini"), "-o", out, "-q", "--set",
+                  "scene.t_end=1e5", "--set", "scene.output_every=10", "--set",
+                  "scene.flush_seconds=0.001", (char *)NULL);
+            _exit(127);
+        }
+        int status;
+        waitpid(pid, &status, 0);
+        ck_assert_msg(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL,
+                      "write %d: the run was not killed (status %d)", k,
+                      status);
+        bf_err err = {0};
+        double *t, *step, *x;
+        size_t n, n1, ns, ns1, nx, nx1;
+        ck_assert_msg(bf_h5_read(part, "/time", &t, &n, &n1, &err) == BF_OK,
+                      "write %d: %s", k, err.msg);
+        ck_assert_msg(bf_h5_read(part, "/step", &step, &ns, &ns1, &err) ==
+                          BF_OK,
+                      "write %d: %s", k, err.msg);
+        ck_assert_msg(bf_h5_read(part, "/balls/position", &x, &nx, &nx1,
+                                 &err) == BF_OK,
+                      "write %d: %s", k, err.msg);
+        /* the rows of one flush in every dataset, every row a real one */
+        ck_assert_msg(n > 0 && ns == n && nx == n && nx1 == 2,
+                      "write %d: %zu, %zu and %zu rows", k, n, ns, nx);
+        size_t bad = first_unreal_row(t, step, x, n);
+        ck_assert_msg(bad == n, "write %d: row %zu of %zu is step %g at t = %g",
+                      k, bad, n, bad < n ? step[bad] : 0.0,
+                      bad < n ? t[bad] : 0.0);
+        /* what `ballfilm info` lists: the same rows, and not the log */
+        bf_h5_dataset *list;
+        size_t nl;
+        ck_assert(bf_h5_list(part, &list, &nl, &err) == BF_OK);
+        for (size_t j = 0; j < nl; j++) {
+            ck_assert_str_ne(list[j].path, "/flushed_rows");
+            if (!strcmp(list[j].path, "/time") ||
+                !strcmp(list[j].path, "/balls/velocity"))
+                ck_assert_uint_eq(list[j].dims[0], n);
+        }
+        free(list);
+        free(t);
+        free(step);
+        free(x);
+    }
 }
 END_TEST
 
@@ -239,6 +336,7 @@ Suite *suite_h5out(void)
     tcase_add_test(tc, roundtrip_exact);
     tcase_add_test(tc, run_file_layout);
     tcase_add_test(tc, sigkill_leaves_readable_file);
+    tcase_add_test(tc, kill_at_every_write_keeps_the_file);
     tcase_add_test(tc, full_disk_and_bad_path);
     tcase_add_test(tc, memory_does_not_grow_with_the_run);
     suite_add_tcase(s, tc);

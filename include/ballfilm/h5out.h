@@ -3,13 +3,21 @@
  * A run appends rows to "series" (extendible, chunked datasets [n] or
  * [n x ncols]).  Rows are buffered in memory and reach the file only in
  * bf_out_flush(), which writes every buffered row of every series, updates
- * the extents and calls H5Fflush.  Between flushes the file on disk is
- * therefore exactly the state of the last flush, so a run killed with SIGKILL
- * leaves a file that opens and holds every flushed row (a kill inside a
- * flush may leave that flush's rows partly written, some datasets longer
- * than others: HDF5, outside its SWMR mode, keeps no order among the
- * writes of a flush; docs/reliability.md, "What is not promised").  bf_out_maybe_flush() flushes when a wall-clock
- * interval has passed or the buffers grow large.
+ * the extents and calls H5Fflush.  bf_out_maybe_flush() flushes when a
+ * wall-clock interval has passed or the buffers grow large.
+ *
+ * A killed run.  Once set-up is written (bf_out_start_appending) and the
+ * run has stepped 50 ms, the file is in HDF5's single-writer/multiple-
+ * reader (SWMR) mode, in which every state on disk is a file that opens;
+ * each complete flush adds a row to a log that readers (h5read.c,
+ * h5info.c, xdmf.c, python/ballfilm/result.py) use to cut every series
+ * to the rows of the last complete flush.  So a run killed with SIGKILL
+ * while it steps, even inside a flush, leaves a file that opens and holds
+ * every row of the last complete flush, the same number in every series
+ * (src/io/h5swmr.c).  Set-up, the first 50 ms and the writing of a run's
+ * last attributes are outside SWMR mode; a kill there may leave a file
+ * that HDF5 marks as open for writing (`h5clear -s` clears it) or that
+ * does not open (docs/reliability.md, "What is not promised").
  *
  * Every dataset carries "unit" and "description" attributes.
  *
@@ -105,6 +113,18 @@ bf_status bf_out_attr_int(bf_out *out, const char *obj, const char *name,
                           int64_t value, bf_err *err);
 
 bf_status bf_out_flush(bf_out *out, bf_err *err);
+/* Set-up is written (the series created, the arrays and attributes known
+ * at the start): from now on the run appends rows.  Flushes the file;
+ * once the run has stepped 50 ms (at a bf_out_maybe_flush) the file
+ * enters HDF5's single-writer/multiple-reader (SWMR) mode, in which a kill
+ * at any moment leaves a file that opens, holding the rows of the last
+ * complete flush (src/io/h5part.h; docs/output.md, "A killed run's
+ * file").  Writing anything other than rows afterwards (an attribute, an
+ * array, a new series) first leaves that mode, closing and opening the
+ * file again; the next bf_out_maybe_flush enters it again.  A file that
+ * cannot enter it (one of an older format, continued) is written as
+ * before. */
+bf_status bf_out_start_appending(bf_out *out, bf_err *err);
 /* Flush if more than `seconds` of wall time passed since the last flush or
  * more than a few MiB are buffered (under the library's HDF5 lock: runs in
  * several threads of one process may call it). */

@@ -4,14 +4,54 @@ Reads with h5py; needs nothing of the C library, so it works on files
 from any machine.  Datasets are read when first asked for (a large run
 is not loaded whole) unless the file is temporary (ballfilm.run without
 an output path), then everything is read at once.
+
+The file of a run still written, or killed (OUT.h5.part), is read as the
+program reads it (docs/output.md, "A killed run's file"): opened as an
+HDF5 SWMR reader when its writer was in that mode, and every series cut
+to the rows of the last complete flush, which the writer records in the
+log dataset /flushed_rows (not listed among the datasets).
 """
 import os
 
 import h5py
 
+FLUSH_LOG = "flushed_rows"
+
 
 def _text(v):
     return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def _open(path):
+    """The file read-only: plainly, or as a SWMR reader when a writer in
+    HDF5's SWMR mode (running, or killed) holds it."""
+    try:
+        return h5py.File(path, "r")
+    except OSError as plain:
+        try:
+            return h5py.File(path, "r", libver="latest", swmr=True)
+        except OSError:
+            raise OSError(
+                f"{path}: cannot open it as HDF5 ({plain}); if a run was "
+                f"killed while writing it, `h5clear -s {path}` clears "
+                f"HDF5's open-for-writing mark") from None
+
+
+def _flushed_rows(f):
+    """{series path without "/": rows} of the last complete flush, from
+    the log of a run's .part (its row g starts with g, counted from 1; a
+    row whose length reached the disk before its values reads 0 there),
+    or {} when the file has none."""
+    if FLUSH_LOG not in f:
+        return {}
+    log = f[FLUSH_LOG][()]
+    names = _text(f[FLUSH_LOG].attrs.get("series", "")).split("\n")
+    r = len(log)
+    while r > 0 and log[r - 1, 0] != r:
+        r -= 1
+    if not r:
+        return {}
+    return {n.lstrip("/"): int(v) for n, v in zip(names, log[r - 1, 1:]) if n}
 
 
 class Result:
@@ -38,17 +78,21 @@ class Result:
         self.path = os.fspath(path)
         self._cache = {}
         self.units, self.descriptions, self.shapes = {}, {}, {}
-        with h5py.File(self.path, "r") as f:
+        with _open(self.path) as f:
             self.attrs = {k: f.attrs[k] for k in f.attrs}
+            self._rows = _flushed_rows(f)
 
             def visit(name, obj):
-                if isinstance(obj, h5py.Dataset):
+                if isinstance(obj, h5py.Dataset) and name != FLUSH_LOG:
                     self.units[name] = _text(obj.attrs.get("unit", ""))
                     self.descriptions[name] = _text(
                         obj.attrs.get("description", ""))
-                    self.shapes[name] = obj.shape
+                    shape = obj.shape
+                    if name in self._rows and shape:
+                        shape = (min(shape[0], self._rows[name]),) + shape[1:]
+                    self.shapes[name] = shape
                     if eager:
-                        self._cache[name] = obj[()]
+                        self._cache[name] = self._read(obj, name)
 
             f.visititems(visit)
         a = self.attrs
@@ -74,6 +118,11 @@ class Result:
         e = a.get("max_relative_energy_error")
         self.energy_error = float(e) if e is not None else None
 
+    def _read(self, obj, name):
+        if name in self._rows and obj.shape:
+            return obj[:self.shapes[name][0]]
+        return obj[()]
+
     @staticmethod
     def _name(name):
         return name[1:] if name.startswith("/") else name
@@ -90,8 +139,8 @@ class Result:
             raise KeyError(f"{self.path} has no dataset /{n} (it has: "
                            f"{', '.join(self.keys())})")
         if n not in self._cache:
-            with h5py.File(self.path, "r") as f:
-                self._cache[n] = f[n][()]
+            with _open(self.path) as f:
+                self._cache[n] = self._read(f[n], n)
         return self._cache[n]
 
     def group(self, name):
@@ -101,7 +150,7 @@ class Result:
 
     def attrs_of(self, name):
         """The attributes of a dataset or group, as h5py reads them."""
-        with h5py.File(self.path, "r") as f:
+        with _open(self.path) as f:
             obj = f["/" + self._name(name)]
             return {k: obj.attrs[k] for k in obj.attrs}
 

@@ -351,7 +351,8 @@ static bf_status open_output(bf_sim *s, const char *path, bf_err *err)
         return st;
     if ((st = bf_sim_open_series_(s, err)))
         return st;
-    return bf_out_flush(o, err);
+    /* from here on rows only: a kill leaves a file that opens (h5out.h) */
+    return bf_out_start_appending(o, err);
 }
 
 bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)

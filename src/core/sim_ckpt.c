@@ -199,7 +199,7 @@ static bf_status resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
     }
     if ((st = bf_out_attr_str(s->out, "/", "status", "running", err)))
         return st;
-    return bf_out_flush(s->out, err);
+    return bf_out_start_appending(s->out, err);
 }
 
 bf_status bf_sim_resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,

@@ -6,11 +6,13 @@
 #include <string.h>
 
 #include "ballfilm/h5out.h"
+#include "io/h5part.h"
 
 typedef struct lister {
     bf_h5_dataset *list;
     size_t n, cap;
     int oom;
+    bf_h5_flushed *flushed; /* a run's .part: rows of its last flush */
 } lister;
 
 /* A string attribute of object `obj` (fixed or variable length) into
@@ -52,7 +54,8 @@ static herr_t visit(hid_t root, const char *name, const H5O_info_t *info,
                     void *ctx)
 {
     lister *l = ctx;
-    if (info->type != H5O_TYPE_DATASET)
+    /* the flush log of a run still written (h5part.h) is not its data */
+    if (info->type != H5O_TYPE_DATASET || !strcmp(name, BF_H5_FLUSH_LOG + 1))
         return 0;
     if (l->n == l->cap) {
         size_t cap = l->cap ? 2 * l->cap : 32;
@@ -75,6 +78,8 @@ static herr_t visit(hid_t root, const char *name, const H5O_info_t *info,
     hsize_t dims[H5S_MAX_RANK] = {0};
     H5Sget_simple_extent_dims(sp, dims, NULL);
     d->rank = rank;
+    if (rank >= 1)
+        dims[0] = bf_h5_flushed_rows(l->flushed, name, dims[0]);
     for (int k = 0; k < rank && k < 2; k++)
         d->dims[k] = (size_t)dims[k];
     H5T_class_t c = H5Tget_class(ty);
@@ -101,11 +106,14 @@ bf_status bf_h5_list(const char *file, bf_h5_dataset **list, size_t *n,
     *list = NULL;
     *n = 0;
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t f = bf_h5_open_read(file);
     if (f < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", file);
+        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file%s", file,
+                       bf_h5_open_hint(file));
     lister l = {0};
+    l.flushed = bf_h5_flushed_load(f);
     herr_t r = H5Ovisit(f, H5_INDEX_NAME, H5_ITER_NATIVE, visit, &l);
+    bf_h5_flushed_free(l.flushed);
     H5Fclose(f);
     if (l.oom || r < 0) {
         free(l.list);

@@ -4,7 +4,7 @@
  * exclusive lock (a record lock on its own descriptor, taken before
  * anything is truncated, see lock_part; the writer's HDF5 locking is off,
  * so that it does not fight ours, and readers may open the file while it
- * is written),
+ * is written, as SWMR readers once it is in SWMR mode: h5swmr.c),
  * and renames it over PATH only when it commits: a previous result at
  * PATH survives until the new one exists, and a second run on the same
  * path is refused instead of truncating the first one's file.  The lock
@@ -16,12 +16,16 @@
  * process's file-size limit; if it is not there the flush writes nothing
  * and fails, so the file on disk stays the consistent state of the last
  * flush.  After a failed write nothing more is written (not even at
- * close), for the same reason. */
+ * close), for the same reason.
+ *
+ * A kill inside a flush: h5swmr.c. */
 #define _GNU_SOURCE /* fallocate's FALLOC_FL_KEEP_SIZE */
 #include "base/clock.h"
 #include "base/utf8.h"
 #include "ballfilm/h5out.h"
 #include "h5lock.h"
+#include "h5out_impl.h"
+#include "h5part.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -36,38 +40,6 @@
 #define FLUSH_BYTES (1u << 19) /* flush when this much is buffered: at most
                                   * 512 KiB of rows in memory, so the memory of
                                   * a run does not grow with its length */
-
-struct bf_series {
-    hid_t dset;
-    size_t ncols;    /* 0 for 1-D */
-    size_t width;    /* values per row (max(ncols, 1)) */
-    int is_int;
-    size_t written;  /* rows on disk */
-    size_t rpc;      /* rows per chunk */
-    size_t nbuf, capbuf;
-    unsigned char *buf;
-    char *path;
-    size_t *buffered; /* the output's count of bytes in every buffer */
-};
-
-struct bf_out {
-    hid_t file;
-    hid_t root; /* "/", held open for its attributes (open_obj; -1: not) */
-    int append; /* opened to continue a run */
-    char *path; /* the result's path */
-    char *part; /* the file written: path + ".part" */
-    int lock_fd; /* descriptor of part holding the lock (-1: none) */
-    int failed;  /* a write failed: touch nothing more */
-    bf_series **series;
-    size_t nseries, capseries;
-    size_t buffered_bytes; /* rows in the series' buffers, B: kept as they
-                              are appended, truncated and flushed, so that
-                              the test after every row is one compare */
-    double last_flush;
-    int deflate; /* level of new datasets' deflate filter (0: none) */
-    size_t expect_rows; /* rows the series are expected to reach (0: not
-                           known), for the size of their chunks */
-};
 
 /* Arrays above this size are compressed when compression is on. */
 #define COMPRESS_ARRAY_BYTES (64u << 10)
@@ -102,13 +74,25 @@ static hid_t lcpl_intermediate(void)
     return lcpl;
 }
 
-/* A file-access list with HDF5's own file locking off (ours is the lock). */
-static hid_t fapl_unlocked(void)
+/* The writer's file-access list: HDF5's own file locking off (ours is the
+ * lock), the 1.10 file format (SWMR mode needs it; bounded above so that
+ * a newer HDF5 writes files that 1.10 reads), and, to continue a run that
+ * was killed in SWMR mode, HDF5's "open for writing" mark cleared (what
+ * `h5clear -s` does, through the property it sets). */
+hid_t bf_out_fapl_(int append)
 {
     hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
 #if H5_VERSION_GE(1, 10, 7)
     H5Pset_file_locking(fapl, 0, 1);
 #endif
+#if H5_VERSION_GE(1, 10, 2)
+    H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110);
+#else
+    H5Pset_libver_bounds(fapl, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST);
+#endif
+    hbool_t clear = 1;
+    if (append && H5Pexist(fapl, "clear_status_flags") > 0)
+        H5Pset(fapl, "clear_status_flags", &clear);
     return fapl;
 }
 
@@ -178,12 +162,13 @@ static bf_status open_part(bf_out **out, const char *path, int append,
     if (!o)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     o->root = -1;
+    o->log = -1;
     bf_status st = claim(o, path, err);
     if (st) {
         release(o);
         return st;
     }
-    hid_t fapl = fapl_unlocked();
+    hid_t fapl = bf_out_fapl_(append);
     o->file = append ? H5Fopen(o->part, H5F_ACC_RDWR, fapl)
                      : H5Fcreate(o->part, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
     H5Pclose(fapl);
@@ -248,7 +233,17 @@ static void series_free(bf_series *s)
  * is expected to end (the command line leaves without exit handlers). */
 static bf_status finish(bf_out *out, bf_err *err)
 {
-    bf_status st = out->failed ? BF_EIO : bf_out_flush(out, err);
+    out->appending = 0;
+    bf_status st = out->failed ? BF_EIO
+                   : out->swmr ? bf_out_leave_swmr_(out, err)
+                               : BF_OK;
+    /* the flush log is for a file whose run has not ended */
+    if (!st && H5Lexists(out->file, BF_H5_FLUSH_LOG, H5P_DEFAULT) > 0 &&
+        H5Ldelete(out->file, BF_H5_FLUSH_LOG, H5P_DEFAULT) < 0)
+        st = bf_fail(err, BF_EIO, "%s: cannot delete %s", out->path,
+                     BF_H5_FLUSH_LOG);
+    if (!st)
+        st = bf_out_flush(out, err);
     if (st && !out->failed)
         out->failed = 1;
     for (size_t k = 0; k < out->nseries; k++) {
@@ -325,7 +320,7 @@ static char *utf8_escaped(const char *s)
     return out;
 }
 
-static bf_status set_str_attr(hid_t obj, const char *name, const char *value)
+bf_status bf_out_str_attr_(hid_t obj, const char *name, const char *value)
 {
     char *escaped = utf8_escaped(value ? value : "");
     if (escaped)
@@ -370,10 +365,28 @@ static bf_status set_str_attr(hid_t obj, const char *name, const char *value)
     return rc < 0 ? BF_EIO : BF_OK;
 }
 
+/* A series is appended to: only its last, partial chunk is ever written
+ * again, so the chunk cache holds one chunk of a 2-D series (HDF5's
+ * default, 1 MiB per dataset, filled up with finished chunks and made a
+ * long run's memory grow with its length), finished chunks evicted first.
+ * A 1-D series (ncols 0) gets 64 bytes, no room for a chunk: each flush
+ * reads its partial chunk back, and a long run's memory stays close to a
+ * short one's (caching a 64 KiB chunk per 1-D series took
+ * bench/memory.sh's difference from 1.3 to 1.9 MiB). */
+hid_t bf_out_series_dapl_(size_t rows_per_chunk, size_t ncols)
+{
+    hid_t dapl = H5Pcreate(H5P_DATASET_ACCESS);
+    H5Pset_chunk_cache(dapl, 7, rows_per_chunk * 8 * ncols + 64, 1.0);
+    return dapl;
+}
+
 bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
                          int is_int, const char *unit, const char *doc,
                          bf_err *err)
 {
+    if (out->swmr && bf_out_leave_swmr_(out, err))
+        return NULL;
+    out->dirty = 1;
     bf_series *s = calloc(1, sizeof *s);
     if (!s) {
         bf_fail(err, BF_EINTERNAL, "out of memory");
@@ -401,16 +414,7 @@ bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
     }
     hsize_t chunk[2] = {rows, ncols};
     s->rpc = rows;
-    /* A series is appended to: only its last, partial chunk is ever
-     * written again, so the chunk cache holds one chunk of a 2-D series
-     * (HDF5's default, 1 MiB per dataset, filled up with finished chunks
-     * and made a long run's memory grow with its length), finished chunks
-     * evicted first.  A 1-D series (ncols 0) gets 64 bytes, no room for a
-     * chunk: each flush reads its partial chunk back, and a long run's
-     * memory stays close to a short one's (caching a 64 KiB chunk per 1-D
-     * series took bench/memory.sh's difference from 1.3 to 1.9 MiB). */
-    hid_t dapl = H5Pcreate(H5P_DATASET_ACCESS);
-    H5Pset_chunk_cache(dapl, 7, rows * 8 * ncols + 64, 1.0);
+    hid_t dapl = bf_out_series_dapl_(rows, ncols);
     if (out->append && H5Lexists(out->file, path, H5P_DEFAULT) > 0) {
         s->dset = H5Dopen2(out->file, path, dapl);
         H5Pclose(dapl);
@@ -457,8 +461,8 @@ bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
         series_free(s);
         return NULL;
     }
-    if (set_str_attr(s->dset, "unit", unit ? unit : "") ||
-        set_str_attr(s->dset, "description", doc ? doc : "")) {
+    if (bf_out_str_attr_(s->dset, "unit", unit ? unit : "") ||
+        bf_out_str_attr_(s->dset, "description", doc ? doc : "")) {
         bf_fail(err, BF_EIO, "%s: cannot write attributes of %s", out->path,
                 path);
         series_free(s);
@@ -477,6 +481,7 @@ registered:
     }
     out->series[out->nseries++] = s;
     s->buffered = &out->buffered_bytes;
+    s->out = out;
     return s;
 }
 
@@ -542,6 +547,12 @@ bf_series *bf_out_series_at(bf_out *out, size_t k)
 
 bf_status bf_series_truncate(bf_series *s, size_t rows, bf_err *err)
 {
+    /* a length shrinks only outside SWMR mode */
+    if (rows < s->written && s->out && s->out->swmr &&
+        bf_out_leave_swmr_(s->out, err))
+        return BF_EIO;
+    if (rows < s->written && s->out)
+        s->out->dirty = 1;
     if (rows > s->written + s->nbuf)
         return bf_fail(err, BF_EIO, "%s has %zu rows, fewer than the %zu the "
                        "checkpoint expects", s->path, s->written + s->nbuf,
@@ -614,6 +625,29 @@ static bf_status reserve(bf_out *out, bf_err *err)
     return BF_OK; /* other errors: a file system without fallocate */
 }
 
+/* A flush refused by reserve() wrote nothing.  If nothing else was
+ * written since the last flush either, HDF5 holds nothing that the file
+ * lacks, and closing the file writes only its superblock, without the
+ * mark of a file open for writing that the 1.10 format keeps until close
+ * (and that keeps readers out of a file not in SWMR mode); the file then
+ * opens, holding the last flush.  Otherwise it is left alone. */
+static void close_refused(bf_out *out)
+{
+    if (out->dirty)
+        return;
+    for (size_t k = 0; k < out->nseries; k++) {
+        H5Dclose(out->series[k]->dset);
+        out->series[k]->dset = -1;
+    }
+    if (out->log >= 0)
+        H5Dclose(out->log);
+    if (out->root >= 0)
+        H5Oclose(out->root);
+    out->log = out->root = -1;
+    H5Fclose(out->file);
+    out->file = -1;
+}
+
 static bf_status series_flush(bf_out *out, bf_series *s, bf_err *err)
 {
     if (!s->nbuf)
@@ -646,29 +680,52 @@ bf_status bf_out_flush(bf_out *out, bf_err *err)
         return bf_fail(err, BF_EIO, "%s: an earlier write failed; the file "
                        "holds what was flushed before it", out->path);
     bf_status st = reserve(out, err);
+    if (st) {
+        out->failed = 1;
+        close_refused(out);
+        return st;
+    }
     for (size_t k = 0; !st && k < out->nseries; k++)
         st = series_flush(out, out->series[k], err);
     if (!st && H5Fflush(out->file, H5F_SCOPE_GLOBAL) < 0)
         st = bf_fail(err, BF_EIO, "%s: flushing the HDF5 file failed (disk "
                      "full?)", out->path);
+    if (!st && out->swmr)
+        st = bf_out_log_flush_(out, err);
     if (st) {
         out->failed = 1;
         return st;
     }
     out->last_flush = bf_coarse_time();
+    out->dirty = 0;
     return BF_OK;
 }
 
 bf_status bf_out_maybe_flush(bf_out *out, double seconds, bf_err *err)
 {
-    if (!(out->buffered_bytes > FLUSH_BYTES ||
-          bf_coarse_time() - out->last_flush > seconds))
+    const double now = bf_coarse_time();
+    const int enter = out->appending && !out->swmr && !out->failed &&
+                      now - out->appending_since > SWMR_AFTER;
+    if (!(enter || out->buffered_bytes > FLUSH_BYTES ||
+          now - out->last_flush > seconds))
         return BF_OK;
     /* the test above touches no HDF5 state: the lock only for a flush */
     bf_h5_lock();
-    bf_status st = bf_out_flush(out, err);
+    bf_status st = enter ? bf_out_enter_swmr_(out, err) : BF_OK;
+    if (!st)
+        st = bf_out_flush(out, err);
     bf_h5_unlock();
     return st;
+}
+
+bf_status bf_out_start_appending(bf_out *out, bf_err *err)
+{
+    if (out->failed)
+        return bf_fail(err, BF_EIO, "%s: an earlier write failed; the file "
+                       "holds what was flushed before it", out->path);
+    out->appending = 1;
+    out->appending_since = bf_coarse_time();
+    return bf_out_flush(out, err);
 }
 
 static bf_status write_array(bf_out *out, const char *path, const void *data,
@@ -677,6 +734,9 @@ static bf_status write_array(bf_out *out, const char *path, const void *data,
 {
     if (out->failed)
         return failed_before(out, err);
+    if (out->swmr && bf_out_leave_swmr_(out, err))
+        return BF_EIO;
+    out->dirty = 1;
     int rank = n1 ? 2 : 1;
     hsize_t dims[2] = {n0, n1};
     if (out->append && H5Lexists(out->file, path, H5P_DEFAULT) > 0)
@@ -702,8 +762,8 @@ static bf_status write_array(bf_out *out, const char *path, const void *data,
                  ? H5Dwrite(d, is_int ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE,
                             H5S_ALL, H5S_ALL, H5P_DEFAULT, data)
                  : 0;
-        if (rc >= 0 && (set_str_attr(d, "unit", unit ? unit : "") ||
-                        set_str_attr(d, "description", doc ? doc : "")))
+        if (rc >= 0 && (bf_out_str_attr_(d, "unit", unit ? unit : "") ||
+                        bf_out_str_attr_(d, "description", doc ? doc : "")))
             rc = -1;
         H5Dclose(d);
     }
@@ -754,10 +814,13 @@ bf_status bf_out_attr_str(bf_out *out, const char *obj, const char *name,
 {
     if (out->failed)
         return failed_before(out, err);
+    if (out->swmr && bf_out_leave_swmr_(out, err))
+        return BF_EIO;
+    out->dirty = 1;
     hid_t o = open_obj(out, obj);
     if (o < 0)
         return bf_fail(err, BF_EIO, "%s: cannot open %s", out->path, obj);
-    bf_status st = set_str_attr(o, name, value);
+    bf_status st = bf_out_str_attr_(o, name, value);
     close_obj(out, o);
     if (st)
         return bf_fail(err, BF_EIO, "%s: cannot write attribute %s of %s",
@@ -770,6 +833,9 @@ static bf_status num_attr(bf_out *out, const char *obj, const char *name,
 {
     if (out->failed)
         return failed_before(out, err);
+    if (out->swmr && bf_out_leave_swmr_(out, err))
+        return BF_EIO;
+    out->dirty = 1;
     hid_t o = open_obj(out, obj);
     if (o < 0)
         return bf_fail(err, BF_EIO, "%s: cannot open %s", out->path, obj);

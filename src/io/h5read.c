@@ -2,16 +2,20 @@
  * whole float64 datasets and single attributes, for tests, restarts,
  * initial profiles and sweeps.  Every call opens the file read-only (or
  * reads from a bf_h5_reader, one open for several reads) and reports a
- * missing file, dataset or attribute through err, naming it. */
+ * missing file, dataset or attribute through err, naming it.  The file of
+ * a run still written, or killed, is read as h5part.h says: the rows of
+ * its last complete flush. */
 #include <hdf5.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "ballfilm/h5out.h"
+#include "io/h5part.h"
 
 struct bf_h5_reader {
     hid_t file;
     char *name; /* for messages */
+    bf_h5_flushed *flushed; /* rows of the last flush of a run's .part */
 };
 
 bf_status bf_h5_reader_open(bf_h5_reader **r, const char *file, bf_err *err)
@@ -25,12 +29,14 @@ bf_status bf_h5_reader_open(bf_h5_reader **r, const char *file, bf_err *err)
         *r = NULL;
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
-    (*r)->file = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+    (*r)->file = bf_h5_open_read(file);
     if ((*r)->file < 0) {
         bf_h5_reader_close(*r);
         *r = NULL;
-        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", file);
+        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file%s", file,
+                       bf_h5_open_hint(file));
     }
+    (*r)->flushed = bf_h5_flushed_load((*r)->file);
     return BF_OK;
 }
 
@@ -40,6 +46,7 @@ void bf_h5_reader_close(bf_h5_reader *r)
         return;
     if (r->file >= 0)
         H5Fclose(r->file);
+    bf_h5_flushed_free(r->flushed);
     free(r->name);
     free(r);
 }
@@ -61,12 +68,18 @@ bf_status bf_h5_reader_read(bf_h5_reader *r, const char *path, double **data,
                      rank);
     } else {
         H5Sget_simple_extent_dims(sp, dims, NULL);
+        /* the rows of the last complete flush (h5part.h) */
+        hsize_t rows = bf_h5_flushed_rows(r->flushed, path, dims[0]);
+        hsize_t start[2] = {0, 0}, count[2] = {rows, dims[1]};
+        dims[0] = rows;
+        H5Sselect_hyperslab(sp, H5S_SELECT_SET, start, NULL, count, NULL);
+        hid_t msp = H5Screate_simple(rank, count, NULL);
         size_t total = (size_t)dims[0] * (rank == 2 ? (size_t)dims[1] : 1);
         double *buf = malloc((total ? total : 1) * sizeof *buf);
         if (!buf)
             st = bf_fail(err, BF_EINTERNAL, "out of memory");
-        else if (total && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL,
-                                  H5P_DEFAULT, buf) < 0) {
+        else if (total && H5Dread(d, H5T_NATIVE_DOUBLE, msp, sp, H5P_DEFAULT,
+                                  buf) < 0) {
             free(buf);
             st = bf_fail(err, BF_EIO, "%s: cannot read %s", file, path);
         } else {
@@ -74,6 +87,7 @@ bf_status bf_h5_reader_read(bf_h5_reader *r, const char *path, double **data,
             *n0 = (size_t)dims[0];
             *n1 = rank == 2 ? (size_t)dims[1] : 0;
         }
+        H5Sclose(msp);
     }
     H5Sclose(sp);
     H5Dclose(d);

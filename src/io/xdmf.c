@@ -10,6 +10,7 @@
  */
 #define _XOPEN_SOURCE 700 /* realpath */
 #include "io/xdmf.h"
+#include "io/h5part.h"
 
 #include <fcntl.h>
 #include <hdf5.h>
@@ -46,6 +47,7 @@ typedef struct xw {
     size_t max_steps; /* grids per collection at most (0: all) */
     double dt;        /* [scene] dt, for rows counted in steps */
     dset_cache *cache;
+    bf_h5_flushed *flushed; /* a run's .part: rows of its last flush */
 } xw;
 
 static dset dset_read(const xw *x, const char *path);
@@ -79,6 +81,7 @@ static dset dset_read(const xw *x, const char *path)
     int rank = H5Sget_simple_extent_ndims(sp);
     if (rank == 1 || rank == 2) {
         H5Sget_simple_extent_dims(sp, dims, NULL);
+        dims[0] = bf_h5_flushed_rows(x->flushed, path, dims[0]);
         d.rank = rank;
         d.is_int = H5Tget_class(t) == H5T_INTEGER;
         d.n0 = (size_t)dims[0];
@@ -658,10 +661,12 @@ bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
 {
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
     dset_cache cache = {.n = 0};
-    xw x = {NULL, -1, NULL, max_steps, 0.0, &cache};
-    x.h5 = H5Fopen(h5_path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    xw x = {NULL, -1, NULL, max_steps, 0.0, &cache, NULL};
+    x.h5 = bf_h5_open_read(h5_path);
     if (x.h5 < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file", h5_path);
+        return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file%s", h5_path,
+                       bf_h5_open_hint(h5_path));
+    x.flushed = bf_h5_flushed_load(x.h5);
     bf_status st = BF_OK;
     x.dt = root_real(x.h5, "scene.dt", 1.0);
     x.href = href_of(h5_path, xmf_path);
@@ -705,6 +710,7 @@ bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
         free(cache.path[k]);
         free(cache.whole[k]);
     }
+    bf_h5_flushed_free(x.flushed);
     H5Fclose(x.h5);
     return st;
 }

@@ -109,3 +109,38 @@ def test_initial_arrays(root):
     r = ballfilm.run(os.path.join(root, "runs/two_balls_B.ini"), t_end=0.01,
                      initial={"balls/position": [0.3, 0.7]})
     assert list(r["balls/position"][0]) == [0.3, 0.7]
+
+
+def test_a_killed_run_reads_its_last_flush(program, root, tmp_path):
+    """A run killed at a write inside a flush (tests/killwrite.c, the K-th
+    write after its file entered SWMR mode; a flush is 35-50 writes) is
+    read as the program reads it: every series cut to the rows of the last
+    complete flush (/flushed_rows), so /time, /step and /balls/position
+    have one length and every row is a real one.  Plain h5py would see
+    lengths of different flushes at some of these writes."""
+    shim = os.environ.get("BALLFILM_KILLWRITE",
+                          os.path.join(root, "build", "tests", "killwrite.so"))
+    assert os.path.exists(shim), f"{shim}: made by make build-tests"
+    out = tmp_path / "k.h5"
+    part = str(out) + ".part"
+    for k in range(1, 48, 2):
+        if os.path.exists(part):
+            os.unlink(part)
+        env = dict(os.environ, LD_PRELOAD=shim, BF_KILL_AT_WRITE=str(k))
+        p = subprocess.run([program, "run",
+                            os.path.join(root, "runs/two_balls_B.ini"), "-q",
+                            "-o", str(out), "--set", "scene.t_end=1e5",
+                            "--set", "scene.output_every=10", "--set",
+                            "scene.flush_seconds=0.001"],
+                           env=env, capture_output=True)
+        assert p.returncode == -9, (k, p.returncode, p.stderr)
+        r = ballfilm.load(part)
+        assert "flushed_rows" not in r.keys()
+        t, step, x = r["time"], r["step"], r["balls/position"]
+        n = len(t)
+        assert n > 0 and len(step) == n and x.shape == (n, 2), (k, n, len(step),
+                                                                x.shape)
+        assert r.shapes["balls/velocity"][0] == n
+        assert np.array_equal(step, 10 * np.arange(n)), k
+        assert np.array_equal(t, step * 1e-4), k
+        assert np.all(x[:, 0] > 0) and np.all(x[:, 1] > x[:, 0]), k

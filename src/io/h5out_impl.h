@@ -1,0 +1,73 @@
+/* h5out_impl.h: what h5out.c and h5swmr.c share of an output file
+ * (private to src/io; the interface is include/ballfilm/h5out.h). */
+#ifndef BALLFILM_IO_H5OUT_IMPL_H
+#define BALLFILM_IO_H5OUT_IMPL_H
+
+#include <hdf5.h>
+#include <stdint.h>
+
+#include "ballfilm/h5out.h"
+
+/* A run enters SWMR mode once it has stepped this long (s of wall time):
+ * entering and leaving it cost about a millisecond (a flush, the log, and
+ * the file closed and opened again at the end), which a run of a few
+ * steps, or each case of a sweep of tiny cases, then does not pay
+ * (bench/startup.sh). */
+#define SWMR_AFTER 0.05
+
+struct bf_series {
+    hid_t dset;
+    size_t ncols;    /* 0 for 1-D */
+    size_t width;    /* values per row (max(ncols, 1)) */
+    int is_int;
+    size_t written;  /* rows on disk */
+    size_t rpc;      /* rows per chunk */
+    size_t nbuf, capbuf;
+    unsigned char *buf;
+    char *path;
+    size_t *buffered; /* the output's count of bytes in every buffer */
+    bf_out *out;
+};
+
+struct bf_out {
+    hid_t file;
+    hid_t root; /* "/", held open for its attributes (open_obj; -1: not) */
+    int append; /* opened to continue a run */
+    char *path; /* the result's path */
+    char *part; /* the file written: path + ".part" */
+    int lock_fd; /* descriptor of part holding the lock (-1: none) */
+    int failed;  /* a write failed: touch nothing more */
+    bf_series **series;
+    size_t nseries, capseries;
+    size_t buffered_bytes; /* rows in the series' buffers, B: kept as they
+                              are appended, truncated and flushed, so that
+                              the test after every row is one compare */
+    double last_flush;
+    int deflate; /* level of new datasets' deflate filter (0: none) */
+    size_t expect_rows; /* rows the series are expected to reach (0: not
+                           known), for the size of their chunks */
+    int swmr;        /* the file is in HDF5's SWMR mode (bf_out_enter_swmr_) */
+    int appending;   /* bf_out_start_appending was called: the file enters
+                        SWMR mode once the run has stepped SWMR_AFTER */
+    double appending_since; /* when (bf_coarse_time) */
+    hid_t log;       /* the flush log (h5part.h) while in SWMR mode, or -1 */
+    int dirty;       /* something other than rows was written since the
+                        last flush (HDF5 may hold metadata the file lacks) */
+    int64_t flushes; /* rows of the log */
+};
+
+
+/* h5out.c */
+/* The writer's file-access list (append: to continue a killed run). */
+hid_t bf_out_fapl_(int append);
+/* A series' dataset-access list: its chunk cache. */
+hid_t bf_out_series_dapl_(size_t rows_per_chunk, size_t ncols);
+/* A UTF-8 string attribute written (or written over). */
+bf_status bf_out_str_attr_(hid_t obj, const char *name, const char *value);
+
+/* h5swmr.c */
+bf_status bf_out_enter_swmr_(bf_out *out, bf_err *err);
+bf_status bf_out_leave_swmr_(bf_out *out, bf_err *err);
+bf_status bf_out_log_flush_(bf_out *out, bf_err *err);
+
+#endif

@@ -1,0 +1,53 @@
+/* h5part.h: reading a run's file while it is written, or after the run was
+ * killed (private to src/io).
+ *
+ * While a run is stepping, h5out.c keeps its PATH.part in HDF5's
+ * single-writer/multiple-reader (SWMR) mode: HDF5 then writes its
+ * metadata in an order in which every state of the file on disk is a
+ * file that opens, so a kill at any moment leaves one.  Two things remain
+ * for a reader, and these functions do them:
+ *
+ * - A file of a writer in SWMR mode (running, or killed) carries HDF5's
+ *   "open for writing" mark, and a plain read-only open refuses it;
+ *   bf_h5_open_read then opens it as a SWMR reader.
+ * - Each dataset's length reaches the disk on its own, so a kill inside a
+ *   flush may leave some series longer than others, and rows whose length
+ *   reached the disk before their data.  The writer therefore appends, once
+ *   a flush has reached the file (after H5Fflush), a row to the log
+ *   BF_H5_FLUSH_LOG: [g, rows of series 1, rows of series 2, ...], with the
+ *   series' paths in its attribute "series" (one per line).  A reader takes
+ *   the rows of the last complete flush: the last log row whose first
+ *   value is its own number (counted from 1; a row whose length reached the
+ *   disk before its values reads 0 there).  The log is deleted when the run
+ *   ends (h5out.c, finish). */
+#ifndef BALLFILM_IO_H5PART_H
+#define BALLFILM_IO_H5PART_H
+
+#include <hdf5.h>
+
+#define BF_H5_FLUSH_LOG "/flushed_rows"
+
+/* FILE read-only: a plain open, or, for the file of a writer in SWMR mode,
+ * a SWMR reader's open.  A negative id if neither opens it. */
+hid_t bf_h5_open_read(const char *file);
+
+/* " (...)": why FILE may not open, to append to a message that it does
+ * not: HDF5's open-for-writing mark when its superblock carries it (a run
+ * killed outside SWMR mode: at set-up, in its first 50 ms of stepping or
+ * while writing its last attributes), naming `h5clear -s`; "" otherwise.
+ * Points into a buffer of this thread's last call. */
+const char *bf_h5_open_hint(const char *file);
+
+typedef struct bf_h5_flushed bf_h5_flushed;
+
+/* The rows of the last complete flush of file f (see above); NULL when f
+ * has no log (a finished run's file, or one not written by h5out.c) or
+ * no complete row of it. */
+bf_h5_flushed *bf_h5_flushed_load(hid_t f);
+/* The rows of dataset `path` ("/time") that a reader may take: `extent`,
+ * or fewer when the log holds fewer for it. */
+hsize_t bf_h5_flushed_rows(const bf_h5_flushed *fl, const char *path,
+                           hsize_t extent);
+void bf_h5_flushed_free(bf_h5_flushed *fl);
+
+#endif
