@@ -181,9 +181,49 @@ END_TEST
  * three flushes.  Before SWMR mode a kill among a flush's writes left
  * files that did not open ("addr overflow"), or datasets of different
  * lengths and rows of zeros, at about a third of these places. */
-START_TEST(kill_at_every_write_keeps_the_file)
+/* bin/ballfilm on runs/two_balls_B.ini writing `out`, with
+ * tests/killwrite.c preloaded to kill it before its write k (counted from
+ * its first write when from_start, else from SWMR mode); `stepping`: a
+ * long run that flushes every millisecond.  Returns the wait status. */
+static int run_killed_at(const char *shim, const char *out, int k,
+                         int from_start, int stepping)
 {
     const char *bin = getenv("BALLFILM_BIN");
+    pid_t pid = fork();
+    ck_assert(pid >= 0);
+    if (pid == 0) {
+        char at[32], asan[512];
+        snprintf(at, sizeof at, "%d", k);
+        /* the sanitizers' runtime wants to be loaded first */
+        const char *a = getenv("ASAN_OPTIONS");
+        snprintf(asan, sizeof asan, "%s%sverify_asan_link_order=0",
+                 a ? a : "", a && *a ? ":" : "");
+        setenv("ASAN_OPTIONS", asan, 1);
+        setenv("BF_KILL_AT_WRITE", at, 1);
+        if (from_start)
+            setenv("BF_KILL_FROM_START", "1", 1);
+        setenv("LD_PRELOAD", shim, 1);
+        if (!freopen("/dev/null", "w", stdout) ||
+            !freopen("/dev/null", "w", stderr))
+            _exit(126);
+        const char *scene = tu_repo("runs/two_balls_B.ini");
+        const char *prog = bin ? bin : "bin/ballfilm";
+        if (stepping)
+            execl(prog, "ballfilm", "run", scene, "-o", out, "-q", "--set",
+                  "scene.t_end=1e5", "--set", "scene.output_every=10",
+                  "--set", "scene.flush_seconds=0.001", (char *)NULL);
+        else
+            execl(prog, "ballfilm", "run", scene, "-o", out, "-q",
+                  (char *)NULL);
+        _exit(127);
+    }
+    int status;
+    waitpid(pid, &status, 0);
+    return status;
+}
+
+START_TEST(kill_at_every_write_keeps_the_file)
+{
     const char *shim = getenv("BALLFILM_KILLWRITE");
     ck_assert_msg(shim && access(shim, R_OK) == 0,
                   "BALLFILM_KILLWRITE (build/tests/killwrite.so, made by "
@@ -194,29 +234,7 @@ START_TEST(kill_at_every_write_keeps_the_file)
     snprintf(part, sizeof part, "%s.part", out);
     for (int k = 1; k <= 95; k += 2) {
         unlink(part);
-        pid_t pid = fork();
-        ck_assert(pid >= 0);
-        if (pid == 0) {
-            char at[32], asan[512];
-            snprintf(at, sizeof at, "%d", k);
-            /* the sanitizers' runtime wants to be loaded first */
-            const char *a = getenv("ASAN_OPTIONS");
-            snprintf(asan, sizeof asan, "%s%sverify_asan_link_order=0",
-                     a ? a : "", a && *a ? ":" : "");
-            setenv("ASAN_OPTIONS", asan, 1);
-            setenv("BF_KILL_AT_WRITE", at, 1);
-            setenv("LD_PRELOAD", shim, 1);
-            if (!freopen("/dev/null", "w", stdout) ||
-                !freopen("/dev/null", "w", stderr))
-                _exit(126);
-            execl(bin ? bin : "bin/ballfilm", "ballfilm", "run",
-                  tu_repo("runs/two_balls_B.ini"), "-o", out, "-q", "--set",
-                  "scene.t_end=1e5", "--set", "scene.output_every=10", "--set",
-                  "scene.flush_seconds=0.001", (char *)NULL);
-            _exit(127);
-        }
-        int status;
-        waitpid(pid, &status, 0);
+        int status = run_killed_at(shim, out, k, 0, 1);
         ck_assert_msg(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL,
                       "write %d: the run was not killed (status %d)", k,
                       status);
@@ -253,6 +271,17 @@ START_TEST(kill_at_every_write_keeps_the_file)
         free(step);
         free(x);
     }
+    /* killed before SWMR mode (the 20th write from the first is inside
+     * set-up): HDF5 marks the file as open for writing, and the message
+     * names the command that clears the mark */
+    unlink(part);
+    int status = run_killed_at(shim, out, 20, 1, 0);
+    ck_assert(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+    bf_err err = {0};
+    double *t;
+    size_t n, n1;
+    ck_assert(bf_h5_read(part, "/time", &t, &n, &n1, &err) != BF_OK);
+    ck_assert_msg(strstr(err.msg, "h5clear -s"), "%s", err.msg);
 }
 END_TEST
 

@@ -22,19 +22,35 @@ def _text(v):
     return v.decode() if isinstance(v, bytes) else str(v)
 
 
+def _marked_for_writing(path):
+    """Whether HDF5's superblock (version 2 or 3, at the start) marks the
+    file as open for writing: byte 11, the file consistency flags."""
+    try:
+        with open(path, "rb") as f:
+            sb = f.read(12)
+    except OSError:
+        return False
+    return (len(sb) == 12 and sb[:8] == b"\x89HDF\r\n\x1a\n" and sb[8] >= 2
+            and sb[11] & 0x05 != 0)
+
+
 def _open(path):
     """The file read-only: plainly, or as a SWMR reader when a writer in
     HDF5's SWMR mode (running, or killed) holds it."""
     try:
         return h5py.File(path, "r")
+    except FileNotFoundError:
+        raise
     except OSError as plain:
         try:
             return h5py.File(path, "r", libver="latest", swmr=True)
         except OSError:
+            if not _marked_for_writing(path):
+                raise plain from None
             raise OSError(
-                f"{path}: cannot open it as HDF5 ({plain}); if a run was "
-                f"killed while writing it, `h5clear -s {path}` clears "
-                f"HDF5's open-for-writing mark") from None
+                f"{path}: HDF5 marks it as open for writing ({plain}); if "
+                f"the run writing it was killed, `h5clear -s {path}` clears "
+                f"the mark") from None
 
 
 def _flushed_rows(f):

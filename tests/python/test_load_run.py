@@ -144,3 +144,21 @@ def test_a_killed_run_reads_its_last_flush(program, root, tmp_path):
         assert np.array_equal(step, 10 * np.arange(n)), k
         assert np.array_equal(t, step * 1e-4), k
         assert np.all(x[:, 0] > 0) and np.all(x[:, 1] > x[:, 0]), k
+
+
+def test_a_file_marked_open_for_writing_names_h5clear(program, root, tmp_path):
+    """A run killed before its file entered SWMR mode (tests/killwrite.c
+    counting from the first write: the 20th is inside set-up) leaves a file
+    that HDF5 marks as open for writing; load says so and names the command
+    that clears the mark."""
+    shim = os.environ.get("BALLFILM_KILLWRITE",
+                          os.path.join(root, "build", "tests", "killwrite.so"))
+    out = tmp_path / "early.h5"
+    env = dict(os.environ, LD_PRELOAD=shim, BF_KILL_AT_WRITE="20",
+               BF_KILL_FROM_START="1")
+    p = subprocess.run([program, "run",
+                        os.path.join(root, "runs/two_balls_B.ini"), "-q",
+                        "-o", str(out)], env=env, capture_output=True)
+    assert p.returncode == -9, p.stderr
+    with pytest.raises(OSError, match="h5clear -s"):
+        ballfilm.load(str(out) + ".part")
