@@ -45,20 +45,24 @@ static void before_write(const void *buf, size_t n, off_t off)
         raise(SIGKILL);
 }
 
+/* The write itself, by the next definition of `name` (libc's). */
+static ssize_t forward(pwrite_fn *next, const char *name, int fd,
+                       const void *buf, size_t n, off_t off)
+{
+    if (!*next)
+        *next = (pwrite_fn)dlsym(RTLD_NEXT, name);
+    before_write(buf, n, off);
+    return (*next)(fd, buf, n, off);
+}
+
 ssize_t pwrite(int fd, const void *buf, size_t n, off_t off)
 {
     static pwrite_fn next;
-    if (!next)
-        next = (pwrite_fn)dlsym(RTLD_NEXT, "pwrite");
-    before_write(buf, n, off);
-    return next(fd, buf, n, off);
+    return forward(&next, "pwrite", fd, buf, n, off);
 }
 
 ssize_t pwrite64(int fd, const void *buf, size_t n, off_t off)
 {
     static pwrite_fn next;
-    if (!next)
-        next = (pwrite_fn)dlsym(RTLD_NEXT, "pwrite64");
-    before_write(buf, n, off);
-    return next(fd, buf, n, off);
+    return forward(&next, "pwrite64", fd, buf, n, off);
 }
