@@ -26,6 +26,13 @@ BUILD   ?= build
 BINDIR  ?= bin
 SANITIZE ?=
 GIT     := $(shell git rev-parse --short HEAD 2>/dev/null || echo unknown)
+# The commit named in the version string (src/base/version.c, written into
+# every output file) is a compiler flag, which make does not track: a file
+# holding it, rewritten only when HEAD has moved, makes version.o older
+# than it then, so that an incremental build names the right commit.
+GIT_STAMP := $(BUILD)/git-commit
+$(shell mkdir -p $(BUILD) && { [ "$$(cat $(GIT_STAMP) 2>/dev/null)" = "$(GIT)" ] || \
+  echo "$(GIT)" > $(GIT_STAMP); })
 
 CC       = gcc
 CSTD     = -std=c11 -O2 -Wall -Wextra -Werror -ffp-contract=off
@@ -139,6 +146,7 @@ SONAME     := libballfilm.so.$(ABI)
 SHLIB      := $(BUILD)/libballfilm.so.$(VERSION)
 PUBLIC_H   := $(sort $(wildcard include/ballfilm/*.h))
 PIC_OBJ    := $(LIB_SRC:%.c=$(BUILD)/pic/obj/%.o)
+$(BUILD)/obj/src/base/version.o $(BUILD)/pic/obj/src/base/version.o: $(GIT_STAMP)
 PIC_OMP    := $(OMP_OBJ:$(BUILD)/obj/%=$(BUILD)/pic/obj/%)
 SHLIB_LIBS := $(shell pkg-config --libs hdf5-serial 2>/dev/null) \
               -lsundials_arkode -lsundials_nvecserial -linih \
