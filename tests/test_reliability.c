@@ -279,6 +279,41 @@ START_TEST(full_disk_readable_and_restartable)
 }
 END_TEST
 
+/* A run killed outright while it steps (its file in SWMR mode, HDF5's
+ * open-for-writing mark on it) continues from its last checkpoint: the
+ * restart clears the mark, drops the rows after the checkpoint, and ends
+ * with the datasets of an uninterrupted run. */
+START_TEST(sigkill_then_restart_identical)
+{
+    char out[600], full[600], part[700], ckpt[700];
+    snprintf(out, sizeof out, "%s", tu_tmp("killed.h5"));
+    snprintf(full, sizeof full, "%s", tu_tmp("killed_full.h5"));
+    snprintf(part, sizeof part, "%s.part", out);
+    snprintf(ckpt, sizeof ckpt, "%s.ckpt", out);
+/* 3e7 steps, about a second; a checkpoint every 5e5 steps */
+#define KILLED_RUN_SETS                                                     \
+    "--set", "scene.t_end=3000", "--set", "scene.checkpoint_every=50 s",    \
+        "--set", "scene.flush_seconds=0.01"
+    const char *argv[] = {"run", tu_repo("runs/two_balls_B.ini"), "-o", out,
+                          "-q", KILLED_RUN_SETS, NULL};
+    pid_t pid = start(argv, NULL, 0);
+    tu_wait_for_file(ckpt, 0);
+    /* readable rows: the file is in SWMR mode (h5out.h) */
+    tu_wait_for_rows(part, "/time", 1000);
+    kill(pid, SIGKILL);
+    ck_assert_int_eq(finish(pid), -SIGKILL);
+    char *err = NULL;
+    int rc = tu_run(NULL, &err, "run", "--restart", out, "-q", NULL);
+    ck_assert_msg(rc == 0, "restart: exit %d\n%s", rc, err);
+    free(err);
+    ck_assert_int_eq(tu_run(NULL, NULL, "run", tu_repo("runs/two_balls_B.ini"),
+                            "-o", full, "-q", KILLED_RUN_SETS, NULL),
+                     0);
+#undef KILLED_RUN_SETS
+    tu_same_datasets(out, full);
+}
+END_TEST
+
 /* Replace the first value of an integer dataset of an HDF5 file. */
 static void poke_i64(const char *file, const char *dset, long long v)
 {
@@ -622,6 +657,7 @@ Suite *suite_reliability(void)
     tcase_add_test(tc, one_output_path_one_run);
     tcase_add_test(tc, output_equal_to_an_input_refused);
     tcase_add_test(tc, full_disk_readable_and_restartable);
+    tcase_add_test(tc, sigkill_then_restart_identical);
     tcase_add_test(tc, damaged_checkpoints_refused);
     tcase_add_test(tc, checkpoint_of_another_run_refused);
     tcase_add_test(tc, restart_cannot_change_the_physics);
