@@ -10,10 +10,14 @@
  * a number names the same place in the stepping run however long its
  * set-up took.  With BF_KILL_FROM_START=1 every write counts, from the
  * first (for a program that never enters SWMR mode: tests/killpoints.py).
- * Without BF_KILL_AT_WRITE, every write passes. */
+ * With BF_KILL_IN=SUFFIX only writes to files whose name ends in SUFFIX
+ * count, from the first (".ckpt.tmp": a kill while a checkpoint is being
+ * written, between two flushes of the output).  Without BF_KILL_AT_WRITE,
+ * every write passes. */
 #define _GNU_SOURCE /* RTLD_NEXT */
 #include <dlfcn.h>
 #include <signal.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/types.h>
@@ -25,7 +29,20 @@ static long kill_at = -1; /* 0: never */
 static long counted;      /* writes since SWMR mode began */
 static int in_swmr;
 
-static void before_write(const void *buf, size_t n, off_t off)
+/* Whether descriptor fd names a file whose name ends in suffix. */
+static int fd_ends_in(int fd, const char *suffix)
+{
+    char link[64], name[4096];
+    snprintf(link, sizeof link, "/proc/self/fd/%d", fd);
+    ssize_t len = readlink(link, name, sizeof name - 1);
+    size_t ls = strlen(suffix);
+    if (len < 0 || (size_t)len < ls)
+        return 0;
+    name[len] = '\0';
+    return !strcmp(name + len - ls, suffix);
+}
+
+static void before_write(int fd, const void *buf, size_t n, off_t off)
 {
     if (kill_at < 0) {
         const char *e = getenv("BF_KILL_AT_WRITE");
@@ -33,6 +50,12 @@ static void before_write(const void *buf, size_t n, off_t off)
     }
     if (!kill_at)
         return;
+    const char *in = getenv("BF_KILL_IN");
+    if (in) {
+        if (fd_ends_in(fd, in) && ++counted == kill_at)
+            raise(SIGKILL);
+        return;
+    }
     if (!in_swmr && getenv("BF_KILL_FROM_START"))
         in_swmr = 1;
     const unsigned char *b = buf;
@@ -51,7 +74,7 @@ static ssize_t forward(pwrite_fn *next, const char *name, int fd,
 {
     if (!*next)
         *next = (pwrite_fn)dlsym(RTLD_NEXT, name);
-    before_write(buf, n, off);
+    before_write(fd, buf, n, off);
     return (*next)(fd, buf, n, off);
 }
 

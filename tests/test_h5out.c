@@ -183,8 +183,10 @@ END_TEST
  * lengths and rows of zeros, at about a third of these places. */
 /* bin/ballfilm on runs/two_balls_B.ini writing `out`, with
  * tests/killwrite.c preloaded to kill it before its write k (counted from
- * its first write when from_start, else from SWMR mode); `stepping`: a
- * long run that flushes every millisecond.  Returns the wait status. */
+ * its first write when from_start, else from SWMR mode); `stepping` 1: a
+ * long run that flushes every millisecond; 2: k counts the writes of its
+ * checkpoints (one every 1000 steps, t_end 20 s, a flush every 512 KiB of
+ * rows).  Returns the wait status. */
 static int run_killed_at(const char *shim, const char *out, int k,
                          int from_start, int stepping)
 {
@@ -202,16 +204,22 @@ static int run_killed_at(const char *shim, const char *out, int k,
         setenv("BF_KILL_AT_WRITE", at, 1);
         if (from_start)
             setenv("BF_KILL_FROM_START", "1", 1);
+        if (stepping == 2)
+            setenv("BF_KILL_IN", ".ckpt.tmp", 1);
         setenv("LD_PRELOAD", shim, 1);
         if (!freopen("/dev/null", "w", stdout) ||
             !freopen("/dev/null", "w", stderr))
             _exit(126);
         const char *scene = tu_repo("runs/two_balls_B.ini");
         const char *prog = bin ? bin : "bin/ballfilm";
-        if (stepping)
+        if (stepping == 1)
             execl(prog, "ballfilm", "run", scene, "-o", out, "-q", "--set",
                   "scene.t_end=1e5", "--set", "scene.output_every=10",
                   "--set", "scene.flush_seconds=0.001", (char *)NULL);
+        else if (stepping == 2)
+            execl(prog, "ballfilm", "run", scene, "-o", out, "-q", "--set",
+                  "scene.t_end=20", "--set", "scene.checkpoint_every=1000",
+                  "--set", "scene.flush_seconds=1e9", (char *)NULL);
         else
             execl(prog, "ballfilm", "run", scene, "-o", out, "-q",
                   (char *)NULL);
@@ -271,17 +279,41 @@ START_TEST(kill_at_every_write_keeps_the_file)
         free(step);
         free(x);
     }
-    /* killed before SWMR mode (the 20th write from the first is inside
-     * set-up): HDF5 marks the file as open for writing, and the message
-     * names the command that clears the mark */
+    /* killed before SWMR mode, between two flushes (inside the writes of
+     * a checkpoint, a few checkpoints into the run): the file keeps HDF5's
+     * open-for-writing mark, the program's readers read past it, and
+     * --restart continues from the last whole checkpoint to the
+     * uninterrupted run's datasets */
+    char ckpt[700];
+    snprintf(ckpt, sizeof ckpt, "%s.ckpt", out);
     unlink(part);
-    int status = run_killed_at(shim, out, 20, 1, 0);
+    unlink(ckpt);
+    int status = run_killed_at(shim, out, 40, 0, 2);
     ck_assert(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+    unsigned char sb[12] = {0};
+    FILE *f = fopen(part, "rb");
+    ck_assert(f && fread(sb, 1, sizeof sb, f) == sizeof sb);
+    fclose(f);
+    ck_assert_msg(sb[8] >= 2 && (sb[11] & 0x05) == 0x01,
+                  "superblock %d, flags %#x: not marked open for writing "
+                  "outside SWMR mode", sb[8], sb[11]);
     bf_err err = {0};
     double *t;
     size_t n, n1;
-    ck_assert(bf_h5_read(part, "/time", &t, &n, &n1, &err) != BF_OK);
-    ck_assert_msg(strstr(err.msg, "h5clear -s"), "%s", err.msg);
+    ck_assert_msg(bf_h5_read(part, "/time", &t, &n, &n1, &err) == BF_OK, "%s",
+                  err.msg);
+    free(t);
+    char *msg = NULL;
+    int rc = tu_run(NULL, &msg, "run", "--restart", out, "-q", NULL);
+    ck_assert_msg(rc == 0, "restart: exit %d\n%s", rc, msg);
+    free(msg);
+    const char *full = tu_tmp("killwrite_full.h5");
+    ck_assert_int_eq(tu_run(NULL, NULL, "run", tu_repo("runs/two_balls_B.ini"),
+                            "-o", full, "-q", "--set", "scene.t_end=20",
+                            "--set", "scene.checkpoint_every=1000", "--set",
+                            "scene.flush_seconds=1e9", NULL),
+                     0);
+    tu_same_datasets(out, full);
 }
 END_TEST
 

@@ -15,9 +15,11 @@
  * while it steps, even inside a flush, leaves a file that opens and holds
  * every row of the last complete flush, the same number in every series
  * (src/io/h5swmr.c).  Set-up, the first 50 ms and the writing of a run's
- * last attributes are outside SWMR mode; a kill there may leave a file
- * that HDF5 marks as open for writing (`h5clear -s` clears it) or that
- * does not open (docs/reliability.md, "What is not promised").
+ * last attributes are outside SWMR mode; a kill there leaves a file that
+ * HDF5 marks as open for writing, which the program's readers read past
+ * (h5py needs `h5clear -s` first), and a kill inside a flush there may
+ * leave it torn or not opening (docs/reliability.md, "What is not
+ * promised").
  *
  * Every dataset carries "unit" and "description" attributes.
  *

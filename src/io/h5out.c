@@ -237,11 +237,16 @@ static bf_status finish(bf_out *out, bf_err *err)
     bf_status st = out->failed ? BF_EIO
                    : out->swmr ? bf_out_leave_swmr_(out, err)
                                : BF_OK;
-    /* the flush log is for a file whose run has not ended */
-    if (!st && H5Lexists(out->file, BF_H5_FLUSH_LOG, H5P_DEFAULT) > 0 &&
-        H5Ldelete(out->file, BF_H5_FLUSH_LOG, H5P_DEFAULT) < 0)
-        st = bf_fail(err, BF_EIO, "%s: cannot delete %s", out->path,
-                     BF_H5_FLUSH_LOG);
+    /* the flush log is for a file whose run has not ended; a writer that
+     * never started appending (a restart refused after opening a killed
+     * run's file) leaves that run's log, which its readers still need */
+    if (!st && out->started &&
+        H5Lexists(out->file, BF_H5_FLUSH_LOG, H5P_DEFAULT) > 0) {
+        out->dirty = 1;
+        if (H5Ldelete(out->file, BF_H5_FLUSH_LOG, H5P_DEFAULT) < 0)
+            st = bf_fail(err, BF_EIO, "%s: cannot delete %s", out->path,
+                         BF_H5_FLUSH_LOG);
+    }
     if (!st)
         st = bf_out_flush(out, err);
     if (st && !out->failed)
@@ -725,7 +730,9 @@ bf_status bf_out_start_appending(bf_out *out, bf_err *err)
                        "holds what was flushed before it", out->path);
     out->appending = 1;
     out->appending_since = bf_coarse_time();
-    return bf_out_flush(out, err);
+    bf_status st = bf_out_flush(out, err);
+    out->started = !st;
+    return st;
 }
 
 static bf_status write_array(bf_out *out, const char *path, const void *data,

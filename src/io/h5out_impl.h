@@ -53,6 +53,8 @@ struct bf_out {
     hid_t log;       /* the flush log (h5part.h) while in SWMR mode, or -1 */
     int dirty;       /* something other than rows was written since the
                         last flush (HDF5 may hold metadata the file lacks) */
+    int started;     /* bf_out_start_appending succeeded: this writer's
+                        rows are the file's (finish may drop the log) */
     int64_t flushes; /* rows of the log */
 };
 

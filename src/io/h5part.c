@@ -18,6 +18,18 @@ hid_t bf_h5_open_read(const char *file)
     hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
     if (f < 0)
         f = H5Fopen(file, H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT);
+    if (f < 0) {
+        /* a file whose writer was killed outside SWMR mode keeps HDF5's
+         * open-for-writing mark: read it as it is, past the mark (the
+         * property that `h5clear -s` sets; on a read-only open it leaves
+         * the mark in the file) */
+        hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+        hbool_t past = 1;
+        if (H5Pexist(fapl, "clear_status_flags") > 0 &&
+            H5Pset(fapl, "clear_status_flags", &past) >= 0)
+            f = H5Fopen(file, H5F_ACC_RDONLY, fapl);
+        H5Pclose(fapl);
+    }
     return f;
 }
 
@@ -35,10 +47,10 @@ const char *bf_h5_open_hint(const char *file)
     if (got < sizeof sb || memcmp(sb, "\211HDF\r\n\032\n", 8) || sb[8] < 2 ||
         !(sb[11] & 0x05))
         return "";
-    snprintf(hint, sizeof hint, " (HDF5 marks it as open for writing: if "
-             "the run writing it was killed, `h5clear -s %s` clears the mark; "
-             "`ballfilm run --restart` continues such a run from its "
-             "checkpoint, if it wrote one)", file);
+    snprintf(hint, sizeof hint, " (HDF5 marks it as open for writing, and "
+             "it does not open past the mark either: its writer was killed "
+             "in the middle of writing it, outside SWMR mode; `h5clear -s "
+             "%s` clears the mark)", file);
     return hint;
 }
 

@@ -27,14 +27,18 @@
 
 #define BF_H5_FLUSH_LOG "/flushed_rows"
 
-/* FILE read-only: a plain open, or, for the file of a writer in SWMR mode,
- * a SWMR reader's open.  A negative id if neither opens it. */
+/* FILE read-only: a plain open; for the file of a writer in SWMR mode, a
+ * SWMR reader's open; for a file that HDF5 marks as open for writing by a
+ * writer outside SWMR mode (killed at set-up, in its first 50 ms or at its
+ * end), an open past the mark, which stays in the file.  A negative id if
+ * none opens it. */
 hid_t bf_h5_open_read(const char *file);
 
 /* " (...)": why FILE may not open, to append to a message that it does
  * not: HDF5's open-for-writing mark when its superblock carries it (a run
- * killed outside SWMR mode: at set-up, in its first 50 ms of stepping or
- * while writing its last attributes), naming `h5clear -s`; "" otherwise.
+ * killed outside SWMR mode, at set-up, in its first 50 ms of stepping or
+ * while writing its last attributes, in the middle of a flush), naming
+ * `h5clear -s`; "" otherwise.
  * Points into a buffer of this thread's last call. */
 const char *bf_h5_open_hint(const char *file);
 

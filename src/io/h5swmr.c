@@ -26,6 +26,7 @@
  * (its status and counters) is therefore written outside SWMR mode, as
  * set-up is, and a kill there is not covered (docs/reliability.md).  SWMR
  * mode needs HDF5's 1.10 file format (superblock 3, bf_out_fapl_). */
+#include "base/clock.h"
 #include "h5out_impl.h"
 #include "h5part.h"
 
@@ -114,10 +115,30 @@ bf_status bf_out_enter_swmr_(bf_out *out, bf_err *err)
     bf_status st = bf_out_flush(out, err);
     if (st)
         return st;
-    /* the log of a killed run that this one continues */
-    if (H5Lexists(out->file, BF_H5_FLUSH_LOG, H5P_DEFAULT) > 0)
-        H5Ldelete(out->file, BF_H5_FLUSH_LOG, H5P_DEFAULT);
     size_t w = out->nseries + 1;
+    /* a log of the same series (this writer's, left by bf_out_leave_swmr_,
+     * or that of the killed run this one continues) goes on: its rows stay
+     * valid, rows are only added to a series; another one goes */
+    out->flushes = 0;
+    if (H5Lexists(out->file, BF_H5_FLUSH_LOG, H5P_DEFAULT) > 0) {
+        hid_t log = H5Dopen2(out->file, BF_H5_FLUSH_LOG, H5P_DEFAULT);
+        hid_t sp = log >= 0 ? H5Dget_space(log) : -1;
+        hsize_t have[2] = {0, 0};
+        if (sp >= 0 && H5Sget_simple_extent_ndims(sp) == 2)
+            H5Sget_simple_extent_dims(sp, have, NULL);
+        if (sp >= 0)
+            H5Sclose(sp);
+        if (have[1] == w) {
+            out->log = log;
+            out->flushes = (int64_t)have[0];
+        } else {
+            if (log >= 0)
+                H5Dclose(log);
+            H5Ldelete(out->file, BF_H5_FLUSH_LOG, H5P_DEFAULT);
+        }
+    }
+    if (out->log >= 0)
+        goto start;
     hsize_t dims[2] = {0, w}, maxdims[2] = {H5S_UNLIMITED, w},
             chunk[2] = {64, w};
     hid_t sp = H5Screate_simple(2, dims, maxdims);
@@ -145,6 +166,8 @@ bf_status bf_out_enter_swmr_(bf_out *out, bf_err *err)
                        "full?)", out->path);
     }
     free(paths);
+start:
+    out->dirty = 1; /* the log's dataset or its deletion, until flushed */
     /* SWMR mode wants no open object but datasets; and it gives the open
      * datasets HDF5's default chunk cache (1 MiB each, which made the
      * memory of a run grow with its length), so they are opened again
@@ -168,7 +191,6 @@ bf_status bf_out_enter_swmr_(bf_out *out, bf_err *err)
         return BF_OK;
     }
     out->swmr = 1;
-    out->flushes = 0;
     return BF_OK;
 }
 
@@ -183,6 +205,10 @@ bf_status bf_out_leave_swmr_(bf_out *out, bf_err *err)
     if (st)
         return st;
     out->swmr = 0;
+    /* SWMR mode again only once the run has stepped as long as at its
+     * start: a library user who writes an attribute every few rows does
+     * not close and open the file at every flush */
+    out->appending_since = bf_coarse_time();
     H5Dclose(out->log);
     out->log = -1;
     series_close_all(out);
