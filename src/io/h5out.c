@@ -90,9 +90,8 @@ hid_t bf_out_fapl_(int append)
 #else
     H5Pset_libver_bounds(fapl, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST);
 #endif
-    hbool_t clear = 1;
-    if (append && H5Pexist(fapl, "clear_status_flags") > 0)
-        H5Pset(fapl, "clear_status_flags", &clear);
+    if (append)
+        bf_h5_fapl_past_mark(fapl);
     return fapl;
 }
 

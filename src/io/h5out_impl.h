@@ -9,10 +9,9 @@
 #include "ballfilm/h5out.h"
 
 /* A run enters SWMR mode once it has stepped this long (s of wall time):
- * entering and leaving it cost about a millisecond (a flush, the log, and
- * the file closed and opened again at the end), which a run of a few
- * steps, or each case of a sweep of tiny cases, then does not pay
- * (bench/startup.sh). */
+ * entering and leaving it cost a flush, the log, and the file closed and
+ * opened again at the end, which a run of a few steps, or each case of a
+ * sweep of tiny cases (bench/startup.sh), then does not pay. */
 #define SWMR_AFTER 0.05
 
 struct bf_series {

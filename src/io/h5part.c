@@ -13,6 +13,33 @@ struct bf_h5_flushed {
     hsize_t *rows;
 };
 
+int bf_h5_fapl_past_mark(hid_t fapl)
+{
+    hbool_t past = 1;
+    return H5Pexist(fapl, "clear_status_flags") > 0 &&
+                   H5Pset(fapl, "clear_status_flags", &past) >= 0
+               ? 0
+               : -1;
+}
+
+char *bf_h5_attr_text(hid_t loc, const char *obj, const char *name)
+{
+    hid_t a = H5Aopen_by_name(loc, obj, name, H5P_DEFAULT, H5P_DEFAULT);
+    if (a < 0)
+        return NULL;
+    hid_t t = H5Tcopy(H5T_C_S1);
+    H5Tset_size(t, H5T_VARIABLE);
+    H5Tset_cset(t, H5T_CSET_UTF8);
+    char *v = NULL, *copy = NULL;
+    if (H5Aread(a, t, &v) >= 0 && v) {
+        copy = strdup(v);
+        H5free_memory(v);
+    }
+    H5Tclose(t);
+    H5Aclose(a);
+    return copy;
+}
+
 hid_t bf_h5_open_read(const char *file)
 {
     hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -24,9 +51,7 @@ hid_t bf_h5_open_read(const char *file)
          * property that `h5clear -s` sets; on a read-only open it leaves
          * the mark in the file) */
         hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-        hbool_t past = 1;
-        if (H5Pexist(fapl, "clear_status_flags") > 0 &&
-            H5Pset(fapl, "clear_status_flags", &past) >= 0)
+        if (!bf_h5_fapl_past_mark(fapl))
             f = H5Fopen(file, H5F_ACC_RDONLY, fapl);
         H5Pclose(fapl);
     }
@@ -65,25 +90,6 @@ void bf_h5_flushed_free(bf_h5_flushed *fl)
     free(fl);
 }
 
-/* The attribute "series" of the log: its paths, one per line. */
-static char *series_text(hid_t log)
-{
-    hid_t a = H5Aopen(log, "series", H5P_DEFAULT);
-    if (a < 0)
-        return NULL;
-    hid_t t = H5Tcopy(H5T_C_S1);
-    H5Tset_size(t, H5T_VARIABLE);
-    H5Tset_cset(t, H5T_CSET_UTF8);
-    char *v = NULL, *copy = NULL;
-    if (H5Aread(a, t, &v) >= 0 && v) {
-        copy = strdup(v);
-        H5free_memory(v);
-    }
-    H5Tclose(t);
-    H5Aclose(a);
-    return copy;
-}
-
 bf_h5_flushed *bf_h5_flushed_load(hid_t f)
 {
     if (H5Lexists(f, BF_H5_FLUSH_LOG, H5P_DEFAULT) <= 0)
@@ -97,7 +103,7 @@ bf_h5_flushed *bf_h5_flushed_load(hid_t f)
     if (rank == 2)
         H5Sget_simple_extent_dims(sp, dims, NULL);
     H5Sclose(sp);
-    char *text = series_text(log);
+    char *text = bf_h5_attr_text(log, ".", "series");
     int64_t *v = NULL;
     bf_h5_flushed *fl = NULL;
     size_t width = (size_t)dims[1], nrows = (size_t)dims[0];

@@ -1,5 +1,6 @@
 /* h5part.h: reading a run's file while it is written, or after the run was
- * killed (private to src/io).
+ * killed, and the pieces of HDF5 reading that src/io's readers and writer
+ * share (private to src/io).
  *
  * While a run is stepping, h5out.c keeps its PATH.part in HDF5's
  * single-writer/multiple-reader (SWMR) mode: HDF5 then writes its
@@ -26,6 +27,15 @@
 #include <hdf5.h>
 
 #define BF_H5_FLUSH_LOG "/flushed_rows"
+
+/* Set on a file-access list the property that `h5clear -s` sets: an open
+ * goes past HDF5's open-for-writing mark (a read-write open clears it, a
+ * read-only one leaves it in the file).  0, or -1 if this HDF5 has none. */
+int bf_h5_fapl_past_mark(hid_t fapl);
+
+/* The UTF-8 string attribute `name` of object `obj` ("/") under loc, as a
+ * malloc'd copy; NULL when there is none or it cannot be read. */
+char *bf_h5_attr_text(hid_t loc, const char *obj, const char *name);
 
 /* FILE read-only: a plain open; for the file of a writer in SWMR mode, a
  * SWMR reader's open; for a file that HDF5 marks as open for writing by a

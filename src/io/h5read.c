@@ -140,23 +140,10 @@ bf_status bf_h5_read_attr_str(const char *file, const char *obj,
     bf_status st = bf_h5_reader_open(&r, file, err);
     if (st)
         return st;
-    hid_t a = H5Aopen_by_name(r->file, obj, name, H5P_DEFAULT, H5P_DEFAULT);
-    if (a < 0) {
+    if (H5Aexists_by_name(r->file, obj, name, H5P_DEFAULT) <= 0)
         st = bf_fail(err, BF_EIO, "%s: no attribute %s on %s", file, name, obj);
-    } else {
-        hid_t t = H5Tcopy(H5T_C_S1);
-        H5Tset_size(t, H5T_VARIABLE);
-        H5Tset_cset(t, H5T_CSET_UTF8);
-        char *v = NULL;
-        if (H5Aread(a, t, &v) < 0 || !v) {
-            st = bf_fail(err, BF_EIO, "%s: cannot read attribute %s", file, name);
-        } else {
-            *value = strdup(v);
-            H5free_memory(v);
-        }
-        H5Tclose(t);
-        H5Aclose(a);
-    }
+    else if (!(*value = bf_h5_attr_text(r->file, obj, name)))
+        st = bf_fail(err, BF_EIO, "%s: cannot read attribute %s", file, name);
     bf_h5_reader_close(r);
     return st;
 }

@@ -107,9 +107,10 @@ static char *series_paths(const bf_out *out)
     return text;
 }
 
-/* Into SWMR mode (see the top), after a complete flush and with an empty
- * log.  A file that cannot enter it (one of an older format, continued
- * by this version) stays as it was and is written as before. */
+/* Into SWMR mode (see the top), after a complete flush, with the log of
+ * these series (created, or the one the file has).  A file that cannot
+ * enter it (one of an older format, continued by this version) stays as
+ * it was and is written as before. */
 bf_status bf_out_enter_swmr_(bf_out *out, bf_err *err)
 {
     bf_status st = bf_out_flush(out, err);
