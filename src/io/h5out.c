@@ -388,9 +388,8 @@ bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
                          int is_int, const char *unit, const char *doc,
                          bf_err *err)
 {
-    if (out->swmr && bf_out_leave_swmr_(out, err))
+    if (bf_out_before_metadata_(out, err))
         return NULL;
-    out->dirty = 1;
     bf_series *s = calloc(1, sizeof *s);
     if (!s) {
         bf_fail(err, BF_EINTERNAL, "out of memory");
@@ -552,11 +551,8 @@ bf_series *bf_out_series_at(bf_out *out, size_t k)
 bf_status bf_series_truncate(bf_series *s, size_t rows, bf_err *err)
 {
     /* a length shrinks only outside SWMR mode */
-    if (rows < s->written && s->out && s->out->swmr &&
-        bf_out_leave_swmr_(s->out, err))
+    if (rows < s->written && s->out && bf_out_before_metadata_(s->out, err))
         return BF_EIO;
-    if (rows < s->written && s->out)
-        s->out->dirty = 1;
     if (rows > s->written + s->nbuf)
         return bf_fail(err, BF_EIO, "%s has %zu rows, fewer than the %zu the "
                        "checkpoint expects", s->path, s->written + s->nbuf,
@@ -639,10 +635,7 @@ static void close_refused(bf_out *out)
 {
     if (out->dirty)
         return;
-    for (size_t k = 0; k < out->nseries; k++) {
-        H5Dclose(out->series[k]->dset);
-        out->series[k]->dset = -1;
-    }
+    bf_out_close_series_(out);
     if (out->log >= 0)
         H5Dclose(out->log);
     if (out->root >= 0)
@@ -740,9 +733,8 @@ static bf_status write_array(bf_out *out, const char *path, const void *data,
 {
     if (out->failed)
         return failed_before(out, err);
-    if (out->swmr && bf_out_leave_swmr_(out, err))
+    if (bf_out_before_metadata_(out, err))
         return BF_EIO;
-    out->dirty = 1;
     int rank = n1 ? 2 : 1;
     hsize_t dims[2] = {n0, n1};
     if (out->append && H5Lexists(out->file, path, H5P_DEFAULT) > 0)
@@ -820,9 +812,8 @@ bf_status bf_out_attr_str(bf_out *out, const char *obj, const char *name,
 {
     if (out->failed)
         return failed_before(out, err);
-    if (out->swmr && bf_out_leave_swmr_(out, err))
+    if (bf_out_before_metadata_(out, err))
         return BF_EIO;
-    out->dirty = 1;
     hid_t o = open_obj(out, obj);
     if (o < 0)
         return bf_fail(err, BF_EIO, "%s: cannot open %s", out->path, obj);
@@ -839,9 +830,8 @@ static bf_status num_attr(bf_out *out, const char *obj, const char *name,
 {
     if (out->failed)
         return failed_before(out, err);
-    if (out->swmr && bf_out_leave_swmr_(out, err))
+    if (bf_out_before_metadata_(out, err))
         return BF_EIO;
-    out->dirty = 1;
     hid_t o = open_obj(out, obj);
     if (o < 0)
         return bf_fail(err, BF_EIO, "%s: cannot open %s", out->path, obj);

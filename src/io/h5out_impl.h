@@ -67,6 +67,12 @@ hid_t bf_out_series_dapl_(size_t rows_per_chunk, size_t ncols);
 bf_status bf_out_str_attr_(hid_t obj, const char *name, const char *value);
 
 /* h5swmr.c */
+/* Every series' dataset closed (its id -1). */
+void bf_out_close_series_(bf_out *out);
+/* Before writing anything other than rows (an attribute, an array, a new
+ * or shorter series): out of SWMR mode, which allows only rows, and the
+ * file marked dirty until the next flush. */
+bf_status bf_out_before_metadata_(bf_out *out, bf_err *err);
 bf_status bf_out_enter_swmr_(bf_out *out, bf_err *err);
 bf_status bf_out_leave_swmr_(bf_out *out, bf_err *err);
 bf_status bf_out_log_flush_(bf_out *out, bf_err *err);

@@ -21,7 +21,7 @@
  * a kill loses none), appends its row to the log and flushes again;
  * readers take the rows of the last complete row, so that every series
  * ends at the same flush.  Writing anything other than rows (an attribute,
- * an array, a new series or a shorter one) calls bf_out_leave_swmr_ first,
+ * an array, a new series or a shorter one) calls bf_out_before_metadata_,
  * which closes the file and opens it again without SWMR.  A run's end
  * (its status and counters) is therefore written outside SWMR mode, as
  * set-up is, and a kill there is not covered (docs/reliability.md).  SWMR
@@ -33,9 +33,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Every series' dataset closed, or opened again with its chunk cache
- * (bf_out_series_dapl_); 0, or -1 if one does not open. */
-static void series_close_all(bf_out *out)
+void bf_out_close_series_(bf_out *out)
 {
     for (size_t k = 0; k < out->nseries; k++) {
         H5Dclose(out->series[k]->dset);
@@ -43,6 +41,8 @@ static void series_close_all(bf_out *out)
     }
 }
 
+/* Every series' dataset opened again with its chunk cache
+ * (bf_out_series_dapl_); 0, or -1 if one does not open. */
 static int series_open_all(bf_out *out)
 {
     int rc = 0;
@@ -176,7 +176,7 @@ start:
     if (out->root >= 0)
         H5Oclose(out->root);
     out->root = -1;
-    series_close_all(out);
+    bf_out_close_series_(out);
     herr_t rc = H5Fstart_swmr_write(out->file);
     if (series_open_all(out) < 0) {
         out->failed = 1;
@@ -192,6 +192,14 @@ start:
         return BF_OK;
     }
     out->swmr = 1;
+    return BF_OK;
+}
+
+bf_status bf_out_before_metadata_(bf_out *out, bf_err *err)
+{
+    if (out->swmr && bf_out_leave_swmr_(out, err))
+        return BF_EIO;
+    out->dirty = 1;
     return BF_OK;
 }
 
@@ -212,7 +220,7 @@ bf_status bf_out_leave_swmr_(bf_out *out, bf_err *err)
     out->appending_since = bf_coarse_time();
     H5Dclose(out->log);
     out->log = -1;
-    series_close_all(out);
+    bf_out_close_series_(out);
     herr_t rc = H5Fclose(out->file);
     hid_t fapl = bf_out_fapl_(0);
     out->file = rc < 0 ? -1 : H5Fopen(out->part, H5F_ACC_RDWR, fapl);
