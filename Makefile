@@ -82,7 +82,9 @@ CHECK_LIBS   = $(shell pkg-config --libs check 2>/dev/null)
 LIB_SRC  := $(sort $(filter-out src/cli/%,$(wildcard src/*/*.c)))
 CLI_SRC  := $(sort $(wildcard src/cli/*.c))
 TEST_SRC := $(sort $(wildcard tests/test_*.c))
-TEST_AUX := $(sort $(filter-out tests/test_%,$(wildcard tests/*.c)))
+# tests/killwrite.c is a preloaded library of its own (KILLWRITE below),
+# not a part of the runner, whose own writes it would otherwise wrap.
+TEST_AUX := $(sort $(filter-out tests/test_% tests/killwrite.c,$(wildcard tests/*.c)))
 BENCH_SRC := $(sort $(wildcard bench/*.c))
 
 LIB_OBJ   := $(LIB_SRC:%.c=$(BUILD)/obj/%.o)

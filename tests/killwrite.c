@@ -1,5 +1,6 @@
 /* killwrite.c: a kill at a chosen write, for tests/test_h5out.c
- * (kill_at_every_write_keeps_the_file).
+ * (kill_at_every_write_keeps_the_file), tests/python/test_load_run.py and
+ * tests/killpoints.py.
  *
  * Preloaded into bin/ballfilm (LD_PRELOAD=build/tests/killwrite.so), it
  * wraps pwrite, by which HDF5's default file driver writes, and raises

@@ -173,22 +173,17 @@ START_TEST(sigkill_leaves_readable_file)
 }
 END_TEST
 
-/* A kill inside a flush.  tests/killwrite.c, preloaded into the program,
- * kills it before its K-th write to the file after the file entered SWMR
- * mode (h5out.h, bf_out_start_appending); a flush of this run is about 35
- * to 50 writes (the rows, the chunk indices, the lengths, the superblock,
- * the flush log), so K = 1, 3, ..., 95 falls in every part of two or
- * three flushes.  Before SWMR mode a kill among a flush's writes left
- * files that did not open ("addr overflow"), or datasets of different
- * lengths and rows of zeros, at about a third of these places. */
+/* What run_killed_at counts: the writes to the output file after it
+ * entered SWMR mode, in a long run that flushes every millisecond; or the
+ * writes of checkpoints (one every 1000 steps, t_end 20 s, a flush every
+ * 512 KiB of rows), a kill between two flushes before SWMR mode. */
+enum killed_run { FLUSHING_RUN, CHECKPOINTING_RUN };
+
 /* bin/ballfilm on runs/two_balls_B.ini writing `out`, with
- * tests/killwrite.c preloaded to kill it before its write k (counted from
- * its first write when from_start, else from SWMR mode); `stepping` 1: a
- * long run that flushes every millisecond; 2: k counts the writes of its
- * checkpoints (one every 1000 steps, t_end 20 s, a flush every 512 KiB of
- * rows).  Returns the wait status. */
+ * tests/killwrite.c preloaded to kill it before write k of `what`.
+ * Returns the wait status. */
 static int run_killed_at(const char *shim, const char *out, int k,
-                         int from_start, int stepping)
+                         enum killed_run what)
 {
     const char *bin = getenv("BALLFILM_BIN");
     pid_t pid = fork();
@@ -202,9 +197,7 @@ static int run_killed_at(const char *shim, const char *out, int k,
                  a ? a : "", a && *a ? ":" : "");
         setenv("ASAN_OPTIONS", asan, 1);
         setenv("BF_KILL_AT_WRITE", at, 1);
-        if (from_start)
-            setenv("BF_KILL_FROM_START", "1", 1);
-        if (stepping == 2)
+        if (what == CHECKPOINTING_RUN)
             setenv("BF_KILL_IN", ".ckpt.tmp", 1);
         setenv("LD_PRELOAD", shim, 1);
         if (!freopen("/dev/null", "w", stdout) ||
@@ -212,17 +205,14 @@ static int run_killed_at(const char *shim, const char *out, int k,
             _exit(126);
         const char *scene = tu_repo("runs/two_balls_B.ini");
         const char *prog = bin ? bin : "bin/ballfilm";
-        if (stepping == 1)
+        if (what == FLUSHING_RUN)
             execl(prog, "ballfilm", "run", scene, "-o", out, "-q", "--set",
                   "scene.t_end=1e5", "--set", "scene.output_every=10",
                   "--set", "scene.flush_seconds=0.001", (char *)NULL);
-        else if (stepping == 2)
+        else
             execl(prog, "ballfilm", "run", scene, "-o", out, "-q", "--set",
                   "scene.t_end=20", "--set", "scene.checkpoint_every=1000",
                   "--set", "scene.flush_seconds=1e9", (char *)NULL);
-        else
-            execl(prog, "ballfilm", "run", scene, "-o", out, "-q",
-                  (char *)NULL);
         _exit(127);
     }
     int status;
@@ -230,6 +220,14 @@ static int run_killed_at(const char *shim, const char *out, int k,
     return status;
 }
 
+/* A kill inside a flush.  tests/killwrite.c, preloaded into the program,
+ * kills it before its K-th write to the file after the file entered SWMR
+ * mode (h5out.h, bf_out_start_appending); a flush of this run is about 35
+ * to 50 writes (the rows, the chunk indices, the lengths, the superblock,
+ * the flush log), so K = 1, 3, ..., 95 falls in every part of two or
+ * three flushes.  Before SWMR mode a kill among a flush's writes left
+ * files that did not open ("addr overflow"), or datasets of different
+ * lengths and rows of zeros, at about a third of these places. */
 START_TEST(kill_at_every_write_keeps_the_file)
 {
     const char *shim = getenv("BALLFILM_KILLWRITE");
@@ -242,7 +240,7 @@ START_TEST(kill_at_every_write_keeps_the_file)
     snprintf(part, sizeof part, "%s.part", out);
     for (int k = 1; k <= 95; k += 2) {
         unlink(part);
-        int status = run_killed_at(shim, out, k, 0, 1);
+        int status = run_killed_at(shim, out, k, FLUSHING_RUN);
         ck_assert_msg(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL,
                       "write %d: the run was not killed (status %d)", k,
                       status);
@@ -288,7 +286,7 @@ START_TEST(kill_at_every_write_keeps_the_file)
     snprintf(ckpt, sizeof ckpt, "%s.ckpt", out);
     unlink(part);
     unlink(ckpt);
-    int status = run_killed_at(shim, out, 40, 0, 2);
+    int status = run_killed_at(shim, out, 40, CHECKPOINTING_RUN);
     ck_assert(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
     unsigned char sb[12] = {0};
     FILE *f = fopen(part, "rb");

@@ -25,6 +25,16 @@ def program():
 
 
 @pytest.fixture
+def killwrite():
+    """The library that kills the program at a chosen write of HDF5
+    (tests/killwrite.c; $BALLFILM_KILLWRITE, made by make build-tests)."""
+    shim = os.environ.get("BALLFILM_KILLWRITE",
+                          os.path.join(ROOT, "build", "tests", "killwrite.so"))
+    assert os.path.exists(shim), f"{shim}: made by make build-tests"
+    return shim
+
+
+@pytest.fixture
 def h5same():
     """h5same(a, b): assert that two files hold the same datasets, bit for
     bit (tests/compare/h5same.py)."""

@@ -111,22 +111,20 @@ def test_initial_arrays(root):
     assert list(r["balls/position"][0]) == [0.3, 0.7]
 
 
-def test_a_killed_run_reads_its_last_flush(program, root, tmp_path):
+def test_a_killed_run_reads_its_last_flush(program, root, tmp_path,
+                                           killwrite):
     """A run killed at a write inside a flush (tests/killwrite.c, the K-th
     write after its file entered SWMR mode; a flush is 35-50 writes) is
     read as the program reads it: every series cut to the rows of the last
     complete flush (/flushed_rows), so /time, /step and /balls/position
     have one length and every row is a real one.  Plain h5py would see
     lengths of different flushes at some of these writes."""
-    shim = os.environ.get("BALLFILM_KILLWRITE",
-                          os.path.join(root, "build", "tests", "killwrite.so"))
-    assert os.path.exists(shim), f"{shim}: made by make build-tests"
     out = tmp_path / "k.h5"
     part = str(out) + ".part"
     for k in range(1, 48, 2):
         if os.path.exists(part):
             os.unlink(part)
-        env = dict(os.environ, LD_PRELOAD=shim, BF_KILL_AT_WRITE=str(k))
+        env = dict(os.environ, LD_PRELOAD=killwrite, BF_KILL_AT_WRITE=str(k))
         p = subprocess.run([program, "run",
                             os.path.join(root, "runs/two_balls_B.ini"), "-q",
                             "-o", str(out), "--set", "scene.t_end=1e5",
@@ -146,15 +144,14 @@ def test_a_killed_run_reads_its_last_flush(program, root, tmp_path):
         assert np.all(x[:, 0] > 0) and np.all(x[:, 1] > x[:, 0]), k
 
 
-def test_a_file_marked_open_for_writing_names_h5clear(program, root, tmp_path):
+def test_a_file_marked_open_for_writing_names_h5clear(program, root, tmp_path,
+                                                      killwrite):
     """A run killed before its file entered SWMR mode (tests/killwrite.c
     counting from the first write: the 20th is inside set-up) leaves a file
     that HDF5 marks as open for writing; load says so and names the command
     that clears the mark."""
-    shim = os.environ.get("BALLFILM_KILLWRITE",
-                          os.path.join(root, "build", "tests", "killwrite.so"))
     out = tmp_path / "early.h5"
-    env = dict(os.environ, LD_PRELOAD=shim, BF_KILL_AT_WRITE="20",
+    env = dict(os.environ, LD_PRELOAD=killwrite, BF_KILL_AT_WRITE="20",
                BF_KILL_FROM_START="1")
     p = subprocess.run([program, "run",
                         os.path.join(root, "runs/two_balls_B.ini"), "-q",
