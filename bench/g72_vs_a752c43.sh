@@ -6,16 +6,16 @@
 # The library of a752c43 is built from this repository's history (git
 # archive; needs the commit, so a full clone) in a temporary directory;
 # bench/driver/g72_steps.c is built against it and against build/
-# libballfilm.a.  The two run alternately (the order swapped in every
-# pair), 5 pairs at N = 65536 and 3 at N = 262144; each run takes 100
-# warm-up steps, then the shortest of 3 runs of 20 steps, in CPU time of
-# the process (one thread), and then the support-set gravity alone on the
-# state reached (shortest of 5 evaluations).  Printed: each one's median
-# particle-steps per second, the median of the pairwise speed-ups of the
-# step and of the support-set gravity alone (a752c43 time / now; goal 2,
-# issue 21 item 5) and whether the two end in the same positions and the
-# same g, bit for bit (they must: every change since was made with the
-# same arithmetic).
+# libballfilm.a (brought up to date first).  The two run alternately (the
+# order swapped in every pair), 5 pairs at N = 65536 and 3 at N = 262144;
+# each run takes 100 warm-up steps, then the shortest of 3 runs of 20
+# steps, in CPU time of the process (one thread), and then the support-set
+# gravity alone on the state reached (shortest of 5 evaluations).
+# Printed: each one's median particle-steps per second, the median of
+# the pairwise speed-ups of the step and of the support-set gravity alone
+# (a752c43 time / now; goal 2, issue 21 item 5) and whether the two end
+# in the same positions and the same g, bit for bit (they must: every
+# change since was made with the same arithmetic).
 # Run by make bench (about 3 minutes, most of it the old library's build).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -29,10 +29,10 @@ tmp=$(mktemp -d /tmp/ballfilm-bench-g72.XXXXXX)
 trap 'rm -rf "$tmp"' EXIT
 mkdir "$tmp/old"
 git archive "$OLD" | tar -x -C "$tmp/old"
-echo "building the library of $OLD in $tmp/old ..."
-make -C "$tmp/old" -j2 build/libballfilm.a > "$tmp/old-build.log" 2>&1 ||
-    { tail -20 "$tmp/old-build.log"; exit 1; }
 . bench/driver/build.sh
+echo "building the library of $OLD in $tmp/old ..."
+driver_library "$tmp/old-build.log" "$tmp/old"
+driver_library "$tmp/build.log"
 # shellcheck disable=SC2086
 gcc $DRIVER_CFLAGS -I"$tmp/old/include" -I"$tmp/old/src" $DRIVER_INC \
     bench/driver/g72_steps.c "$tmp/old/build/libballfilm.a" $DRIVER_LIBS \

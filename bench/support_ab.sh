@@ -32,7 +32,7 @@ else
     git show "$REV:src/particles/support_fast.c" > "$tmp/other.c"
 fi
 . bench/driver/build.sh
-driver_library "$tmp"
+driver_library "$tmp/build.log"
 # shellcheck disable=SC2086
 gcc $DRIVER_CFLAGS -fopenmp -Iinclude -Isrc $DRIVER_INC \
     -Dbf_sup_eval_fast=bf_sup_eval_fast_other -c "$tmp/other.c" \

@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 tmp=$(mktemp -d /tmp/ballfilm-support-tiles.XXXXXX)
 trap 'rm -rf "$tmp"' EXIT
 . bench/driver/build.sh
-driver_library "$tmp"
+driver_library "$tmp/build.log"
 # shellcheck disable=SC2086
 gcc $DRIVER_CFLAGS -Iinclude -Isrc -Ibench/driver $DRIVER_INC \
     bench/driver/g72_support_tiles.c build/libballfilm.a $DRIVER_LIBS \

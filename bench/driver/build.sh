@@ -8,10 +8,10 @@ DRIVER_INC="$(pkg-config --cflags hdf5-serial gsl)"
 DRIVER_LIBS="$(pkg-config --libs hdf5-serial) -lhdf5_hl -lsundials_arkode \
   -lsundials_nvecserial -linih $(pkg-config --libs gsl) -lm -fopenmp"
 
-# driver_library DIR: this tree's build/libballfilm.a brought up to date,
-# the log in DIR/build.log (its end printed, and the script stopped, if
-# the build fails).
+# driver_library LOG [TREE]: TREE's build/libballfilm.a (default this
+# tree's) brought up to date, the log in LOG (its end printed, and the
+# script stopped, if the build fails).
 driver_library() {
-    make --no-print-directory -j2 build/libballfilm.a > "$1/build.log" 2>&1 ||
-        { tail -20 "$1/build.log"; exit 1; }
+    make --no-print-directory -C "${2:-.}" -j2 build/libballfilm.a > "$1" 2>&1 ||
+        { tail -20 "$1"; exit 1; }
 }
