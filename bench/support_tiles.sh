@@ -3,8 +3,8 @@
 # local configuration copied side by side in x 1 to 64 times (Greenspan
 # 1972 benchmark scene at n = 64, 128 and 256 after 100 steps), so that N
 # grows from 4096 to 262144 with the same work per particle: does the time
-# per particle grow when the arrays outgrow the caches?  (issue 21 item 5;
-# docs/performance.md, "Eighth round".)  bench/driver/g72_support_tiles.c
+# per particle grow when the arrays outgrow the caches?  (docs/performance.md,
+# "Support-set gravity: the 2x goal".)  bench/driver/g72_support_tiles.c
 # says what is measured.  Run by make bench (about 10 s).
 # Builds build/libballfilm.a first.
 set -euo pipefail

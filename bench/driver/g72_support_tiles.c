@@ -1,7 +1,7 @@
 /* g72_support_tiles.c: does the support-set gravity's fast method get
  * slower per particle when its arrays outgrow the caches?  For
- * bench/support_tiles.sh (issue 21 item 5; docs/performance.md, "Eighth
- * round").
+ * bench/support_tiles.sh (docs/performance.md, "Support-set gravity: the
+ * 2x goal").
  *
  *   g72_support_tiles n T1 [T2 ...]
  *
