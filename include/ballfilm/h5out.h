@@ -35,6 +35,7 @@
 #ifndef BALLFILM_H5OUT_H
 #define BALLFILM_H5OUT_H
 
+#include <signal.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -132,7 +133,15 @@ bf_status bf_out_start_appending(bf_out *out, bf_err *err);
  * several threads of one process may call it). */
 bf_status bf_out_maybe_flush(bf_out *out, double seconds, bf_err *err);
 
-/* ---- reading back (tests, restarts, initial profiles) ---- */
+/* ---- reading back (tests, restarts, initial profiles) ----
+ * A file read may have been written by anyone: every attribute and dataset
+ * is checked for class, shape and size before it is read (a numeric
+ * attribute is one integer or float; a text attribute one string of at
+ * most 1 MiB; a dataset read as float64 of integer or float class, rank 1
+ * or 2, no larger than the file's bytes on disk could hold, or 1100 times
+ * that when it is compressed).  A file that breaks this is refused with
+ * BF_EINPUT, naming the file and the object; a missing file, dataset or
+ * attribute, or a failed read, is BF_EIO. */
 /* Read a whole float64 dataset; *data is malloc'd, dims in n0, n1 (n1 = 0 for
  * 1-D). */
 bf_status bf_h5_read(const char *file, const char *path, double **data,
@@ -164,8 +173,15 @@ typedef struct bf_h5_dataset {
     char unit[64];     /* its "unit" attribute ("" if none) */
     char description[256];
 } bf_h5_dataset;
-/* *list is malloc'd (free it), *n datasets. */
+/* *list is malloc'd (free it), *n datasets.  A unit or description that
+ * is not one bounded string is refused (BF_EINPUT, naming the file and the
+ * dataset). */
 bf_status bf_h5_list(const char *file, bf_h5_dataset **list, size_t *n,
                      bf_err *err);
+/* The same, stopping with BF_INTERRUPTED once *stop_flag is set (checked
+ * before each object; NULL: never stops). */
+bf_status bf_h5_list_until(const char *file, bf_h5_dataset **list,
+                           size_t *n, const volatile sig_atomic_t *stop_flag,
+                           bf_err *err);
 
 #endif

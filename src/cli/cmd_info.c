@@ -26,29 +26,77 @@ static void info_usage(FILE *f)
                "of ballfilm sweep and converge.\n");
 }
 
-/* A root attribute as text ("" if absent). */
-static void text_attr(const char *file, const char *name, char *buf,
-                      size_t cap)
+/* A root attribute as text into buf ("" if absent).  One that is there
+ * but is not one bounded string is an error (BF_EINPUT, in err). */
+static bf_status text_attr(const char *file, const char *name, char *buf,
+                           size_t cap, bf_err *err)
 {
     char *v = NULL;
-    bf_err err = {0};
     buf[0] = '\0';
-    if (!bf_h5_read_attr_str(file, "/", name, &v, &err))
+    bf_status st = bf_h5_read_attr_str(file, "/", name, &v, err);
+    if (!st)
         snprintf(buf, cap, "%s", v);
     free(v);
+    return st == BF_EIO ? BF_OK : st; /* absent: nothing to show */
 }
 
-/* A numeric root attribute; 0 if absent. */
-static int real_attr(const char *file, const char *name, double *v)
+/* A numeric root attribute: 1 if there, 0 if absent, -1 (err set) if it
+ * is not one number. */
+static int real_attr(const char *file, const char *name, double *v,
+                     bf_err *err)
 {
-    bf_err err = {0};
-    return !bf_h5_read_attr_real(file, "/", name, v, &err);
+    bf_status st = bf_h5_read_attr_real(file, "/", name, v, err);
+    return !st ? 1 : st == BF_EIO ? 0 : -1;
 }
 
+/* One character of text from a file, shown so that it cannot drive the
+ * terminal: control characters (C0, DEL, and C1 as UTF-8 or as raw bytes)
+ * and bytes that are not UTF-8 as \xNN or \u00NN escapes, newlines as
+ * `newline`; tabs and printable text as they are.  Returns the bytes of
+ * s taken. */
+static size_t put_char(const unsigned char *s, const char *newline)
+{
+    if (*s == '\n') {
+        fputs(newline, stdout);
+        return 1;
+    }
+    if (*s == '\t' || (*s >= 0x20 && *s < 0x7f)) {
+        putchar(*s);
+        return 1;
+    }
+    size_t len = *s >= 0xc2 && *s <= 0xdf   ? 2
+                 : *s >= 0xe0 && *s <= 0xef ? 3
+                 : *s >= 0xf0 && *s <= 0xf4 ? 4
+                                            : 0;
+    for (size_t k = 1; k < len; k++)
+        if ((s[k] & 0xc0) != 0x80)
+            len = 0;
+    if (!len) {
+        printf("\\x%02x", *s);
+        return 1;
+    }
+    if (s[0] == 0xc2 && s[1] < 0xa0)
+        printf("\\u%04x", s[1]);
+    else
+        fwrite(s, 1, len, stdout);
+    return len;
+}
+
+static void put_text(const char *s, const char *newline)
+{
+    const unsigned char *p = (const unsigned char *)s;
+    while (*p)
+        p += put_char(p, newline);
+}
+
+/* A labelled value; the lines of a text of several go on below it. */
 static void line(const char *label, const char *value)
 {
-    if (value[0])
-        printf("%-26s %s\n", label, value);
+    if (!value[0])
+        return;
+    printf("%-26s ", label);
+    put_text(value, "\n                           ");
+    putchar('\n');
 }
 
 static void shape(const bf_h5_dataset *d, char *buf, size_t cap)
@@ -61,6 +109,82 @@ static void shape(const bf_h5_dataset *d, char *buf, size_t cap)
         snprintf(buf, cap, "[%zu x %zu]", d->dims[0], d->dims[1]);
 }
 
+/* Everything about the file but its datasets' list; 0, or a status with
+ * err set. */
+static int header(const char *file, const char *note, bf_err *err)
+{
+    char buf[1024];
+    printf("%-26s ", "file:");
+    put_text(file, "\\n");
+    printf("%s\n", note);
+    static const char *const texts[][2] = {
+        {"title:", "scene.title"},     {"model:", "scene.model"},
+        {"integrator:", "scene.integrator"}, {"effects:", "scene.effects"},
+        {"written by:", "version"},    {"scene file:", "scene_file"},
+        {"status:", "status"},         {"message:", "message"},
+    };
+    for (size_t k = 0; k < sizeof texts / sizeof *texts; k++) {
+        if (bf_cli_stop)
+            return bf_fail(err, BF_INTERRUPTED, "%s: interrupted", file);
+        if (text_attr(file, texts[k][1], buf, sizeof buf, err))
+            return err->status;
+        line(texts[k][0], buf);
+    }
+    double steps, t, v;
+    int hs = real_attr(file, "steps_done", &steps, err);
+    int ht = hs < 0 ? 0 : real_attr(file, "t_final", &t, err);
+    if (hs < 0 || ht < 0)
+        return err->status;
+    if (hs && ht) {
+        snprintf(buf, sizeof buf, "%.0f (t = %.9g s)", steps, t);
+        line("steps:", buf);
+    }
+    static const char *const counts[][3] = {
+        {"force evaluations:", "force_evaluations", "%.0f"},
+        {"rejected steps:", "rejected_steps", "%.0f"},
+        {"iterations:", "iterations", "%.0f"},
+        {"max relative energy error:", "max_relative_energy_error", "%.6e"},
+    };
+    for (size_t k = 0; k < sizeof counts / sizeof *counts; k++) {
+        int h = real_attr(file, counts[k][1], &v, err);
+        if (h < 0)
+            return err->status;
+        if (h) {
+            snprintf(buf, sizeof buf, counts[k][2], v);
+            line(counts[k][0], buf);
+        }
+    }
+    return bf_cli_stop ? bf_fail(err, BF_INTERRUPTED, "%s: interrupted",
+                                 file)
+                       : 0;
+}
+
+static int show(const char *file, const char *note,
+                const bf_h5_dataset *list, size_t n, bf_err *err)
+{
+    int st = header(file, note, err);
+    if (st)
+        return st;
+    size_t wpath = 8;
+    for (size_t k = 0; k < n; k++)
+        if (strlen(list[k].path) > wpath)
+            wpath = strlen(list[k].path);
+    printf("datasets: %zu\n", n);
+    for (size_t k = 0; k < n; k++) {
+        char sh[64];
+        shape(&list[k], sh, sizeof sh);
+        size_t w = strlen(list[k].path), wu = strlen(list[k].unit);
+        fputs("  ", stdout);
+        put_text(list[k].path, "\\n");
+        printf("%*s  %-16s ", (int)(wpath - w), "", sh);
+        put_text(list[k].unit[0] ? list[k].unit : "-", "\\n");
+        printf("%*s ", wu < 7 ? (int)(7 - (wu ? wu : 1)) : 0, "");
+        put_text(list[k].description, "\\n");
+        putchar('\n');
+    }
+    return 0;
+}
+
 int bf_cmd_info(int argc, char **argv)
 {
     if (argc == 2 && (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help"))) {
@@ -71,7 +195,7 @@ int bf_cmd_info(int argc, char **argv)
         info_usage(stderr);
         return BF_EINPUT;
     }
-    char file[4096], buf[1024];
+    char file[4096];
     snprintf(file, sizeof file, "%s", argv[1]);
     const char *note = "";
     if (access(file, F_OK) && strlen(argv[1]) + 6 < sizeof file) {
@@ -84,52 +208,15 @@ int bf_cmd_info(int argc, char **argv)
     bf_h5_dataset *list;
     size_t n;
     bf_err err = {0};
-    if (bf_h5_list(file, &list, &n, &err)) {
+    if (bf_h5_list_until(file, &list, &n, &bf_cli_stop, &err)) {
         fprintf(stderr, "ballfilm: error: %s\n", err.msg);
         return err.status;
     }
-    printf("%-26s %s%s\n", "file:", file, note);
-    static const char *const texts[][2] = {
-        {"title:", "scene.title"},     {"model:", "scene.model"},
-        {"integrator:", "scene.integrator"}, {"effects:", "scene.effects"},
-        {"written by:", "version"},    {"scene file:", "scene_file"},
-        {"status:", "status"},         {"message:", "message"},
-    };
-    for (size_t k = 0; k < sizeof texts / sizeof *texts; k++) {
-        text_attr(file, texts[k][1], buf, sizeof buf);
-        line(texts[k][0], buf);
-    }
-    double steps, t, v;
-    if (real_attr(file, "steps_done", &steps) &&
-        real_attr(file, "t_final", &t)) {
-        snprintf(buf, sizeof buf, "%.0f (t = %.9g s)", steps, t);
-        line("steps:", buf);
-    }
-    static const char *const counts[][2] = {
-        {"force evaluations:", "force_evaluations"},
-        {"rejected steps:", "rejected_steps"},
-        {"iterations:", "iterations"},
-    };
-    for (size_t k = 0; k < sizeof counts / sizeof *counts; k++)
-        if (real_attr(file, counts[k][1], &v)) {
-            snprintf(buf, sizeof buf, "%.0f", v);
-            line(counts[k][0], buf);
-        }
-    if (real_attr(file, "max_relative_energy_error", &v)) {
-        snprintf(buf, sizeof buf, "%.6e", v);
-        line("max relative energy error:", buf);
-    }
-    size_t wpath = 8;
-    for (size_t k = 0; k < n; k++)
-        if (strlen(list[k].path) > wpath)
-            wpath = strlen(list[k].path);
-    printf("datasets: %zu\n", n);
-    for (size_t k = 0; k < n; k++) {
-        char sh[64];
-        shape(&list[k], sh, sizeof sh);
-        printf("  %-*s  %-16s %-7s %s\n", (int)wpath, list[k].path, sh,
-               list[k].unit[0] ? list[k].unit : "-", list[k].description);
-    }
+    int st = show(file, note, list, n, &err);
     free(list);
-    return 0;
+    if (st) {
+        fflush(stdout);
+        fprintf(stderr, "ballfilm: error: %s\n", err.msg);
+    }
+    return st;
 }

@@ -299,8 +299,9 @@ run:;
         fprintf(stderr, "ballfilm: error: %s\n", cerr.msg);
     else if (!run_st)
         printf("wrote %s\n", out_path);
-    if (!close_st && run_st != BF_EIO)
-        bf_cli_write_xdmf(out_path);
+    if (!close_st && run_st != BF_EIO && run_st != BF_INTERRUPTED &&
+        bf_cli_write_xdmf(out_path) == BF_INTERRUPTED && !st)
+        st = BF_INTERRUPTED;
 done:
     bf_run_free(run);
     free(defout);

@@ -65,7 +65,7 @@ int bf_cmd_xdmf(int argc, char **argv)
         return BF_EINTERNAL;
     bf_err err = {0};
     bf_status st = bf_xdmf_write_n(h5, xmf ? xmf : def, (size_t)max_steps,
-                                   &err);
+                                   &bf_cli_stop, &err);
     if (st)
         fprintf(stderr, "ballfilm: error: %s\n", err.msg);
     else
@@ -74,12 +74,19 @@ int bf_cmd_xdmf(int argc, char **argv)
     return (int)st;
 }
 
-void bf_cli_write_xdmf(const char *h5_path)
+int bf_cli_write_xdmf(const char *h5_path)
 {
     char *xmf = bf_xdmf_default_path(h5_path);
     bf_err err = {0};
-    if (!xmf || bf_xdmf_write(h5_path, xmf, &err))
+    bf_status st = xmf ? bf_xdmf_write_n(h5_path, xmf, BF_XDMF_MAX_STEPS,
+                                         &bf_cli_stop, &err)
+                       : BF_EINTERNAL;
+    if (st == BF_INTERRUPTED)
+        fprintf(stderr, "ballfilm: interrupted: no XDMF sidecar (`ballfilm "
+                        "xdmf %s` writes it)\n", h5_path);
+    else if (st)
         fprintf(stderr, "ballfilm: warning: no XDMF sidecar: %s\n",
                 xmf ? err.msg : "out of memory");
     free(xmf);
+    return (int)st;
 }

@@ -14,6 +14,7 @@
 #include "ballfilm/checkpoint.h"
 
 #include "base/hash.h"
+#include "io/h5check.h"
 
 #include <fcntl.h>
 #include <hdf5.h>
@@ -444,25 +445,33 @@ static herr_t read_one(hid_t g, const char *name, const H5L_info_t *info,
         rc->bad = 1;
         return -1;
     }
-    char kname[16] = "";
-    hid_t a = H5Aopen(d, "kind", H5P_DEFAULT);
+    /* the kind is one short string, checked before it is read
+     * (h5check.h): an attribute of another class or shape is no kind */
+    char *kname = NULL;
+    hid_t a = H5Aexists(d, "kind") > 0 ? H5Aopen(d, "kind", H5P_DEFAULT)
+                                       : -1;
     if (a >= 0) {
-        hid_t t = H5Aget_type(a);
-        if (H5Tget_size(t) < sizeof kname)
-            H5Aread(a, t, kname);
-        H5Tclose(t);
+        bf_err ignore = {0};
+        bf_h5_attr_string(a, "", name, "kind", &kname, &ignore);
         H5Aclose(a);
     }
     kind k = K_REAL;
     int found = 0;
-    for (int q = 0; q < 4; q++)
+    for (int q = 0; q < 4 && kname; q++)
         if (!strcmp(kname, kind_name[q])) {
             k = (kind)q;
             found = 1;
         }
-    hid_t sp = H5Dget_space(d);
+    free(kname);
+    hid_t sp = H5Dget_space(d), dt = H5Dget_type(d);
+    const H5T_class_t cls = dt >= 0 ? H5Tget_class(dt) : H5T_NO_CLASS;
+    if (dt >= 0)
+        H5Tclose(dt);
+    if (cls != (k == K_REAL ? H5T_FLOAT : H5T_INTEGER))
+        found = 0;
     hsize_t n = 0;
-    if (found && H5Sget_simple_extent_ndims(sp) == 1)
+    if (found && H5Sget_simple_extent_type(sp) == H5S_SIMPLE &&
+        H5Sget_simple_extent_ndims(sp) == 1)
         H5Sget_simple_extent_dims(sp, &n, NULL);
     else
         found = 0;

@@ -2,52 +2,45 @@
  * its shape, type, unit and description (h5out.h, bf_h5_list; the
  * program's `ballfilm info`). */
 #include <hdf5.h>
+#include <signal.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "ballfilm/h5out.h"
+#include "io/h5check.h"
 #include "io/h5part.h"
 
 typedef struct lister {
     bf_h5_dataset *list;
     size_t n, cap;
-    int oom;
     bf_h5_flushed *flushed; /* a run's .part: rows of its last flush */
+    const char *file;       /* for messages */
+    bf_err *err;
+    bf_status st;           /* why the listing stopped */
+    const volatile sig_atomic_t *stop_flag;
 } lister;
 
-/* A string attribute of object `obj` (fixed or variable length) into
- * buf; "" when it has none. */
-static void attr_text(hid_t obj, const char *name, char *buf, size_t cap)
+/* The string attribute `name` of dataset `obj` (fixed or variable length,
+ * checked as h5check.h says) into buf; "" when it has none. */
+static bf_status attr_text(hid_t obj, const char *file, const char *path,
+                           const char *name, char *buf, size_t cap,
+                           bf_err *err)
 {
     buf[0] = '\0';
     if (H5Aexists(obj, name) <= 0)
-        return;
+        return BF_OK;
     hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
-    hid_t ft = a < 0 ? -1 : H5Aget_type(a);
-    if (ft >= 0 && H5Tget_class(ft) == H5T_STRING) {
-        hid_t t = H5Tcopy(H5T_C_S1);
-        if (H5Tis_variable_str(ft) > 0) {
-            char *v = NULL;
-            H5Tset_size(t, H5T_VARIABLE);
-            H5Tset_cset(t, H5Tget_cset(ft));
-            if (H5Aread(a, t, &v) >= 0 && v) {
-                snprintf(buf, cap, "%s", v);
-                H5free_memory(v);
-            }
-        } else {
-            size_t len = H5Tget_size(ft);
-            char *v = calloc(len + 1, 1);
-            H5Tset_size(t, len + 1);
-            if (v && H5Aread(a, t, v) >= 0)
-                snprintf(buf, cap, "%s", v);
-            free(v);
-        }
-        H5Tclose(t);
-    }
-    if (ft >= 0)
-        H5Tclose(ft);
-    if (a >= 0)
-        H5Aclose(a);
+    if (a < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot open attribute %s of %s",
+                       file, name, path);
+    char *v = NULL;
+    bf_status st = bf_h5_attr_string(a, file, path, name, &v, err);
+    H5Aclose(a);
+    if (!st)
+        snprintf(buf, cap, "%s", v);
+    free(v);
+    return st;
 }
 
 static herr_t visit(hid_t root, const char *name, const H5O_info_t *info,
@@ -55,13 +48,17 @@ static herr_t visit(hid_t root, const char *name, const H5O_info_t *info,
 {
     lister *l = ctx;
     /* the flush log of a run still written (h5part.h) is not its data */
+    if (l->stop_flag && *l->stop_flag) {
+        l->st = bf_fail(l->err, BF_INTERRUPTED, "%s: interrupted", l->file);
+        return 1;
+    }
     if (info->type != H5O_TYPE_DATASET || !strcmp(name, BF_H5_FLUSH_LOG + 1))
         return 0;
     if (l->n == l->cap) {
         size_t cap = l->cap ? 2 * l->cap : 32;
         bf_h5_dataset *nl = realloc(l->list, cap * sizeof *nl);
         if (!nl) {
-            l->oom = 1;
+            l->st = bf_fail(l->err, BF_EINTERNAL, "out of memory");
             return 1;
         }
         l->list = nl;
@@ -85,13 +82,16 @@ static herr_t visit(hid_t root, const char *name, const H5O_info_t *info,
     H5T_class_t c = H5Tget_class(ty);
     d->kind = c == H5T_INTEGER ? 'i' : c == H5T_FLOAT ? 'f'
               : c == H5T_STRING ? 's' : '?';
-    attr_text(ds, "unit", d->unit, sizeof d->unit);
-    attr_text(ds, "description", d->description, sizeof d->description);
+    l->st = attr_text(ds, l->file, d->path, "unit", d->unit, sizeof d->unit,
+                      l->err);
+    if (!l->st)
+        l->st = attr_text(ds, l->file, d->path, "description",
+                          d->description, sizeof d->description, l->err);
     H5Tclose(ty);
     H5Sclose(sp);
     H5Dclose(ds);
     l->n++;
-    return 0;
+    return l->st ? 1 : 0;
 }
 
 static int by_path(const void *a, const void *b)
@@ -100,8 +100,9 @@ static int by_path(const void *a, const void *b)
                   ((const bf_h5_dataset *)b)->path);
 }
 
-bf_status bf_h5_list(const char *file, bf_h5_dataset **list, size_t *n,
-                     bf_err *err)
+bf_status bf_h5_list_until(const char *file, bf_h5_dataset **list,
+                           size_t *n, const volatile sig_atomic_t *stop_flag,
+                           bf_err *err)
 {
     *list = NULL;
     *n = 0;
@@ -111,18 +112,29 @@ bf_status bf_h5_list(const char *file, bf_h5_dataset **list, size_t *n,
         return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file%s", file,
                        bf_h5_open_hint(file));
     lister l = {0};
-    l.flushed = bf_h5_flushed_load(f);
-    herr_t r = H5Ovisit(f, H5_INDEX_NAME, H5_ITER_NATIVE, visit, &l);
+    l.file = file;
+    l.err = err;
+    l.stop_flag = stop_flag;
+    l.st = bf_h5_flushed_load(f, file, &l.flushed, err);
+    herr_t r = l.st ? 0 : H5Ovisit(f, H5_INDEX_NAME, H5_ITER_NATIVE, visit,
+                                   &l);
     bf_h5_flushed_free(l.flushed);
     H5Fclose(f);
-    if (l.oom || r < 0) {
+    if (!l.st && r < 0)
+        l.st = bf_fail(err, BF_EINPUT, "%s: cannot list its datasets "
+                       "(damaged, or not an HDF5 file of ballfilm)", file);
+    if (l.st) {
         free(l.list);
-        return l.oom ? bf_fail(err, BF_EINTERNAL, "out of memory")
-                     : bf_fail(err, BF_EIO, "%s: cannot list its datasets",
-                               file);
+        return l.st;
     }
     qsort(l.list, l.n, sizeof *l.list, by_path);
     *list = l.list;
     *n = l.n;
     return BF_OK;
+}
+
+bf_status bf_h5_list(const char *file, bf_h5_dataset **list, size_t *n,
+                     bf_err *err)
+{
+    return bf_h5_list_until(file, list, n, NULL, err);
 }

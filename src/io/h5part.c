@@ -1,6 +1,7 @@
 /* h5part.c: reading a run's file while it is written or after a kill (see
  * h5part.h). */
 #include "io/h5part.h"
+#include "io/h5check.h"
 
 #include <stdint.h>
 #include <stdio.h>
@@ -27,17 +28,11 @@ char *bf_h5_attr_text(hid_t loc, const char *obj, const char *name)
     hid_t a = H5Aopen_by_name(loc, obj, name, H5P_DEFAULT, H5P_DEFAULT);
     if (a < 0)
         return NULL;
-    hid_t t = H5Tcopy(H5T_C_S1);
-    H5Tset_size(t, H5T_VARIABLE);
-    H5Tset_cset(t, H5T_CSET_UTF8);
-    char *v = NULL, *copy = NULL;
-    if (H5Aread(a, t, &v) >= 0 && v) {
-        copy = strdup(v);
-        H5free_memory(v);
-    }
-    H5Tclose(t);
+    char *v = NULL;
+    bf_err ignore = {0};
+    bf_h5_attr_string(a, "", obj, name, &v, &ignore);
     H5Aclose(a);
-    return copy;
+    return v;
 }
 
 hid_t bf_h5_open_read(const char *file)
@@ -90,46 +85,20 @@ void bf_h5_flushed_free(bf_h5_flushed *fl)
     free(fl);
 }
 
-bf_h5_flushed *bf_h5_flushed_load(hid_t f)
+/* The log's last complete row (see h5part.h) into a new bf_h5_flushed,
+ * with the series named, one per line, in text. */
+static bf_h5_flushed *flushed_of(const int64_t *row, size_t width,
+                                 const char *text)
 {
-    if (H5Lexists(f, BF_H5_FLUSH_LOG, H5P_DEFAULT) <= 0)
-        return NULL;
-    hid_t log = H5Dopen2(f, BF_H5_FLUSH_LOG, H5P_DEFAULT);
-    if (log < 0)
-        return NULL;
-    hid_t sp = H5Dget_space(log);
-    hsize_t dims[2] = {0, 0};
-    int rank = H5Sget_simple_extent_ndims(sp);
-    if (rank == 2)
-        H5Sget_simple_extent_dims(sp, dims, NULL);
-    H5Sclose(sp);
-    char *text = bf_h5_attr_text(log, ".", "series");
-    int64_t *v = NULL;
-    bf_h5_flushed *fl = NULL;
-    size_t width = (size_t)dims[1], nrows = (size_t)dims[0];
-    if (rank != 2 || width < 1 || !nrows || !text)
-        goto done;
-    v = malloc(nrows * width * sizeof *v);
-    if (!v || H5Dread(log, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                      v) < 0)
-        goto done;
-    /* the last row that was written whole: its first value is its number */
-    size_t r = nrows;
-    while (r > 0 && v[(r - 1) * width] != (int64_t)r)
-        r--;
-    if (!r)
-        goto done;
-    const int64_t *row = v + (r - 1) * width;
-    fl = calloc(1, sizeof *fl);
+    bf_h5_flushed *fl = calloc(1, sizeof *fl);
     if (!fl || !(fl->path = calloc(width, sizeof *fl->path)) ||
         !(fl->rows = calloc(width, sizeof *fl->rows))) {
         bf_h5_flushed_free(fl);
-        fl = NULL;
-        goto done;
+        return NULL;
     }
-    char *line = text;
+    const char *line = text;
     for (size_t k = 0; k + 1 < width && line && *line; k++) {
-        char *end = strchr(line, '\n');
+        const char *end = strchr(line, '\n');
         size_t len = end ? (size_t)(end - line) : strlen(line);
         fl->path[fl->n] = malloc(len + 1);
         if (!fl->path[fl->n])
@@ -140,11 +109,67 @@ bf_h5_flushed *bf_h5_flushed_load(hid_t f)
         fl->n++;
         line = end ? end + 1 : NULL;
     }
-done:
+    return fl;
+}
+
+bf_status bf_h5_flushed_load(hid_t f, const char *file, bf_h5_flushed **out,
+                             bf_err *err)
+{
+    *out = NULL;
+    if (H5Lexists(f, BF_H5_FLUSH_LOG, H5P_DEFAULT) <= 0)
+        return BF_OK;
+    hid_t log = H5Dopen2(f, BF_H5_FLUSH_LOG, H5P_DEFAULT);
+    if (log < 0)
+        return bf_fail(err, BF_EINPUT, "%s: %s is not a dataset", file,
+                       BF_H5_FLUSH_LOG);
+    hsize_t dims[2];
+    int rank = 0;
+    size_t count = 0;
+    char *text = NULL;
+    int64_t *v = NULL;
+    hid_t t = H5Dget_type(log);
+    int integer = t >= 0 && H5Tget_class(t) == H5T_INTEGER;
+    if (t >= 0)
+        H5Tclose(t);
+    bf_status st = bf_h5_dataset_shape(log, file, BF_H5_FLUSH_LOG, &rank,
+                                       dims, err);
+    if (!st && (rank != 2 || dims[1] < 1 || !integer))
+        st = bf_fail(err, BF_EINPUT, "%s: %s is not a table of integers "
+                     "(damaged, or not a ballfilm file)", file,
+                     BF_H5_FLUSH_LOG);
+    if (!st)
+        st = bf_h5_dataset_fits(log, file, BF_H5_FLUSH_LOG, dims[0], dims[1],
+                                bf_h5_file_bytes(file), &count, err);
+    /* a log without rows (a kill before its first flush) may not have
+     * its attribute yet */
+    if (!st && count) {
+        hid_t a = H5Aopen(log, "series", H5P_DEFAULT);
+        st = a < 0 ? bf_fail(err, BF_EINPUT, "%s: %s names no series", file,
+                             BF_H5_FLUSH_LOG)
+                   : bf_h5_attr_string(a, file, BF_H5_FLUSH_LOG, "series",
+                                       &text, err);
+        if (a >= 0)
+            H5Aclose(a);
+    }
+    if (!st && count && !(v = malloc(count * sizeof *v)))
+        st = bf_fail(err, BF_EINTERNAL, "out of memory");
+    if (!st && count && H5Dread(log, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL,
+                                H5P_DEFAULT, v) < 0)
+        st = bf_fail(err, BF_EIO, "%s: cannot read %s", file,
+                     BF_H5_FLUSH_LOG);
+    if (!st && count) {
+        /* the last row that was written whole: its first value is its
+         * number */
+        size_t width = (size_t)dims[1], r = (size_t)dims[0];
+        while (r > 0 && v[(r - 1) * width] != (int64_t)r)
+            r--;
+        if (r && !(*out = flushed_of(v + (r - 1) * width, width, text)))
+            st = bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
     free(v);
     free(text);
     H5Dclose(log);
-    return fl;
+    return st;
 }
 
 hsize_t bf_h5_flushed_rows(const bf_h5_flushed *fl, const char *path,

@@ -26,6 +26,8 @@
 
 #include <hdf5.h>
 
+#include "ballfilm/error.h"
+
 #define BF_H5_FLUSH_LOG "/flushed_rows"
 
 /* Set on a file-access list the property that `h5clear -s` sets: an open
@@ -33,8 +35,9 @@
  * read-only one leaves it in the file).  0, or -1 if this HDF5 has none. */
 int bf_h5_fapl_past_mark(hid_t fapl);
 
-/* The UTF-8 string attribute `name` of object `obj` ("/") under loc, as a
- * malloc'd copy; NULL when there is none or it cannot be read. */
+/* The string attribute `name` of object `obj` ("/") under loc, as a
+ * malloc'd copy, read as h5check.h says; NULL when there is none or it is
+ * not one bounded string. */
 char *bf_h5_attr_text(hid_t loc, const char *obj, const char *name);
 
 /* FILE read-only: a plain open; for the file of a writer in SWMR mode, a
@@ -54,10 +57,13 @@ const char *bf_h5_open_hint(const char *file);
 
 typedef struct bf_h5_flushed bf_h5_flushed;
 
-/* The rows of the last complete flush of file f (see above); NULL when f
- * has no log (a finished run's file, or one not written by h5out.c) or
- * no complete row of it. */
-bf_h5_flushed *bf_h5_flushed_load(hid_t f);
+/* The rows of the last complete flush of file f, named `file` (see
+ * above), into *out: NULL when f has no log (a finished run's file, or one
+ * not written by h5out.c) or no complete row of it.  A log that is not a
+ * bounded table of integers with its series named is refused (BF_EINPUT,
+ * naming the file). */
+bf_status bf_h5_flushed_load(hid_t f, const char *file, bf_h5_flushed **out,
+                             bf_err *err);
 /* The rows of dataset `path` ("/time") that a reader may take: `extent`,
  * or fewer when the log holds fewer for it. */
 hsize_t bf_h5_flushed_rows(const bf_h5_flushed *fl, const char *path,

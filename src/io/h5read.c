@@ -4,17 +4,20 @@
  * reads from a bf_h5_reader, one open for several reads) and reports a
  * missing file, dataset or attribute through err, naming it.  The file of
  * a run still written, or killed, is read as h5part.h says: the rows of
- * its last complete flush. */
+ * its last complete flush.  Nothing is read before its class, shape and
+ * size are checked (h5check.h). */
 #include <hdf5.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "ballfilm/h5out.h"
+#include "io/h5check.h"
 #include "io/h5part.h"
 
 struct bf_h5_reader {
     hid_t file;
     char *name; /* for messages */
+    double bytes; /* its size on disk: what its datasets can hold */
     bf_h5_flushed *flushed; /* rows of the last flush of a run's .part */
 };
 
@@ -36,8 +39,13 @@ bf_status bf_h5_reader_open(bf_h5_reader **r, const char *file, bf_err *err)
         return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file%s", file,
                        bf_h5_open_hint(file));
     }
-    (*r)->flushed = bf_h5_flushed_load((*r)->file);
-    return BF_OK;
+    (*r)->bytes = bf_h5_file_bytes(file);
+    bf_status st = bf_h5_flushed_load((*r)->file, file, &(*r)->flushed, err);
+    if (st) {
+        bf_h5_reader_close(*r);
+        *r = NULL;
+    }
+    return st;
 }
 
 void bf_h5_reader_close(bf_h5_reader *r)
@@ -59,37 +67,41 @@ bf_status bf_h5_reader_read(bf_h5_reader *r, const char *path, double **data,
     hid_t d = H5Dopen2(r->file, path, H5P_DEFAULT);
     if (d < 0)
         return bf_fail(err, BF_EIO, "%s: no dataset %s", file, path);
-    hid_t sp = H5Dget_space(d);
-    int rank = H5Sget_simple_extent_ndims(sp);
-    hsize_t dims[2] = {0, 0};
-    bf_status st = BF_OK;
-    if (rank < 1 || rank > 2) {
-        st = bf_fail(err, BF_EIO, "%s: %s has rank %d (want 1 or 2)", file, path,
-                     rank);
-    } else {
-        H5Sget_simple_extent_dims(sp, dims, NULL);
-        /* the rows of the last complete flush (h5part.h) */
-        hsize_t rows = bf_h5_flushed_rows(r->flushed, path, dims[0]);
-        hsize_t start[2] = {0, 0}, count[2] = {rows, dims[1]};
-        dims[0] = rows;
-        H5Sselect_hyperslab(sp, H5S_SELECT_SET, start, NULL, count, NULL);
+    int rank = 0;
+    hsize_t dims[2];
+    size_t total = 0;
+    bf_status st = bf_h5_dataset_shape(d, file, path, &rank, dims, err);
+    /* the rows of the last complete flush (h5part.h) */
+    if (!st)
+        dims[0] = bf_h5_flushed_rows(r->flushed, path, dims[0]);
+    if (!st)
+        st = bf_h5_dataset_fits(d, file, path, dims[0],
+                                rank == 2 ? dims[1] : 1, r->bytes, &total,
+                                err);
+    double *buf = NULL;
+    if (!st && !(buf = malloc((total ? total : 1) * sizeof *buf)))
+        st = bf_fail(err, BF_EINTERNAL, "out of memory");
+    if (!st && total) {
+        hid_t sp = H5Dget_space(d);
+        hsize_t start[2] = {0, 0}, count[2] = {dims[0], dims[1]};
         hid_t msp = H5Screate_simple(rank, count, NULL);
-        size_t total = (size_t)dims[0] * (rank == 2 ? (size_t)dims[1] : 1);
-        double *buf = malloc((total ? total : 1) * sizeof *buf);
-        if (!buf)
-            st = bf_fail(err, BF_EINTERNAL, "out of memory");
-        else if (total && H5Dread(d, H5T_NATIVE_DOUBLE, msp, sp, H5P_DEFAULT,
-                                  buf) < 0) {
-            free(buf);
+        if (sp < 0 || msp < 0 ||
+            H5Sselect_hyperslab(sp, H5S_SELECT_SET, start, NULL, count,
+                                NULL) < 0 ||
+            H5Dread(d, H5T_NATIVE_DOUBLE, msp, sp, H5P_DEFAULT, buf) < 0)
             st = bf_fail(err, BF_EIO, "%s: cannot read %s", file, path);
-        } else {
-            *data = buf;
-            *n0 = (size_t)dims[0];
-            *n1 = rank == 2 ? (size_t)dims[1] : 0;
-        }
-        H5Sclose(msp);
+        if (msp >= 0)
+            H5Sclose(msp);
+        if (sp >= 0)
+            H5Sclose(sp);
     }
-    H5Sclose(sp);
+    if (st) {
+        free(buf);
+    } else {
+        *data = buf;
+        *n0 = (size_t)dims[0];
+        *n1 = rank == 2 ? (size_t)dims[1] : 0;
+    }
     H5Dclose(d);
     return st;
 }
@@ -97,13 +109,15 @@ bf_status bf_h5_reader_read(bf_h5_reader *r, const char *path, double **data,
 bf_status bf_h5_reader_attr_real(bf_h5_reader *r, const char *obj,
                                  const char *name, double *value, bf_err *err)
 {
-    hid_t a = H5Aopen_by_name(r->file, obj, name, H5P_DEFAULT, H5P_DEFAULT);
-    bf_status st = BF_OK;
-    if (a < 0 || H5Aread(a, H5T_NATIVE_DOUBLE, value) < 0)
-        st = bf_fail(err, BF_EIO, "%s: no numeric attribute %s on %s", r->name,
-                     name, obj);
-    if (a >= 0)
-        H5Aclose(a);
+    hid_t a = H5Aexists_by_name(r->file, obj, name, H5P_DEFAULT) > 0
+                  ? H5Aopen_by_name(r->file, obj, name, H5P_DEFAULT,
+                                    H5P_DEFAULT)
+                  : -1;
+    if (a < 0)
+        return bf_fail(err, BF_EIO, "%s: no numeric attribute %s on %s",
+                       r->name, name, obj);
+    bf_status st = bf_h5_attr_number(a, r->name, obj, name, value, err);
+    H5Aclose(a);
     return st;
 }
 
@@ -140,10 +154,17 @@ bf_status bf_h5_read_attr_str(const char *file, const char *obj,
     bf_status st = bf_h5_reader_open(&r, file, err);
     if (st)
         return st;
-    if (H5Aexists_by_name(r->file, obj, name, H5P_DEFAULT) <= 0)
-        st = bf_fail(err, BF_EIO, "%s: no attribute %s on %s", file, name, obj);
-    else if (!(*value = bf_h5_attr_text(r->file, obj, name)))
-        st = bf_fail(err, BF_EIO, "%s: cannot read attribute %s", file, name);
+    hid_t a = H5Aexists_by_name(r->file, obj, name, H5P_DEFAULT) > 0
+                  ? H5Aopen_by_name(r->file, obj, name, H5P_DEFAULT,
+                                    H5P_DEFAULT)
+                  : -1;
+    if (a < 0) {
+        st = bf_fail(err, BF_EIO, "%s: no attribute %s on %s", file, name,
+                     obj);
+    } else {
+        st = bf_h5_attr_string(a, file, obj, name, value, err);
+        H5Aclose(a);
+    }
     bf_h5_reader_close(r);
     return st;
 }

@@ -8,18 +8,19 @@
  * XDMF's rectilinear ordering, and explicit points put x and y where they
  * belong without copying a field.
  */
-#define _XOPEN_SOURCE 700 /* realpath */
 #include "io/xdmf.h"
+#include "io/xdmf_file.h"
+#include "io/h5check.h"
 #include "io/h5part.h"
 
-#include <fcntl.h>
 #include <hdf5.h>
 #include <limits.h>
+#include <math.h>
+#include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 typedef struct dset {
@@ -40,8 +41,20 @@ typedef struct dset_cache {
     size_t n;
 } dset_cache;
 
+/* Why the sidecar stopped: the first failure, kept where grids that
+ * cannot return one (grid_fn) find it. */
+typedef struct xfail {
+    bf_status st;
+    bf_err *err;
+} xfail;
+
 typedef struct xw {
     FILE *f;
+    const char *h5name; /* the HDF5 file as given, for messages */
+    double bytes;       /* its size on disk */
+    double budget;      /* bytes the sidecar may take (budget_of) */
+    const volatile sig_atomic_t *stop_flag;
+    xfail *fail;
     hid_t h5;
     char *href;       /* the HDF5 file as the sidecar names it (escaped) */
     size_t max_steps; /* grids per collection at most (0: all) */
@@ -68,27 +81,55 @@ static dset dset_of(const xw *x, const char *path)
     return d;
 }
 
+/* Record the first failure; 1 once there is one. */
+static int failed(const xw *x, bf_status st)
+{
+    if (st && !x->fail->st)
+        x->fail->st = st;
+    return x->fail->st != BF_OK;
+}
+
+/* 1 once the sidecar must stop: a failure, or SIGINT/SIGTERM. */
+static int stopped(const xw *x)
+{
+    if (x->stop_flag && *x->stop_flag && !x->fail->st)
+        failed(x, bf_fail(x->fail->err, BF_INTERRUPTED, "interrupted"));
+    return x->fail->st != BF_OK;
+}
+
+/* A dataset the sidecar names, checked as h5check.h says: numbers of rank
+ * 1 or 2 that the file could hold.  Absent: rank 0; anything else fails
+ * the sidecar (BF_EINPUT, naming the file and the dataset). */
 static dset dset_read(const xw *x, const char *path)
 {
     dset d = {0, 0, 0, 0, NULL};
     if (H5Lexists(x->h5, path, H5P_DEFAULT) <= 0)
         return d;
     hid_t id = H5Dopen2(x->h5, path, H5P_DEFAULT);
-    if (id < 0)
+    if (id < 0) {
+        failed(x, bf_fail(x->fail->err, BF_EINPUT, "%s: %s is not a dataset",
+                          x->h5name, path));
         return d;
-    hid_t sp = H5Dget_space(id), t = H5Dget_type(id);
-    hsize_t dims[2] = {0, 0};
-    int rank = H5Sget_simple_extent_ndims(sp);
-    if (rank == 1 || rank == 2) {
-        H5Sget_simple_extent_dims(sp, dims, NULL);
+    }
+    hsize_t dims[2];
+    int rank = 0;
+    size_t count;
+    bf_status st = bf_h5_dataset_shape(id, x->h5name, path, &rank, dims,
+                                       x->fail->err);
+    if (!st) {
         dims[0] = bf_h5_flushed_rows(x->flushed, path, dims[0]);
+        st = bf_h5_dataset_fits(id, x->h5name, path, dims[0],
+                                rank == 2 ? dims[1] : 1, x->bytes, &count,
+                                x->fail->err);
+    }
+    if (!failed(x, st)) {
+        hid_t t = H5Dget_type(id);
         d.rank = rank;
         d.is_int = H5Tget_class(t) == H5T_INTEGER;
         d.n0 = (size_t)dims[0];
         d.n1 = rank == 2 ? (size_t)dims[1] : 0;
+        H5Tclose(t);
     }
-    H5Tclose(t);
-    H5Sclose(sp);
     H5Dclose(id);
     return d;
 }
@@ -286,8 +327,11 @@ static void point_set(const xw *x, const char *px, const char *py, size_t k,
             fputs("<DataItem Dimensions=\"", x->f);
             put_size(x, a.n1);
             fputs("\" NumberType=\"Float\" Format=\"XML\">", x->f);
-            for (size_t i = 0; i < a.n1; i++)
+            for (size_t i = 0; i < a.n1; i++) {
+                if (!(i & 0xffff) && stopped(x))
+                    return;
                 fputs(i ? " 0" : "0", x->f);
+            }
             fputs("</DataItem>\n", x->f);
         }
     }
@@ -296,6 +340,23 @@ static void point_set(const xw *x, const char *px, const char *py, size_t k,
 }
 
 /* ---------------------------------------------------------- collections */
+
+/* The fewest bytes of a grid of a collection (its Grid, Time, Topology
+ * and Geometry elements alone take more). */
+enum { GRID_BYTES_MIN = 200 };
+
+/* 1 (and the sidecar fails) once what was written exceeds the budget. */
+static int over_budget(const xw *x)
+{
+    off_t at = ftello(x->f); /* -1 on a pipe, which fills no disk */
+    if (at < 0 || (double)at <= x->budget)
+        return 0;
+    return failed(x, bf_fail(x->fail->err, BF_EINPUT, "%s: its sidecar "
+                             "would be larger than %.0f bytes, the most one "
+                             "of a file of %.0f bytes may take (damaged, or "
+                             "--max-steps thins it)", x->h5name, x->budget,
+                             x->bytes));
+}
 
 typedef void (*grid_fn)(const xw *x, size_t row, const void *ctx, int depth);
 
@@ -310,14 +371,27 @@ static void collection(const xw *x, const char *name, const double *times,
     if (x->max_steps && rows > x->max_steps)
         s = (rows + x->max_steps - 2) / (x->max_steps - 1 ? x->max_steps - 1
                                                           : 1);
+    /* a grid takes more than GRID_BYTES_MIN bytes: refused at the start
+     * when they could not fit in the budget */
+    const double grids = (double)(rows / s + 1);
+    if (grids * GRID_BYTES_MIN > x->budget) {
+        failed(x, bf_fail(x->fail->err, BF_EINPUT, "%s: %zu rows of %s make "
+                          "a sidecar larger than %.0f bytes, the most one of "
+                          "a file of %.0f bytes may take (--max-steps "
+                          "thins it)", x->h5name, rows, name, x->budget,
+                          x->bytes));
+        return;
+    }
     if (s > 1)
         fprintf(x->f, "    <!-- %s: every %zu-th of %zu rows (ballfilm xdmf "
                       "--all for every row) -->\n", name, s, rows);
     fprintf(x->f, "    <Grid Name=\"%s\" GridType=\"Collection\" "
                   "CollectionType=\"Temporal\">\n", name);
-    for (size_t k = 0; k < rows; k += s) {
+    for (size_t k = 0, g = 0; k < rows; k += s, g++) {
         if (k + s >= rows)
             k = rows - 1;
+        if (stopped(x) || (!(g & 63) && over_budget(x)))
+            return;
         fprintf(x->f, "      <Grid Name=\"%s\" GridType=\"Uniform\">\n"
                       "        <Time Value=\"%.17g\"/>\n", name, times[k]);
         fn(x, k, ctx, 4);
@@ -360,12 +434,17 @@ static bf_status timed(const xw *x, const char *name, const char *tpath,
         need[m++] = series[k];
     need[m] = NULL;
     size_t rows = min_rows(x, need);
+    if (x->fail->st)
+        return x->fail->st;
+    if (dset_of(x, need[0]).rank != 1)
+        return bf_fail(err, BF_EINPUT, "%s: %s is not a list of times (rank "
+                       "1) for %s", x->h5name, need[0], name);
     double *t = row_times(x, tpath, spath, rows);
     if (!t)
         return bf_fail(err, BF_EIO, "cannot read the times of %s", name);
     collection(x, name, t, rows, fn, ctx);
     free(t);
-    return BF_OK;
+    return x->fail->st;
 }
 
 /* ---------------------------------------------------------------- film */
@@ -446,11 +525,13 @@ typedef struct mac_mesh {
 
 static void mac_coordinates(const xw *x, const mac_mesh *m)
 {
-    for (int c = 0; c < 2; c++) {
+    for (int c = 0; c < 2 && !stopped(x) && !over_budget(x); c++) {
         fprintf(x->f, "    <DataItem Name=\"%s_%c\" Dimensions=\"%zu %zu\" "
                       "NumberType=\"Float\" Precision=\"8\" Format=\"XML\">\n",
                 m->name, "xy"[c], m->ni1, m->nj1);
         for (size_t i = 0; i < m->ni1; i++) {
+            if (stopped(x) || over_budget(x))
+                return;
             fputs("     ", x->f);
             for (size_t j = 0; j < m->nj1; j++)
                 fprintf(x->f, " %.17g",
@@ -484,16 +565,43 @@ static void mac_grid(const xw *x, size_t k, const void *ctx, int depth)
         attribute(x, f[0], m->center, f[1], k, &sh, depth);
 }
 
+/* 1 if series `path` is absent or has `values` values a row. */
+static int fits_row(const xw *x, const char *path, double values)
+{
+    dset d = dset_of(x, path);
+    return d.rank != 2 || (double)d.n1 == values;
+}
+
 static bf_status write_mac(const xw *x, bf_err *err)
 {
     dset g = dset_of(x, "/mac/grid");
     double *grid = g.rank == 1 && g.n0 >= 4 ? read_vec(x, "/mac/grid", 4)
                                              : NULL;
+    if (x->fail->st)
+        return x->fail->st;
     if (!grid)
         return bf_fail(err, BF_EIO, "no readable /mac/grid (ni, nj, dx, dy)");
-    size_t ni = (size_t)grid[0], nj = (size_t)grid[1];
-    double dx = grid[2], dy = grid[3];
+    const double gi = grid[0], gj = grid[1], dx = grid[2], dy = grid[3];
     free(grid);
+    /* the cells the fields hold: ni nj of /mac/p, and the points of the
+     * meshes written inline, 2 (ni + 1) (nj + 1) of each of three, at two
+     * bytes at least each */
+    const double cells = gi * gj, points = 6.0 * (gi + 1.0) * (gj + 1.0);
+    if (!(gi >= 1 && gj >= 1 && gi == floor(gi) && gj == floor(gj) &&
+          cells == (double)dset_of(x, "/mac/p").n1 && isfinite(dx) &&
+          isfinite(dy) &&
+          fits_row(x, "/mac/u", (gi + 1.0) * gj) &&
+          fits_row(x, "/mac/v", gi * (gj + 1.0))))
+        return bf_fail(err, BF_EINPUT, "%s: /mac/grid (%g, %g, %g, %g) is "
+                       "not a grid of the cells of /mac/p (%zu values a "
+                       "row)", x->h5name, gi, gj, dx, dy,
+                       dset_of(x, "/mac/p").n1);
+    if (2.0 * points > x->budget)
+        return bf_fail(err, BF_EINPUT, "%s: /mac/grid's %g x %g cells make a "
+                       "sidecar larger than %.0f bytes, the most one of a "
+                       "file of %.0f bytes may take", x->h5name, gi, gj,
+                       x->budget, x->bytes);
+    const size_t ni = (size_t)gi, nj = (size_t)gj;
     /* cell (I,J), I, J from 1, covers [(I-2)dx, (I-1)dx) x [(J-2)dy, ...) */
     static const char *const cell_f[] = {"p", "/mac/p", "rho", "/mac/rho",
                                          "T", "/mac/T", "flags", "/mac/flags",
@@ -511,6 +619,8 @@ static bf_status write_mac(const xw *x, bf_err *err)
         {"/mac/v", NULL}};
     for (int m = 0; m < 3; m++)
         mac_coordinates(x, &mesh[m]);
+    if (x->fail->st)
+        return x->fail->st;
     for (int m = 0; m < 3; m++) {
         bf_status st = timed(x, mesh[m].name, "/time", NULL, series[m],
                              mac_grid, &mesh[m], err);
@@ -526,119 +636,90 @@ static bf_status write_mac(const xw *x, bf_err *err)
     return BF_OK;
 }
 
-/* --------------------------------------------------------------- files */
-
-/* The directory of path, resolved (malloc'd). */
-static char *real_dir(const char *path)
+/* The numeric root attribute `name` (checked, h5check.h), or fallback
+ * when the file has none. */
+static bf_status root_real(const xw *x, const char *name, double fallback,
+                           double *v, bf_err *err)
 {
-    char *d = strdup(path);
-    if (!d)
-        return NULL;
-    char *slash = strrchr(d, '/');
-    if (slash)
-        *(slash == d ? slash + 1 : slash) = '\0';
-    char *r = realpath(slash ? d : ".", NULL);
-    free(d);
-    return r;
+    *v = fallback;
+    if (H5Aexists(x->h5, name) <= 0)
+        return BF_OK;
+    hid_t a = H5Aopen(x->h5, name, H5P_DEFAULT);
+    if (a < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot open attribute %s",
+                       x->h5name, name);
+    bf_status st = bf_h5_attr_number(a, x->h5name, "/", name, v, err);
+    H5Aclose(a);
+    return st;
 }
 
-/* target named relative to the directory dir (both absolute). */
-static char *relative(const char *target, const char *dir)
+/* Every dataset a sidecar may name, checked before anything is written:
+ * a file that would fail half way is refused at the start. */
+static bf_status check_datasets(const xw *x)
 {
-    size_t common = 0, k = 0;
-    for (; target[k] && target[k] == dir[k]; k++)
-        if (target[k] == '/')
-            common = k;
-    if (!dir[k] && target[k] == '/')
-        common = k;
-    size_t ups = 0;
-    for (const char *p = dir + common; *p; p++)
-        ups += *p == '/' && p[1] != '\0';
-    if (!strcmp(dir, "/"))
-        ups = 0;
-    const char *rest = target + common + 1;
-    char *r = malloc(3 * ups + strlen(rest) + 1);
-    if (!r)
-        return NULL;
-    r[0] = '\0';
-    for (size_t u = 0; u < ups; u++)
-        strcat(r, "../");
-    strcat(r, rest);
-    return r;
+    static const char *const all[] = {
+        "/time", "/film/x", "/film/time", "/film/psi", "/film/h",
+        "/film/u_d", "/film/u_c", "/balls/position", "/balls/velocity",
+        "/balls/mass", "/balls/radius", "/particles/x", "/particles/y",
+        "/particles/vx", "/particles/vy", "/particles/tag",
+        "/particles/mass", "/particles/inertia", "/particles/fixed",
+        "/particles/gravity", "/particles/step", "/mac/grid", "/mac/p",
+        "/mac/rho", "/mac/T", "/mac/flags", "/mac/u", "/mac/v",
+        "/mac/particles/x", "/mac/particles/y", "/mac/particles/density",
+        "/mac/particles/flag", NULL};
+    for (const char *const *p = all; *p && !x->fail->st; p++)
+        dset_of(x, *p);
+    return x->fail->st;
 }
 
-/* XML-escaped copy of s (malloc'd). */
-static char *xml_escape(const char *s)
+/* The film's nodes: n, x_0 and dx of /film/x, checked against the rows of
+ * the film's series. */
+static bf_status film_nodes(const xw *x, const dset *fx, double xs[3],
+                            bf_err *err)
 {
-    char *e = malloc(6 * strlen(s) + 1), *o = e;
-    if (!e)
-        return NULL;
-    for (; *s; s++) {
-        const char *r = *s == '&'    ? "&amp;"
-                        : *s == '<'  ? "&lt;"
-                        : *s == '>'  ? "&gt;"
-                        : *s == '"'  ? "&quot;"
-                        : *s == '\'' ? "&apos;"
-                                     : NULL;
-        if (r) {
-            strcpy(o, r);
-            o += strlen(r);
-        } else {
-            *o++ = *s;
-        }
-    }
-    *o = '\0';
-    return e;
-}
-
-static char *href_of(const char *h5_path, const char *xmf_path)
-{
-    char *target = realpath(h5_path, NULL), *dir = real_dir(xmf_path);
-    char *rel = target && dir ? relative(target, dir) : NULL;
-    char *e = rel ? xml_escape(rel) : NULL;
-    free(target);
-    free(dir);
-    free(rel);
-    return e;
-}
-
-static double root_real(hid_t h5, const char *name, double fallback)
-{
-    double v = fallback;
-    if (H5Aexists(h5, name) <= 0)
-        return v;
-    hid_t a = H5Aopen(h5, name, H5P_DEFAULT);
-    if (a >= 0) {
-        if (H5Aread(a, H5T_NATIVE_DOUBLE, &v) < 0)
-            v = fallback;
-        H5Aclose(a);
-    }
-    return v;
+    double *xv = read_vec(x, "/film/x", fx->n0);
+    if (!xv)
+        return bf_fail(err, BF_EIO, "cannot read /film/x");
+    xs[0] = (double)fx->n0;
+    xs[1] = xv[0];
+    xs[2] = (xv[fx->n0 - 1] - xv[0]) / (double)(fx->n0 - 1);
+    free(xv);
+    static const char *const f[] = {"/film/psi", "/film/h", "/film/u_d",
+                                    "/film/u_c"};
+    for (int k = 0; k < 4; k++)
+        if (!fits_row(x, f[k], xs[0]))
+            return bf_fail(err, BF_EINPUT, "%s: %s has %zu values a row, "
+                           "/film/x %zu nodes", x->h5name, f[k],
+                           dset_of(x, f[k]).n1, fx->n0);
+    if (!isfinite(xs[1]) || !isfinite(xs[2]))
+        return bf_fail(err, BF_EINPUT, "%s: /film/x holds values that are "
+                       "not finite", x->h5name);
+    return BF_OK;
 }
 
 static bf_status write_all(xw *x, bf_err *err)
 {
+    bf_status st = check_datasets(x);
+    if (st)
+        return st;
+    dset fx = dset_of(x, "/film/x");
+    const int has_film = dset_of(x, "/film/psi").rank == 2 && fx.rank == 1 &&
+                         fx.n0 >= 2;
+    double xs[3] = {0, 0, 0};
+    if (has_film && (st = film_nodes(x, &fx, xs, err)))
+        return st;
     fprintf(x->f, "<?xml version=\"1.0\" ?>\n"
                   "<!-- written by ballfilm for %s: open it in ParaView or "
                   "VisIt; it names the datasets of the HDF5 file, which must "
                   "stay beside it -->\n"
                   "<Xdmf Version=\"2.0\">\n  <Domain>\n", x->href);
-    bf_status st = BF_OK;
     static const char *const film[] = {"/film/psi", "/film/h", "/film/u_d",
                                        "/film/u_c", NULL};
     static const char *const balls[] = {"/balls/position", "/balls/velocity",
                                         NULL};
-    dset fx = dset_of(x, "/film/x");
-    if (dset_of(x, "/film/psi").rank == 2 && fx.rank == 1 && fx.n0 >= 2) {
-        /* the nodes x_i = x_0 + i dx, i = 0..n-1 (/film/x) */
-        double *xv = read_vec(x, "/film/x", fx.n0);
-        if (!xv)
-            return bf_fail(err, BF_EIO, "cannot read /film/x");
-        const double xs[3] = {(double)fx.n0, xv[0],
-                              (xv[fx.n0 - 1] - xv[0]) / (double)(fx.n0 - 1)};
-        free(xv);
+    /* the nodes x_i = x_0 + i dx, i = 0..n-1 (/film/x) */
+    if (has_film)
         st = timed(x, "film", "/film/time", NULL, film, film_grid, xs, err);
-    }
     if (!st && dset_of(x, "/balls/position").rank == 2)
         st = timed(x, "balls", "/time", NULL, balls, balls_grid, NULL, err);
     if (!st && dset_of(x, "/particles/x").rank == 2) {
@@ -657,20 +738,27 @@ static bf_status write_all(xw *x, bf_err *err)
 }
 
 bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
-                          size_t max_steps, bf_err *err)
+                          size_t max_steps,
+                          const volatile sig_atomic_t *stop_flag,
+                          bf_err *err)
 {
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
     dset_cache cache = {.n = 0};
-    xw x = {NULL, -1, NULL, max_steps, 0.0, &cache, NULL};
+    xfail fail = {BF_OK, err};
+    xw x = {NULL, h5_path, 0.0, 0.0, stop_flag, &fail, -1, NULL, max_steps,
+            0.0, &cache, NULL};
+    if (stop_flag && *stop_flag)
+        return bf_fail(err, BF_INTERRUPTED, "%s: interrupted", xmf_path);
     x.h5 = bf_h5_open_read(h5_path);
     if (x.h5 < 0)
         return bf_fail(err, BF_EIO, "%s: cannot open HDF5 file%s", h5_path,
                        bf_h5_open_hint(h5_path));
-    x.flushed = bf_h5_flushed_load(x.h5);
-    bf_status st = BF_OK;
-    x.dt = root_real(x.h5, "scene.dt", 1.0);
-    x.href = href_of(h5_path, xmf_path);
-    if (!x.href)
+    x.bytes = bf_h5_file_bytes(h5_path);
+    x.budget = BF_XDMF_BUDGET_BYTES + BF_XDMF_BUDGET_RATIO * x.bytes;
+    bf_status st = bf_h5_flushed_load(x.h5, h5_path, &x.flushed, err);
+    if (!st)
+        st = root_real(&x, "scene.dt", 1.0, &x.dt, err);
+    if (!st && !(x.href = bf_xdmf_href(h5_path, xmf_path)))
         st = bf_fail(err, BF_EIO, "%s: cannot name %s relative to it (is its "
                      "directory there?)", xmf_path, h5_path);
     /* An earlier sidecar is written over in place and cut to the new
@@ -678,33 +766,24 @@ bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
      * sidecar of about the same size, and the file system then keeps its
      * blocks instead of freeing them and allocating them again (0.75 ms
      * of `ballfilm xdmf` on the AMD machine of docs/performance.md). */
-    int fd = -1;
-    if (!st && ((fd = open(xmf_path, O_WRONLY | O_CREAT | O_CLOEXEC, 0666)) < 0 ||
-                !(x.f = fdopen(fd, "w")))) {
-        if (fd >= 0)
-            close(fd);
-        st = bf_fail(err, BF_EIO, "%s: cannot create the XDMF file",
-                     xmf_path);
+    int fd = -1, created = 0;
+    if (!st && !(st = bf_xdmf_open(xmf_path, &fd, &created, err)) &&
+        !(x.f = fdopen(fd, "w"))) {
+        close(fd);
+        if (created)
+            unlink(xmf_path);
+        st = bf_fail(err, BF_EINTERNAL, "out of memory");
     }
     if (!st)
         st = write_all(&x, err);
+    if (!st)
+        st = fail.st;
+    if (!st && stopped(&x))
+        st = fail.st;
     if (st && err)
         bf_err_prefix(err, "%s", xmf_path);
-    if (x.f) {
-        /* cut a regular file to what was written (a pipe or a device is
-         * not cut); after a failure, to nothing, so that no earlier
-         * sidecar's tail makes a partial one look complete */
-        struct stat sb;
-        const int regular = !fstat(fd, &sb) && S_ISREG(sb.st_mode);
-        const int flushed = !fflush(x.f);
-        const off_t end = regular && flushed ? ftello(x.f) : 0;
-        int bad = !flushed || end < 0 || ferror(x.f);
-        if (regular && ftruncate(fd, st || bad ? 0 : end))
-            bad = 1;
-        if ((fclose(x.f) | bad) && !st)
-            st = bf_fail(err, BF_EIO, "%s: writing the XDMF file failed "
-                         "(disk full?)", xmf_path);
-    }
+    if (x.f)
+        st = bf_xdmf_close(x.f, fd, xmf_path, created, st, err);
     free(x.href);
     for (size_t k = 0; k < cache.n; k++) {
         free(cache.path[k]);
@@ -718,7 +797,7 @@ bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
 bf_status bf_xdmf_write(const char *h5_path, const char *xmf_path,
                         bf_err *err)
 {
-    return bf_xdmf_write_n(h5_path, xmf_path, BF_XDMF_MAX_STEPS, err);
+    return bf_xdmf_write_n(h5_path, xmf_path, BF_XDMF_MAX_STEPS, NULL, err);
 }
 
 char *bf_xdmf_default_path(const char *h5_path)

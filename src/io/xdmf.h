@@ -21,6 +21,7 @@
 #ifndef BALLFILM_IO_XDMF_H
 #define BALLFILM_IO_XDMF_H
 
+#include <signal.h>
 #include <stddef.h>
 
 #include "ballfilm/error.h"
@@ -30,10 +31,31 @@
  * says in a comment. */
 #define BF_XDMF_MAX_STEPS 2000
 
+/* What a sidecar may cost: BF_XDMF_BUDGET_BYTES plus
+ * BF_XDMF_BUDGET_RATIO times the HDF5 file's size on disk.  The sidecar
+ * of any file ballfilm writes takes a few times its file at most (a grid
+ * of a few hundred bytes for every output row, which takes tens of bytes
+ * in the file, or a few even compressed); a file that claims more (a grid
+ * of 10^12 cells, a series of 2^34 columns that holds no data) is
+ * refused at the start with BF_EINPUT, naming the file and the dataset,
+ * and a running check stops one that grows past it. */
+#define BF_XDMF_BUDGET_BYTES (16.0 * 1024 * 1024)
+#define BF_XDMF_BUDGET_RATIO 256.0
+
 /* Write the sidecar of h5_path to xmf_path with at most max_steps grids
- * per collection (0: one per row). */
+ * per collection (0: one per row).  Every dataset it names is checked
+ * first (h5check.h: numbers of rank 1 or 2 that the file can hold, and
+ * the numbers of /mac/grid and /film/x consistent with the series that
+ * use them).  xmf_path is written in place without following a link; a
+ * symbolic link or a file of another user there is refused (BF_EIO).
+ * Stops with BF_INTERRUPTED once *stop_flag is set (NULL: never), checked
+ * for every grid and in the loops of values written inline.  A sidecar
+ * that fails leaves no partial file: one it created is removed, one it
+ * wrote over is cut to nothing. */
 bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
-                          size_t max_steps, bf_err *err);
+                          size_t max_steps,
+                          const volatile sig_atomic_t *stop_flag,
+                          bf_err *err);
 /* The same with BF_XDMF_MAX_STEPS. */
 bf_status bf_xdmf_write(const char *h5_path, const char *xmf_path,
                         bf_err *err);
