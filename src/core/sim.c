@@ -691,8 +691,16 @@ static bf_status run_to(bf_sim *s, long target, bf_err *err)
         if (row_due)
             due.row += every;
         if (row_due || s->n == s->nsteps) {
-            if (s->has_energy && !eevery)
-                check_energy(s);
+            double rel = s->has_energy && !eevery ? check_energy(s) : 0.0;
+            /* energy_every = 0 checks at the rows; the last state is
+             * checked whatever the intervals: no blown-up row is written
+             * as a result */
+            if (s->energy_bound > 0 && !(rel <= s->energy_bound))
+                st = energy_exceeded(s, rel, err);
+            else if (s->n == s->nsteps)
+                st = bf_sim_check_state_(s, err);
+            if (st)
+                break;
             st = row_and_beat(s, err);
         }
         if (!st)
