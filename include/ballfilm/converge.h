@@ -55,6 +55,7 @@
 #ifndef BALLFILM_CONVERGE_H
 #define BALLFILM_CONVERGE_H
 
+#include <signal.h>
 #include <stdio.h>
 
 #include "ballfilm/integrator.h"
@@ -86,6 +87,10 @@ typedef struct bf_converge_opts {
                               (invariant_err NAN; benchmarks that need the
                               errors and the cost only) */
     FILE *progress;        /* one line per finished run, or NULL */
+    /* Set asynchronously (signal handler) to stop the study: checked
+     * between runs, after every step and inside ARKODE's internal steps;
+     * the study then fails with BF_INTERRUPTED (NULL: never). */
+    const volatile sig_atomic_t *stop_flag;
 } bf_converge_opts;
 
 typedef struct bf_converge_group {

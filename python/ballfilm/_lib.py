@@ -83,7 +83,8 @@ class ConvergeOpts(ctypes.Structure):
                 ("t_end", c_double), ("repeats", c_int), ("rows", ctypes.c_long),
                 ("ref_rtol", c_double), ("ref_table", c_char_p),
                 ("max_step", c_double), ("ref_may_be_compared", c_int),
-                ("skip_checks", c_int), ("progress", c_void_p)]
+                ("skip_checks", c_int), ("progress", c_void_p),
+                ("stop_flag", c_void_p)]
 
 
 class ConvergeGroup(ctypes.Structure):

@@ -88,6 +88,13 @@ static bf_status reserve(bf_retmap *rm, size_t need, bf_err *err)
  * (bf_retmap_points). */
 static bf_status emit(bf_retmap *rm, bf_err *err)
 {
+    /* a blown-up state's contact is no point of the map */
+    for (int c = 0; c < NCOL; c++)
+        if (!isfinite(rm->cand[c]))
+            return bf_fail(err, BF_EUNSTABLE,
+                           "return map: the contact at t = %g s has z = %g "
+                           "cm, v = %g cm/s: the state is not finite",
+                           rm->cand[P_T], rm->cand[P_Z], rm->cand[P_V]);
     if (!rm->s_t) {
         bf_status st = reserve(rm, rm->nmem + 1, err);
         if (st)

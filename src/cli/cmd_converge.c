@@ -206,14 +206,24 @@ int bf_cmd_converge(int argc, char **argv)
         o.ntols = (size_t)ntol;
     }
     o.progress = quiet ? NULL : stderr;
+    o.stop_flag = &bf_cli_stop;
 
     bf_err err = {0};
     bf_converge_result *res = NULL;
     bf_status st = bf_converge_file(scene_path, sets, (size_t)nset, &o, &res,
                                     &err);
     if (st) {
-        fprintf(stderr, "ballfilm: error: %s\n", err.msg);
+        fprintf(stderr, "ballfilm: %s: %s\n",
+                st == BF_INTERRUPTED ? "interrupted" : "error", err.msg);
         rc = (int)st;
+        goto done;
+    }
+    if (bf_cli_stop) {
+        /* the study ended as the signal came: no table of it either */
+        bf_converge_free(res);
+        fprintf(stderr, "ballfilm: interrupted: the convergence study was "
+                        "interrupted; nothing was written\n");
+        rc = BF_INTERRUPTED;
         goto done;
     }
     bf_converge_print(res, stdout);

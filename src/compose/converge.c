@@ -11,6 +11,7 @@
 
 #include "base/clock.h"
 #include "compose/converge_impl.h"
+#include "integrators/stop.h"
 
 /* A resolved clone of the scene with the method string
  * "name:key=value:sec.key=value..." applied (name to the study's method
@@ -144,9 +145,41 @@ static void unbuild(built *b)
     bf_setup_free(b->setup);
 }
 
+/* The study's stop flag is set: its failure. */
+static int study_stopped(const bf_converge_priv *P, bf_err *err)
+{
+    if (!P->stop_flag || !*P->stop_flag)
+        return 0;
+    bf_fail(err, BF_INTERRUPTED, "the convergence study was interrupted; "
+            "nothing was written");
+    return 1;
+}
+
+/* The steps of one run (bf_converge_run_once); a stop flag set between
+ * two steps or inside ARKODE's ends it with rst BF_INTERRUPTED. */
+static bf_status run_steps(const bf_converge_priv *P, const bf_scene *sc,
+                           long nper, double h, unsigned flags,
+                           bf_converge_runout *o, bf_err *err);
+
 bf_status bf_converge_run_once(const bf_converge_priv *P, const bf_scene *sc,
                                long nper, double h, unsigned flags,
                                bf_converge_runout *o, bf_err *err)
+{
+    if (study_stopped(P, err))
+        return BF_INTERRUPTED;
+    bf_stop_flag before = bf_stop_watch(P->stop_flag);
+    bf_status st = run_steps(P, sc, nper, h, flags, o, err);
+    bf_stop_watch(before);
+    if (!st && o->status == BF_INTERRUPTED)
+        st = bf_fail(err, BF_INTERRUPTED, "%s", o->msg);
+    if (!st && study_stopped(P, err))
+        st = BF_INTERRUPTED;
+    return st;
+}
+
+static bf_status run_steps(const bf_converge_priv *P, const bf_scene *sc,
+                           long nper, double h, unsigned flags,
+                           bf_converge_runout *o, bf_err *err)
 {
     const int measure = (flags & BF_RUN_MEASURE) != 0;
     built b;
@@ -206,14 +239,29 @@ bf_status bf_converge_run_once(const bf_converge_priv *P, const bf_scene *sc,
     const double t0 = bf_wall_time();
     for (long j = 0; j < ncalls && !rst; j++) {
         if (!measure && mt->advance && per > 1) {
-            long done = 0;
-            rst = mt->advance(model, n, per, hh, NULL, &done, &rerr);
-            if (rst)
-                bf_err_prefix(&rerr, "step %ld (t = %.9g s)", n + done + 1,
-                              (double)(n + done) * hh);
-            n += done;
+            /* in runs of at most 1024 steps (the same bits as one run,
+             * model.h), the stop flag looked at between them */
+            for (long left = per; left > 0 && !rst;) {
+                long done = 0, k = left < 1024 ? left : 1024;
+                if (P->stop_flag && *P->stop_flag) {
+                    rst = bf_fail(&rerr, BF_INTERRUPTED, "interrupted at "
+                                  "t = %.9g s", (double)n * hh);
+                    break;
+                }
+                rst = mt->advance(model, n, k, hh, NULL, &done, &rerr);
+                if (rst)
+                    bf_err_prefix(&rerr, "step %ld (t = %.9g s)",
+                                  n + done + 1, (double)(n + done) * hh);
+                n += done;
+                left -= done;
+            }
         } else {
             for (long s = 0; s < per && !rst; s++) {
+                if (P->stop_flag && *P->stop_flag) {
+                    rst = bf_fail(&rerr, BF_INTERRUPTED, "interrupted at "
+                                  "t = %.9g s", (double)n * hh);
+                    break;
+                }
                 rst = mt->step(model, n, (double)n * hh, hh, &rerr);
                 if (rst) {
                     bf_err_prefix(&rerr, "step %ld (t = %.9g s)", n + 1,
@@ -504,6 +552,7 @@ bf_status bf_converge_begin(const bf_scene *base_in,
     P->repeats = o.repeats;
     P->skip_checks = o.skip_checks;
     P->progress = o.progress;
+    P->stop_flag = o.stop_flag;
     const double hdef = S->max_step ? S->max_step(base) : 0.0;
     P->hmax = o.max_step < 0 ? 0 : o.max_step > 0 ? o.max_step : hdef;
     snprintf(r->scene, sizeof r->scene, "%s", bf_scene_path(base));

@@ -16,6 +16,7 @@ struct bf_converge_priv {
     int repeats;
     int skip_checks; /* opts.skip_checks */
     FILE *progress;
+    const volatile sig_atomic_t *stop_flag; /* opts.stop_flag */
     /* the compared state: nstate values, group g at off[g], len[g] */
     size_t nstate, ngroups;
     size_t off[BF_CONVERGE_MAX_GROUPS], len[BF_CONVERGE_MAX_GROUPS];

@@ -25,6 +25,7 @@
 #include "base/hash.h"
 #include "core/sim_impl.h"
 #include "diag/energy.h"
+#include "integrators/stop.h"
 #include "io/h5lock.h"
 
 static const bf_param scene_params[] = {
@@ -659,6 +660,12 @@ static bf_status run_to(bf_sim *s, long target, bf_err *err)
             s->n += done;
             s->steps_this_run += done;
         }
+        if (st == BF_INTERRUPTED) {
+            /* the stop flag ended a long step inside (ARKODE's internal
+             * steps), the state left at the step's start */
+            st = interrupt(s, err);
+            break;
+        }
         if (st) {
             if (!named)
                 bf_err_prefix(err, "step %ld (t = %.9g s to %.9g s)",
@@ -684,8 +691,16 @@ static bf_status run_to(bf_sim *s, long target, bf_err *err)
         if (row_due)
             due.row += every;
         if (row_due || s->n == s->nsteps) {
-            if (s->has_energy && !eevery)
-                check_energy(s);
+            double rel = s->has_energy && !eevery ? check_energy(s) : 0.0;
+            /* energy_every = 0 checks at the rows; the last state is
+             * checked whatever the intervals: no blown-up row is written
+             * as a result */
+            if (s->energy_bound > 0 && !(rel <= s->energy_bound))
+                st = energy_exceeded(s, rel, err);
+            else if (s->n == s->nsteps)
+                st = bf_sim_check_state_(s, err);
+            if (st)
+                break;
             st = row_and_beat(s, err);
         }
         if (!st)
@@ -717,9 +732,19 @@ static bf_status run_to(bf_sim *s, long target, bf_err *err)
     return s->run_status = st;
 }
 
+/* run_to with the run's stop flag watched inside the model's steps
+ * (integrators/stop.h) */
+static bf_status run_watched(bf_sim *s, long target, bf_err *err)
+{
+    bf_stop_flag before = bf_stop_watch(s->opts.stop_flag);
+    bf_status st = run_to(s, target, err);
+    bf_stop_watch(before);
+    return st;
+}
+
 bf_status bf_sim_run(bf_sim *s, bf_err *err)
 {
-    return run_to(s, s->nsteps, err);
+    return run_watched(s, s->nsteps, err);
 }
 
 bf_status bf_sim_run_until(bf_sim *s, double t, bf_err *err)
@@ -728,14 +753,14 @@ bf_status bf_sim_run_until(bf_sim *s, double t, bf_err *err)
     long target = !(steps < (double)s->nsteps) ? s->nsteps
                   : steps > 0                  ? (long)steps
                                                : 0;
-    return run_to(s, target > s->n ? target : s->n, err);
+    return run_watched(s, target > s->n ? target : s->n, err);
 }
 
 bf_status bf_sim_steps(bf_sim *s, long k, bf_err *err)
 {
     if (k < 0)
         return bf_fail(err, BF_EINPUT, "bf_sim_steps: k = %ld < 0", k);
-    return run_to(s, k > s->nsteps - s->n ? s->nsteps : s->n + k, err);
+    return run_watched(s, k > s->nsteps - s->n ? s->nsteps : s->n + k, err);
 }
 
 static bf_status close_output(bf_sim *s, bf_status run_status,

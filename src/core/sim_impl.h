@@ -72,6 +72,10 @@ bf_status bf_sim_check_stable_dt(const bf_sim *s, bf_err *err);
  * it, and (rows = 1) those of the output rows. */
 bf_status bf_sim_beat(bf_sim *s, int rows, bf_err *err);
 
+/* The state now against finiteness and the energy bound (BF_EUNSTABLE
+ * naming step, time and cause), before the last output row is written. */
+bf_status bf_sim_check_state_(bf_sim *s, bf_err *err);
+
 /* OUT.ckpt of output path OUT into s->ckpt_path. */
 bf_status bf_sim_set_ckpt_path_(bf_sim *s, const char *path, bf_err *err);
 /* The loop's datasets (created, or reopened on restart), then the model's

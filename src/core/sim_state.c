@@ -119,3 +119,45 @@ double bf_sim_initial_energy(const bf_sim *s)
 {
     return s->has_energy ? s->en.e0 : NAN;
 }
+
+/* The state of step s->n against finiteness and the energy bound, the
+ * diagnostics left as they are: what the output records
+ * (max_relative_energy_error) stays that of the scheduled checks. */
+bf_status bf_sim_check_state_(bf_sim *s, bf_err *err)
+{
+    const double t = (double)s->n * s->dt;
+    if (s->has_energy) {
+        double k, p;
+        s->mt->energy(s->model, t, &k, &p);
+        bf_energy_diag d = s->en;
+        double rel = bf_energy_check(&d, k + p);
+        if (!isfinite(k + p))
+            return bf_fail(err, BF_EUNSTABLE,
+                           "step %ld (t = %.9g s): the state has no finite "
+                           "energy (kinetic %g erg, potential %g erg); the "
+                           "time step is too large for this integrator",
+                           s->n, t, k, p);
+        if (s->energy_bound > 0 && !(rel <= s->energy_bound))
+            return bf_fail(err, BF_EUNSTABLE,
+                           "step %ld (t = %.9g s): relative energy error "
+                           "%.3g exceeds %s%g; the time step is too large "
+                           "for this integrator",
+                           s->n, t, rel,
+                           s->bound_is_models
+                               ? "the bound of this model, whose energy is "
+                                 "conserved ([scene] max_energy_error sets "
+                                 "another, energy_bound = no turns it off), "
+                               : "[scene] max_energy_error = ",
+                           s->energy_bound);
+    }
+    bf_state_var v[MAX_VARS];
+    size_t nv = bf_sim_state(s, v, MAX_VARS);
+    for (size_t a = 0; a < nv && a < MAX_VARS; a++)
+        for (size_t i = 0; i < v[a].n; i++)
+            if (!isfinite(v[a].data[i]))
+                return bf_fail(err, BF_EUNSTABLE,
+                               "step %ld (t = %.9g s): %s[%zu] = %g is not "
+                               "finite", s->n, t, v[a].name, i,
+                               v[a].data[i]);
+    return BF_OK;
+}

@@ -13,6 +13,7 @@
  * reference on the film). */
 #include "integrators/ark1.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,6 +27,7 @@
 #include <sunmatrix/sunmatrix_band.h>
 
 #include "integrators/arkode.h"
+#include "integrators/stop.h"
 
 struct bf_ark1 {
     bf_ark1_opts o;
@@ -43,6 +45,8 @@ struct bf_ark1 {
     double h_next;
     bf_counters base; /* counted before a checkpoint was loaded */
     int failed; /* a right-hand side asked to stop */
+    int stopped; /* the run's stop flag ended the call (stop.h) */
+    long steps_set; /* ARKODE's limit of internal steps per call now */
     char msg[512];
     /* kinks (ERK, bf_ark1_set_kinks): g, its size, and the states at the start (prev) and end (cur) of the last step */
     bf_root1_fn g;
@@ -52,9 +56,21 @@ struct bf_ark1 {
     unsigned long long restarts;
 };
 
+/* A call that lasts (a million internal steps of a tiny max_step) ends at
+ * the next evaluation after the run's stop flag is set. */
+static int stop_now(bf_ark1 *a)
+{
+    if (!bf_stop_requested())
+        return 0;
+    a->stopped = 1;
+    return 1;
+}
+
 static int rhs_e(realtype t, N_Vector y, N_Vector yd, void *ud)
 {
     bf_ark1 *a = ud;
+    if (stop_now(a))
+        return -1;
     int r = a->fe(a->ctx, t, N_VGetArrayPointer(y), N_VGetArrayPointer(yd));
     if (r < 0)
         a->failed = 1;
@@ -64,6 +80,8 @@ static int rhs_e(realtype t, N_Vector y, N_Vector yd, void *ud)
 static int rhs_i(realtype t, N_Vector y, N_Vector yd, void *ud)
 {
     bf_ark1 *a = ud;
+    if (stop_now(a))
+        return -1;
     int r = a->fi(a->ctx, t, N_VGetArrayPointer(y), N_VGetArrayPointer(yd));
     if (r < 0)
         a->failed = 1;
@@ -243,6 +261,7 @@ bf_status bf_ark1_create(bf_ark1 **out, size_t n, bf_rhs_fn fe, bf_rhs_fn fi,
     if (!a)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     a->o = *o;
+    a->steps_set = o->max_steps;
     a->n = n;
     a->fe = fe;
     a->fi = fi;
@@ -274,16 +293,30 @@ typedef struct stepper_fns {
     int (*evolve)(void *mem, realtype tout, N_Vector y, realtype *tret,
                   int itask);
     int (*current_step)(void *mem, realtype *h);
+    int (*max_num_steps)(void *mem, long mx);
 } stepper_fns;
 
 static const stepper_fns steppers[3] = {
     [BF_ARK1_ERK] = {ERKStepSetInitStep, ERKStepReset, ERKStepSetStopTime,
-                     ERKStepEvolve, ERKStepGetCurrentStep},
+                     ERKStepEvolve, ERKStepGetCurrentStep,
+                     ERKStepSetMaxNumSteps},
     [BF_ARK1_IMEX] = {ARKStepSetInitStep, ARKStepReset, ARKStepSetStopTime,
-                      ARKStepEvolve, ARKStepGetCurrentStep},
+                      ARKStepEvolve, ARKStepGetCurrentStep,
+                      ARKStepSetMaxNumSteps},
     [BF_ARK1_MRI] = {NULL, MRIStepReset, MRIStepSetStopTime, MRIStepEvolve,
-                     NULL},
+                     NULL, NULL},
 };
+
+/* The internal steps a call from t to tend may take: max_steps per
+ * budget_dt of its length (at least one budget_dt), or per call. */
+static long steps_allowed(const bf_ark1 *a, double t, double tend)
+{
+    if (!(a->o.budget_dt > 0))
+        return a->o.max_steps;
+    double spans = ceil((tend - t) / a->o.budget_dt * (1.0 - 1e-12));
+    double mx = (spans > 1.0 ? spans : 1.0) * (double)a->o.max_steps;
+    return mx < 9e18 ? (long)mx : LONG_MAX;
+}
 
 /* MRI: new MRIStep and inner ARKStep memories, the counters so far kept
  * in base.  The inner ARKStep keeps state across the resets MRIStep makes
@@ -383,6 +416,24 @@ static int restart_at(bf_ark1 *a, double tr, double tend)
 
 unsigned long long bf_ark1_restarts(const bf_ark1 *a) { return a->restarts; }
 
+/* A call ended by the stop flag counts as not made: the counters go back
+ * to those at its start, so that a checkpoint written now holds those of
+ * the run that was not interrupted at this step. */
+static bf_status interrupted(bf_ark1 *a, const bf_counters *before, double t,
+                             double tend, bf_err *err)
+{
+    bf_counters now;
+    bf_ark1_counters(a, &now);
+    a->base.steps -= now.steps - before->steps;
+    a->base.evals -= now.evals - before->evals;
+    a->base.rejected -= now.rejected - before->rejected;
+    a->base.iterations -= now.iterations - before->iterations;
+    return bf_fail(err, BF_INTERRUPTED,
+                   "interrupted inside ARKODE's integration from t = %.9g s "
+                   "to %.9g s (the state stays at t = %.9g s)",
+                   t, tend, t);
+}
+
 bf_status bf_ark1_evolve(bf_ark1 *a, double t, double tend, double *y,
                          bf_err *err)
 {
@@ -391,9 +442,12 @@ bf_status bf_ark1_evolve(bf_ark1 *a, double t, double tend, double *y,
         if (st)
             return st;
     }
+    bf_counters before;
+    bf_ark1_counters(a, &before);
     double *yy = N_VGetArrayPointer(a->y);
     memcpy(yy, y, a->n * sizeof *yy);
     a->failed = 0;
+    a->stopped = 0;
     a->msg[0] = '\0';
     /* the same calls for the three steppers (MRIStep's slow step is
      * fixed: no initial step to carry over) */
@@ -404,13 +458,18 @@ bf_status bf_ark1_evolve(bf_ark1 *a, double t, double tend, double *y,
         flag = S->reset(a->mem, t, a->y);
     if (flag >= 0)
         flag = S->stop_time(a->mem, tend);
+    const long allowed = steps_allowed(a, t, tend);
+    if (flag >= 0 && S->max_num_steps && allowed != a->steps_set &&
+        (flag = S->max_num_steps(a->mem, allowed)) >= 0)
+        a->steps_set = allowed;
     if (a->g) {
         a->tcur = t;
         memcpy(a->ycur, yy, a->n * sizeof *yy);
     }
     /* with kinks: a restart at each root (a root that keeps coming back,
      * 1e7 times in one call, is a failure) */
-    for (long restarts = 0; flag >= 0;) {
+    long restarts = 0;
+    while (flag >= 0) {
         flag = S->evolve(a->mem, tend, a->y, &tret, ARK_NORMAL);
         if (flag != ARK_ROOT_RETURN || tret >= tend)
             break;
@@ -424,6 +483,17 @@ bf_status bf_ark1_evolve(bf_ark1 *a, double t, double tend, double *y,
         flag = ARK_SUCCESS;
     if (flag >= 0 && S->current_step)
         S->current_step(a->mem, &a->h_next);
+    if (flag < 0 && a->stopped)
+        return interrupted(a, &before, t, tend, err);
+    if (flag == ARK_TOO_MUCH_WORK && restarts <= 10000000)
+        return bf_fail(err, BF_ENOCONV,
+                       "ARKODE took more than %ld internal steps between "
+                       "t = %.9g s and %.9g s (%s = %ld%s); a larger "
+                       "max_step or tolerance takes fewer",
+                       allowed, t, tend,
+                       a->o.max_steps_key ? a->o.max_steps_key : "max_steps",
+                       a->o.max_steps,
+                       a->o.budget_dt > 0 ? " per [scene] dt" : " per call");
     if (flag < 0) {
         bf_status code = a->failed               ? BF_EUNSTABLE
                          : flag == ARK_TOO_MUCH_WORK ? BF_ENOCONV

@@ -40,6 +40,11 @@ typedef struct bf_ark1_opts {
     double rtol, atol; /* ERK, IMEX, MRI inner */
     double max_step;   /* largest internal step (0: none) */
     long max_steps;    /* internal steps per call before failing */
+    double budget_dt;  /* > 0: max_steps is per budget_dt of a call's
+                          length ([scene] dt), at least one; 0: per call */
+    const char *max_steps_key; /* the key that sets max_steps, named in
+                                  that failure ("[coupled] max_steps";
+                                  NULL: "max_steps") */
     double slow_step;  /* MRI: the fixed slow step */
     long band;         /* IMEX: half-bandwidth of dfi/dy */
     int work_around_311; /* pad ERK tables hit by issue 311 (arkode.c) */
@@ -51,7 +56,10 @@ bf_status bf_ark1_create(bf_ark1 **out, size_t n, bf_rhs_fn fe, bf_rhs_fn fi,
                          void *ctx, const bf_ark1_opts *o, bf_err *err);
 void bf_ark1_free(bf_ark1 *a);
 
-/* y at t -> y at tend, in place (on failure y is left as it was). */
+/* y at t -> y at tend, in place (on failure y is left as it was).  The
+ * run's stop flag (stop.h) ends a call at its next evaluation with
+ * BF_INTERRUPTED, the counters as before the call; more than max_steps
+ * internal steps end it with BF_ENOCONV naming max_steps_key. */
 bf_status bf_ark1_evolve(bf_ark1 *a, double t, double tend, double *y,
                          bf_err *err);
 

@@ -49,6 +49,7 @@
 #include <sundials/sundials_config.h>
 
 #include "integrators/arkode.h"
+#include "integrators/stop.h"
 #include "ballfilm/integrator.h"
 
 /* The tables offered, in the order of the [integrator] table choices. */
@@ -103,6 +104,7 @@ typedef struct ark {
     const bf_ode *ode;
     bf_err *err;
     int rhs_failed;
+    int stopped; /* the run's stop flag ended the call (stop.h) */
     char msg[512]; /* last message of ARKODE's error handler */
 } ark;
 
@@ -111,6 +113,12 @@ static int ark_rhs(realtype t, N_Vector y, N_Vector yd, void *ud)
     ark *p = ud;
     const size_t n = p->ode->n;
     double *yy = N_VGetArrayPointer(y), *d = N_VGetArrayPointer(yd);
+    if (bf_stop_requested()) {
+        /* a call of a million internal steps ends when the run is asked
+         * to stop */
+        p->stopped = 1;
+        return -1;
+    }
     memcpy(d, yy + n, n * sizeof *d);
     if (bf_ode_eval(p->it, p->ode, t, yy, yy + n, d + n, p->err)) {
         p->rhs_failed = 1;
@@ -472,7 +480,9 @@ static bf_status ark_step(bf_integrator *it, const bf_ode *ode, double t,
     p->ode = ode;
     p->err = err;
     p->rhs_failed = 0;
+    p->stopped = 0;
     p->msg[0] = '\0';
+    const bf_counters count0 = it->count;
     bf_status st;
     const bf_events *ev = it->events, *kk = it->kinks;
     if ((ev != p->roots_registered || kk != p->kinks_registered) &&
@@ -542,6 +552,18 @@ static bf_status ark_step(bf_integrator *it, const bf_ode *ode, double t,
     ERKStepGetNumErrTestFails(p->mem, &netf1);
     it->count.steps += (unsigned long long)(nst1 - nst0);
     it->count.rejected += (unsigned long long)(netf1 - netf0);
+    if (flag < 0 && p->stopped) {
+        /* a step not taken: the counters of the run not interrupted */
+        it->count = count0;
+        return bf_fail(err, BF_INTERRUPTED,
+                       "interrupted inside ARKODE's step from t = %.9g s to "
+                       "%.9g s (the state stays at t = %.9g s)", t, tend, t);
+    }
+    if (flag == ARK_TOO_MUCH_WORK && !p->fixed)
+        return bf_fail(err, BF_ENOCONV,
+                       "ARKODE (%s) took more than [integrator] max_steps = "
+                       "%ld internal steps between t = %.9g s and %.9g s",
+                       tables[p->table].name, p->max_steps, t, tend);
     if (flag < 0) {
         if (p->rhs_failed)
             return err->status ? err->status : BF_EUNSTABLE;

@@ -147,8 +147,10 @@ static const bf_param coupled_params[] = {
      "missed in free flight, whose error estimate is small)",
      BF_NONNEG, 0, 0, NULL},
     {"max_steps", BF_AT(coupled_keys, whole.max_steps, BF_INT), "1",
-     "1000000",
-     "scheme = arkode, mri: internal steps allowed per [scene] dt", BF_MIN, 1,
+     "10000",
+     "scheme = arkode, mri: internal steps allowed per [scene] dt; more end "
+     "the run with status 4 (the default keeps one step to seconds: an "
+     "internal step of the Fig. 8 film costs about 0.4 ms)", BF_MIN, 1,
      0, NULL},
     {"timing", BF_AT(coupled_keys, timing, BF_BOOL), "", "false",
      "measure the wall time of balls, film and coupling separately (bench)",

@@ -197,6 +197,8 @@ bf_status bf_coupled_whole_create(coupled_model *m,
         .atol = k->atol,
         .max_step = k->max_step,
         .max_steps = k->max_steps,
+        .budget_dt = dt,
+        .max_steps_key = "[coupled] max_steps",
         .slow_step = dt, /* mri: one slow step per [scene] dt */
         .work_around_311 = 1,
     };
