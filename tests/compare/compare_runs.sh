@@ -17,6 +17,11 @@
 #   !ulps N DATASET...: why (the commit)
 # lets the named datasets of every case differ by at most N units in the
 # last place (h5same.py --ulps): a change of rounding only, declared.
+# A line
+#   !default KEY...: why (the commit)
+# lets the recorded value of scene keys whose default changed on purpose
+# differ where both runs left them at their default (h5same.py
+# --new-default); the datasets are compared as always.
 set -u
 if [ $# -lt 2 ]; then
     echo "usage: $0 BIN_A BIN_B [WORKDIR] [NAME-REGEX]" >&2
@@ -67,6 +72,10 @@ while IFS= read -r line; do
     read -r n names <<< "$spec"
     for d in $names; do ULPS+=(--ulps "$d=$n"); done
 done < <(grep '^!ulps ' "$HERE/cases.txt")
+while IFS= read -r line; do
+    spec=${line#!default }
+    for k in ${spec%%:*}; do ULPS+=(--new-default "$k"); done
+done < <(grep '^!default ' "$HERE/cases.txt")
 # expected NAME: the reason declared in cases.txt, or nothing
 expected() {
     sed -n "s/^!differs $1: //p" "$HERE/cases.txt"

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""h5same.py A.h5 B.h5 [--ulps DATASET=N ...]: exit 0 if both files hold
+"""h5same.py A.h5 B.h5 [--ulps DATASET=N ...] [--new-default KEY ...]: exit 0 if both files hold
 the same datasets with the
 same bits (dtype, shape and raw bytes, so NaN payloads and -0.0 count) and
 the same root attributes; print every difference otherwise.
@@ -23,6 +23,11 @@ default is checked by the datasets like everything else.
 "!ulps"): DATASET may differ by at most N units in the last place in each
 element (same dtype and shape, floating point); the largest difference is
 printed as a note.  Anything beyond N is a difference like any other.
+
+--new-default KEY: a scene key whose default was changed on purpose
+(cases.txt "!default"): where both files record KEY at its default
+(KEY.default is 1 in both), different values of KEY are a note.  Where
+either file set KEY explicitly, it is compared like any other attribute.
 """
 import sys
 
@@ -86,7 +91,12 @@ def ulps_apart(x, y):
     return float(np.max(np.abs(x - y) / scale))
 
 
-def main(a, b, ulps):
+def at_default(attrs, k):
+    flag = attrs.get(k + ".default")
+    return flag is not None and int(flag) == 1
+
+
+def main(a, b, ulps, new_defaults=()):
     bad, notes = [], []
     with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
         da, db = datasets(fa), datasets(fb)
@@ -122,7 +132,12 @@ def main(a, b, ulps):
             if k not in ka or k not in kb:
                 bad.append(f"attribute {k}: only in {a if k in ka else b}")
             elif attr_bytes(fa.attrs[k]) != attr_bytes(fb.attrs[k]):
-                if k in NOTE_ATTRS:
+                if (k in new_defaults and at_default(fa.attrs, k) and
+                        at_default(fb.attrs, k)):
+                    notes.append(f"attribute {k}: {fa.attrs[k]!r} -> "
+                                 f"{fb.attrs[k]!r}, a default changed on "
+                                 "purpose (declared)")
+                elif k in NOTE_ATTRS:
                     notes.append(f"attribute {k} differs (input, not compared)")
                 else:
                     bad.append(f"attribute {k}: {fa.attrs[k]!r} != "
@@ -136,14 +151,17 @@ def main(a, b, ulps):
 
 if __name__ == "__main__":
     args = sys.argv[1:]
-    files, ulps = [], {}
+    files, ulps, new_defaults = [], {}, set()
     while args:
         x = args.pop(0)
         if x == "--ulps" and args:
             name, _, n = args.pop(0).partition("=")
             ulps[name] = float(n)
+        elif x == "--new-default" and args:
+            new_defaults.add(args.pop(0))
         else:
             files.append(x)
     if len(files) != 2:
-        sys.exit("usage: h5same.py A.h5 B.h5 [--ulps DATASET=N ...]")
-    sys.exit(main(files[0], files[1], ulps))
+        sys.exit("usage: h5same.py A.h5 B.h5 [--ulps DATASET=N ...] "
+                 "[--new-default KEY ...]")
+    sys.exit(main(files[0], files[1], ulps, new_defaults))
