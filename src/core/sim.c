@@ -231,6 +231,14 @@ bf_status bf_sim_create(bf_sim **out, const bf_sim_keys *k,
     if (!st && s->ckpt_every && !bf_sim_can_checkpoint(s))
         st = bf_fail_key(err, BF_EINPUT, "scene", "checkpoint_every",
                          "model '%s' cannot write checkpoints yet", mt->name);
+    /* kept at the end is the last checkpoint_every's checkpoint: without
+     * one nothing would be kept, which the caller asked for */
+    if (!st && s->opts.keep_checkpoint && !s->ckpt_every)
+        st = bf_fail_key(err, BF_EINPUT, "scene", "checkpoint_every",
+                         "--keep-checkpoint keeps the checkpoint written "
+                         "every checkpoint_every, which is 0: nothing would "
+                         "be kept; set it (e.g. --set "
+                         "scene.checkpoint_every=1000)");
     if (st) {
         bf_sim_free(s);
         return st;
