@@ -161,8 +161,8 @@ START_TEST(planted_file_at_part_refused)
 }
 END_TEST
 
-/* A link at the checkpoint's temporary OUT.h5.ckpt.tmp is refused: the
- * run stops with status 5 at its first checkpoint, the target untouched. */
+/* A link at the checkpoint's temporary OUT.h5.ckpt.tmp is refused, at
+ * the start, the target untouched. */
 START_TEST(link_at_checkpoint_tmp_refused)
 {
     char out[600], tmp[700];
@@ -174,6 +174,8 @@ START_TEST(link_at_checkpoint_tmp_refused)
                     out, "-q", "--set", "scene.checkpoint_every=100", NULL);
     ck_assert_msg(rc == 5 && strstr(err, "symbolic link"), "status %d: %s",
                   rc, err);
+    ck_assert_msg(!exists(out) && !strstr(err, "step"),
+                  "refused only once the run had begun: %s", err);
     assert_victim_intact(victim);
     free(err);
 }

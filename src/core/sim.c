@@ -26,6 +26,7 @@
 #include "core/sim_impl.h"
 #include "diag/energy.h"
 #include "io/h5lock.h"
+#include "io/outpath.h"
 
 static const bf_param scene_params[] = {
     {"title", BF_AT(bf_sim_keys, title, BF_STR), "", "",
@@ -297,7 +298,15 @@ bf_status bf_sim_set_ckpt_path_(bf_sim *s, const char *path, bf_err *err)
     if (!s->ckpt_path)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     snprintf(s->ckpt_path, len, "%s.ckpt", path);
-    return BF_OK;
+    /* the checkpoint's temporary (checkpoint.c) checked now, not at the
+     * first checkpoint, which may come hours later */
+    char *tmp = malloc(len + 4);
+    if (!tmp)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    snprintf(tmp, len + 4, "%s.tmp", s->ckpt_path);
+    bf_status st = bf_path_check_own(tmp, err);
+    free(tmp);
+    return st;
 }
 
 /* Datasets of the loop itself (created, or reopened on restart), then the

@@ -56,6 +56,21 @@ int bf_path_open_own(const char *path, bf_err *err)
     return fd;
 }
 
+bf_status bf_path_check_own(const char *path, bf_err *err)
+{
+    struct stat sb;
+    if (lstat(path, &sb))
+        return errno == ENOENT ? BF_OK
+                               : bf_fail(err, BF_EIO, "%s: %s", path,
+                                         strerror(errno));
+    const char *why = bf_path_own_refusal(&sb, geteuid());
+    if (why)
+        return bf_fail(err, BF_EIO, "%s: refused: %s, not a file of this "
+                       "run's; remove it or choose another output file",
+                       path, why);
+    return BF_OK;
+}
+
 FILE *bf_path_fopen_own(const char *path, bf_err *err)
 {
     int fd = bf_path_open_own(path, err);

@@ -37,6 +37,10 @@ const char *bf_path_own_refusal(const struct stat *sb, uid_t euid);
  * the descriptor once it is checked (O_TRUNC would truncate first). */
 int bf_path_open_own(const char *path, bf_err *err);
 
+/* Nothing at path, or a file bf_path_open_own would open: otherwise
+ * BF_EIO naming it (to refuse at the start what would fail later). */
+bf_status bf_path_check_own(const char *path, bf_err *err);
+
 /* The writer's lock on the file of fd (the output's PATH.part): 0, or an
  * errno (EAGAIN: another process holds it). */
 int bf_path_lock(int fd);
