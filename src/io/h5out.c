@@ -3,12 +3,11 @@
  * Owning the output path.  A run writes PATH.part, which it holds under an
  * exclusive lock (a record lock on its own descriptor, taken before
  * anything is truncated, outpath.c's bf_path_lock; the writer's HDF5
- * locking is off,
- * so that it does not fight ours, and readers may open the file while it
- * is written, as SWMR readers once it is in SWMR mode: h5swmr.c),
- * and renames it over PATH only when it commits: a previous result at
- * PATH survives until the new one exists, and a second run on the same
- * path is refused instead of truncating the first one's file.  The lock
+ * locking is off, so that it does not fight ours, and readers may open
+ * the file while it is written, as SWMR readers once it is in SWMR mode:
+ * h5swmr.c), and renames it over PATH only when it commits: a previous
+ * result at PATH survives until the new one exists, and a second run on
+ * the same path is refused instead of truncating the first one's file.  The lock
  * goes with the descriptor, also when the process is killed.  PATH.part
  * is opened without following a link and must be this user's own file
  * (outpath.h), and PATH must be replaceable, both before anything runs.
