@@ -25,6 +25,7 @@ import argparse
 import os
 import shutil
 import sys
+import tempfile
 
 try:
     import h5py
@@ -487,6 +488,27 @@ def writer_for(out, fps):
     return animation.PillowWriter(fps=fps), gif
 
 
+def new_movie_file(path):
+    """A new, empty file beside path, created by this process (O_EXCL: never
+    through a link someone planted in a shared directory), which the
+    writer fills and which is renamed to path once the movie is whole."""
+    if os.path.isdir(path):
+        sys.exit("animate: %s is a directory; name a movie file" % path)
+    folder = os.path.dirname(path) or "."
+    try:
+        fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(path) + ".",
+                                   suffix=os.path.splitext(path)[1],
+                                   dir=folder)
+    except OSError as e:
+        sys.exit("animate: cannot create a file in %s for %s: %s"
+                 % (folder, path, e.strerror))
+    os.close(fd)
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(tmp, 0o666 & ~umask)
+    return tmp
+
+
 def progress(n, total, quiet):
     if quiet:
         return
@@ -536,11 +558,19 @@ def main():
                      fontsize=10)
         writer, path = writer_for(out, a.fps)
         total = len(sc.frames)
-        with writer.saving(fig, path, dpi):
-            for n in range(total):
-                sc.draw(n)
-                writer.grab_frame()
-                progress(n + 1, total, a.quiet)
+        tmp = new_movie_file(path)
+        try:
+            with writer.saving(fig, tmp, dpi):
+                for n in range(total):
+                    sc.draw(n)
+                    writer.grab_frame()
+                    progress(n + 1, total, a.quiet)
+            # a rename replaces a link planted at path instead of writing
+            # through it
+            os.replace(tmp, path)
+        finally:
+            if os.path.lexists(tmp):
+                os.unlink(tmp)
         plt.close(fig)
     print("wrote %s (%d frames, %dx%d, %g fps)" % (path, total, w, h, a.fps))
 

@@ -144,7 +144,7 @@ START_TEST(sigkill_leaves_readable_file)
     tu_wait_for_file(marker, 0);
     size_t seen = tu_wait_for_rows(marker, "/time", 300);
     /* a run's file is readable while it is written (its lock does not
-     * keep HDF5 readers out: h5out.c, lock_part) */
+     * keep HDF5 readers out: outpath.c, bf_path_lock) */
     ck_assert_msg(seen > 300, "the running output never read back");
     kill(pid, SIGKILL);
     int status;

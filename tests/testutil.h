@@ -92,7 +92,7 @@ int tu_accel_harmonic(void *ctx, double t, const double *x, const double *v,
 /* Standard test case with a generous timeout. */
 TCase *tu_tcase(const char *name);
 
-/* 1 if no process holds the writer's lock (h5out.c, lock_part) on the
+/* 1 if no process holds the writer's lock (outpath.c, bf_path_lock) on the
  * open file fd. */
 int tu_part_unlocked(int fd);
 

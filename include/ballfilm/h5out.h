@@ -46,10 +46,15 @@ typedef struct bf_series bf_series;
 
 /* Create PATH.part (after locking it; a previous PATH.part of a run that
  * ended is truncated).  Parent groups of every path are created on
- * demand. */
+ * demand.  PATH.part is never opened through a symbolic link and must be
+ * a regular file of this user with one name, and PATH must be
+ * replaceable by this user (not a directory, not another user's file in
+ * a sticky directory): otherwise BF_EINPUT (a directory) or BF_EIO, before
+ * anything is written. */
 bf_status bf_out_create(bf_out **out, const char *path, bf_err *err);
-/* Open the file of a run to continue it (restart): PATH.part, or PATH
- * (moved to PATH.part) when the run had ended; bf_out_series then reopens
+/* Open the file of a run to continue it (restart): PATH.part, or a copy
+ * of PATH in a new PATH.part when the run had ended (PATH stays the
+ * finished result until bf_out_close); bf_out_series then reopens
  * existing datasets (keeping their rows) and bf_out_array replaces
  * existing fixed datasets. */
 bf_status bf_out_open_append(bf_out **out, const char *path, bf_err *err);

@@ -1,7 +1,6 @@
 /* build.c: a run from a scene (see run.h): the [scene] keys, the model's
  * setup, the model, the loop, the analyses, the provenance; and a run
  * rebuilt from its checkpoint. */
-#define _DEFAULT_SOURCE /* realpath */
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,6 +8,7 @@
 #include "ballfilm/checkpoint.h"
 #include "compose.h"
 #include "io/h5lock.h"
+#include "io/outpath.h"
 
 /* ------------------------------------------------------------ provenance */
 
@@ -323,32 +323,11 @@ bf_sim *bf_run_sim(bf_run *r) { return r->sim; }
 
 const bf_scene *bf_run_scene_of(const bf_run *r) { return r->sc; }
 
-/* The canonical name of a path that may not exist yet: its directory
- * resolved, its last component as given. */
-static int canonical(const char *path, char *buf, size_t cap)
-{
-    char dir[4096];
-    const char *slash = strrchr(path, '/');
-    const char *base = slash ? slash + 1 : path;
-    if (slash)
-        snprintf(dir, sizeof dir, "%.*s", (int)(slash - path + (slash == path)),
-                 path);
-    else
-        snprintf(dir, sizeof dir, ".");
-    char *r = realpath(dir, NULL);
-    if (!r)
-        return 0;
-    snprintf(buf, cap, "%s/%s", strcmp(r, "/") ? r : "", base);
-    free(r);
-    return 1;
-}
-
-/* 1 if a and b name the same file (or would) */
+/* 1 if a and b are one file: by device and inode, so that a link or a
+ * second name of an input is seen for what it is (outpath.h) */
 static int same_file(const char *a, const char *b)
 {
-    char ca[4200], cb[4200];
-    return a && b && *a && *b && canonical(a, ca, sizeof ca) &&
-           canonical(b, cb, sizeof cb) && !strcmp(ca, cb);
+    return bf_path_same_file(a, b);
 }
 
 bf_status bf_run_open_output(bf_run *r, const char *path, bf_err *err)

@@ -20,6 +20,7 @@
 #include "ballfilm/h5out.h"
 #include "ballfilm/sim.h"
 #include "ballfilm/run.h"
+#include "io/outpath.h"
 
 bf_status bf_sweep_parse_axis(bf_sweep_axis *ax, const char *spec, bf_err *err)
 {
@@ -158,12 +159,15 @@ static bf_status check_manifest(const bf_sweep *sw, const char *const *sets,
                            sw->dir, path);
         return BF_OK;
     }
-    f = fopen(path, "w");
-    const int bad = !f || fwrite(want, 1, want_len, f) != want_len;
+    f = bf_path_fopen_own(path, err);
+    if (!f) {
+        free(want);
+        return BF_EIO;
+    }
+    const int bad = fwrite(want, 1, want_len, f) != want_len;
     free(want);
     if (bad) {
-        if (f)
-            fclose(f);
+        fclose(f);
         return bf_fail(err, BF_EIO, "%s: cannot write (%s)", path,
                        strerror(errno));
     }
@@ -366,9 +370,9 @@ static bf_status write_done(const bf_sweep *sw, const bf_sweep_row *row,
     case_path(sw, row->index, "done", path, sizeof path);
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
     bf_sweep_row_format(sw, row, line, sizeof line);
-    FILE *f = fopen(tmp, "w");
+    FILE *f = bf_path_fopen_own(tmp, err);
     if (!f)
-        return bf_fail(err, BF_EIO, "%s: %s", tmp, strerror(errno));
+        return BF_EIO;
     int bad = fprintf(f, "%s\n", line) < 0;
     bad |= fflush(f) != 0;
     bad |= fsync(fileno(f)) != 0;
@@ -480,9 +484,9 @@ bf_status bf_sweep_write_summary(const bf_sweep *sw, const bf_sweep_row *rows,
 {
     char path[1200];
     snprintf(path, sizeof path, "%s/summary.csv", sw->dir);
-    FILE *f = fopen(path, "w");
+    FILE *f = bf_path_fopen_own(path, err);
     if (!f)
-        return bf_fail(err, BF_EIO, "%s: %s", path, strerror(errno));
+        return BF_EIO;
     fprintf(f, "case");
     for (size_t a = 0; a < sw->naxis; a++)
         fprintf(f, ",%s", sw->axis[a].key);

@@ -27,6 +27,7 @@
 #include "diag/energy.h"
 #include "integrators/stop.h"
 #include "io/h5lock.h"
+#include "io/outpath.h"
 
 static const bf_param scene_params[] = {
     {"title", BF_AT(bf_sim_keys, title, BF_STR), "", "",
@@ -232,6 +233,14 @@ bf_status bf_sim_create(bf_sim **out, const bf_sim_keys *k,
     if (!st && s->ckpt_every && !bf_sim_can_checkpoint(s))
         st = bf_fail_key(err, BF_EINPUT, "scene", "checkpoint_every",
                          "model '%s' cannot write checkpoints yet", mt->name);
+    /* kept at the end is the last checkpoint_every's checkpoint: without
+     * one nothing would be kept, which the caller asked for */
+    if (!st && s->opts.keep_checkpoint && !s->ckpt_every)
+        st = bf_fail_key(err, BF_EINPUT, "scene", "checkpoint_every",
+                         "--keep-checkpoint keeps the checkpoint written "
+                         "every checkpoint_every, which is 0: nothing would "
+                         "be kept; set it (e.g. --set "
+                         "scene.checkpoint_every=1000)");
     if (st) {
         bf_sim_free(s);
         return st;
@@ -290,7 +299,15 @@ bf_status bf_sim_set_ckpt_path_(bf_sim *s, const char *path, bf_err *err)
     if (!s->ckpt_path)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     snprintf(s->ckpt_path, len, "%s.ckpt", path);
-    return BF_OK;
+    /* the checkpoint's temporary (checkpoint.c) checked now, not at the
+     * first checkpoint, which may come hours later */
+    char *tmp = malloc(len + 4);
+    if (!tmp)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    snprintf(tmp, len + 4, "%s.tmp", s->ckpt_path);
+    bf_status st = bf_path_check_own(tmp, err);
+    free(tmp);
+    return st;
 }
 
 /* Datasets of the loop itself (created, or reopened on restart), then the

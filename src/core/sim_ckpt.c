@@ -13,6 +13,7 @@
 #include "ballfilm/version.h"
 #include "core/sim_impl.h"
 #include "io/h5lock.h"
+#include "io/outpath.h"
 
 
 int bf_sim_can_checkpoint(const bf_sim *s)
@@ -59,12 +60,51 @@ static bf_status put_rows(const bf_sim *s, bf_ckpt *ck, bf_err *err)
     return st;
 }
 
+/* A checkpoint replaces the file at path (a rename): refused when that is
+ * a file of the run itself (its scene, its output or the output's .part,
+ * by identity: outpath.h) or a name that cannot be replaced, as an output
+ * path would be. */
+static bf_status check_target(const bf_sim *s, const char *path, bf_err *err)
+{
+    if (!path || !*path)
+        return bf_fail(err, BF_EINPUT, "a checkpoint needs a file name");
+    if (bf_path_same_file(path, s->scene_path))
+        return bf_fail(err, BF_EINPUT, "checkpoint %s: that is %s, the scene "
+                       "file of this run; the checkpoint would overwrite it",
+                       path, s->scene_path);
+    const char *out = s->out ? bf_out_path(s->out) : NULL;
+    if (out) {
+        size_t len = strlen(out) + 6;
+        char *part = malloc(len);
+        if (!part)
+            return bf_fail(err, BF_EINTERNAL, "out of memory");
+        snprintf(part, len, "%s.part", out);
+        const int own = !strcmp(path, out) || !strcmp(path, part) ||
+                        bf_path_same_file(path, out) ||
+                        bf_path_same_file(path, part);
+        free(part);
+        if (own)
+            return bf_fail(err, BF_EINPUT, "checkpoint %s: that is the "
+                           "output of this run (%s or its .part); the "
+                           "checkpoint would overwrite it", path, out);
+    }
+    if (bf_path_check_replaceable(path, err)) {
+        bf_err_prefix(err, "checkpoint");
+        if (err)
+            err->status = BF_EINPUT;
+        return BF_EINPUT;
+    }
+    return BF_OK;
+}
+
 static bf_status checkpoint_write(bf_sim *s, const char *path, bf_err *err)
 {
     if (!bf_sim_can_checkpoint(s))
         return bf_fail(err, BF_EINPUT, "model '%s' cannot write checkpoints",
                        s->mt->name);
-    bf_status st = BF_OK;
+    bf_status st = check_target(s, path, err);
+    if (st)
+        return st;
     /* rows on disk must cover what the checkpoint claims */
     if (s->out && (st = bf_out_flush(s->out, err)))
         return st;

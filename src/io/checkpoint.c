@@ -15,6 +15,7 @@
 
 #include "base/hash.h"
 #include "io/h5check.h"
+#include "io/outpath.h"
 
 #include <fcntl.h>
 #include <hdf5.h>
@@ -368,23 +369,10 @@ bf_status bf_ckpt_write(const bf_ckpt *ck, const char *path, bf_err *err)
     return st;
 }
 
-static bf_status write_file(const bf_ckpt *ck, const char *path, bf_err *err)
+/* Every entry of ck as a dataset of the HDF5 file f; 0, or 1 if one
+ * could not be written. */
+static int write_entries(const bf_ckpt *ck, hid_t f)
 {
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    size_t len = strlen(path);
-    char *tmp = malloc(len + 5);
-    if (!tmp)
-        return bf_fail(err, BF_EINTERNAL, "out of memory");
-    snprintf(tmp, len + 5, "%s.tmp", path);
-    hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
-    H5Pset_userblock(fcpl, SEAL_BYTES);
-    hid_t f = H5Fcreate(tmp, H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
-    H5Pclose(fcpl);
-    if (f < 0) {
-        bf_status st = bf_fail(err, BF_EIO, "%s: cannot create checkpoint", tmp);
-        free(tmp);
-        return st;
-    }
     int bad = 0;
     for (size_t k = 0; k < ck->n && !bad; k++) {
         const item *it = &ck->items[k];
@@ -405,17 +393,49 @@ static bf_status write_file(const bf_ckpt *ck, const char *path, bf_err *err)
         }
         H5Sclose(sp);
     }
+    return bad;
+}
+
+/* The file is written as PATH.tmp and renamed over PATH.  PATH.tmp is
+ * opened without following a link and must be this user's own file
+ * (outpath.h); HDF5 writes that very file, through /proc/self/fd, and the
+ * seal is written through the same descriptor. */
+static bf_status write_file(const bf_ckpt *ck, const char *path, bf_err *err)
+{
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    size_t len = strlen(path);
+    char *tmp = malloc(len + 5);
+    if (!tmp)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    snprintf(tmp, len + 5, "%s.tmp", path);
+    int fd = bf_path_open_own(tmp, err);
+    if (fd < 0) {
+        free(tmp);
+        return BF_EIO;
+    }
+    char h5name[32];
+    hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
+    H5Pset_userblock(fcpl, SEAL_BYTES);
+    hid_t f = ftruncate(fd, 0) ? -1
+                               : H5Fcreate(bf_path_h5_name(fd, h5name,
+                                                           sizeof h5name),
+                                           H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
+    H5Pclose(fcpl);
+    if (f < 0) {
+        bf_status st = bf_fail(err, BF_EIO, "%s: cannot create checkpoint", tmp);
+        close(fd);
+        unlink(tmp);
+        free(tmp);
+        return st;
+    }
+    int bad = write_entries(ck, f);
     if (H5Fclose(f) < 0)
         bad = 1;
-    if (!bad) {
-        /* seal it, and make the data durable before the rename makes it
-         * visible */
-        int fd = open(tmp, O_RDWR);
-        if (fd < 0 || write_seal(fd) || fsync(fd))
-            bad = 1;
-        if (fd >= 0)
-            close(fd);
-    }
+    /* seal it, and make the data durable before the rename makes it
+     * visible */
+    if (!bad && (write_seal(fd) || fsync(fd)))
+        bad = 1;
+    close(fd);
     if (bad || rename(tmp, path)) {
         unlink(tmp);
         bf_status st = bf_fail(err, BF_EIO, "%s: writing the checkpoint failed "

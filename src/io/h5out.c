@@ -2,13 +2,15 @@
  *
  * Owning the output path.  A run writes PATH.part, which it holds under an
  * exclusive lock (a record lock on its own descriptor, taken before
- * anything is truncated, see lock_part; the writer's HDF5 locking is off,
- * so that it does not fight ours, and readers may open the file while it
- * is written, as SWMR readers once it is in SWMR mode: h5swmr.c),
- * and renames it over PATH only when it commits: a previous result at
- * PATH survives until the new one exists, and a second run on the same
- * path is refused instead of truncating the first one's file.  The lock
- * goes with the descriptor, also when the process is killed.
+ * anything is truncated, outpath.c's bf_path_lock; the writer's HDF5
+ * locking is off, so that it does not fight ours, and readers may open
+ * the file while it is written, as SWMR readers once it is in SWMR mode:
+ * h5swmr.c), and renames it over PATH only when it commits: a previous
+ * result at PATH survives until the new one exists, and a second run on
+ * the same path is refused instead of truncating the first one's file.  The lock
+ * goes with the descriptor, also when the process is killed.  PATH.part
+ * is opened without following a link and must be this user's own file
+ * (outpath.h), and PATH must be replaceable, both before anything runs.
  *
  * Flush discipline.  Before a flush writes anything, the space it may need
  * (the buffered rows, whole chunks, metadata) is reserved on the file
@@ -26,6 +28,7 @@
 #include "h5lock.h"
 #include "h5out_impl.h"
 #include "h5part.h"
+#include "outpath.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -95,26 +98,8 @@ hid_t bf_out_fapl_(int append)
     return fapl;
 }
 
-/* The writer's lock on PATH.part: a write lock on the whole file, held
- * by this open file description (Linux OFD locks; POSIX record locks
- * elsewhere).  Not flock(2): HDF5 (1.10 and later) takes flock(LOCK_SH)
- * when a reader opens a file, and an exclusive flock would keep h5py and
- * `ballfilm xdmf` from reading a run while it is written.  Record locks
- * and flock locks do not conflict on Linux.  Returns 0 or an errno. */
-static int lock_part(int fd)
-{
-    struct flock lk = {.l_type = F_WRLCK, .l_whence = SEEK_SET};
-#ifdef F_OFD_SETLK
-    if (!fcntl(fd, F_OFD_SETLK, &lk))
-        return 0;
-#else
-    if (!fcntl(fd, F_SETLK, &lk))
-        return 0;
-#endif
-    return errno == EACCES ? EAGAIN : errno;
-}
-
-/* Open and lock PATH.part; fails with BF_EIO when another run holds it. */
+/* Open and lock PATH.part; fails with BF_EIO when another run holds it,
+ * or when it is a link or not a file of this user's (outpath.h). */
 static bf_status claim(bf_out *o, const char *path, bf_err *err)
 {
     size_t len = strlen(path) + 6;
@@ -124,11 +109,10 @@ static bf_status claim(bf_out *o, const char *path, bf_err *err)
     if (!o->path || !o->part)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     snprintf(o->part, len, "%s.part", path);
-    int fd = open(o->part, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    int fd = bf_path_open_own(o->part, err);
     if (fd < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot create %s: %s", path, o->part,
-                       strerror(errno));
-    int e = lock_part(fd);
+        return BF_EIO;
+    int e = bf_path_lock(fd);
     if (e) {
         close(fd);
         if (e == EAGAIN)
@@ -140,6 +124,7 @@ static bf_status claim(bf_out *o, const char *path, bf_err *err)
                        strerror(e));
     }
     o->lock_fd = fd;
+    bf_path_h5_name(fd, o->h5name, sizeof o->h5name);
     return BF_OK;
 }
 
@@ -153,23 +138,50 @@ static void release(bf_out *o)
     free(o);
 }
 
-/* Claim PATH (its lock) and create PATH.part, or open it to continue. */
-static bf_status open_part(bf_out **out, const char *path, int append,
-                           bf_err *err)
+/* A finished run continued (seed): its result PATH copied into the new,
+ * locked and empty PATH.part, so that PATH stays the finished result
+ * until the continued run replaces it. */
+static bf_status seed_part(const bf_out *o, bf_err *err)
 {
+    struct stat sb;
+    if (fstat(o->lock_fd, &sb) || sb.st_size != 0)
+        return bf_fail(err, BF_EIO, "%s: %s appeared while the run was "
+                       "being continued; run again", o->path, o->part);
+    int e = bf_path_copy_into(o->path, o->lock_fd);
+    if (e)
+        return bf_fail(err, BF_EIO, "%s: cannot copy it to %s to continue "
+                       "it: %s", o->path, o->part, strerror(e));
+    return BF_OK;
+}
+
+/* Claim PATH (its lock) and create PATH.part, or open it to continue
+ * (seeded from PATH when seed).  HDF5 opens the locked descriptor's own
+ * file through /proc/self/fd (outpath.h): a link or file put at
+ * PATH.part's name after the checks of claim is not what HDF5 writes. */
+static bf_status open_part(bf_out **out, const char *path, int append,
+                           int seed, bf_err *err)
+{
+    bf_status st = bf_path_check_replaceable(path, err);
+    if (st)
+        return st;
     bf_out *o = calloc(1, sizeof *o);
     if (!o)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     o->root = -1;
     o->log = -1;
-    bf_status st = claim(o, path, err);
+    st = claim(o, path, err);
+    if (!st && seed && (st = seed_part(o, err)))
+        unlink(o->part);
+    if (!st && !append && ftruncate(o->lock_fd, 0))
+        st = bf_fail(err, BF_EIO, "%s: cannot truncate %s: %s", path,
+                     o->part, strerror(errno));
     if (st) {
         release(o);
         return st;
     }
     hid_t fapl = bf_out_fapl_(append);
-    o->file = append ? H5Fopen(o->part, H5F_ACC_RDWR, fapl)
-                     : H5Fcreate(o->part, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+    o->file = append ? H5Fopen(o->h5name, H5F_ACC_RDWR, fapl)
+                     : H5Fcreate(o->h5name, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
     H5Pclose(fapl);
     if (o->file < 0) {
         if (append)
@@ -197,20 +209,24 @@ bf_status bf_out_create(bf_out **out, const char *path, bf_err *err)
 {
     quiet_hdf5();
     *out = NULL;
-    return open_part(out, path, 0, err);
+    return open_part(out, path, 0, 0, err);
 }
 
 bf_status bf_out_open_append(bf_out **out, const char *path, bf_err *err)
 {
     quiet_hdf5();
     *out = NULL;
-    /* a run that ended (its result at PATH) continues in PATH.part */
-    char part[4096];
-    snprintf(part, sizeof part, "%s.part", path);
-    if (access(part, F_OK) && !access(path, F_OK) && rename(path, part))
-        return bf_fail(err, BF_EIO, "%s: cannot move it to %s to continue it: "
-                       "%s", path, part, strerror(errno));
-    return open_part(out, path, 1, err);
+    /* a run that ended (its result at PATH) continues in a copy of it,
+     * PATH.part; a run that did not end continues its PATH.part */
+    size_t len = strlen(path) + 6;
+    char *part = malloc(len);
+    if (!part)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    snprintf(part, len, "%s.part", path);
+    struct stat sb;
+    const int seed = lstat(part, &sb) && errno == ENOENT && !lstat(path, &sb);
+    free(part);
+    return open_part(out, path, 1, seed, err);
 }
 
 const char *bf_out_path(const bf_out *out) { return out->path; }

@@ -35,6 +35,7 @@ struct bf_out {
     char *path; /* the result's path */
     char *part; /* the file written: path + ".part" */
     int lock_fd; /* descriptor of part holding the lock (-1: none) */
+    char h5name[32]; /* the name HDF5 opens lock_fd's file by (outpath.h) */
     int failed;  /* a write failed: touch nothing more */
     bf_series **series;
     size_t nseries, capseries;

@@ -223,7 +223,7 @@ bf_status bf_out_leave_swmr_(bf_out *out, bf_err *err)
     bf_out_close_series_(out);
     herr_t rc = H5Fclose(out->file);
     hid_t fapl = bf_out_fapl_(0);
-    out->file = rc < 0 ? -1 : H5Fopen(out->part, H5F_ACC_RDWR, fapl);
+    out->file = rc < 0 ? -1 : H5Fopen(out->h5name, H5F_ACC_RDWR, fapl);
     H5Pclose(fapl);
     if (out->file >= 0) {
         rc = series_open_all(out);
