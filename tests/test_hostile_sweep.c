@@ -1,6 +1,7 @@
 /* test_hostile_sweep.c: a sweep whose cases failed on a full disk runs
  * them again when rerun once there is room, and says so; the other
- * failures stay recorded unless --retry-failed is given. */
+ * failures stay recorded unless --retry-failed is given.  Summaries say
+ * "never" and "not measured" instead of printing NaN. */
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -158,11 +159,36 @@ START_TEST(io_failed_cases_retried_on_rerun)
 }
 END_TEST
 
+/* The coupled model's summary of a run too short for the symmetry to
+ * break, and of a Lyapunov estimate without a renormalisation yet: each
+ * level says "never", the exponent "not measured", no "nan" anywhere. */
+START_TEST(summaries_say_never_not_nan)
+{
+    char *out = NULL, *err = NULL;
+    ck_assert_int_eq(tu_run(&out, &err, "run", tu_repo("runs/coupled_fig8.ini"),
+                            "--set", "scene.t_end=0.01", "--set",
+                            "lyapunov.enabled=yes", "-o",
+                            tu_tmp("hs_never.h5"), NULL),
+                     0);
+    size_t n = strlen(out) + strlen(err) + 2;
+    char *all = malloc(n);
+    snprintf(all, n, "%s\n%s", out, err);
+    ck_assert_msg(strstr(all, "first above 1e-12 cm never, 1e-09 cm never"),
+                  "%s", all);
+    ck_assert_msg(strstr(all, "lyapunov exponent: not measured"), "%s", all);
+    ck_assert_msg(!strstr(all, "nan") && !strstr(all, "NaN"), "%s", all);
+    free(all);
+    free(out);
+    free(err);
+}
+END_TEST
+
 Suite *suite_hostile_sweep(void)
 {
     Suite *s = suite_create("hostile_sweep");
     TCase *tc = tu_tcase("hostile_sweep");
     tcase_add_test(tc, io_failed_cases_retried_on_rerun);
+    tcase_add_test(tc, summaries_say_never_not_nan);
     suite_add_tcase(s, tc);
     return s;
 }
