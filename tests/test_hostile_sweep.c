@@ -1,7 +1,9 @@
 /* test_hostile_sweep.c: a sweep whose cases failed on a full disk runs
  * them again when rerun once there is room, and says so; the other
  * failures stay recorded unless --retry-failed is given.  Summaries say
- * "never" and "not measured" instead of printing NaN. */
+ * "never" and "not measured" instead of printing NaN.  A program started
+ * with SIGINT ignored (a script's background job) keeps ignoring it and
+ * still stops on SIGTERM. */
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -183,12 +185,48 @@ START_TEST(summaries_say_never_not_nan)
 }
 END_TEST
 
+/* Started with SIGINT ignored (as a shell starts a script's background
+ * jobs, so that Ctrl-C stops the script and not them), the program keeps
+ * ignoring it; SIGTERM still stops it cleanly (exit 6). */
+START_TEST(ignored_sigint_stays_ignored_sigterm_stops)
+{
+    char out[600], part[700];
+    snprintf(out, sizeof out, "%s", tu_tmp("hs_nohup.h5"));
+    snprintf(part, sizeof part, "%s.part", out);
+    pid_t pid = fork();
+    ck_assert(pid >= 0);
+    if (pid == 0) {
+        signal(SIGINT, SIG_IGN);
+        if (!freopen("/dev/null", "w", stdout) ||
+            !freopen("/dev/null", "w", stderr))
+            _exit(126);
+        execl(bin(), "ballfilm", "run", tu_repo(SCENE), "-o", out, "-q",
+              "--set", "scene.t_end=100000", "--set",
+              "scene.output_every=1000", (char *)NULL);
+        _exit(127);
+    }
+    tu_wait_for_file(part, 4096);
+    kill(pid, SIGINT);
+    struct timespec ts = {0, 500000000L};
+    nanosleep(&ts, NULL);
+    int status;
+    const pid_t done = waitpid(pid, &status, WNOHANG);
+    if (done == 0)
+        kill(pid, SIGTERM);
+    ck_assert_msg(done == 0, "SIGINT stopped a program that inherited it "
+                             "ignored (exit status %d)",
+                  WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+    ck_assert_int_eq(finish(pid), 6);
+}
+END_TEST
+
 Suite *suite_hostile_sweep(void)
 {
     Suite *s = suite_create("hostile_sweep");
     TCase *tc = tu_tcase("hostile_sweep");
     tcase_add_test(tc, io_failed_cases_retried_on_rerun);
     tcase_add_test(tc, summaries_say_never_not_nan);
+    tcase_add_test(tc, ignored_sigint_stays_ignored_sigterm_stops);
     suite_add_tcase(s, tc);
     return s;
 }

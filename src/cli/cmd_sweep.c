@@ -335,7 +335,7 @@ int bf_cmd_sweep(int argc, char **argv)
 
 /* The process pool: workers take case numbers from a pipe.  A worker dies
  * with its parent (PR_SET_PDEATHSIG), and an interrupted sweep forwards
- * the interrupt to its workers, whose running cases stop as interrupted
+ * the interrupt to its workers (as SIGTERM), whose running cases stop as interrupted
  * runs do, and waits for them. */
 static int run_pool(const bf_sweep *sw, const sweep_args *a, const long *todo,
                     size_t ntodo)
@@ -395,8 +395,10 @@ static int run_pool(const bf_sweep *sw, const sweep_args *a, const long *todo,
             int forwarded = 0;
             for (;;) {
                 if (bf_cli_stop && !forwarded) {
+                    /* SIGTERM: workers of a sweep that ignores SIGINT
+                     * (main.c) ignore it too */
                     for (long w = 0; w < started; w++)
-                        kill(pids[w], SIGINT);
+                        kill(pids[w], SIGTERM);
                     forwarded = 1;
                 }
                 pid_t p = wait(NULL);
