@@ -49,6 +49,10 @@ static pid_t start_prog(const char *prog, const char *const *argv,
     if (pid > 0 && blocked)
         sigprocmask(SIG_SETMASK, &old, NULL);
     if (pid == 0) {
+        /* the tests send SIGINT: caught, even when this runner was
+         * started with it ignored (nohup, a script's background job),
+         * which the program would honour */
+        signal(SIGINT, SIG_DFL);
         int fo = open("/dev/null", O_WRONLY);
         int fe = open(errfile ? errfile : "/dev/null",
                       O_WRONLY | O_CREAT | O_TRUNC, 0644);

@@ -7,7 +7,9 @@
  * scene and simulation objects (no shared mutable state), and records its
  * summary row in DIR/case_NNNNN.done, written atomically when the case
  * ends.  A sweep run again skips the cases that have a .done file, so a
- * killed sweep completes only what is missing.  DIR/sweep.txt ties the
+ * killed sweep completes only what is missing, except the cases whose row
+ * records a failure to write (BF_EIO: a full disk, a quota), which it runs
+ * again (bf_sweep_case_pending).  DIR/sweep.txt ties the
  * directory to one sweep: the scene's path and a hash of its contents,
  * the overrides, the varied values; a rerun after an edit of the scene is
  * refused instead of reusing results of the old scene.
@@ -74,6 +76,24 @@ void bf_sweep_free(bf_sweep *sw);
 void bf_sweep_case_values(const bf_sweep *sw, long k, double *values);
 /* 1 if case k already has its summary row on disk (then *row is filled). */
 int bf_sweep_case_done(const bf_sweep *sw, long k, bf_sweep_row *row);
+
+/* Which recorded failures a rerun of a sweep runs again. */
+typedef enum bf_sweep_retry {
+    /* only failures to write (BF_EIO): the disk may have room now; a bad
+     * value, an unstable run or a missed convergence would fail the same
+     * way again */
+    BF_SWEEP_RETRY_IO = 0,
+    /* every failed case (any status but BF_OK), e.g. after the program
+     * was rebuilt or memory was made available */
+    BF_SWEEP_RETRY_FAILED = 1
+} bf_sweep_retry;
+
+/* 1 if case k is to be run: it has no summary row yet (never run, killed
+ * or interrupted), or its row records a failure that `retry` runs again.
+ * *row receives the recorded row when there is one (row->index is -1
+ * otherwise), so that the caller can say why a case runs again. */
+int bf_sweep_case_pending(const bf_sweep *sw, long k, bf_sweep_retry retry,
+                          bf_sweep_row *row);
 /* Run case k from scratch and write its .done row.  A failing case is not
  * an error of the sweep: its status and message go into the row.  A case
  * stopped by sw->stop_flag writes no .done row (a rerun runs it again) and

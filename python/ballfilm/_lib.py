@@ -176,6 +176,8 @@ FUNCTIONS = {
     "bf_sweep_free": (None, [POINTER(Sweep)]),
     "bf_sweep_case_done": (c_int, [POINTER(Sweep), c_long,
                                    POINTER(SweepRow)]),
+    "bf_sweep_case_pending": (c_int, [POINTER(Sweep), c_long, c_int,
+                                      POINTER(SweepRow)]),
     "bf_sweep_run_case": (c_int, [POINTER(Sweep), c_long, POINTER(SweepRow),
                                   POINTER(Err)]),
     "bf_sweep_write_summary": (c_int, [POINTER(Sweep), POINTER(SweepRow),
@@ -252,8 +254,50 @@ def path():
     return _path
 
 
-def cstrings(items):
+C_LONG_MAX = 2 ** (8 * ctypes.sizeof(c_long) - 1) - 1
+C_INT_MAX = 2 ** (8 * ctypes.sizeof(c_int) - 1) - 1
+
+
+def _input_error(message, key=""):
+    from .errors import BallfilmError
+    return BallfilmError(message, 2, key=key)
+
+
+def cbytes(value, what, key=""):
+    """A str (UTF-8) or a path (the file system's encoding) as the bytes
+    of a C string.  C reads up to the first NUL byte, so a value holding
+    one would be cut silently: it is refused, naming `what`."""
+    b = os.fsencode(value) if isinstance(value, os.PathLike) \
+        else value.encode()
+    if b"\0" in b:
+        raise _input_error(f"{what} {value!r}: holds a NUL byte, where C "
+                           f"would cut it", key)
+    return b
+
+
+def cpath(value, what):
+    """A file or directory path (str, bytes or os.PathLike) as C bytes."""
+    b = os.fsencode(value)
+    if b"\0" in b:
+        raise _input_error(f"{what} {value!r}: holds a NUL byte, where C "
+                           f"would cut it")
+    return b
+
+
+def cinteger(value, what, low, high):
+    """A whole number in [low, high] for a C integer argument: ctypes
+    would wrap a larger one silently (2**70 steps as 0)."""
+    if isinstance(value, bool) or not hasattr(value, "__index__"):
+        raise TypeError(f"{what} must be a whole number, not "
+                        f"{type(value).__name__}")
+    v = value.__index__()
+    if not low <= v <= high:
+        raise _input_error(f"{what} = {v}: must be between {low} and {high}")
+    return v
+
+
+def cstrings(items, what="a string"):
     """A (char **, n) pair for a list of str, and the keep-alive list."""
-    enc = [s.encode() for s in items]
+    enc = [cbytes(s, what) for s in items]
     arr = (c_char_p * max(len(enc), 1))(*enc)
     return arr, len(enc), enc

@@ -3,7 +3,8 @@
 Reads with h5py; needs nothing of the C library, so it works on files
 from any machine.  Datasets are read when first asked for (a large run
 is not loaded whole) unless the file is temporary (ballfilm.run without
-an output path), then everything is read at once.
+an output path), then everything, attributes too, is read at once and
+the Result no longer names the file, which is removed (.path is None).
 
 The file of a run still written, or killed (OUT.h5.part), is read as the
 program reads it (docs/output.md, "A killed run's file"): opened as an
@@ -93,12 +94,18 @@ class Result:
     def __init__(self, path, eager=False):
         self.path = os.fspath(path)
         self._cache = {}
+        self._obj_attrs = None  # {name: attributes} when read at once
         self.units, self.descriptions, self.shapes = {}, {}, {}
         with _open(self.path) as f:
             self.attrs = {k: f.attrs[k] for k in f.attrs}
             self._rows = _flushed_rows(f)
+            if eager:
+                self._obj_attrs = {}
 
             def visit(name, obj):
+                if eager and name != FLUSH_LOG:
+                    self._obj_attrs[name] = {k: obj.attrs[k]
+                                             for k in obj.attrs}
                 if isinstance(obj, h5py.Dataset) and name != FLUSH_LOG:
                     self.units[name] = _text(obj.attrs.get("unit", ""))
                     self.descriptions[name] = _text(
@@ -149,10 +156,20 @@ class Result:
     def __contains__(self, name):
         return self._name(name) in self.shapes
 
+    def forget_file(self):
+        """Detach a Result read at once from its file, which is about to
+        be removed: nothing names it any more."""
+        assert self._obj_attrs is not None, "only a Result read at once"
+        self.path = None
+
+    def _where(self):
+        return self.path if self.path is not None else \
+            "the run's result (read into memory; its temporary file is gone)"
+
     def __getitem__(self, name):
         n = self._name(name)
         if n not in self.shapes:
-            raise KeyError(f"{self.path} has no dataset /{n} (it has: "
+            raise KeyError(f"{self._where()} has no dataset /{n} (it has: "
                            f"{', '.join(self.keys())})")
         if n not in self._cache:
             with _open(self.path) as f:
@@ -166,6 +183,11 @@ class Result:
 
     def attrs_of(self, name):
         """The attributes of a dataset or group, as h5py reads them."""
+        if self._obj_attrs is not None:
+            n = self._name(name)
+            if n not in self._obj_attrs:
+                raise KeyError(f"{self._where()} has no dataset or group /{n}")
+            return dict(self._obj_attrs[n])
         with _open(self.path) as f:
             obj = f["/" + self._name(name)]
             return {k: obj.attrs[k] for k in obj.attrs}
@@ -179,7 +201,8 @@ class Result:
         return self.counters.get("steps_done")
 
     def __repr__(self):
-        return (f"<ballfilm.Result {self.path}: {self.params.get('scene.model', '?')}, "
+        return (f"<ballfilm.Result {self.path or 'in memory'}: "
+                f"{self.params.get('scene.model', '?')}, "
                 f"status {self.status or '?'}, {len(self.shapes)} datasets>")
 
 

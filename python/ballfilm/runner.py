@@ -7,9 +7,12 @@ the overrides are handed to bf_run_load / bf_run_from_text, which validate
 and build it (errors become BallfilmError with the library's message);
 initial arrays are set (bf_sim_set); the output file is opened; then
 bf_sim_run runs in a worker thread while this thread waits, so that
-Ctrl-C (KeyboardInterrupt, delivered to the main thread) can set the
-run's stop flag: the loop stops after its current step, writes its
-checkpoint and closes the file, and ballfilm.Interrupted is raised.
+Ctrl-C (SIGINT, delivered to the main thread) can set the run's stop
+flag: the loop stops after its current step, writes its checkpoint and
+closes the file, and ballfilm.Interrupted is raised.  While the run and
+its closing last, Python's SIGINT handler is replaced by one that only
+sets the flag (_StopOnSigint), so that a second Ctrl-C, or one during
+the closing, cannot end the call with a bare KeyboardInterrupt.
 Observers are heartbeats (sim.h): a Python callable called in the worker
 thread with a State, every `every` steps or (every = 0) at output rows.
 """
@@ -125,6 +128,19 @@ def _value(v):
                     f"a list of them, not {type(v).__name__}")
 
 
+def _refuse_in_text(where, section, key, text, bad):
+    """BallfilmError (input) if `text` holds one of the characters `bad`:
+    a NUL byte would cut the text where C reads it, a line break would
+    start a new line of the scene."""
+    for c in bad:
+        if c in text:
+            what = "a NUL byte" if c == "\0" else "a line break"
+            shown = repr(text) if len(text) <= 60 else \
+                f"(at character {text.index(c)})"
+            raise BallfilmError(f"{where} {shown} holds {what}", 2,
+                                section, key)
+
+
 def _sets(set_, t_end):
     if set_ is None:
         set_ = {}
@@ -134,7 +150,11 @@ def _sets(set_, t_end):
     for k, v in set_.items():
         if not isinstance(k, str):
             raise TypeError(f"a key of set must be 'section.key', not {k!r}")
-        out.append(f"{k}={_value(v)}")
+        text = _value(v)
+        sec, _, key = k.rpartition(".")
+        _refuse_in_text(f"set[{k!r}]: the key", sec, key, k, "\0")
+        _refuse_in_text(f"set[{k!r}]: the value", sec, key, text, "\0")
+        out.append(f"{k}={text}")
     if t_end is not None:
         out.append(f"scene.t_end={_value(float(t_end))}")
     return out
@@ -146,8 +166,14 @@ def scene_text(sections):
     for sec, keys in sections.items():
         if not hasattr(keys, "items"):
             raise TypeError(f"section [{sec}] must be a dict of keys")
+        _refuse_in_text("a section's name", str(sec), "", str(sec), "\0\n\r")
         lines.append(f"[{sec}]")
-        lines += [f"{k} = {_value(v)}" for k, v in keys.items()]
+        for k, v in keys.items():
+            text = _value(v)
+            _refuse_in_text(f"[{sec}] the key", str(sec), str(k), str(k),
+                            "\0\n\r")
+            _refuse_in_text(f"[{sec}] {k}", str(sec), str(k), text, "\0\n\r")
+            lines.append(f"{k} = {text}")
     return "\n".join(lines) + "\n"
 
 
@@ -178,6 +204,36 @@ class _Observer:
             err.contents.msg = msg
             err.contents.status = 1
             return 1
+
+
+class _StopOnSigint:
+    """While a call runs and closes: SIGINT sets the run's stop flag and
+    is remembered (.seen), instead of raising KeyboardInterrupt wherever
+    the main thread happens to be; the handler before is put back at the
+    end.  Only when Python's own handler is installed, in the main thread:
+    a handler of the program's own is left alone, and an ignored SIGINT
+    (a background job of a script) stays ignored."""
+
+    def __init__(self, flag):
+        self.flag = flag
+        self.seen = False
+        self._before = None
+
+    def _on_sigint(self, signum, frame):
+        self.seen = True
+        self.flag.value = 1
+
+    def __enter__(self):
+        if (threading.current_thread() is threading.main_thread() and
+                signal.getsignal(signal.SIGINT) is signal.default_int_handler):
+            self._before = signal.signal(signal.SIGINT, self._on_sigint)
+        return self
+
+    def __exit__(self, *exc):
+        if self._before is not None:
+            signal.signal(signal.SIGINT, self._before)
+            self._before = None
+        return False
 
 
 def _in_thread(fn, flag):
@@ -218,7 +274,7 @@ def _drive(run, lib, flag, output, temp, observers, initial, opened=False):
     err = _lib.Err()
     for name, values in (initial or {}).items():
         a = np.ascontiguousarray(values, dtype=np.float64).ravel()
-        if lib.bf_sim_set(sim, name.encode(),
+        if lib.bf_sim_set(sim, _lib.cbytes(name, "initial: the array"),
                           a.ctypes.data_as(ctypes.POINTER(ctypes.c_double)),
                           a.size, ctypes.byref(err)):
             raise from_err(err)
@@ -230,10 +286,19 @@ def _drive(run, lib, flag, output, temp, observers, initial, opened=False):
                                 ctypes.byref(err)):
             raise from_err(err)
     if output is not None and not opened and lib.bf_run_open_output(
-            run, os.fspath(output).encode(), ctypes.byref(err)):
+            run, _lib.cpath(output, "output"), ctypes.byref(err)):
         raise from_err(err)
+    with _StopOnSigint(flag) as stop:
+        return _run_and_close(lib, sim, flag, stop, output, temp, keep)
+
+
+def _run_and_close(lib, sim, flag, stop, output, temp, keep):
+    """Run the sim to its end or stop, close its output and return its
+    Result, or raise what ended it (Ctrl-C: ballfilm.Interrupted)."""
+    err = _lib.Err()
     status, ctrl_c = _in_thread(lambda: lib.bf_sim_run(sim, ctypes.byref(err)),
                                 flag)
+    ctrl_c = ctrl_c or stop.seen
     cerr = _lib.Err()
     cstatus = lib.bf_sim_close_output(sim, status, ctypes.byref(err),
                                       ctypes.byref(cerr))
@@ -293,8 +358,8 @@ def _observers(observer, every):
     for ob in obs:
         if not callable(ob):
             raise TypeError("observer must be callable (or a list of them)")
-    if not isinstance(every, int) or isinstance(every, bool):
-        raise TypeError("every must be a whole number of steps")
+    every = _lib.cinteger(every, "every", 0,
+                          _lib.C_LONG_MAX)
     return [(ob, every) for ob in obs]
 
 
@@ -355,10 +420,11 @@ def run(scene, set=None, t_end=None, output=None, observer=None, every=0,
     if isinstance(scene, dict):
         scene = scene_text(scene)
     if _is_text(scene):
-        c.built(c.lib.bf_run_from_text(*pre, name.encode(), scene.encode(),
-                                       *post))
+        _refuse_in_text(f"the scene text {name!r}", "", "", scene, "\0")
+        c.built(c.lib.bf_run_from_text(*pre, _lib.cbytes(name, "name"),
+                                       scene.encode(), *post))
     elif isinstance(scene, (str, os.PathLike)):
-        c.built(c.lib.bf_run_load(*pre, os.fspath(scene).encode(), *post))
+        c.built(c.lib.bf_run_load(*pre, _lib.cpath(scene, "scene"), *post))
     else:
         raise TypeError("scene must be a path, INI text or a dict of sections")
     tmpdir = None
@@ -367,9 +433,16 @@ def run(scene, set=None, t_end=None, output=None, observer=None, every=0,
         if temp:
             tmpdir = tempfile.mkdtemp(prefix="ballfilm-")
             output = os.path.join(tmpdir, "run.h5")
-        return _drive(c.handle, c.lib, c.flag, output, temp, c.obs, initial)
+        result = _drive(c.handle, c.lib, c.flag, output, temp, c.obs, initial)
+        if temp and result.path is not None:
+            result.forget_file()
+        return result
     except Interrupted:
         tmpdir = None  # the checkpoint lives there: keep it
+        raise
+    except BallfilmError as e:
+        if temp and e.result is not None and e.result.path is not None:
+            e.result.forget_file()
         raise
     finally:
         c.lib.bf_run_free(c.handle)
@@ -384,7 +457,7 @@ def restart(output, set=None, t_end=None, observer=None, every=0,
     writes may be set (t_end, output_every, ...)."""
     c = _Call(set, t_end, observer, every, catalog)
     pre, post = c.args()
-    c.built(c.lib.bf_run_restart(*pre, os.fspath(output).encode(), *post))
+    c.built(c.lib.bf_run_restart(*pre, _lib.cpath(output, "output"), *post))
     try:
         return _drive(c.handle, c.lib, c.flag, output, False, c.obs, None,
                       opened=True)

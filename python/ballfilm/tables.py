@@ -9,7 +9,7 @@ import numpy as np
 
 from . import _lib
 from .errors import Interrupted, from_err
-from .runner import _in_thread, _sets
+from .runner import _in_thread, _sets, _StopOnSigint
 
 
 def _doubles(values):
@@ -43,20 +43,23 @@ def converge(scene, methods, dts=None, tols=None, t_end=None, set=None,
         methods = [methods]
     if not methods:
         raise ValueError("converge needs at least one method")
-    marr, nm, mkeep = _lib.cstrings(list(methods))
+    marr, nm, mkeep = _lib.cstrings(list(methods), "a method")
     sarr, ns, skeep = _lib.cstrings(_sets(set, None))
     dp, nd, dkeep = _doubles(dts)
     tp, nt, tkeep = _doubles(tols)
     o = _lib.ConvergeOpts(methods=marr, nmethods=nm, dts=dp, ndts=nd,
                           tols=tp, ntols=nt,
                           t_end=float(t_end) if t_end is not None else 0.0,
-                          repeats=int(repeats), rows=int(rows),
+                          repeats=_lib.cinteger(repeats, "repeats", 1,
+                                                _lib.C_INT_MAX),
+                          rows=_lib.cinteger(rows, "rows", 0, _lib.C_LONG_MAX),
                           ref_rtol=float(ref_rtol), max_step=float(max_step))
     out = ctypes.POINTER(_lib.ConvergeResult)()
     err = _lib.Err()
     flag = ctypes.c_int(0)  # converge has no stop flag: Ctrl-C waits
+    scene_c = _lib.cpath(scene, "scene")
     st, ctrl_c = _in_thread(lambda: lib.bf_converge_file(
-        os.fspath(scene).encode(), sarr, ns, ctypes.byref(o),
+        scene_c, sarr, ns, ctypes.byref(o),
         ctypes.byref(out), ctypes.byref(err)), flag)
     del mkeep, skeep, dkeep, tkeep
     if ctrl_c:  # the study cannot stop in the middle: it ran to its end
@@ -126,24 +129,26 @@ def _vary_specs(vary):
     return list(vary)
 
 
-def sweep(scene, vary, dir, set=None):
+def sweep(scene, vary, dir, set=None, retry_failed=False):
     """`ballfilm sweep` in this process, serially: one run of the scene
     file for every combination of the varied keys (vary: {"ball.1.mass":
     [0.8, 1.0, 1.2]} or {"ball.1.mass": "0.5:2:16"}), each in
     dir/case_NNNNN.h5, the summary in dir/summary.h5 and summary.csv.
-    Cases finished by an earlier call are not run again.  Returns a
+    Cases finished by an earlier call are not run again, except those
+    that failed to write (status "io": a full disk), which are; with
+    retry_failed, every failed case is run again.  Returns a
     structured array, one row per case: index, one column per varied key,
     status, wall, lyapunov, map_points, map_fill, energy_error, steps,
     message.  Ctrl-C stops the running case (it is run again next time)
     and raises ballfilm.Interrupted."""
     lib = _lib.lib()
     specs = _vary_specs(vary)
-    varr, nv, vkeep = _lib.cstrings(specs)
+    varr, nv, vkeep = _lib.cstrings(specs, "vary")
     sarr, ns, skeep = _lib.cstrings(_sets(set, None))
     sw = _lib.Sweep()
     err = _lib.Err()
-    if lib.bf_sweep_init(ctypes.byref(sw), os.fspath(scene).encode(), sarr,
-                         ns, varr, nv, os.fspath(dir).encode(),
+    if lib.bf_sweep_init(ctypes.byref(sw), _lib.cpath(scene, "scene"), sarr,
+                         ns, varr, nv, _lib.cpath(dir, "dir"),
                          ctypes.byref(err)):
         raise from_err(err)
     flag = ctypes.c_int(0)
@@ -151,9 +156,12 @@ def sweep(scene, vary, dir, set=None):
     rows = (_lib.SweepRow * max(sw.ncases, 1))()
     keys = [sw.axis[a].key.decode() for a in range(sw.naxis)]
 
+    retry = 1 if retry_failed else 0  # bf_sweep_retry: failed, or I/O only
+
     def all_cases():
         for k in range(sw.ncases):
-            if lib.bf_sweep_case_done(ctypes.byref(sw), k, ctypes.byref(rows[k])):
+            if not lib.bf_sweep_case_pending(ctypes.byref(sw), k, retry,
+                                             ctypes.byref(rows[k])):
                 continue
             st = lib.bf_sweep_run_case(ctypes.byref(sw), k,
                                        ctypes.byref(rows[k]), ctypes.byref(err))
@@ -163,7 +171,9 @@ def sweep(scene, vary, dir, set=None):
                                           ctypes.byref(err))
 
     try:
-        st, ctrl_c = _in_thread(all_cases, flag)
+        with _StopOnSigint(flag) as stop:
+            st, ctrl_c = _in_thread(all_cases, flag)
+            ctrl_c = ctrl_c or stop.seen
         if st == 6 or ctrl_c:
             raise Interrupted(err.msg.decode(errors="replace") or
                               "sweep interrupted", os.fspath(dir))

@@ -48,8 +48,11 @@ static void sweep_usage(FILE *f)
             "time, Lyapunov\n"
             "exponent, return-map points and energy error.  Rerunning the same "
             "sweep skips\n"
-            "finished cases.  --jobs N runs N cases at a time (processes); with "
-            "MPI use\n"
+            "finished cases and runs again those that failed to write (status 5, "
+            "I/O: a full\n"
+            "disk); --retry-failed runs every failed case again.  --jobs N runs "
+            "N cases at a\n"
+            "time (processes); with MPI use\n"
             "  mpirun -n N bin/ballfilm-mpi sweep ...\n"
             "Default DIR: out/<scene name>_sweep.\n");
 }
@@ -60,6 +63,7 @@ typedef struct sweep_args {
     size_t nsets, nvary;
     long jobs;
     int quiet;
+    bf_sweep_retry retry;
     char defdir[1100];
 } sweep_args;
 
@@ -101,6 +105,8 @@ static int parse_args(int argc, char **argv, sweep_args *a)
             }
         } else if (!strcmp(s, "-q") || !strcmp(s, "--quiet")) {
             a->quiet = 1;
+        } else if (!strcmp(s, "--retry-failed")) {
+            a->retry = BF_SWEEP_RETRY_FAILED;
         } else if (s[0] == '-') {
             fprintf(stderr, "ballfilm: error: unknown option '%s'\n", s);
             sweep_usage(stderr);
@@ -150,6 +156,67 @@ static void report_case(const bf_sweep *sw, const bf_sweep_row *r, int quiet,
     fprintf(stderr, "\n");
 }
 
+/* How to run the failed cases again: those that failed to write by
+ * rerunning the same command (once there is room), the others with
+ * --retry-failed (a rerun alone keeps their rows, since they would fail
+ * the same way unless something outside the sweep changed). */
+static void report_retry_hints(const bf_sweep *sw, const bf_sweep_row *rows)
+{
+    size_t io = 0, other = 0;
+    for (size_t k = 0; k < sw->ncases; k++) {
+        if (rows[k].status == BF_EIO)
+            io++;
+        else if (rows[k].status != BF_OK)
+            other++;
+    }
+    if (io)
+        fprintf(stderr, "ballfilm: %zu case%s failed to write (status 5, "
+                        "I/O: a full disk?); run the same command again once "
+                        "there is room: it retries %s\n",
+                io, io > 1 ? "s" : "", io > 1 ? "them" : "it");
+    if (other)
+        fprintf(stderr, "ballfilm: %zu case%s failed (status and message in "
+                        "%s/summary.csv); a rerun keeps %s row%s, "
+                        "--retry-failed runs %s again\n",
+                other, other > 1 ? "s" : "", sw->dir,
+                other > 1 ? "their" : "its", other > 1 ? "s" : "",
+                other > 1 ? "them" : "it");
+}
+
+/* The cases a run of the sweep computes, in order, into todo: those
+ * without a summary row and those whose row records a failure that
+ * `retry` runs again.  Returns how many; *nretried: how many of them
+ * failed before. */
+static size_t pending_cases(const bf_sweep *sw, bf_sweep_retry retry,
+                            long *todo, size_t *nretried)
+{
+    size_t n = 0;
+    *nretried = 0;
+    bf_sweep_row row;
+    for (size_t k = 0; k < sw->ncases; k++)
+        if (bf_sweep_case_pending(sw, (long)k, retry, &row)) {
+            todo[n++] = (long)k;
+            *nretried += row.index == (long)k;
+        }
+    return n;
+}
+
+/* The first line of a sweep: how many cases, how many left, on what. */
+static void report_start(const bf_sweep *sw, size_t ntodo, size_t nretried,
+                         bf_sweep_retry retry, long workers,
+                         const char *what)
+{
+    fprintf(stderr, "sweep: %zu cases, %zu already done, %zu to run on %ld "
+                    "%s%s",
+            sw->ncases, sw->ncases - ntodo, ntodo, workers, what,
+            workers > 1 ? (strcmp(what, "process") ? "s" : "es") : "");
+    if (nretried)
+        fprintf(stderr, " (%zu of them again after a %s)", nretried,
+                retry == BF_SWEEP_RETRY_FAILED ? "failure"
+                                               : "failure to write");
+    fprintf(stderr, "\n");
+}
+
 /* Summary rows for every case: read from the .done files; a case without
  * one (a worker died) is recorded as such. */
 static int gather_and_write(const bf_sweep *sw, bf_sweep_row *rows)
@@ -178,11 +245,13 @@ static int gather_and_write(const bf_sweep *sw, bf_sweep_row *rows)
     bf_err err = {0};
     if (bf_sweep_write_summary(sw, rows, &err)) {
         fprintf(stderr, "ballfilm: error: %s\n", err.msg);
+        report_retry_hints(sw, rows);
         return 5;
     }
     printf("%zu cases: %zu ok, %zu failed, %zu missing; summary in %s/summary.h5 "
            "and %s/summary.csv\n",
            sw->ncases, ok, failed, missing, sw->dir, sw->dir);
+    report_retry_hints(sw, rows);
     /* the sweep's status: interrupted, a case that failed (the first), a
      * case that did not finish, or ok */
     if (bf_cli_stop)
@@ -230,16 +299,10 @@ int bf_cmd_sweep(int argc, char **argv)
         return 1;
     }
     mark_unfilled(rows, sw.ncases);
-    size_t ntodo = 0;
-    bf_sweep_row tmp;
-    for (size_t k = 0; k < sw.ncases; k++)
-        if (!bf_sweep_case_done(&sw, (long)k, &tmp))
-            todo[ntodo++] = (long)k;
+    size_t nretried;
+    const size_t ntodo = pending_cases(&sw, a.retry, todo, &nretried);
     if (!a.quiet)
-        fprintf(stderr, "sweep: %zu cases, %zu already done, %zu to run on %ld "
-                        "process%s\n",
-                sw.ncases, sw.ncases - ntodo, ntodo, a.jobs,
-                a.jobs > 1 ? "es" : "");
+        report_start(&sw, ntodo, nretried, a.retry, a.jobs, "process");
     int status = 0;
     if (a.jobs == 1 || ntodo <= 1) {
         for (size_t q = 0; q < ntodo && !bf_cli_stop; q++) {
@@ -272,7 +335,7 @@ int bf_cmd_sweep(int argc, char **argv)
 
 /* The process pool: workers take case numbers from a pipe.  A worker dies
  * with its parent (PR_SET_PDEATHSIG), and an interrupted sweep forwards
- * the interrupt to its workers, whose running cases stop as interrupted
+ * the interrupt to its workers (as SIGTERM), whose running cases stop as interrupted
  * runs do, and waits for them. */
 static int run_pool(const bf_sweep *sw, const sweep_args *a, const long *todo,
                     size_t ntodo)
@@ -332,8 +395,10 @@ static int run_pool(const bf_sweep *sw, const sweep_args *a, const long *todo,
             int forwarded = 0;
             for (;;) {
                 if (bf_cli_stop && !forwarded) {
+                    /* SIGTERM: workers of a sweep that ignores SIGINT
+                     * (main.c) ignore it too */
                     for (long w = 0; w < started; w++)
-                        kill(pids[w], SIGINT);
+                        kill(pids[w], SIGTERM);
                     forwarded = 1;
                 }
                 pid_t p = wait(NULL);
@@ -437,15 +502,10 @@ int bf_cmd_sweep(int argc, char **argv)
         s.todo = malloc(sw.ncases * sizeof *s.todo);
         pthread_mutex_init(&s.lock, NULL);
         mark_unfilled(s.rows, sw.ncases);
-        bf_sweep_row tmp;
-        for (size_t k = 0; k < sw.ncases; k++)
-            if (!bf_sweep_case_done(&sw, (long)k, &tmp))
-                s.todo[s.ntodo++] = (long)k;
+        size_t nretried;
+        s.ntodo = pending_cases(&sw, a.retry, s.todo, &nretried);
         if (!a.quiet)
-            fprintf(stderr, "sweep: %zu cases, %zu already done, %zu to run on "
-                            "%d rank%s\n",
-                    sw.ncases, sw.ncases - s.ntodo, s.ntodo, size,
-                    size > 1 ? "s" : "");
+            report_start(&sw, s.ntodo, nretried, a.retry, size, "rank");
         pthread_t th;
         pthread_create(&th, NULL, local_worker, &s);
         int active = size - 1;

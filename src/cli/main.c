@@ -58,14 +58,19 @@ static void on_signal(int sig)
 /* Before anything else: a signal during set-up must not kill the process
  * half-way (a file created and not yet flushed); the commands check
  * bf_cli_stop and end with status 6.  No SA_RESTART: a blocking wait
- * returns so that the command can react. */
+ * returns so that the command can react.  An ignored SIGINT stays
+ * ignored: a shell starts the background jobs of a script that way so
+ * that Ctrl-C at the terminal stops the script and not them; SIGTERM
+ * (kill, a batch scheduler) stops the program whatever it inherited. */
 static void install_handlers(void)
 {
-    struct sigaction sa;
+    struct sigaction sa, inherited;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
+    if (sigaction(SIGINT, NULL, &inherited) ||
+        inherited.sa_handler != SIG_IGN)
+        sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
 #ifdef BF_MPI
     /* mpirun (Open MPI) forwards SIGUSR1 to every rank as it is, while it

@@ -363,6 +363,18 @@ int bf_sweep_case_done(const bf_sweep *sw, long k, bf_sweep_row *row)
     return bf_sweep_row_parse(sw, line, row) && row->index == k;
 }
 
+int bf_sweep_case_pending(const bf_sweep *sw, long k, bf_sweep_retry retry,
+                          bf_sweep_row *row)
+{
+    if (!bf_sweep_case_done(sw, k, row)) {
+        row->index = -1;
+        return 1;
+    }
+    if (row->status == BF_OK)
+        return 0;
+    return retry == BF_SWEEP_RETRY_FAILED || row->status == BF_EIO;
+}
+
 static bf_status write_done(const bf_sweep *sw, const bf_sweep_row *row,
                             bf_err *err)
 {

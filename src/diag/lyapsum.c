@@ -125,9 +125,15 @@ void bf_lyap_sum_report(const bf_lyap_sum *ls, unsigned long long evals,
                         FILE *f)
 {
     double tr, l = bf_lyap_sum_estimate(ls, &tr);
-    fprintf(f, "lyapunov exponent: %.6g 1/s (at t = %g s; shadow "
-               "trajectory: %llu force evaluations)\n",
-            l, tr, evals);
+    /* NaN: no renormalisation yet, so no estimate at all */
+    if (isnan(l))
+        fprintf(f, "lyapunov exponent: not measured (no renormalisation "
+                   "yet; shadow trajectory: %llu force evaluations)\n",
+                evals);
+    else
+        fprintf(f, "lyapunov exponent: %.6g 1/s (at t = %g s; shadow "
+                   "trajectory: %llu force evaluations)\n",
+                l, tr, evals);
 }
 
 bf_status bf_lyap_sum_output_open(bf_lyap_sum *ls, bf_out *out, bf_err *err)

@@ -617,9 +617,15 @@ static void coupled_report(const void *self, FILE *f)
                "%ld return-map points, %ld peaks\n",
             ex, ta, m->nmap, m->npeak);
     fprintf(f, "symmetry: ball error first above");
-    for (int k = 0; k < BF_COUPLED_NSYM; k++)
-        fprintf(f, " %g cm at t = %.4g s%s", bf_coupled_sym_levels[k],
-                m->sym_t[k], k + 1 < BF_COUPLED_NSYM ? "," : "\n");
+    /* sym_t is NaN for a level the error never reached */
+    for (int k = 0; k < BF_COUPLED_NSYM; k++) {
+        fprintf(f, " %g cm ", bf_coupled_sym_levels[k]);
+        if (isnan(m->sym_t[k]))
+            fprintf(f, "never");
+        else
+            fprintf(f, "at t = %.4g s", m->sym_t[k]);
+        fprintf(f, "%s", k + 1 < BF_COUPLED_NSYM ? "," : "\n");
+    }
     if (m->sym)
         fprintf(f,
                 "symmetrize: largest relative change of one projection: "

@@ -5,6 +5,7 @@ bin/ballfilm) for the comparisons with the command line.  Run them with
 `make test-python` (after `make`), or
 `/usr/bin/python3 -m pytest tests/python` from the repository's root."""
 import os
+import signal
 import subprocess
 import sys
 
@@ -60,3 +61,14 @@ def plugin(tmp_path_factory):
     p = subprocess.run(cmd, capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
     return str(out)
+
+
+@pytest.fixture
+def sigint_raises():
+    """SIGINT raises KeyboardInterrupt in this process during the test,
+    as in an interactive Python, also when the tests were started with
+    SIGINT ignored (under nohup, or as a script's background job), which
+    Python keeps; the disposition before is put back afterwards."""
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, before)

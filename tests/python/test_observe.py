@@ -53,7 +53,8 @@ def test_an_observer_stops_a_run_or_fails_it(root, tmp_path):
 
 
 def test_ctrl_c_stops_with_a_checkpoint_and_restart_continues(root, tmp_path,
-                                                             h5same):
+                                                             h5same,
+                                                             sigint_raises):
     """SIGINT in the middle of a run (sent by an observer, from the run's
     own thread, as a terminal would): ballfilm.Interrupted with the
     checkpoint; restart gives the uninterrupted run's datasets."""

@@ -47,7 +47,8 @@ def test_sweep_is_the_program_s_sweep(program, root, tmp_path):
     assert np.array_equal(again["lyapunov"], t["lyapunov"])
 
 
-def test_ctrl_c_stops_a_sweep_and_a_rerun_completes_it(root, tmp_path):
+def test_ctrl_c_stops_a_sweep_and_a_rerun_completes_it(root, tmp_path,
+                                                     sigint_raises):
     """SIGINT (from a timer, as a terminal would send it) during a sweep:
     ballfilm.Interrupted, the running case leaves no .done row; the rerun
     runs what is missing and gives the table of an uninterrupted sweep."""
