@@ -200,6 +200,28 @@ START_TEST(sweep_files_not_written_through_links)
 }
 END_TEST
 
+/* A sweep's directory planted as a link to another directory of the same
+ * user (whose files the sweep would write over) is refused, and nothing
+ * is written into the link's target. */
+START_TEST(sweep_directory_link_refused)
+{
+    char target[600], dir[600], summary[700];
+    snprintf(target, sizeof target, "%s", tu_tmp("lsweepdir_target"));
+    snprintf(dir, sizeof dir, "%s", tu_tmp("lsweepdir"));
+    ck_assert_int_eq(mkdir(target, 0777), 0);
+    ck_assert_int_eq(symlink(target, dir), 0);
+    char *err = NULL;
+    int rc = tu_run(NULL, &err, "sweep", tu_repo("runs/harmonic.ini"),
+                    "--vary", "spring.stiffness=1:2:2", "-o", dir, NULL);
+    ck_assert_msg(rc == 5, "status %d: %s", rc, err);
+    ck_assert_msg(err && strstr(err, "symbolic link"), "%s", err);
+    snprintf(summary, sizeof summary, "%s/sweep.txt", target);
+    struct stat sb;
+    ck_assert_msg(lstat(summary, &sb) != 0, "wrote %s", summary);
+    free(err);
+}
+END_TEST
+
 /* The movie of `animate` replaces a link at its name instead of writing
  * through it. */
 START_TEST(movie_not_written_through_a_link)
@@ -519,6 +541,7 @@ Suite *suite_hostile_paths(void)
     tcase_add_test(tc, planted_file_at_part_refused);
     tcase_add_test(tc, link_at_checkpoint_tmp_refused);
     tcase_add_test(tc, sweep_files_not_written_through_links);
+    tcase_add_test(tc, sweep_directory_link_refused);
     tcase_add_test(tc, movie_not_written_through_a_link);
     suite_add_tcase(s, tc);
     tc = tu_tcase("result_name");

@@ -237,6 +237,18 @@ bf_status bf_sweep_init(bf_sweep *sw, const char *scene_path,
         return bf_fail(err, BF_EIO, "%s: cannot create directory (%s)", dir,
                        strerror(errno));
     }
+    /* an existing DIR holds the sweep's records and results, which the
+     * sweep writes over: it must be a directory of this user, not a link
+     * someone planted at its name in a shared directory (outpath.h) */
+    struct stat sb = {0};
+    if (lstat(dir, &sb) || !S_ISDIR(sb.st_mode) || sb.st_uid != geteuid()) {
+        bf_sweep_free(sw);
+        return bf_fail(err, BF_EIO, "%s: not a directory of this user (%s); "
+                       "a sweep writes only into its own directory", dir,
+                       S_ISLNK(sb.st_mode) ? "a symbolic link"
+                                           : "another user's, or not a "
+                                             "directory");
+    }
     if ((st = check_manifest(sw, sets, nsets, err))) {
         bf_sweep_free(sw);
         return st;
