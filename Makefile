@@ -103,7 +103,7 @@ RUNNER    := $(BUILD)/tests/runner
         fig-g72-ex1-ensemble fig-g72-ex2 fig-g72-large fig-g73-hex \
         fig-g73-wall movies deps-movies deps-xdmf test-movies test-xdmf \
         shared install uninstall man deps-install test-install test-examples \
-        test-python deps-python
+        test-python deps-python test-pip deps-pip
 
 all: $(PROG) shared
 
@@ -728,6 +728,7 @@ test:
 	@$(MAKE) --no-print-directory test-install
 	@$(MAKE) --no-print-directory test-examples
 	@$(MAKE) --no-print-directory test-python
+	@$(MAKE) --no-print-directory test-pip
 
 # The code's layering against docs/architecture.md (include directions,
 # circles, public headers, file sizes, who reads scenes) and the docs'
@@ -775,6 +776,18 @@ test-python: $(PROG) $(SHLIB) $(KILLWRITE) | deps-python
 	BALLFILM_BIN=$(abspath $(PROG)) BALLFILM_LIB=$(abspath $(SHLIB)) \
 	  BALLFILM_KILLWRITE=$(abspath $(KILLWRITE)) \
 	  $(PY) -m pytest -q -p no:cacheprovider tests/python
+
+# The package installed by pip, offline, into fresh virtual environments
+# (pyproject.toml: the build runs make shared and puts the library, the
+# scenes and the plot scripts inside the package), then used from outside
+# the repository with no variables; and pip install -e (tests/test_pip.py).
+PIP_PKGS := python3-pip python3-setuptools python3-wheel python3-venv \
+            python3-numpy python3-h5py
+deps-pip:
+	$(call need_pkgs,$(PIP_PKGS))
+
+test-pip: $(SHLIB) | deps-pip
+	$(PY) tests/test_pip.py
 
 # ASAN_LEAKS=0 turns off LeakSanitizer only (for containers that forbid
 # the ptrace it needs; .ci/run decides this by a probe and says so).
