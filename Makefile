@@ -103,7 +103,8 @@ RUNNER    := $(BUILD)/tests/runner
         fig-g72-ex1-ensemble fig-g72-ex2 fig-g72-large fig-g73-hex \
         fig-g73-wall movies deps-movies deps-xdmf test-movies test-xdmf \
         shared install uninstall man deps-install test-install test-examples \
-        test-python deps-python test-pip deps-pip
+        test-python deps-python test-pip deps-pip test-notebooks \
+        deps-notebooks
 
 all: $(PROG) shared
 
@@ -754,6 +755,7 @@ test:
 	@$(MAKE) --no-print-directory test-examples
 	@$(MAKE) --no-print-directory test-python
 	@$(MAKE) --no-print-directory test-pip
+	@$(MAKE) --no-print-directory test-notebooks
 
 # The code's layering against docs/architecture.md (include directions,
 # circles, public headers, file sizes, who reads scenes) and the docs'
@@ -814,6 +816,17 @@ deps-pip:
 
 test-pip: $(SHLIB) | deps-pip
 	$(PY) tests/test_pip.py
+
+# Every notebook of examples/notebooks/ executed with Debian's nbclient and
+# ipykernel against this build (each ends by asserting its trust numbers;
+# a notebook committed with outputs fails; tests/test_notebooks.py).
+NB_PKGS := python3-nbclient python3-ipykernel python3-nbformat \
+           python3-numpy python3-h5py python3-matplotlib
+deps-notebooks:
+	$(call need_pkgs,$(NB_PKGS))
+
+test-notebooks: $(SHLIB) | deps-notebooks
+	$(PY) tests/test_notebooks.py
 
 # ASAN_LEAKS=0 turns off LeakSanitizer only (for containers that forbid
 # the ptrace it needs; .ci/run decides this by a probe and says so).
