@@ -37,6 +37,12 @@ def _version():
 
 VERSION = _version()
 
+# pyproject.toml sends setuptools' work files (egg-info, build/lib) to
+# build/setuptools; egg_info refuses a folder that does not exist, and it
+# runs before build_py's make, so a fresh clone needs it made here (this
+# module is read with the configuration, before any command runs).
+os.makedirs(os.path.join(ROOT, "build", "setuptools"), exist_ok=True)
+
 
 def _abi(version):
     """The soname's version: major, and minor too while major is 0."""
