@@ -103,7 +103,8 @@ RUNNER    := $(BUILD)/tests/runner
         fig-g72-ex1-ensemble fig-g72-ex2 fig-g72-large fig-g73-hex \
         fig-g73-wall movies deps-movies deps-xdmf test-movies test-xdmf \
         shared install uninstall man deps-install test-install test-examples \
-        test-python deps-python
+        test-python deps-python test-pip deps-pip test-notebooks \
+        deps-notebooks
 
 all: $(PROG) shared
 
@@ -180,7 +181,11 @@ shared: $(SHLIB)
 # ---------------------------------------------------------------- install
 # make install [PREFIX=/usr/local] [DESTDIR=...]: the program, both
 # libraries, the public headers, ballfilm.pc (pkg-config), the man page
-# (help2man from the program's --help) and the Python package.
+# (help2man from the program's --help), the Python package, and in
+# PREFIX/share/ballfilm the scenes (runs/) and the plot scripts (plots/)
+# that `ballfilm animate` and the figures run (the program finds them
+# beside itself: PREFIX/bin/../share/ballfilm), and the documentation in
+# PREFIX/share/doc/ballfilm.
 # make uninstall removes exactly those files (same PREFIX and DESTDIR).
 PREFIX     ?= /usr/local
 LIBDIR     ?= $(PREFIX)/lib
@@ -189,6 +194,13 @@ MANDIR     ?= $(PREFIX)/share/man
 PYVER      := $(shell $(PY) -c 'import sys; print("%d.%d" % sys.version_info[:2])' 2>/dev/null)
 PYTHONDIR  ?= $(PREFIX)/lib/python$(PYVER)/dist-packages
 PY_PKG     := $(sort $(wildcard python/ballfilm/*.py))
+SHAREDIR   ?= $(PREFIX)/share/ballfilm
+DOCDIR     ?= $(PREFIX)/share/doc/ballfilm
+SHARE_RUNS := $(sort $(wildcard runs/*.ini runs/*.sh))
+SHARE_PLOTS := $(sort $(wildcard plots/*.py))
+DOC_TOP    := README.md
+DOC_PAGES  := $(sort $(wildcard docs/*.md))
+DOC_MODELS := $(sort $(wildcard docs/models/*.md))
 MAN        := $(BUILD)/ballfilm.1
 INSTALL_PKGS := help2man
 
@@ -204,7 +216,8 @@ man: $(MAN)
 install: $(PROG) $(LIB) $(SHLIB) $(MAN)
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(LIBDIR)/pkgconfig \
 	  $(DESTDIR)$(INCLUDEDIR)/ballfilm $(DESTDIR)$(MANDIR)/man1 \
-	  $(DESTDIR)$(PYTHONDIR)/ballfilm
+	  $(DESTDIR)$(PYTHONDIR)/ballfilm $(DESTDIR)$(SHAREDIR)/runs \
+	  $(DESTDIR)$(SHAREDIR)/plots $(DESTDIR)$(DOCDIR)/docs/models
 	install -m 755 $(PROG) $(DESTDIR)$(PREFIX)/bin/ballfilm
 	install -m 644 $(LIB) $(DESTDIR)$(LIBDIR)/libballfilm.a
 	install -m 755 $(SHLIB) $(DESTDIR)$(LIBDIR)/$(notdir $(SHLIB))
@@ -216,8 +229,14 @@ install: $(PROG) $(LIB) $(SHLIB) $(MAN)
 	    src/ballfilm.pc.in > $(DESTDIR)$(LIBDIR)/pkgconfig/ballfilm.pc
 	install -m 644 $(MAN) $(DESTDIR)$(MANDIR)/man1/ballfilm.1
 	$(if $(PY_PKG),install -m 644 $(PY_PKG) $(DESTDIR)$(PYTHONDIR)/ballfilm/)
-	printf 'LIBRARY = "%s"\n' $(LIBDIR)/$(SONAME) \
+	printf 'LIBRARY = "%s"\nSHARE = "%s"\n' $(LIBDIR)/$(SONAME) $(SHAREDIR) \
 	  > $(DESTDIR)$(PYTHONDIR)/ballfilm/_install.py
+	printf 'version = "%s"\n' $(VERSION) > $(DESTDIR)$(PYTHONDIR)/ballfilm/_version.py
+	install -m 644 $(SHARE_RUNS) $(DESTDIR)$(SHAREDIR)/runs/
+	install -m 644 $(SHARE_PLOTS) $(DESTDIR)$(SHAREDIR)/plots/
+	install -m 644 $(DOC_TOP) $(DESTDIR)$(DOCDIR)/
+	install -m 644 $(DOC_PAGES) $(DESTDIR)$(DOCDIR)/docs/
+	install -m 644 $(DOC_MODELS) $(DESTDIR)$(DOCDIR)/docs/models/
 
 uninstall:
 	rm -f $(DESTDIR)$(PREFIX)/bin/ballfilm $(DESTDIR)$(LIBDIR)/libballfilm.a \
@@ -226,9 +245,16 @@ uninstall:
 	  $(DESTDIR)$(LIBDIR)/pkgconfig/ballfilm.pc \
 	  $(DESTDIR)$(MANDIR)/man1/ballfilm.1 \
 	  $(addprefix $(DESTDIR)$(INCLUDEDIR)/ballfilm/,$(notdir $(PUBLIC_H))) \
-	  $(addprefix $(DESTDIR)$(PYTHONDIR)/ballfilm/,$(notdir $(PY_PKG)) _install.py)
-	rm -rf $(DESTDIR)$(PYTHONDIR)/ballfilm/__pycache__
-	-rmdir $(DESTDIR)$(INCLUDEDIR)/ballfilm $(DESTDIR)$(PYTHONDIR)/ballfilm 2>/dev/null
+	  $(addprefix $(DESTDIR)$(PYTHONDIR)/ballfilm/,$(notdir $(PY_PKG)) _install.py _version.py) \
+	  $(addprefix $(DESTDIR)$(SHAREDIR)/runs/,$(notdir $(SHARE_RUNS))) \
+	  $(addprefix $(DESTDIR)$(SHAREDIR)/plots/,$(notdir $(SHARE_PLOTS))) \
+	  $(addprefix $(DESTDIR)$(DOCDIR)/,$(DOC_TOP) $(DOC_PAGES) $(DOC_MODELS))
+	rm -rf $(DESTDIR)$(PYTHONDIR)/ballfilm/__pycache__ \
+	  $(DESTDIR)$(SHAREDIR)/plots/__pycache__
+	-rmdir $(DESTDIR)$(INCLUDEDIR)/ballfilm $(DESTDIR)$(PYTHONDIR)/ballfilm \
+	  $(DESTDIR)$(SHAREDIR)/runs $(DESTDIR)$(SHAREDIR)/plots $(DESTDIR)$(SHAREDIR) \
+	  $(DESTDIR)$(DOCDIR)/docs/models $(DESTDIR)$(DOCDIR)/docs $(DESTDIR)$(DOCDIR) \
+	  2>/dev/null
 
 # The MPI front end: the same CLI compiled with mpicc and -DBF_MPI (only the
 # sweep command uses MPI), linked with the same library.
@@ -728,6 +754,8 @@ test:
 	@$(MAKE) --no-print-directory test-install
 	@$(MAKE) --no-print-directory test-examples
 	@$(MAKE) --no-print-directory test-python
+	@$(MAKE) --no-print-directory test-pip
+	@$(MAKE) --no-print-directory test-notebooks
 
 # The code's layering against docs/architecture.md (include directions,
 # circles, public headers, file sizes, who reads scenes) and the docs'
@@ -749,8 +777,9 @@ test-xdmf: $(PROG) | deps-xdmf
 # The library as its users get it (docs/library.md): make install into a
 # fresh temporary prefix, an example compiled with pkg-config alone
 # (shared and static), the .so's exports, the installed Python package,
-# make uninstall (tests/test_install.py).
-test-install: $(PROG) $(LIB) $(SHLIB) | deps-install
+# the installed scenes, `ballfilm animate` and a figure script run from the
+# prefix, make uninstall (tests/test_install.py).
+test-install: $(PROG) $(LIB) $(SHLIB) | deps-install deps-movies
 	$(PY) tests/test_install.py
 
 # Every example of examples/ built with pkg-config against an install into
@@ -775,6 +804,29 @@ test-python: $(PROG) $(SHLIB) $(KILLWRITE) | deps-python
 	BALLFILM_BIN=$(abspath $(PROG)) BALLFILM_LIB=$(abspath $(SHLIB)) \
 	  BALLFILM_KILLWRITE=$(abspath $(KILLWRITE)) \
 	  $(PY) -m pytest -q -p no:cacheprovider tests/python
+
+# The package installed by pip, offline, into fresh virtual environments
+# (pyproject.toml: the build runs make shared and puts the library, the
+# scenes and the plot scripts inside the package), then used from outside
+# the repository with no variables; and pip install -e (tests/test_pip.py).
+PIP_PKGS := python3-pip python3-setuptools python3-wheel python3-venv \
+            python3-numpy python3-h5py
+deps-pip:
+	$(call need_pkgs,$(PIP_PKGS))
+
+test-pip: $(SHLIB) | deps-pip
+	$(PY) tests/test_pip.py
+
+# Every notebook of examples/notebooks/ executed with Debian's nbclient and
+# ipykernel against this build (each ends by asserting its trust numbers;
+# a notebook committed with outputs fails; tests/test_notebooks.py).
+NB_PKGS := python3-nbclient python3-ipykernel python3-nbformat \
+           python3-numpy python3-h5py python3-matplotlib
+deps-notebooks:
+	$(call need_pkgs,$(NB_PKGS))
+
+test-notebooks: $(SHLIB) | deps-notebooks
+	$(PY) tests/test_notebooks.py
 
 # ASAN_LEAKS=0 turns off LeakSanitizer only (for containers that forbid
 # the ptrace it needs; .ci/run decides this by a probe and says so).

@@ -4,8 +4,10 @@ run's provenance).
 
 Plot scripts only draw; they never decide pass/fail.  Run them with
 /usr/bin/python3 (Debian's numpy, matplotlib, h5py).  The package is the
-installed one or, when none is, the repository's python/ballfilm (reading
-files needs only h5py, not the C library)."""
+one Python finds or, when it finds none, the repository's python/ballfilm
+(for plots/ of the repository) or the one `make install` put in
+PREFIX/lib/python3.X/dist-packages (for PREFIX/share/ballfilm/plots);
+reading files needs only h5py, not the C library."""
 import os
 import sys
 
@@ -14,8 +16,11 @@ import matplotlib
 try:
     import ballfilm
 except ImportError:
-    sys.path.insert(0, os.path.join(os.path.dirname(
-        os.path.realpath(__file__)), "..", "python"))
+    _here = os.path.dirname(os.path.realpath(__file__))
+    sys.path[:0] = [os.path.join(_here, "..", "python"),
+                    os.path.join(_here, "..", "..", "..", "lib",
+                                 "python%d.%d" % sys.version_info[:2],
+                                 "dist-packages")]
     import ballfilm
 
 matplotlib.use("Agg")

@@ -30,6 +30,8 @@ SCENE_LAYERS = ("src/io", "src/compose")
 TOP_LEVEL = {"Makefile", "README.md", "src", "include", "runs", "tests",
              "plots", "bench", "docs", "examples", "python", ".ci",
              ".gitignore",
+             # packaging metadata for pip (the build steps are in python/)
+             "pyproject.toml",
              # a link to python/ballfilm, so that /usr/bin/python3 run
              # from the root imports the package with no PYTHONPATH
              "ballfilm"}

@@ -3,7 +3,9 @@
 user would, then `make uninstall`.
 
   - every file is there: the program, both libraries with the soname
-    links, the public headers, ballfilm.pc, the man page, the package;
+    links, the public headers, ballfilm.pc, the man page, the package,
+    the scenes and plot scripts (PREFIX/share/ballfilm/runs, plots) and
+    the documentation (PREFIX/share/doc/ballfilm);
   - the shared library exports only bf_ symbols, exactly the functions
     and variables the installed headers declare (internals such as the
     ball system and the built-in descriptors are hidden);
@@ -13,13 +15,20 @@ user would, then `make uninstall`.
     own check, the observed order 4); then the same with the shared
     library removed from a copy of the prefix and `--static`: the program
     needs no libballfilm.so and runs;
+  - from a directory outside the repository and with no BALLFILM_ROOT,
+    the installed program runs an installed scene, `ballfilm animate`
+    makes a movie of it (the program finds PREFIX/share/ballfilm/plots
+    beside itself), and an installed figure script (fig1_phase.py) draws
+    the figure;
   - the installed Python package, from outside the repository, finds the
-    installed library and runs a scene;
+    installed library, its version and the installed scenes, and runs
+    one;
   - `make uninstall` leaves no file behind.
 
 usage: test_install.py   (make test-install; from the repository root)
 Ends with the line 'install: N passed, N failed'; exit 1 on a failure."""
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -28,6 +37,10 @@ import tempfile
 from pychecks import Checks, run
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+PY = "/usr/bin/python3"  # Debian's, with numpy, matplotlib and h5py
+with open(os.path.join(ROOT, "include", "ballfilm", "version.h")) as _f:
+    VERSION = re.search(r'^#define BF_VERSION "([^"]+)"', _f.read(),
+                        re.M).group(1)
 CK = Checks("install")
 check = CK.check
 
@@ -71,6 +84,45 @@ def compile_example(prefix, out, static=False):
     return cmd
 
 
+def listed(sub, ext):
+    return sorted(f for f in os.listdir(os.path.join(ROOT, sub))
+                  if f.endswith(ext))
+
+
+def from_prefix(prefix, work):
+    """The installed program, scene, movie and figure, away from the
+    repository and without BALLFILM_ROOT."""
+    where = os.path.join(work, "elsewhere")
+    os.makedirs(where, exist_ok=True)
+    env = {k: v for k, v in os.environ.items()
+           if not k.startswith("BALLFILM_") and k != "PYTHONPATH"}
+    prog = os.path.join(prefix, "bin", "ballfilm")
+    scene = os.path.join(prefix, "share", "ballfilm", "runs",
+                         "bouncing_ball.ini")
+
+    def go(cmd):
+        return subprocess.run(cmd, cwd=where, env=env, capture_output=True,
+                              text=True)
+    for m in ("verlet", "mv2m"):
+        r = go([prog, "run", scene, "-q", "-o", m + ".h5", "--set",
+                "scene.t_end=0.5", "--set", "scene.integrator=" + m])
+        check(r.returncode == 0, "the installed program runs the installed "
+              "scene bouncing_ball.ini (%s)" % m, r.stdout + r.stderr)
+    r = go([prog, "animate", "mv2m.h5", "-o", "movie.mp4", "--frames", "8",
+            "-q"])
+    movie = [f for f in ("movie.mp4", "movie.gif")
+             if os.path.exists(os.path.join(where, f))]
+    check(r.returncode == 0 and movie, "`ballfilm animate` from the prefix, "
+          "without BALLFILM_ROOT, makes a movie", r.stdout + r.stderr)
+    script = os.path.join(prefix, "share", "ballfilm", "plots",
+                          "fig1_phase.py")
+    r = go([PY, script, "verlet.h5", "mv2m.h5", "-o", "fig1.png"])
+    check(r.returncode == 0 and os.path.exists(os.path.join(where,
+                                                            "fig1.png")),
+          "the installed fig1_phase.py draws Fig. 1 from the prefix",
+          r.stdout + r.stderr)
+
+
 def main():
     work = tempfile.mkdtemp(prefix="ballfilm-install-")
     prefix = os.path.join(work, "prefix")
@@ -87,6 +139,19 @@ def main():
                   "include/ballfilm/sim.h", "share/man/man1/ballfilm.1"]:
             check(f in have, "installed " + f)
         check(len(py) == 1, "installed the Python package", str(py))
+        for sub, ext in (("runs", ".ini"), ("plots", ".py")):
+            want = ["share/ballfilm/%s/%s" % (sub, f) for f in listed(sub, ext)]
+            check(want and set(want) <= set(have), "installed every %s/*%s "
+                  "(%d) in share/ballfilm/%s" % (sub, ext, len(want), sub),
+                  str(sorted(set(want) - set(have))))
+        docs = ["share/doc/ballfilm/README.md"] + \
+            ["share/doc/ballfilm/docs/" + f for f in listed("docs", ".md")] + \
+            ["share/doc/ballfilm/docs/models/" + f
+             for f in listed(os.path.join("docs", "models"), ".md")]
+        check(set(docs) <= set(have), "installed the documentation (%d "
+              "pages) in share/doc/ballfilm" % len(docs),
+              str(sorted(set(docs) - set(have))))
+        from_prefix(prefix, work)
         n_headers = len([f for f in have if f.startswith("include/ballfilm/")])
         check(n_headers == len(os.listdir(os.path.join(ROOT, "include",
                                                        "ballfilm"))),
@@ -143,11 +208,11 @@ def main():
             env = dict(os.environ, PYTHONPATH=os.path.join(
                 prefix, os.path.dirname(os.path.dirname(py[0]))))
             env.pop("BALLFILM_LIB", None)
-            code = ("import ballfilm, os; "
-                    "r = ballfilm.run(os.path.join(%r, 'runs', "
-                    "'bouncing_ball.ini'), t_end=1); "
-                    "print(ballfilm.library_path()); print(r.energy_error)"
-                    % ROOT)
+            code = ("import ballfilm; "
+                    "s = ballfilm.scene('bouncing_ball'); "
+                    "r = ballfilm.run(s, t_end=1); "
+                    "print(ballfilm.library_path()); print(s); "
+                    "print(ballfilm.__version__); print(r.energy_error)")
             r = subprocess.run([sys.executable, "-c", code], cwd=work,
                                capture_output=True, text=True, env=env)
             lines = r.stdout.split()
@@ -155,6 +220,13 @@ def main():
                   lines[0] == os.path.join(prefix, "lib",
                                            "libballfilm.so.0.1"),
                   "the installed package uses the installed library",
+                  r.stdout + r.stderr)
+            check(len(lines) > 2 and lines[1] == os.path.join(
+                prefix, "share", "ballfilm", "runs", "bouncing_ball.ini"),
+                "the installed package finds the installed scenes",
+                r.stdout + r.stderr)
+            check(len(lines) > 2 and lines[2] == VERSION,
+                  "the installed package's __version__ is " + VERSION,
                   r.stdout + r.stderr)
         r = run(["make", "--no-print-directory", "uninstall",
                  "PREFIX=" + prefix])

@@ -9,13 +9,20 @@
 load() reads a ballfilm HDF5 file with h5py; run(), restart(), converge()
 and sweep() call the C library libballfilm.so through ctypes, in this
 process (see _lib.py for where the library is looked for: $BALLFILM_LIB,
-the repository's build/, the installed one, the system's).  Only Debian's
-python3-numpy and python3-h5py are needed.  docs/library.md has the tour.
+the one inside the package, the repository's build/, the installed one,
+the system's).  Only Debian's python3-numpy and python3-h5py are needed.
+scene("bouncing_ball") is the path of a scene the package ships (runs/),
+plot_script("animate") that of a plot script (plots/); __version__ is
+BF_VERSION of include/ballfilm/version.h.  docs/library.md has the tour.
 """
+from ._share import plot_script, scene, scenes, share_dir
+from ._share import version as _version
 from .errors import BallfilmError, Interrupted
 from .result import Result, load
 from .runner import Catalog, State, restart, run, scene_text
 from .tables import converge, sweep
+
+__version__ = _version()
 
 
 def library_path():
@@ -32,4 +39,5 @@ def version():
 
 __all__ = ["load", "run", "restart", "converge", "sweep", "Result", "State",
            "Catalog", "BallfilmError", "Interrupted", "scene_text",
-           "library_path", "version"]
+           "library_path", "version", "scene", "scenes", "plot_script",
+           "share_dir", "__version__"]

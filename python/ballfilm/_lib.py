@@ -3,11 +3,13 @@ the public C structs and functions the package calls.
 
 Where the library comes from, first found wins:
   1. $BALLFILM_LIB, the path of a libballfilm.so;
-  2. the repository's build/libballfilm.so, when this package is the
-     repository's python/ballfilm (run `make` first);
-  3. the library `make install` installed next to this package
+  2. the library inside the package, libballfilm.so.0.1 beside this file
+     (pip install puts it there);
+  3. the repository's build/libballfilm.so, when this package is the
+     repository's python/ballfilm (run `make` first; pip install -e .);
+  4. the library `make install` installed next to this package
      (_install.py, written by make install);
-  4. the system's loader (libballfilm.so.0.1 on its search path).
+  5. the system's loader (libballfilm.so.0.1 on its search path).
 Every mirror is checked against the library's own sizes (bf_sizeof) when
 the library is loaded, so a package and a library that do not match fail
 with a message instead of corrupting memory.
@@ -200,6 +202,9 @@ def _candidates():
         yield env, "$BALLFILM_LIB"
         return
     here = os.path.dirname(os.path.realpath(__file__))
+    inside = os.path.join(here, "libballfilm.so." + ABI)
+    if os.path.exists(inside):
+        yield inside, "the package's own library (pip install)"
     repo = os.path.normpath(os.path.join(here, "..", "..", "build",
                                          "libballfilm.so"))
     if os.path.exists(repo):
@@ -232,7 +237,7 @@ def _load():
                     "library are of different versions")
         return lib, path
     raise LibraryError("cannot load libballfilm: " + "; ".join(tried) +
-                       " (build it with make, or set BALLFILM_LIB to the "
+                       " (pip install the package, build it with make, or set BALLFILM_LIB to the "
                        "path of libballfilm.so)")
 
 

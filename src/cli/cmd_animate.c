@@ -2,9 +2,11 @@
  * [--t0 T] [--t1 T] ...` runs plots/animate.py with Debian's Python
  * (matplotlib, h5py; ffmpeg for MP4, else a GIF through Pillow).
  *
- * The repository is $BALLFILM_ROOT, else the parent of the program's
- * directory (bin/ballfilm -> .).  The interpreter is $BALLFILM_PYTHON,
- * else /usr/bin/python3.
+ * The script is looked for, first found wins, in $BALLFILM_ROOT/plots,
+ * then beside the program: PREFIX/share/ballfilm/plots for an installed
+ * PREFIX/bin/ballfilm (make install), and the repository's plots/ for
+ * its bin/ballfilm.  The interpreter is $BALLFILM_PYTHON, else
+ * /usr/bin/python3.
  *
  * The script runs as a child in a process group of its own (with the
  * ffmpeg it starts), so that SIGINT and SIGTERM reach this process alone:
@@ -24,24 +26,45 @@
 #include "ballfilm/error.h"
 #include "cli.h"
 
-/* The repository root (malloc'd), or NULL. */
-static char *repo_root(void)
+#define ANIMATE_PY "animate.py"
+
+/* Tries BASE + SUFFIX + "/animate.py": 0 when readable (in out), else
+ * -1 with the path appended to tried. */
+static int try_script(char *out, size_t n, const char *base,
+                      const char *suffix, char *tried, size_t tn)
 {
+    int w = snprintf(out, n, "%s%s/" ANIMATE_PY, base, suffix);
+    if (w > 0 && (size_t)w < n && access(out, R_OK) == 0)
+        return 0;
+    size_t used = strlen(tried);
+    if (snprintf(tried + used, tn - used, "%s%s", used ? ", " : "", out) < 0)
+        tried[used] = '\0';
+    return -1;
+}
+
+/* The readable animate.py into out (size n): 0, or -1 with the paths
+ * tried in tried (size tn). */
+static int find_script(char *out, size_t n, char *tried, size_t tn)
+{
+    tried[0] = '\0';
     const char *env = getenv("BALLFILM_ROOT");
-    if (env && *env)
-        return strdup(env);
+    if (env && *env && !try_script(out, n, env, "/plots", tried, tn))
+        return 0;
     char exe[PATH_MAX];
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (n <= 0)
-        return NULL;
-    exe[n] = '\0';
-    for (int up = 0; up < 2; up++) {
+    ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (len <= 0)
+        return -1;
+    exe[len] = '\0';
+    for (int up = 0; up < 2; up++) {   /* PREFIX/bin/ballfilm -> PREFIX */
         char *slash = strrchr(exe, '/');
         if (!slash)
-            return NULL;
-        *(slash == exe ? slash + 1 : slash) = '\0';
+            return -1;
+        *slash = '\0';
     }
-    return strdup(exe);
+    if (!try_script(out, n, exe, "/share/ballfilm/plots", tried, tn) ||
+        !try_script(out, n, exe, "/plots", tried, tn))
+        return 0;
+    return -1;
 }
 
 /* The movie files the script may write for its arguments: -o/--output
@@ -162,39 +185,24 @@ static int run_script(const char *py, const char **args, int argc,
 
 int bf_cmd_animate(int argc, char **argv)
 {
-    char *root = repo_root();
-    if (!root) {
-        fprintf(stderr, "ballfilm: error: cannot find the repository (set "
-                        "BALLFILM_ROOT to the folder that holds plots/)\n");
+    char script[PATH_MAX + 32], tried[3 * (PATH_MAX + 32)];
+    if (find_script(script, sizeof script, tried, sizeof tried)) {
+        fprintf(stderr, "ballfilm: error: cannot find the plot script "
+                        ANIMATE_PY " (tried %s; set BALLFILM_ROOT to the "
+                        "folder that holds plots/)\n", tried);
         return BF_EIO;
     }
-    size_t len = strlen(root) + 32;
-    char *script = malloc(len);
     const char **args = calloc((size_t)argc + 3, sizeof *args);
-    if (!script || !args) {
-        free(root);
-        free(script);
-        free(args);
+    if (!args)
         return BF_EINTERNAL;
-    }
-    snprintf(script, len, "%s/plots/animate.py", root);
-    free(root);
     const char *py = getenv("BALLFILM_PYTHON");
     if (!py || !*py)
         py = "/usr/bin/python3";
-    if (access(script, R_OK)) {
-        fprintf(stderr, "ballfilm: error: %s: %s (set BALLFILM_ROOT to the "
-                        "repository)\n", script, strerror(errno));
-        free(script);
-        free(args);
-        return BF_EIO;
-    }
     if (access(py, X_OK)) {
         fprintf(stderr, "ballfilm: error: animate needs %s with Debian's "
                         "numpy, matplotlib and h5py: sudo apt-get install -y "
                         "python3 python3-numpy python3-matplotlib python3-h5py "
                         "(and ffmpeg for MP4)\n", py);
-        free(script);
         free(args);
         return BF_EINPUT;
     }
@@ -204,7 +212,6 @@ int bf_cmd_animate(int argc, char **argv)
         args[k + 1] = argv[k];
     args[argc + 1] = NULL;
     int rc = run_script(py, args, argc, argv);
-    free(script);
     free(args);
     return rc;
 }
