@@ -11,6 +11,11 @@
  * effects the scene names, and the run context.  Only this layer and the
  * scene layer read a scene.
  */
+/* Misuse is refused with BF_EINPUT naming the function and the argument,
+ * never a crash: a NULL result pointer, catalog, scene or path, and sets
+ * NULL (or holding a NULL) with nsets > 0.  err may be NULL wherever a
+ * call takes one.  bf_run_open_output refuses what bf_sim_open_output
+ * does (sim.h): a second output, one after the first step. */
 #ifndef BALLFILM_RUN_H
 #define BALLFILM_RUN_H
 
@@ -174,7 +179,8 @@ bf_status bf_setf(bf_scene *sc, bf_err *err, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 /* Add the next ball [ball.N] (N = 1 + the balls the scene has): centre
  * position (cm), velocity (cm/s), mass (g), radius (cm); *index (may be
- * NULL) receives N.  Values go in at full precision (%.17g). */
+ * NULL) receives N.  Values go in at full precision (%.17g); one that is
+ * not finite is refused, naming it, and nothing is added. */
 bf_status bf_add_ball(bf_scene *sc, double position, double velocity,
                       double mass, double radius, int *index, bf_err *err);
 

@@ -18,6 +18,17 @@
  * model, hands over the filled [scene] keys and the scene's text for the
  * provenance of the output and of checkpoints.
  */
+/* Misuse is refused, never a crash or a success: a NULL sim, path, name
+ * or function, a non-finite time or value, a negative count, and a call
+ * out of order (an observer after the run started, a second output or one
+ * after the first step, steps after a failed run or after the output
+ * closed, an output closed as ok before t_end) return BF_EINPUT with a
+ * message naming the function and the argument ("bf_sim_run_until: t =
+ * nan is not finite").  err may be NULL wherever a call takes one (the
+ * message is then dropped).  A callback (a model's hook, an observer's, a
+ * heartbeat) that returns a value no status of error.h is ends the run
+ * with BF_EINTERNAL naming it; one that fails without a message gets a
+ * message naming it. */
 #ifndef BALLFILM_SIM_H
 #define BALLFILM_SIM_H
 
@@ -55,7 +66,10 @@ typedef struct bf_sim_keys {
 extern const bf_section_spec bf_sim_scene_spec; /* [scene] */
 
 /* The run context of [scene]: dt, t_end, ceil(t_end/dt) steps (refused,
- * naming [scene] t_end, when too many), the output interval in steps. */
+ * naming [scene] t_end, when too many), the output interval in steps.
+ * Keys a program filled itself are checked as a scene's are: dt and t_end
+ * finite and positive, no negative interval, count or bound, compress 0
+ * to 9 (BF_EINPUT naming the key). */
 bf_status bf_sim_run_ctx(const bf_sim_keys *k, bf_run_ctx *run,
                          bf_err *err);
 
@@ -148,7 +162,8 @@ typedef struct bf_observer_type {
 } bf_observer_type;
 
 /* Attach an observer (called in the order attached, after the model's own
- * hooks); the sim owns `self` and destroys it with itself. */
+ * hooks); the sim owns `self` and destroys it with itself (also when it
+ * is refused).  Refused after the output opened or the first step. */
 bf_status bf_sim_observe(bf_sim *sim, const bf_observer_type *t, void *self,
                          bf_err *err);
 /* The first attached observer of type t, or NULL. */
@@ -194,12 +209,17 @@ typedef struct bf_analysis_type {
 /* Create the output file and its datasets; write the provenance (version,
  * scene text, every resolved parameter with its unit).  A checkpoint OUT.ckpt
  * left by an earlier run on the same path is removed (this run owns OUT
- * now).  Without an output file the run still tracks energy and counters. */
+ * now).  Without an output file the run still tracks energy and counters.
+ * Refused (a run has one output, whose rows start at t = 0): a second
+ * output, and one after the first step or after bf_sim_run_until(sim, 0). */
 bf_status bf_sim_open_output(bf_sim *sim, const char *path, bf_err *err);
 
 /* Run to t_end.  On failure the message names step, time and cause; the
  * output file keeps every row up to the last good step and records the
- * status in its root attributes. */
+ * status in its root attributes.  These three are refused after a run
+ * that failed (other than BF_INTERRUPTED: its state is no result to go on
+ * from) and after the output closed; bf_sim_run_until refuses a t that is
+ * not finite, bf_sim_steps a negative k. */
 bf_status bf_sim_run(bf_sim *sim, bf_err *err);
 /* The same, stopping (BF_OK) at the first step whose time reaches t
  * (at most t_end), or after k more steps (at most to t_end); call again
@@ -208,7 +228,11 @@ bf_status bf_sim_run(bf_sim *sim, bf_err *err);
 bf_status bf_sim_run_until(bf_sim *sim, double t, bf_err *err);
 bf_status bf_sim_steps(bf_sim *sim, long k, bf_err *err);
 
-/* Finish the output (final datasets, status, counters) and close it. */
+/* Finish the output (final datasets, status, counters) and close it.
+ * Refused: a run_status that is no status of error.h, BF_OK for a run
+ * that failed or has not reached t_end (the output stays open), and a
+ * second close.  A failure's cause in the file is run_err's message, or
+ * the status's name when there is none. */
 bf_status bf_sim_close_output(bf_sim *sim, bf_status run_status,
                               const bf_err *run_err, bf_err *err);
 
@@ -255,11 +279,13 @@ void bf_sim_results(const bf_sim *sim, bf_results *r);
  * there are (0: the model shows none). */
 size_t bf_sim_state(bf_sim *sim, bf_state_var *vars, size_t cap);
 /* The current values of one array (*n its length), or NULL when the model
- * has no array of that name. */
+ * has no array of that name (or name is NULL).  bf_sim_state with vars
+ * NULL only counts. */
 const double *bf_sim_get(bf_sim *sim, const char *name, size_t *n);
 /* Initial fields from arrays: replace the array `name` by v[0..n-1]
  * before the first step (BF_EINPUT afterwards, for an unknown or not
- * settable name, a wrong length or a bad value, naming it).  The energy
+ * settable name, a wrong length, v NULL, a value that is not finite or
+ * otherwise bad, naming it).  The energy
  * reference, the stable-step check and the observers start again from the
  * new state. */
 bf_status bf_sim_set(bf_sim *sim, const char *name, const double *v,

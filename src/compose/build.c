@@ -10,6 +10,24 @@
 #include "io/h5lock.h"
 #include "io/outpath.h"
 
+bf_status bf_compose_args_(const char *fn, const void *out,
+                           const bf_catalog *c, const void *sc,
+                           const char *const *sets, size_t nsets,
+                           bf_err *err)
+{
+    const char *null = !out ? "the result pointer"
+                       : !c ? "the catalog"
+                       : !sc ? "the scene"
+                       : !sets && nsets ? "sets (with nsets > 0)"
+                                        : NULL;
+    for (size_t k = 0; !null && k < nsets; k++)
+        if (!sets[k])
+            return bf_fail(err, BF_EINPUT, "%s: sets[%zu] is NULL (nsets = "
+                           "%zu)", fn, k, nsets);
+    return null ? bf_fail(err, BF_EINPUT, "%s: %s is NULL", fn, null)
+                : BF_OK;
+}
+
 /* ------------------------------------------------------------ provenance */
 
 typedef struct visit_ctx {
@@ -123,8 +141,15 @@ bf_status bf_sim_from_scene(bf_sim **out, const bf_catalog *c,
                             const bf_scene *sc, const bf_sim_opts *opts,
                             bf_err *err)
 {
+    bf_err own;
+    if (!err)
+        err = &own;
+    bf_status st =
+        bf_compose_args_("bf_sim_from_scene", out, c, sc, NULL, 0, err);
+    if (st)
+        return st;
     bf_h5_lock();
-    bf_status st = sim_from_scene(out, c, sc, opts, err);
+    st = sim_from_scene(out, c, sc, opts, err);
     bf_h5_unlock();
     return st;
 }
@@ -236,8 +261,17 @@ bf_status bf_sim_restart(bf_sim **out, bf_scene **scene, const bf_catalog *c,
                          const char *out_path, const char *const *sets,
                          size_t nsets, const bf_sim_opts *opts, bf_err *err)
 {
+    bf_err own;
+    if (!err)
+        err = &own;
+    bf_status st = bf_compose_args_("bf_sim_restart", out, c, out_path, sets,
+                                    nsets, err);
+    if (!st && !scene)
+        st = bf_fail(err, BF_EINPUT, "bf_sim_restart: scene is NULL");
+    if (st)
+        return st;
     bf_h5_lock();
-    bf_status st = sim_restart(out, scene, c, out_path, sets, nsets, opts, err);
+    st = sim_restart(out, scene, c, out_path, sets, nsets, opts, err);
     bf_h5_unlock();
     return st;
 }
@@ -280,8 +314,15 @@ bf_status bf_run_load(bf_run **out, const bf_catalog *c, const char *path,
                       const char *const *sets, size_t nsets,
                       const bf_sim_opts *opts, bf_err *err)
 {
+    bf_err own;
+    if (!err)
+        err = &own;
+    bf_status st =
+        bf_compose_args_("bf_run_load", out, c, path, sets, nsets, err);
+    if (st)
+        return st;
     bf_scene *sc = NULL;
-    bf_status st = bf_scene_load(&sc, path, err);
+    st = bf_scene_load(&sc, path, err);
     return run_of(out, c, sc, st, sets, nsets, opts, err);
 }
 
@@ -290,14 +331,30 @@ bf_status bf_run_from_text(bf_run **out, const bf_catalog *c,
                            const char *const *sets, size_t nsets,
                            const bf_sim_opts *opts, bf_err *err)
 {
+    bf_err own;
+    if (!err)
+        err = &own;
+    bf_status st =
+        bf_compose_args_("bf_run_from_text", out, c, name, sets, nsets, err);
+    if (st)
+        return st;
     bf_scene *sc = NULL;
-    bf_status st = bf_scene_load_string(&sc, name, text ? text : "", err);
+    st = bf_scene_load_string(&sc, name, text ? text : "", err);
     return run_of(out, c, sc, st, sets, nsets, opts, err);
 }
 
 bf_status bf_run_from_scene(bf_run **out, const bf_catalog *c, bf_scene *sc,
                             const bf_sim_opts *opts, bf_err *err)
 {
+    bf_err own;
+    if (!err)
+        err = &own;
+    bf_status st =
+        bf_compose_args_("bf_run_from_scene", out, c, sc, NULL, 0, err);
+    if (st) {
+        bf_scene_free(sc); /* taken over, also on failure */
+        return st;
+    }
     return run_of(out, c, sc, BF_OK, NULL, 0, opts, err);
 }
 
@@ -305,12 +362,18 @@ bf_status bf_run_restart(bf_run **out, const bf_catalog *c,
                          const char *out_path, const char *const *sets,
                          size_t nsets, const bf_sim_opts *opts, bf_err *err)
 {
+    bf_err own;
+    if (!err)
+        err = &own;
+    bf_status st = bf_compose_args_("bf_run_restart", out, c, out_path, sets,
+                                    nsets, err);
+    if (st)
+        return st;
     *out = NULL;
     bf_run *r = calloc(1, sizeof *r);
     if (!r)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    bf_status st =
-        bf_sim_restart(&r->sim, &r->sc, c, out_path, sets, nsets, opts, err);
+    st = bf_sim_restart(&r->sim, &r->sc, c, out_path, sets, nsets, opts, err);
     if (st) {
         bf_run_free(r);
         return st;
@@ -319,9 +382,9 @@ bf_status bf_run_restart(bf_run **out, const bf_catalog *c,
     return BF_OK;
 }
 
-bf_sim *bf_run_sim(bf_run *r) { return r->sim; }
+bf_sim *bf_run_sim(bf_run *r) { return r ? r->sim : NULL; }
 
-const bf_scene *bf_run_scene_of(const bf_run *r) { return r->sc; }
+const bf_scene *bf_run_scene_of(const bf_run *r) { return r ? r->sc : NULL; }
 
 /* 1 if a and b are one file: by device and inode, so that a link or a
  * second name of an input is seen for what it is (outpath.h) */
@@ -332,6 +395,12 @@ static int same_file(const char *a, const char *b)
 
 bf_status bf_run_open_output(bf_run *r, const char *path, bf_err *err)
 {
+    bf_err own;
+    if (!err)
+        err = &own;
+    if (!r || !path)
+        return bf_fail(err, BF_EINPUT, "bf_run_open_output: %s is NULL",
+                       !r ? "run" : "path");
     const char *inputs[2] = {bf_scene_path(r->sc), NULL};
     if (bf_scene_has_key(r->sc, "film", "file"))
         inputs[1] = bf_scene_str(r->sc, "film", "file");

@@ -17,6 +17,15 @@ struct bf_catalog {
     int owned; /* 1: made by bf_catalog_new, the arrays are its own */
 };
 
+/* What the public calls of this layer refuse (BF_EINPUT, "fn: arg is
+ * NULL"): a NULL result pointer `out`, catalog or scene, and sets NULL or
+ * holding a NULL with nsets > 0 (sc: pass a non-NULL stand-in when the
+ * call takes none). */
+bf_status bf_compose_args_(const char *fn, const void *out,
+                           const bf_catalog *c, const void *sc,
+                           const char *const *sets, size_t nsets,
+                           bf_err *err);
+
 /* The analyses of balls a model takes (none unless it has
  * BF_MODEL_BALL_ANALYSES). */
 size_t bf_catalog_analyses_of(const bf_catalog *c, const bf_model_type *mt,

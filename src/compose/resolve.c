@@ -94,6 +94,13 @@ static bf_status select_specs(const bf_scene *sc, const bf_section_spec **specs,
 
 bf_status bf_catalog_resolve(const bf_catalog *c, bf_scene *sc, bf_err *err)
 {
+    bf_err own;
+    if (!err)
+        err = &own;
+    bf_status st =
+        bf_compose_args_("bf_catalog_resolve", "", c, sc, NULL, 0, err);
+    if (st)
+        return st;
     const bf_spec_provider provider = {&bf_sim_scene_spec, select_specs, c};
     return bf_scene_resolve_with(sc, &provider, err);
 }

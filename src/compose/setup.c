@@ -87,6 +87,15 @@ bf_status bf_setup_create(bf_setup **out, const bf_catalog *c,
                           const bf_scene *sc, const bf_run_ctx *run,
                           bf_err *err)
 {
+    bf_err own;
+    if (!err)
+        err = &own;
+    bf_status ast = bf_compose_args_("bf_setup_create", out, c, sc, NULL, 0,
+                                     err);
+    if (!ast && !run)
+        ast = bf_fail(err, BF_EINPUT, "bf_setup_create: run is NULL");
+    if (ast)
+        return ast;
     *out = NULL;
     const char *model = bf_scene_str(sc, "scene", "model");
     const bf_model_type *mt = bf_catalog_model(c, model);
@@ -246,6 +255,13 @@ bf_status bf_setup_build_model(const bf_setup *s, const bf_scene *sc,
 bf_status bf_ballsys_from_scene(bf_ballsys **out, const bf_catalog *c,
                                 const bf_scene *sc, bf_err *err)
 {
+    bf_err own;
+    if (!err)
+        err = &own;
+    bf_status ast =
+        bf_compose_args_("bf_ballsys_from_scene", out, c, sc, NULL, 0, err);
+    if (ast)
+        return ast;
     *out = NULL;
     bf_setup *setup;
     bf_run_ctx run = {bf_scene_real(sc, "scene", "dt"),
@@ -264,6 +280,15 @@ bf_status bf_ballsys_from_scene(bf_ballsys **out, const bf_catalog *c,
 bf_status bf_model_from_scene(const bf_catalog *c, const bf_scene *sc,
                               bf_setup **setup, void **model, bf_err *err)
 {
+    bf_err own;
+    if (!err)
+        err = &own;
+    bf_status ast =
+        bf_compose_args_("bf_model_from_scene", setup, c, sc, NULL, 0, err);
+    if (!ast && !model)
+        ast = bf_fail(err, BF_EINPUT, "bf_model_from_scene: model is NULL");
+    if (ast)
+        return ast;
     *model = NULL;
     double dt = bf_scene_real(sc, "scene", "dt"),
            t_end = bf_scene_real(sc, "scene", "t_end");

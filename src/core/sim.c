@@ -84,6 +84,13 @@ const bf_section_spec bf_sim_scene_spec =
 
 bf_status bf_sim_run_ctx(const bf_sim_keys *k, bf_run_ctx *run, bf_err *err)
 {
+    bf_status st = bf_sim_null_(k, "bf_sim_run_ctx", "k", err);
+    if (!st)
+        st = bf_sim_null_(run, "bf_sim_run_ctx", "run", err);
+    if (!st)
+        st = bf_sim_keys_ok_(k, err);
+    if (st)
+        return st;
     /* t = n dt with n whole: a step longer than the run would end it at
      * dt, past t_end */
     if (k->dt > k->t_end)
@@ -189,6 +196,16 @@ bf_status bf_sim_create(bf_sim **out, const bf_sim_keys *k,
                         const bf_provenance *prov, const bf_sim_opts *opts,
                         bf_err *err)
 {
+    bf_err own;
+    if (!err)
+        err = &own;
+    if (!out || !mt || !mt->step) {
+        /* the sim owns the model also on failure */
+        if (mt && mt->destroy)
+            mt->destroy(model);
+        return bf_fail(err, BF_EINPUT, "bf_sim_create: %s is NULL",
+                       !out ? "sim" : !mt ? "the model type" : "its step");
+    }
     *out = NULL;
     bf_run_ctx run;
     bf_status st = bf_sim_run_ctx(k, &run, err);
@@ -269,6 +286,12 @@ bf_status bf_sim_create(bf_sim **out, const bf_sim_keys *k,
 bf_status bf_sim_observe(bf_sim *s, const bf_observer_type *t, void *self,
                          bf_err *err)
 {
+    bf_status st = bf_sim_may_observe_(s, t, err);
+    if (st) {
+        if (t && t->destroy)
+            t->destroy(self);
+        return st;
+    }
     observer *o = realloc(s->obs, (s->nobs + 1) * sizeof *o);
     if (!o) {
         if (t->destroy)
@@ -338,7 +361,8 @@ bf_status bf_sim_open_series_(bf_sim *s, bf_err *err)
     }
     bf_status st = BF_OK;
     if (s->mt->output_open)
-        st = s->mt->output_open(s->model, o, err);
+        st = bf_sim_hook_status_(s->mt->output_open(s->model, o, err),
+                                 "model", s->mt->name, "output_open", err);
     EACH_OBSERVER(s, st, output_open, o, err);
     return st;
 }
@@ -375,6 +399,12 @@ static bf_status open_output(bf_sim *s, const char *path, bf_err *err)
 
 bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)
 {
+    bf_err own;
+    if (!err)
+        err = &own;
+    bf_status st = bf_sim_may_open_(s, path, err);
+    if (st)
+        return st;
     H5_LOCKED(open_output(s, path, err));
 }
 
@@ -397,7 +427,8 @@ static bf_status write_row(bf_sim *s, bf_err *err)
     }
     bf_status st = BF_OK;
     if (s->mt->output_row)
-        st = s->mt->output_row(s->model, s->n, t, err);
+        st = bf_sim_hook_status_(s->mt->output_row(s->model, s->n, t, err),
+                                 "model", s->mt->name, "output_row", err);
     EACH_OBSERVER(s, st, output_row, s->n, t, err);
     if (!st) /* takes the HDF5 lock when it flushes */
         st = bf_out_maybe_flush(s->out, s->flush_seconds, err);
@@ -600,8 +631,10 @@ static int watched_run(bf_sim *s, long watcher, int energy_in_run, long k,
         return 1;
     }
     if (o && (w.fired & (BF_WATCH_LOW | BF_WATCH_ABOVE)) &&
-        (*st = o->t->watched(o->self, &w, s->n, (double)(s->n - 1) * s->dt,
-                             s->dt, err))) {
+        (*st = bf_sim_hook_status_(
+             o->t->watched(o->self, &w, s->n, (double)(s->n - 1) * s->dt,
+                           s->dt, err),
+             "observer", o->t->name, "watched", err))) {
         /* as one_step: a failing observer fails its step */
         s->n--;
         s->steps_this_run--;
@@ -677,6 +710,7 @@ static bf_status run_to(bf_sim *s, long target, bf_err *err)
             s->n += done;
             s->steps_this_run += done;
         }
+        st = bf_sim_hook_status_(st, "model", s->mt->name, "step", err);
         if (st == BF_INTERRUPTED) {
             /* the stop flag ended a long step inside (ARKODE's internal
              * steps), the state left at the step's start */
@@ -753,6 +787,8 @@ static bf_status run_to(bf_sim *s, long target, bf_err *err)
  * (integrators/stop.h) */
 static bf_status run_watched(bf_sim *s, long target, bf_err *err)
 {
+    /* a failure's cause is what this run writes (bf_sim_hook_status_) */
+    bf_err_clear(err);
     bf_stop_flag before = bf_stop_watch(s->opts.stop_flag);
     bf_status st = run_to(s, target, err);
     bf_stop_watch(before);
@@ -761,11 +797,24 @@ static bf_status run_watched(bf_sim *s, long target, bf_err *err)
 
 bf_status bf_sim_run(bf_sim *s, bf_err *err)
 {
-    return run_watched(s, s->nsteps, err);
+    bf_err own;
+    if (!err)
+        err = &own;
+    bf_status st = bf_sim_may_run_(s, "bf_sim_run", err);
+    return st ? st : run_watched(s, s->nsteps, err);
 }
 
 bf_status bf_sim_run_until(bf_sim *s, double t, bf_err *err)
 {
+    bf_err own;
+    if (!err)
+        err = &own;
+    bf_status st = bf_sim_may_run_(s, "bf_sim_run_until", err);
+    if (!st && !isfinite(t))
+        st = bf_fail(err, BF_EINPUT, "bf_sim_run_until: t = %g is not "
+                     "finite", t);
+    if (st)
+        return st;
     double steps = ceil(t / s->dt * (1.0 - 1e-12));
     long target = !(steps < (double)s->nsteps) ? s->nsteps
                   : steps > 0                  ? (long)steps
@@ -775,6 +824,12 @@ bf_status bf_sim_run_until(bf_sim *s, double t, bf_err *err)
 
 bf_status bf_sim_steps(bf_sim *s, long k, bf_err *err)
 {
+    bf_err own;
+    if (!err)
+        err = &own;
+    bf_status st = bf_sim_may_run_(s, "bf_sim_steps", err);
+    if (st)
+        return st;
     if (k < 0)
         return bf_fail(err, BF_EINPUT, "bf_sim_steps: k = %ld < 0", k);
     return run_watched(s, k > s->nsteps - s->n ? s->nsteps : s->n + k, err);
@@ -787,6 +842,7 @@ static bf_status close_output(bf_sim *s, bf_status run_status,
         return BF_OK;
     bf_out *o = s->out;
     s->out = NULL;
+    s->closed = 1;
     if (bf_out_failed(o)) {
         /* the file holds what the last good flush wrote: leave it */
         bf_fail(err, BF_EIO, "%s.part keeps the rows up to the last flush "
@@ -796,15 +852,19 @@ static bf_status close_output(bf_sim *s, bf_status run_status,
     }
     bf_status st = BF_OK;
     if (s->mt->output_close)
-        st = s->mt->output_close(s->model, o, err);
+        st = bf_sim_hook_status_(s->mt->output_close(s->model, o, err),
+                                 "model", s->mt->name, "output_close", err);
     EACH_OBSERVER(s, st, output_close, o, err);
     bf_counters c;
     bf_sim_counters(s, &c);
     if (!st)
         st = bf_out_attr_str(o, "/", "status", bf_status_name(run_status), err);
+    /* a failure's cause is never left empty */
+    const char *cause = !run_status                    ? ""
+                        : run_err && run_err->msg[0] ? run_err->msg
+                                                     : bf_status_name(run_status);
     if (!st)
-        st = bf_out_attr_str(o, "/", "message",
-                             run_status && run_err ? run_err->msg : "", err);
+        st = bf_out_attr_str(o, "/", "message", cause, err);
     if (!st)
         st = bf_out_attr_int(o, "/", "steps_done", s->n, err);
     if (!st)
@@ -832,84 +892,11 @@ static bf_status close_output(bf_sim *s, bf_status run_status,
 bf_status bf_sim_close_output(bf_sim *s, bf_status run_status,
                               const bf_err *run_err, bf_err *err)
 {
+    bf_err own;
+    if (!err)
+        err = &own;
+    bf_status st = bf_sim_may_close_(s, run_status, err);
+    if (st)
+        return st;
     H5_LOCKED(close_output(s, run_status, run_err, err));
-}
-
-void bf_sim_summary(const bf_sim *s, FILE *f)
-{
-    bf_counters c;
-    bf_sim_counters(s, &c);
-    fprintf(f, "steps:             %ld of %ld (t = %.9g s)\n", s->n, s->nsteps,
-            (double)s->n * s->dt);
-    fprintf(f, "force evaluations: %llu", c.evals);
-    if (s->n)
-        fprintf(f, " (%.3g per step)", (double)c.evals / (double)s->n);
-    if (c.rejected || c.iterations)
-        fprintf(f, ", rejected steps %llu, iterations %llu", c.rejected,
-                c.iterations);
-    fprintf(f, "\n");
-    fprintf(f, "wall time:         %.3f s", s->wall);
-    if (s->wall > 0 && s->n)
-        fprintf(f, " (%.3g steps/s)", (double)s->n / s->wall);
-    fprintf(f, "\n");
-    if (s->has_energy)
-        fprintf(f, "max relative energy error: %.6e (checked every %ld steps)\n",
-                s->en.max_rel,
-                s->energy_every ? s->energy_every : s->out_every);
-    if (s->run_status == BF_EUNSTABLE) {
-        /* the model's and the analyses' lines describe the final state,
-         * which is not a result ("relative change 0" next to "max |u|
-         * inf") */
-        fprintf(f, "stopped:           unstable after %ld steps (t = %.9g s); "
-                   "the final state is not a result, its summary is left "
-                   "out\n",
-                s->n, (double)s->n * s->dt);
-        return;
-    }
-    if (s->mt->report)
-        s->mt->report(s->model, f);
-    for (size_t k = 0; k < s->nobs; k++)
-        if (s->obs[k].t->report)
-            s->obs[k].t->report(s->obs[k].self, f);
-}
-
-double bf_sim_output_estimate(const bf_sim *s)
-{
-    if (!s->out)
-        return 0.0;
-    double row = 0.0;
-    for (size_t k = 0; k < bf_out_nseries(s->out); k++)
-        row += 8.0 * (double)bf_series_width(bf_out_series_at(s->out, k));
-    double rows = (double)(s->nsteps - s->n) / (double)s->out_every + 1.0;
-    return row * rows;
-}
-
-void *bf_sim_model(bf_sim *s) { return s->model; }
-const bf_model_type *bf_sim_model_type(const bf_sim *s) { return s->mt; }
-long bf_sim_steps_done(const bf_sim *s) { return s->n; }
-long bf_sim_steps_total(const bf_sim *s) { return s->nsteps; }
-double bf_sim_time(const bf_sim *s) { return (double)s->n * s->dt; }
-double bf_sim_dt(const bf_sim *s) { return s->dt; }
-double bf_sim_max_energy_error(const bf_sim *s)
-{
-    return s->has_energy ? s->en.max_rel : NAN;
-}
-double bf_sim_wall_seconds(const bf_sim *s) { return s->wall; }
-
-void bf_sim_counters(const bf_sim *s, bf_counters *c)
-{
-    memset(c, 0, sizeof *c);
-    if (s->mt->counters)
-        s->mt->counters(s->model, c);
-}
-
-void bf_sim_results(const bf_sim *s, bf_results *r)
-{
-    memset(r, 0, sizeof *r);
-    r->lyapunov_exponent = r->lyapunov_time = NAN;
-    if (s->mt->results)
-        s->mt->results(s->model, r);
-    for (size_t k = 0; k < s->nobs; k++)
-        if (s->obs[k].t->results)
-            s->obs[k].t->results(s->obs[k].self, r);
 }

@@ -56,14 +56,18 @@ struct bf_sim {
     size_t nhb;
     int hb_started; /* the heartbeats of t = 0 were called */
     bf_status run_status; /* how the last bf_sim_run ended */
+    int closed; /* its output was closed: the run is over */
 };
 
-/* Call hook H of every observer that has it with the arguments after self;
- * stop at the first failure. */
+/* Call hook H of every observer that has it with the arguments after self,
+ * the last of which is the enclosing function's `err`; stop at the first
+ * failure, a status with a cause (bf_sim_hook_status_). */
 #define EACH_OBSERVER(s, st, H, ...)                                           \
     for (size_t k_ = 0; !(st) && k_ < (s)->nobs; k_++)                         \
         if ((s)->obs[k_].t->H)                                                 \
-    (st) = (s)->obs[k_].t->H((s)->obs[k_].self, __VA_ARGS__)
+    (st) = bf_sim_hook_status_(                                                \
+        (s)->obs[k_].t->H((s)->obs[k_].self, __VA_ARGS__), "observer",         \
+        (s)->obs[k_].t->name, #H, err)
 
 /* [scene] dt against the model's stable step (model.h, stable_dt). */
 bf_status bf_sim_check_stable_dt(const bf_sim *s, bf_err *err);
@@ -81,6 +85,34 @@ bf_status bf_sim_set_ckpt_path_(bf_sim *s, const char *path, bf_err *err);
 /* The loop's datasets (created, or reopened on restart), then the model's
  * and the observers'. */
 bf_status bf_sim_open_series_(bf_sim *s, bf_err *err);
+
+/* ---- sim_api.c: what the public calls refuse (BF_EINPUT naming the
+ * function and the argument) ---- */
+/* 1 if st is one of error.h's statuses. */
+int bf_sim_status_valid_(bf_status st);
+/* What hook `hook` of a callback (kind "model", "observer", "heartbeat";
+ * name NULL: none) returned, made a status of error.h with a cause:
+ * BF_EINTERNAL for a value that is none, the status named for a failure
+ * without a message. */
+bf_status bf_sim_hook_status_(bf_status st, const char *kind,
+                              const char *name, const char *hook,
+                              bf_err *err);
+/* p NULL: "fn: arg is NULL". */
+bf_status bf_sim_null_(const void *p, const char *fn, const char *arg,
+                       bf_err *err);
+/* Keys a program filled itself: finite positive dt and t_end, no negative
+ * interval, count or bound. */
+bf_status bf_sim_keys_ok_(const bf_sim_keys *k, bf_err *err);
+/* Observers come before the output and the first step. */
+bf_status bf_sim_may_observe_(const bf_sim *s, const bf_observer_type *t,
+                              bf_err *err);
+/* One output, opened before the first step. */
+bf_status bf_sim_may_open_(const bf_sim *s, const char *path, bf_err *err);
+/* Steps only from a state that is a result, before the output closed. */
+bf_status bf_sim_may_run_(const bf_sim *s, const char *fn, bf_err *err);
+/* A status of error.h, ok only for a run that reached t_end. */
+bf_status bf_sim_may_close_(const bf_sim *s, bf_status run_status,
+                            bf_err *err);
 
 /* The public calls that reach HDF5 hold its lock (io/h5lock.h; it is
  * recursive, so a locked call may make another). */

@@ -1,6 +1,7 @@
 /* sim_state.c: the state of a run as named arrays (read at any time, set
  * before the first step) and the heartbeats (see sim.h). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -12,13 +13,18 @@ enum { MAX_VARS = 64 };
 
 size_t bf_sim_state(bf_sim *s, bf_state_var *vars, size_t cap)
 {
+    bf_state_var none[1];
+    if (!s)
+        return 0;
+    if (!vars) /* only how many */
+        vars = none, cap = 0;
     return s->mt->state ? s->mt->state(s->model, vars, cap) : 0;
 }
 
 const double *bf_sim_get(bf_sim *s, const char *name, size_t *n)
 {
     bf_state_var v[MAX_VARS];
-    size_t nv = bf_sim_state(s, v, MAX_VARS);
+    size_t nv = name ? bf_sim_state(s, v, MAX_VARS) : 0;
     for (size_t k = 0; k < nv && k < MAX_VARS; k++)
         if (!strcmp(v[k].name, name)) {
             if (n)
@@ -53,7 +59,22 @@ bf_status bf_sim_set(bf_sim *s, const char *name, const double *v, size_t n,
                      bf_err *err)
 {
     char names[512];
-    if (s->n > 0 || s->last_row >= 0)
+    bf_err own;
+    if (!err)
+        err = &own;
+    bf_status st = bf_sim_null_(s, "bf_sim_set", "sim", err);
+    if (!st)
+        st = bf_sim_null_(name, "bf_sim_set", "name", err);
+    if (!st && !v && n)
+        st = bf_fail(err, BF_EINPUT, "bf_sim_set: %s: v is NULL with n = "
+                     "%zu", name, n);
+    if (st)
+        return st;
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(v[i]))
+            return bf_fail(err, BF_EINPUT, "bf_sim_set: %s[%zu] = %g is not "
+                           "finite", name, i, v[i]);
+    if (s->n > 0 || s->last_row >= 0 || s->hb_started)
         return bf_fail(err, BF_EINPUT, "cannot set %s at step %ld: initial "
                        "fields are set before the first step (and before "
                        "the first output row)", name, s->n);
@@ -69,7 +90,7 @@ bf_status bf_sim_set(bf_sim *s, const char *name, const double *v, size_t n,
     if (n != vars[k].n)
         return bf_fail(err, BF_EINPUT, "%s has %zu values; %zu given",
                        name, vars[k].n, n);
-    bf_status st = s->mt->set_state(s->model, name, v, n, err);
+    st = s->mt->set_state(s->model, name, v, n, err);
     if (!st)
         st = bf_sim_check_stable_dt(s, err);
     EACH_OBSERVER(s, st, state_set, err);
@@ -86,9 +107,14 @@ bf_status bf_sim_set(bf_sim *s, const char *name, const double *v, size_t n,
 bf_status bf_sim_heartbeat(bf_sim *s, long every, bf_heartbeat_fn fn,
                            void *ctx, bf_err *err)
 {
-    if (every < 0 || !fn)
-        return bf_fail(err, BF_EINPUT, "heartbeat: every = %ld must be >= 0 "
-                       "and the function given", every);
+    bf_status st = bf_sim_null_(s, "bf_sim_heartbeat", "sim", err);
+    if (!st && !fn)
+        st = bf_fail(err, BF_EINPUT, "bf_sim_heartbeat: fn is NULL");
+    if (st)
+        return st;
+    if (every < 0)
+        return bf_fail(err, BF_EINPUT, "bf_sim_heartbeat: every = %ld is "
+                       "negative", every);
     heartbeat *h = realloc(s->hb, (s->nhb + 1) * sizeof *h);
     if (!h)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
@@ -102,8 +128,13 @@ bf_status bf_sim_beat(bf_sim *s, int rows, bf_err *err)
     bf_status st = BF_OK;
     for (size_t k = 0; !st && k < s->nhb; k++) {
         const heartbeat *h = &s->hb[k];
-        if (rows ? h->every == 0 : h->every > 0 && s->n % h->every == 0)
-            st = h->fn(h->ctx, s, err);
+        if (rows ? h->every == 0 : h->every > 0 && s->n % h->every == 0) {
+            char at[48];
+            snprintf(at, sizeof at, "at step %ld", s->n);
+            err->msg[0] = '\0';
+            st = bf_sim_hook_status_(h->fn(h->ctx, s, err), "heartbeat",
+                                     NULL, at, err);
+        }
     }
     return st;
 }
