@@ -11,7 +11,6 @@
  */
 #include "ballfilm/sim.h"
 
-#include <fcntl.h>
 #include <limits.h>
 #include <math.h>
 #include <stdint.h>
@@ -22,7 +21,6 @@
 
 #include "ballfilm/version.h"
 #include "base/clock.h"
-#include "base/hash.h"
 #include "core/sim_impl.h"
 #include "diag/energy.h"
 #include "integrators/stop.h"
@@ -114,35 +112,6 @@ bf_status bf_sim_run_ctx(const bf_sim_keys *k, bf_run_ctx *run, bf_err *err)
 static char *dup_or_empty(const char *s)
 {
     return strdup(s ? s : "");
-}
-
-/* 64 random bits of the kernel mixed with the wall clock and the process
- * id: two runs never share one, even two started in the same
- * nanosecond or on a system without /dev/urandom. */
-static void new_run_id(char buf[20])
-{
-    uint64_t r = 0;
-    int fd = open("/dev/urandom", O_RDONLY | O_CLOEXEC);
-    if (fd >= 0) {
-        if (read(fd, &r, sizeof r) != (ssize_t)sizeof r)
-            r = 0;
-        close(fd);
-    }
-    struct timespec ts = {0, 0};
-    clock_gettime(CLOCK_REALTIME, &ts);
-    int64_t mix[3] = {(int64_t)ts.tv_sec, (int64_t)ts.tv_nsec,
-                      (int64_t)getpid()};
-    r ^= bf_hash64(BF_HASH_INIT, mix, sizeof mix);
-    snprintf(buf, 20, "%016llx", (unsigned long long)r);
-}
-
-/* FNV-1a of the scene's text, a NUL and its overrides (one per line):
- * everything the run's parameters are resolved from. */
-static void scene_hash_of(const char *text, const char *sets, char buf[20])
-{
-    uint64_t h = bf_hash64(BF_HASH_INIT, text, strlen(text) + 1);
-    h = bf_hash64(h, sets, strlen(sets));
-    snprintf(buf, 20, "%016llx", (unsigned long long)h);
 }
 
 void bf_sim_free(bf_sim *s)
@@ -242,8 +211,8 @@ bf_status bf_sim_create(bf_sim **out, const bf_sim_keys *k,
     if (!s->scene_path || !s->scene_text || !s->scene_sets)
         st = bf_fail(err, BF_EINTERNAL, "out of memory");
     else {
-        new_run_id(s->run_id);
-        scene_hash_of(s->scene_text, s->scene_sets, s->scene_hash);
+        bf_sim_new_run_id_(s->run_id);
+        bf_sim_scene_hash_(s->scene_text, s->scene_sets, s->scene_hash);
     }
     if (!st)
         st = bf_sim_check_stable_dt(s, err);

@@ -136,8 +136,8 @@ bf_status bf_sim_checkpoint_write(bf_sim *s, const char *path, bf_err *err)
     H5_LOCKED(checkpoint_write(s, path, err));
 }
 
-/* An identifier of 16 hex digits (as new_run_id and scene_hash_of make
- * them). */
+/* An identifier of 16 hex digits (as bf_sim_new_run_id_ and
+ * bf_sim_scene_hash_ make them). */
 static int is_id(const char *v)
 {
     if (!v || strlen(v) != 16)

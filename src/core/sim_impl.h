@@ -79,6 +79,11 @@ bf_status bf_sim_beat(bf_sim *s, int rows, bf_err *err);
 /* The state now against finiteness and the energy bound (BF_EUNSTABLE
  * naming step, time and cause), before the last output row is written. */
 bf_status bf_sim_check_state_(bf_sim *s, bf_err *err);
+/* sim_ids.c: a new random run_id (16 hex digits), and the hash of the
+ * scene's text and its overrides (scene_hash), as written into the output
+ * and the checkpoint. */
+void bf_sim_new_run_id_(char buf[20]);
+void bf_sim_scene_hash_(const char *text, const char *sets, char buf[20]);
 
 /* OUT.ckpt of output path OUT into s->ckpt_path. */
 bf_status bf_sim_set_ckpt_path_(bf_sim *s, const char *path, bf_err *err);
