@@ -36,8 +36,8 @@ def converge(scene, methods, dts=None, tols=None, t_end=None, set=None,
     reference a dict of the reference run's label, rtol, model, groups
     [(name, unit)], estimated errors err_G and err_max_G, invariant_err,
     max_step, t_end, notes, and its final state, group by group, as G_ref
-    (balls: x_ref, v_ref).  The study has no stop flag: Ctrl-C is held
-    until it ends, then raised as KeyboardInterrupt."""
+    (balls: x_ref, v_ref).  Ctrl-C stops the study within a second and
+    raises ballfilm.Interrupted; no table is returned."""
     lib = _lib.lib()
     if isinstance(methods, str):
         methods = [methods]
@@ -56,16 +56,19 @@ def converge(scene, methods, dts=None, tols=None, t_end=None, set=None,
                           ref_rtol=float(ref_rtol), max_step=float(max_step))
     out = ctypes.POINTER(_lib.ConvergeResult)()
     err = _lib.Err()
-    flag = ctypes.c_int(0)  # converge has no stop flag: Ctrl-C waits
+    flag = ctypes.c_int(0)  # set by Ctrl-C (_in_thread): the study stops
+    o.stop_flag = ctypes.cast(ctypes.pointer(flag), ctypes.c_void_p)
     scene_c = _lib.cpath(scene, "scene")
     st, ctrl_c = _in_thread(lambda: lib.bf_converge_file(
         scene_c, sarr, ns, ctypes.byref(o),
         ctypes.byref(out), ctypes.byref(err)), flag)
     del mkeep, skeep, dkeep, tkeep
-    if ctrl_c:  # the study cannot stop in the middle: it ran to its end
-        if not st:
-            lib.bf_converge_free(out)
-        raise KeyboardInterrupt("ballfilm.converge ran to its end first")
+    if ctrl_c and not st:  # Ctrl-C after the study's last check
+        lib.bf_converge_free(out)
+        st = 6
+        err.msg = b"ballfilm.converge: interrupted (Ctrl-C)"
+    if st == 6:
+        raise Interrupted(err.msg.decode(errors="replace"))
     if st:
         raise from_err(err)
     try:

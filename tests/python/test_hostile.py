@@ -143,3 +143,21 @@ def test_sweep_reruns_cases_that_failed_to_write(root, tmp_path):
     assert again["steps"][1] == first["steps"][1]
     ballfilm.sweep(sc, vary, tmp_path / "sw", set=sets, retry_failed=True)
     assert os.stat(bad).st_mtime_ns != before
+
+
+def test_ctrl_c_stops_converge(root, sigint_raises):
+    """Ctrl-C during ballfilm.converge stops the study within a second and
+    raises ballfilm.Interrupted (the study's stop flag), instead of
+    running the whole study first."""
+    import threading
+    scene_path = os.path.join(root, "runs", "two_balls_B.ini")
+    timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(ballfilm.Interrupted):
+            ballfilm.converge(scene_path, ["rk4", "verlet"],
+                              dts=[1e-5, 5e-6, 2.5e-6], t_end=50)
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 2.5
