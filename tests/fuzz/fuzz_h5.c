@@ -320,10 +320,14 @@ static uint64_t the_seed(void)
            ((uint64_t)getpid() << 32);
 }
 
-/* The first line of text (for a one-line report). */
+/* The line of stderr that says what happened, for a one-line report:
+ * a sanitizer's (after its line of '='), else the first. */
 static void first_line(const char *s, char *out, size_t cap)
 {
-    snprintf(out, cap, "%s", s ? s : "");
+    const char *san = s ? strstr(s, "ERROR: ") : NULL;
+    if (!san && s)
+        san = strstr(s, "runtime error:");
+    snprintf(out, cap, "%s", san ? san : s ? s : "");
     out[strcspn(out, "\n")] = '\0';
 }
 
