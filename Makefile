@@ -6,6 +6,8 @@
 #   make check     the test suite under AddressSanitizer + UBSan
 #   make figures   every paper figure (long runs; docs/gallery.md lists them)
 #   make bench     performance measurements (ratios measured in one run)
+#   make fuzz      the fuzzers (scenes, checkpoints, then fuzz-h5: the
+#                  readers of output files; FUZZ_H5_SECONDS, FUZZ_H5_SEED)
 #   make clean
 #
 # Debian 12 packages are installed automatically when run as root; otherwise
@@ -96,7 +98,7 @@ PROG      := $(BINDIR)/ballfilm
 RUNNER    := $(BUILD)/tests/runner
 
 .PHONY: all run test check figures bench clean deps deps-plot test-run test-static \
-        build-tests fig1 fuzz valgrind mpi stratres mac-checks fig2 fig3 \
+        build-tests fig1 fuzz fuzz-h5 valgrind mpi stratres mac-checks fig2 fig3 \
         fig4 converge-figures survey-mass survey-length fig5 kink-dx2 \
         film-orders fig6 fig8 fig9 fig8-sym fig9-sym sym-divergence \
         multirate fig-g72-ex1 \
@@ -831,11 +833,11 @@ test-notebooks: $(SHLIB) | deps-notebooks
 # ASAN_LEAKS=0 turns off LeakSanitizer only (for containers that forbid
 # the ptrace it needs; .ci/run decides this by a probe and says so).
 ASAN_LEAKS ?= 1
+CHECK_SAN := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 check:
 	@$(MAKE) --no-print-directory deps
 	@$(MAKE) --no-print-directory BUILD=build/asan BINDIR=build/asan/bin \
-	  SANITIZE="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer" \
-	  build-tests
+	  SANITIZE="$(CHECK_SAN)" build-tests
 	ASAN_OPTIONS=detect_leaks=$(ASAN_LEAKS):abort_on_error=0 \
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	$(TEST_ENV) BALLFILM_BIN=$(CURDIR)/build/asan/bin/ballfilm \
@@ -867,7 +869,7 @@ valgrind: $(PROG)
 # build/fuzz/crashes and build/fuzz/ckpt_crashes.  Copy every crash input
 # into tests/fuzz/regress/ or tests/fuzz/ckpt_regress/ (the test suite
 # replays them; make test also runs a bounded deterministic set of
-# checkpoint damages and edits).
+# checkpoint damages and edits).  Last, fuzz-h5 for FUZZ_H5_SECONDS.
 FUZZ_SECONDS ?= 600
 FUZZ_CKPT_SECONDS ?= 300
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=undefined -g
@@ -894,6 +896,33 @@ fuzz:
 	  tests/fuzz/ckpt_corpus -max_total_time=$(FUZZ_CKPT_SECONDS) \
 	  -rss_limit_mb=4096 -timeout=60 -max_len=512 \
 	  -artifact_prefix=build/fuzz/ckpt_crashes/ -print_final_stats=1
+	@$(MAKE) --no-print-directory fuzz-h5
+
+# The readers of output files at random (tests/fuzz/fuzz_h5.c): real
+# outputs of every model (made in build/fuzz/h5_corpus), one to three
+# random mutations of HDF5 objects, given to info, xdmf, run --restart or
+# [film] initial = file of the program of make check (ASan + UBSan) under
+# CPU, file-size and wall-clock limits, for FUZZ_H5_SECONDS.  It prints
+# its seed; FUZZ_H5_SEED=S replays that sequence.  Each finding (a signal,
+# a limit, an exit status outside 0-6, a sanitizer report, a refusal not
+# naming its file) is a recipe line in build/fuzz/h5_crashes/found-S.recipes;
+# fix the reader, then copy the file into tests/fuzz/h5_regress/ (the
+# suite hostile_read replays it).  Exit status 1 when something was found.
+FUZZ_H5_SECONDS ?= 300
+FUZZ_H5_SEED ?=
+fuzz-h5:
+	@$(MAKE) --no-print-directory deps
+	@$(MAKE) --no-print-directory BUILD=build/asan BINDIR=build/asan/bin \
+	  SANITIZE="$(CHECK_SAN)" build/asan/bin/ballfilm
+	@mkdir -p build/fuzz
+	$(CC) $(CPPFLAGS) -Itests $(CSTD) tests/fuzz/fuzz_h5.c tests/fuzz_h5.c \
+	  $(LDLIBS) -o build/fuzz/fuzz_h5
+	ASAN_OPTIONS=detect_leaks=$(ASAN_LEAKS):abort_on_error=0 \
+	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	BALLFILM_ROOT=$(CURDIR) BALLFILM_BIN=$(CURDIR)/build/asan/bin/ballfilm \
+	BALLFILM_SANITIZED=1 FUZZ_H5_SECONDS=$(FUZZ_H5_SECONDS) \
+	FUZZ_H5_SEED=$(FUZZ_H5_SEED) \
+	  build/fuzz/fuzz_h5 build/fuzz/h5_corpus build/fuzz/h5_crashes
 
 # ---------------------------------------------------------------- bench
 # bench/plain_*.c are yardsticks: programs without the library that the

@@ -14,6 +14,7 @@
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 static char *slurp(const char *path)
@@ -37,6 +38,36 @@ static char *slurp(const char *path)
     if (s)
         s[n] = '\0';
     return s ? s : calloc(1, 1);
+}
+
+/* A child blocked without using CPU (a lock, a pipe, a sleep) escapes
+ * RLIMIT_CPU: the wall-clock limit is a few times the CPU limit, since
+ * the machine may be shared. */
+static double wall_limit(int cpu) { return 4.0 * cpu + 10.0; }
+
+/* waitpid with a wall-clock limit of `seconds`: 0 with *status, or -1
+ * after the child was killed (SIGKILL) for exceeding it. */
+static int wait_bounded(pid_t pid, double seconds, int *status)
+{
+    struct timespec nap = {0, 1000000}; /* 1 ms, doubling up to 16 ms */
+    double waited = 0;
+    for (;;) {
+        pid_t r = waitpid(pid, status, WNOHANG);
+        if (r == pid)
+            return 0;
+        if (r < 0 && errno != EINTR)
+            return -1;
+        if (waited > seconds) {
+            kill(pid, SIGKILL);
+            while (waitpid(pid, status, 0) < 0 && errno == EINTR)
+                ;
+            return -1;
+        }
+        nanosleep(&nap, NULL);
+        waited += nap.tv_nsec * 1e-9;
+        if (nap.tv_nsec < 16000000)
+            nap.tv_nsec *= 2;
+    }
 }
 
 int fh5_exec(const char *const *argv, int cpu, long long fsize,
@@ -73,12 +104,15 @@ int fh5_exec(const char *const *argv, int cpu, long long fsize,
         _exit(127);
     }
     int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
-        ;
+    const int late = pid > 0 && wait_bounded(pid, wall_limit(cpu), &status);
     close(efd);
     if (errout)
         *errout = slurp(errpath);
     unlink(errpath);
+    if (pid < 0)
+        return -1000;
+    if (late)
+        return -SIGKILL;
     return WIFSIGNALED(status) ? -WTERMSIG(status) : WEXITSTATUS(status);
 }
 
@@ -188,12 +222,39 @@ static int attr_strarray(hid_t f, const char *obj, const char *name,
     return rc;
 }
 
-static int attr_int(hid_t f, const char *obj, const char *name)
+static int attr_int(hid_t f, const char *obj, const char *name, int64_t v)
 {
-    int64_t v = 42;
     hid_t sp = H5Screate(H5S_SCALAR);
     int rc = put_attr(f, obj, name, H5T_NATIVE_INT64, sp, &v);
     H5Sclose(sp);
+    return rc;
+}
+
+static int attr_double(hid_t f, const char *obj, const char *name, double v)
+{
+    hid_t sp = H5Screate(H5S_SCALAR);
+    int rc = put_attr(f, obj, name, H5T_NATIVE_DOUBLE, sp, &v);
+    H5Sclose(sp);
+    return rc;
+}
+
+/* A variable-length string of `bytes` letters, written (not a claim). */
+static int attr_longstr(hid_t f, const char *obj, const char *name,
+                        size_t bytes)
+{
+    char *v = malloc(bytes + 1);
+    if (!v)
+        return -1;
+    memset(v, 'x', bytes);
+    v[bytes] = '\0';
+    hid_t t = H5Tcopy(H5T_C_S1);
+    H5Tset_size(t, H5T_VARIABLE);
+    hid_t sp = H5Screate(H5S_SCALAR);
+    const char *p = v;
+    int rc = put_attr(f, obj, name, t, sp, &p);
+    H5Sclose(sp);
+    H5Tclose(t);
+    free(v);
     return rc;
 }
 
@@ -257,6 +318,29 @@ static int dset_set(hid_t f, const char *path, hsize_t at, double v)
     return rc;
 }
 
+/* Change the extent of an existing chunked dataset (a series longer or
+ * shorter than its neighbours, or than its rows are): dims[k] of 0 keeps
+ * that dimension, except the first. */
+static int dset_resize(hid_t f, const char *path, hsize_t d0, hsize_t d1)
+{
+    hid_t d = H5Dopen2(f, path, H5P_DEFAULT);
+    if (d < 0)
+        return -1;
+    hid_t sp = H5Dget_space(d);
+    hsize_t dims[H5S_MAX_RANK];
+    int r = H5Sget_simple_extent_dims(sp, dims, NULL);
+    H5Sclose(sp);
+    int rc = -1;
+    if (r >= 1) {
+        dims[0] = d0;
+        if (r >= 2 && d1)
+            dims[1] = d1;
+        rc = H5Dset_extent(d, dims) < 0 ? -1 : 0;
+    }
+    H5Dclose(d);
+    return rc;
+}
+
 /* A flush log (h5part.h) of one row {1, rows}, for /time. */
 static int log_rows(hid_t f, int64_t rows)
 {
@@ -292,31 +376,46 @@ static int log_claim(hid_t f, hsize_t rows, hsize_t width)
     return rc;
 }
 
+/* The number of arguments of the mutation op[0]: the words up to the
+ * end or to the separator of the next mutation. */
 static int nargs(const char *const *op)
 {
     int n = 0;
-    while (op[n])
+    while (op[n] && strcmp(op[n], FH5_AND))
         n++;
     return n - 1;
 }
 
-int fh5_mutate(const char *file, const char *const *op)
+/* Words that name a size for attr_array and the like are bounded, so that
+ * a recipe cannot make the mutator itself allocate without limit. */
+static hsize_t bounded(const char *s, hsize_t most)
 {
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    hid_t f = H5Fopen(file, H5F_ACC_RDWR, H5P_DEFAULT);
-    if (f < 0 || !op[0])
-        return -1;
+    hsize_t n = count(s);
+    return n < most ? n : most;
+}
+
+static int mutate_one(hid_t f, const char *const *op)
+{
     const char *o = op[0];
+    if (!o)
+        return -1;
     const int n = nargs(op);
     int rc = -1;
     if (!strcmp(o, "attr_array") && n == 3)
-        rc = attr_array(f, op[1], op[2], count(op[3]));
+        rc = attr_array(f, op[1], op[2], bounded(op[3], 1u << 24));
     else if (!strcmp(o, "attr_strarray") && n == 3)
-        rc = attr_strarray(f, op[1], op[2], count(op[3]));
-    else if (!strcmp(o, "attr_int") && n == 2)
-        rc = attr_int(f, op[1], op[2]);
+        rc = attr_strarray(f, op[1], op[2], bounded(op[3], 1u << 24));
+    else if (!strcmp(o, "attr_int") && (n == 2 || n == 3))
+        rc = attr_int(f, op[1], op[2],
+                      n == 3 ? strtoll(op[3], NULL, 10) : 42);
+    else if (!strcmp(o, "attr_double") && n == 3)
+        rc = attr_double(f, op[1], op[2], number(op[3]));
+    else if (!strcmp(o, "attr_longstr") && n == 3)
+        rc = attr_longstr(f, op[1], op[2], (size_t)bounded(op[3], 1u << 26));
+    else if (!strcmp(o, "attr_delete") && n == 2)
+        rc = H5Adelete_by_name(f, op[1], op[2], H5P_DEFAULT) < 0 ? -1 : 0;
     else if (!strcmp(o, "attr_bigstr") && n == 3)
-        rc = attr_bigstr(f, op[1], op[2], (size_t)count(op[3]));
+        rc = attr_bigstr(f, op[1], op[2], (size_t)bounded(op[3], 1u << 30));
     else if (!strcmp(o, "dset_claim") && n == 3) {
         hsize_t dims[2] = {count(op[2]), count(op[3])};
         rc = dset_claim(f, op[1], H5T_IEEE_F64LE, dims[1] ? 2 : 1, dims);
@@ -335,8 +434,28 @@ int fh5_mutate(const char *file, const char *const *op)
         rc = log_claim(f, count(op[1]), count(op[2]));
     else if (!strcmp(o, "log_rows") && n == 1)
         rc = log_rows(f, strtoll(op[1], NULL, 10));
+    else if (!strcmp(o, "dset_resize") && n == 3)
+        rc = dset_resize(f, op[1], count(op[2]), count(op[3]));
     else if (!strcmp(o, "delete") && n == 1)
         rc = H5Ldelete(f, op[1], H5P_DEFAULT) < 0 ? -1 : 0;
+    return rc;
+}
+
+int fh5_mutate(const char *file, const char *const *op)
+{
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    hid_t f = H5Fopen(file, H5F_ACC_RDWR, H5P_DEFAULT);
+    if (f < 0 || !op[0])
+        return -1;
+    int rc = 0;
+    /* one mutation, or several joined by FH5_AND, applied in turn */
+    for (const char *const *w = op; !rc; w++) {
+        rc = mutate_one(f, w);
+        while (*w && strcmp(*w, FH5_AND))
+            w++;
+        if (!*w)
+            break;
+    }
     if (H5Fclose(f) < 0)
         rc = -1;
     return rc;
@@ -420,4 +539,41 @@ int fh5_run(const char *corpus_dir, const char *work, const char *corpus,
         return fh5_exec(argv, cpu, fsize, 0, errout);
     }
     return -1003;
+}
+
+/* ------------------------------------------------------------ verdict */
+
+const char *fh5_verdict(int rc, const char *err, const char *target)
+{
+    static char why[128];
+    if (rc <= -1000)
+        return NULL;
+    if (rc < 0) {
+        snprintf(why, sizeof why, "killed by signal %d (%s)", -rc,
+                 -rc == SIGXCPU   ? "CPU limit"
+                 : -rc == SIGXFSZ ? "file-size limit"
+                 : -rc == SIGKILL ? "wall-clock limit"
+                                  : strsignal(-rc));
+        return why;
+    }
+    if (rc > 6) {
+        snprintf(why, sizeof why, "exit %d outside the documented set", rc);
+        return why;
+    }
+    /* ASan and UBSan report, then exit 1 unless told otherwise */
+    if (err && (strstr(err, "Sanitizer") || strstr(err, "runtime error:")))
+        return "a sanitizer report";
+    /* a refusal (bad input, I/O, or the program's own failure) names the
+     * file; for the files of a stopped run (OUT.part, OUT.ckpt) any of
+     * them: what is wrong may show only when they are compared */
+    const char *base = strrchr(target, '/');
+    char name[4096];
+    snprintf(name, sizeof name, "%s", base ? base + 1 : target);
+    const size_t n = strlen(name);
+    if (n > 5 && (!strcmp(name + n - 5, ".part") ||
+                  !strcmp(name + n - 5, ".ckpt")))
+        name[n - 5] = '\0';
+    if ((rc == 1 || rc == 2 || rc == 5) && !(err && strstr(err, name)))
+        return "a refusal that does not name the file";
+    return NULL;
 }

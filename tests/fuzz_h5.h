@@ -14,9 +14,13 @@
  * stderr). */
 int fh5_make_corpus(const char *dir, const char *name);
 
-/* Apply one mutation (words of a recipe line after EXPECT CORPUS COMMAND,
- * NULL-terminated) to the HDF5 file `file`.  0, or -1 when the recipe is
- * malformed or HDF5 refused the change. */
+/* The word that joins the mutations of one recipe line. */
+#define FH5_AND "+"
+
+/* Apply the mutations (words of a recipe line after EXPECT CORPUS
+ * COMMAND, NULL-terminated; several joined by FH5_AND) to the HDF5 file
+ * `file`.  0, or -1 when the recipe is malformed or HDF5 refused a
+ * change. */
 int fh5_mutate(const char *file, const char *const *op);
 
 /* Run the program on a copy of the corpus made in `work` (a directory):
@@ -34,5 +38,13 @@ int fh5_run(const char *corpus_dir, const char *work, const char *corpus,
  * as it started).  The exit status, or -signal. */
 int fh5_exec(const char *const *argv, int cpu, long long fsize,
              int pending_term, char **errout);
+
+/* What is wrong with a run of fh5_run (its status rc, stderr err, the
+ * file given it): a signal (a CPU, file-size or wall-clock limit among
+ * them), an exit status outside 0-6, a sanitizer report, a failure
+ * (status 1, 2 or 5) whose message does not name the file (for OUT.part
+ * and OUT.ckpt: OUT); NULL when none of these, or when the case could not
+ * be made (rc <= -1000). */
+const char *fh5_verdict(int rc, const char *err, const char *target);
 
 #endif

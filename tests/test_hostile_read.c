@@ -45,18 +45,13 @@ static void replay(const char *dir, char **w, int nw, const char *line)
                      &target);
     ck_assert_msg(rc > -1000, "recipe could not be applied (%d): %s", rc,
                   line);
-    ck_assert_msg(rc >= 0, "killed by signal %d: %s\n%s", -rc, line,
-                  err ? err : "");
-    ck_assert_msg(rc <= 6, "exit %d outside the documented set: %s", rc,
-                  line);
+    /* the random run of make fuzz-h5 judges by the same verdict */
+    const char *why = fh5_verdict(rc, err, target);
+    ck_assert_msg(!why, "%s (exit %d, file %s): %s\n%s", why, rc, target,
+                  line, err ? err : "");
     if (strcmp(w[0], "*"))
         ck_assert_msg(rc == atoi(w[0]), "exit %d, want %s: %s\n%s", rc, w[0],
                       line, err ? err : "");
-    const char *base = strrchr(target, '/');
-    if (rc)
-        ck_assert_msg(err && strstr(err, base ? base + 1 : target),
-                      "the message does not name %s: %s\n%s", target, line,
-                      err ? err : "");
     free(err);
 }
 
@@ -81,13 +76,14 @@ static int replay_all(void)
             buf[strcspn(buf, "\n")] = '\0';
             if (!buf[0] || buf[0] == '#')
                 continue;
-            char copy[1024], *w[16];
+            char copy[1024], *w[64];
             snprintf(copy, sizeof copy, "%s", buf);
             int nw = 0;
-            for (char *t = strtok(copy, " \t"); t && nw < 15;
-                 t = strtok(NULL, " \t"))
+            char *t = strtok(copy, " \t");
+            for (; t && nw < 63; t = strtok(NULL, " \t"))
                 w[nw++] = t;
             w[nw] = NULL;
+            ck_assert_msg(!t, "recipe of more than 63 words: %s", buf);
             replay(dir, w, nw, buf);
             lines++;
         }

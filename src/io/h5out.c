@@ -453,10 +453,21 @@ bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
             H5Sget_simple_extent_dims(fsp, have, NULL);
             H5Sclose(fsp);
         }
-        if (hrank != rank || (rank == 2 && have[1] != ncols)) {
-            bf_fail(err, BF_EIO, "%s: dataset %s does not match the run "
-                    "(rank %d, columns %llu)", out->path, path, hrank,
-                    (unsigned long long)have[1]);
+        /* the file continued is an input: a series of another shape or
+         * class (a string where numbers go) is refused before any row is
+         * written into it */
+        hid_t ft = s->dset >= 0 ? H5Dget_type(s->dset) : -1;
+        const H5T_class_t cls = ft >= 0 ? H5Tget_class(ft) : H5T_NO_CLASS;
+        if (ft >= 0)
+            H5Tclose(ft);
+        if (hrank != rank || (rank == 2 && have[1] != ncols) ||
+            cls != (is_int ? H5T_INTEGER : H5T_FLOAT)) {
+            bf_fail(err, BF_EINPUT, "%s: dataset %s does not match the run "
+                    "(rank %d, columns %llu, %s)", out->part, path, hrank,
+                    (unsigned long long)have[1],
+                    cls == H5T_INTEGER ? "integers"
+                    : cls == H5T_FLOAT ? "floating point"
+                                       : "neither integers nor floating point");
             series_free(s);
             return NULL;
         }
