@@ -29,7 +29,8 @@ static void run_usage(FILE *f)
             "       ballfilm run --restart OUT.h5 [--set section.key=value]... "
             "[-q]\n"
             "\n"
-            "  -o OUT.h5        output file (default: out/<scene name>.h5)\n"
+            "  -o, --output OUT.h5\n"
+            "                   output file (default: out/<scene name>.h5)\n"
             "  --restart OUT.h5 continue the run of OUT.h5 from its checkpoint "
             "OUT.h5.ckpt\n"
             "                   (written every [scene] checkpoint_every and on "
@@ -52,6 +53,13 @@ static void run_usage(FILE *f)
             "  --progress       progress line even when stderr is not a "
             "terminal\n"
             "\n");
+}
+
+/* --help: the options and every scene key */
+static void run_usage_keys(FILE *f)
+{
+    run_usage(f);
+    bf_cli_print_keys(f);
 }
 
 int bf_cli_mkdir_out(void)
@@ -149,63 +157,61 @@ int bf_cmd_run(int argc, char **argv)
     const char **sets = calloc((size_t)argc, sizeof *sets);
     if (!sets)
         return BF_EINTERNAL;
-    for (int k = 1; k < argc; k++) {
-        const char *a = argv[k];
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            run_usage(stdout);
-            bf_cli_print_keys(stdout);
+    enum { RESTART = BF_CLI_LONG, STOP_AFTER, SET, KEEP, PROGRESS };
+    static const struct option longopts[] = {
+        {"help", no_argument, NULL, 'h'},
+        {"output", required_argument, NULL, 'o'},
+        {"quiet", no_argument, NULL, 'q'},
+        {"restart", required_argument, NULL, RESTART},
+        {"stop-after", required_argument, NULL, STOP_AFTER},
+        {"set", required_argument, NULL, SET},
+        {"keep-checkpoint", no_argument, NULL, KEEP},
+        {"progress", no_argument, NULL, PROGRESS},
+        {NULL, 0, NULL, 0},
+    };
+    const bf_cli_cmd cmd = {"run", ":ho:q", longopts, run_usage_keys};
+    for (int c; (c = bf_cli_getopt(&cmd, argc, argv)) != -1;) {
+        switch (c) {
+        case BF_CLI_HELP:
+        case BF_CLI_BAD:
             free(sets);
-            return 0;
-        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            if (++k >= argc) {
-                fprintf(stderr, "ballfilm: error: %s needs a file name\n", a);
+            return c == BF_CLI_HELP ? 0 : BF_EINPUT;
+        case 'o':
+            out_path = optarg;
+            break;
+        case RESTART:
+            restart = optarg;
+            break;
+        case STOP_AFTER:
+            if (!bf_parse_long(optarg, &stop_after) || stop_after < 1) {
+                bf_cli_error(&cmd, "--stop-after needs a number of steps "
+                                   ">= 1");
                 free(sets);
                 return BF_EINPUT;
             }
-            out_path = argv[k];
-        } else if (!strcmp(a, "--restart")) {
-            if (++k >= argc) {
-                fprintf(stderr, "ballfilm: error: --restart needs OUT.h5\n");
-                free(sets);
-                return BF_EINPUT;
-            }
-            restart = argv[k];
-        } else if (!strcmp(a, "--stop-after")) {
-            if (++k >= argc || !bf_parse_long(argv[k], &stop_after) ||
-                stop_after < 1) {
-                fprintf(stderr, "ballfilm: error: --stop-after needs a number "
-                                "of steps >= 1\n");
-                free(sets);
-                return BF_EINPUT;
-            }
-        } else if (!strcmp(a, "--set")) {
-            if (++k >= argc) {
-                fprintf(stderr, "ballfilm: error: --set needs section.key=value\n");
-                free(sets);
-                return BF_EINPUT;
-            }
-            sets[nset++] = argv[k];
-        } else if (!strncmp(a, "--set=", 6)) {
-            sets[nset++] = a + 6;
-        } else if (!strcmp(a, "--keep-checkpoint")) {
+            break;
+        case SET:
+            sets[nset++] = optarg;
+            break;
+        case KEEP:
             keep_ckpt = 1;
-        } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
+            break;
+        case 'q':
             quiet = 1;
-        } else if (!strcmp(a, "--progress")) {
+            break;
+        case PROGRESS:
             force_progress = 1;
-        } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "ballfilm: error: unknown option '%s'\n", a);
-            run_usage(stderr);
-            free(sets);
-            return BF_EINPUT;
-        } else if (!scene_path) {
-            scene_path = a;
-        } else {
-            fprintf(stderr, "ballfilm: error: more than one scene file ('%s')\n",
-                    a);
+            break;
+        }
+    }
+    for (int k = optind; k < argc; k++) {
+        if (scene_path) {
+            fprintf(stderr, "ballfilm: error: more than one scene file "
+                            "('%s')\n", argv[k]);
             free(sets);
             return BF_EINPUT;
         }
+        scene_path = argv[k];
     }
     if (!scene_path == !restart || (restart && out_path)) {
         if (scene_path && restart)

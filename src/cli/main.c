@@ -13,7 +13,10 @@
 static void usage(FILE *f)
 {
     fprintf(f,
-            "usage: ballfilm COMMAND [ARGS]\n"
+            "usage: ballfilm [-h | -V] COMMAND [OPTIONS] [ARGS]\n"
+            "\n"
+            "  -h, --help         this text and every scene key\n"
+            "  -V, --version      print the version\n"
             "\n"
             "commands:\n"
             "  run SCENE.ini [-o OUT.h5] [--set section.key=value]... [-q]\n"
@@ -92,13 +95,36 @@ int main(int argc, char **argv)
 {
     install_handlers();
     bf_cli_warm_heap();
-    if (argc < 2) {
+    static const struct option longopts[] = {
+        {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, 'V'},
+        {NULL, 0, NULL, 0},
+    };
+    /* '+': the options before the command; the command's own follow it */
+    const bf_cli_cmd top = {NULL, "+:hV", longopts, usage};
+    for (int c; (c = bf_cli_getopt(&top, argc, argv)) != -1;) {
+        if (c == BF_CLI_HELP) {
+            printf("\n");
+            bf_cli_print_keys(stdout);
+            return 0;
+        }
+        if (c == BF_CLI_BAD)
+            return 2;
+        if (c == 'V') {
+            printf("%s\n", bf_version_string());
+            return 0;
+        }
+    }
+    if (optind >= argc) {
         usage(stderr);
         return 2;
     }
-    const char *cmd = argv[1];
+    const char *cmd = argv[optind];
+    argc -= optind;
+    argv += optind;
+    optind = 0; /* glibc's full reset: each command parses its own argv */
     if (!strcmp(cmd, "run")) {
-        int rc = bf_cmd_run(argc - 1, argv + 1);
+        int rc = bf_cmd_run(argc, argv);
         if (rc == 5) {
             /* After a failed write (disk full) HDF5 keeps the file open
              * internally and its exit handler crashes closing it again
@@ -111,26 +137,25 @@ int main(int argc, char **argv)
         return rc;
     }
     if (!strcmp(cmd, "sweep"))
-        return bf_cmd_sweep(argc - 1, argv + 1);
+        return bf_cmd_sweep(argc, argv);
     if (!strcmp(cmd, "converge"))
-        return bf_cmd_converge(argc - 1, argv + 1);
+        return bf_cmd_converge(argc, argv);
     if (!strcmp(cmd, "xdmf"))
-        return bf_cmd_xdmf(argc - 1, argv + 1);
+        return bf_cmd_xdmf(argc, argv);
     if (!strcmp(cmd, "animate"))
-        return bf_cmd_animate(argc - 1, argv + 1);
+        return bf_cmd_animate(argc, argv);
     if (!strcmp(cmd, "info"))
-        return bf_cmd_info(argc - 1, argv + 1);
-    if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
+        return bf_cmd_info(argc, argv);
+    if (!strcmp(cmd, "help")) {
         usage(stdout);
         printf("\n");
         bf_cli_print_keys(stdout);
         return 0;
     }
-    if (!strcmp(cmd, "version") || !strcmp(cmd, "--version")) {
+    if (!strcmp(cmd, "version")) {
         printf("%s\n", bf_version_string());
         return 0;
     }
-    fprintf(stderr, "ballfilm: error: unknown command '%s'\n\n", cmd);
-    usage(stderr);
+    bf_cli_error(&top, "unknown command '%s'", cmd);
     return 2;
 }
