@@ -1,7 +1,10 @@
 /* test_cli.c: the command line's conventions, on the program itself:
  * --name=VALUE and --name VALUE, bundled short options (-qo X), -V and
  * --version, `--` ends the options, unknown and incomplete options refused
- * with status 2 naming the option and `ballfilm CMD --help`. */
+ * with status 2 naming the option and `ballfilm CMD --help`, and an input
+ * file that does not exist refused with status 2 "FILE: no such file"
+ * before HDF5 opens it (a file that is there but is not HDF5 stays an I/O
+ * error, test_info.c). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -97,6 +100,9 @@ START_TEST(double_dash_ends_the_options)
                             NULL), 2);
     ck_assert_msg(strstr(err, "more than one scene"), "%s", err);
     free(err);
+    ck_assert_int_eq(tu_run(NULL, &err, "info", "--", "-none.h5", NULL), 2);
+    ck_assert_msg(strstr(err, "-none.h5: no such file"), "%s", err);
+    free(err);
 }
 END_TEST
 
@@ -151,6 +157,34 @@ START_TEST(unknown_and_incomplete_options_refused)
 }
 END_TEST
 
+START_TEST(missing_input_is_bad_input)
+{
+    const char *missing = tu_tmp("nothing_here.h5");
+    const char *cmds[][5] = {
+        {"info", missing, NULL},
+        {"xdmf", missing, NULL},
+        {"animate", missing, NULL},
+        {"run", "--restart", missing, "-q", NULL},
+    };
+    for (size_t k = 0; k < sizeof cmds / sizeof *cmds; k++) {
+        char *err = NULL;
+        int rc = tu_runv(NULL, &err, cmds[k]);
+        ck_assert_msg(rc == 2, "%s: status %d: %s", cmds[k][0], rc, err);
+        ck_assert_msg(strstr(err, "nothing_here.h5: no such file"), "%s: %s",
+                      cmds[k][0], err);
+        free(err);
+    }
+    /* a directory of the path that is a file: no such file either */
+    const char *ini = tu_write("notdir.ini", scene);
+    char below[700];
+    snprintf(below, sizeof below, "%s/x.h5", ini);
+    char *err = NULL;
+    ck_assert_int_eq(tu_run(NULL, &err, "info", below, NULL), 2);
+    ck_assert_msg(strstr(err, "no such file"), "%s", err);
+    free(err);
+}
+END_TEST
+
 Suite *suite_cli(void)
 {
     Suite *s = suite_create("cli");
@@ -159,6 +193,7 @@ Suite *suite_cli(void)
     tcase_add_test(tc, version_at_the_top_level);
     tcase_add_test(tc, double_dash_ends_the_options);
     tcase_add_test(tc, unknown_and_incomplete_options_refused);
+    tcase_add_test(tc, missing_input_is_bad_input);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -48,5 +48,9 @@ int bf_cli_getopt(const bf_cli_cmd *c, int argc, char **argv);
 /* "ballfilm: error: MESSAGE; see 'ballfilm CMD --help'" on stderr. */
 void bf_cli_error(const bf_cli_cmd *c, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
+/* 1 (and the message "PATH: no such file") when the input file path
+ * does not exist: status 2 before any reader opens it; 0 when it is
+ * there or cannot be looked at (the reader then says why). */
+int bf_cli_no_such_file(const char *path);
 
 #endif

@@ -248,6 +248,8 @@ int bf_cmd_animate(int argc, char **argv)
     const char **args = calloc(cap, sizeof *args);
     const char *h5, *out;
     int rc = args ? animate_args(argc, argv, args, &h5, &out) : BF_EINTERNAL;
+    if (rc < 0 && bf_cli_no_such_file(h5))
+        rc = BF_EINPUT;
     if (rc >= 0) {
         free(args);
         return rc;

@@ -207,6 +207,8 @@ int bf_cmd_info(int argc, char **argv)
         snprintf(file, sizeof file, "%s.part", given);
         if (!access(file, F_OK))
             note = " (not finished: the run is going on or was interrupted)";
+        else if (bf_cli_no_such_file(given))
+            return BF_EINPUT;
         else
             snprintf(file, sizeof file, "%s", given);
     }

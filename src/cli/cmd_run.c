@@ -55,6 +55,24 @@ static void run_usage(FILE *f)
             "\n");
 }
 
+/* --restart OUT.h5 of a run that left nothing there: neither OUT.h5 nor
+ * its .part nor its checkpoint (one that left some of them is the
+ * restart's to judge and explain). */
+static int no_run_at(const char *out)
+{
+    char part[4096], ckpt[4096];
+    struct stat st;
+    snprintf(part, sizeof part, "%s.part", out);
+    snprintf(ckpt, sizeof ckpt, "%s.ckpt", out);
+    const char *const all[] = {out, part, ckpt};
+    for (size_t k = 0; k < 3; k++)
+        if (!stat(all[k], &st) || (errno != ENOENT && errno != ENOTDIR))
+            return 0;
+    fprintf(stderr, "ballfilm: error: %s: no such file (nor %s, nor its "
+                    "checkpoint %s)\n", out, part, ckpt);
+    return 1;
+}
+
 /* --help: the options and every scene key */
 static void run_usage_keys(FILE *f)
 {
@@ -221,6 +239,10 @@ int bf_cmd_run(int argc, char **argv)
             fprintf(stderr, "ballfilm: error: --restart continues OUT.h5 in "
                             "place; -o is not used with it\n");
         run_usage(stderr);
+        free(sets);
+        return BF_EINPUT;
+    }
+    if (restart && no_run_at(restart)) {
         free(sets);
         return BF_EINPUT;
     }

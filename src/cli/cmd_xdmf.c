@@ -71,6 +71,8 @@ int bf_cmd_xdmf(int argc, char **argv)
         return BF_EINPUT;
     }
     h5 = argv[optind];
+    if (bf_cli_no_such_file(h5))
+        return BF_EINPUT;
     char *def = xmf ? NULL : bf_xdmf_default_path(h5);
     if (!xmf && !def)
         return BF_EINTERNAL;

@@ -3,9 +3,11 @@
  * bundled short options, unique prefixes of long names, `--` ends the
  * options, options anywhere among the operands); this file adds --help
  * and the one error line every command prints. */
+#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli.h"
 
@@ -103,4 +105,13 @@ int bf_cli_getopt(const bf_cli_cmd *c, int argc, char **argv)
         return BF_CLI_BAD;
     }
     return r;
+}
+
+int bf_cli_no_such_file(const char *path)
+{
+    struct stat st;
+    if (!stat(path, &st) || (errno != ENOENT && errno != ENOTDIR))
+        return 0; /* there, or not ours to judge: the reader says why */
+    fprintf(stderr, "ballfilm: error: %s: no such file\n", path);
+    return 1;
 }
