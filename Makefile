@@ -103,7 +103,7 @@ RUNNER    := $(BUILD)/tests/runner
         fig-g72-ex1-ensemble fig-g72-ex2 fig-g72-large fig-g73-hex \
         fig-g73-wall movies deps-movies deps-xdmf test-movies test-xdmf \
         shared install uninstall man deps-install test-install test-examples \
-        test-python deps-python
+        test-python deps-python test-cli-docs
 
 all: $(PROG) shared
 
@@ -180,7 +180,8 @@ shared: $(SHLIB)
 # ---------------------------------------------------------------- install
 # make install [PREFIX=/usr/local] [DESTDIR=...]: the program, both
 # libraries, the public headers, ballfilm.pc (pkg-config), the man page
-# (help2man from the program's --help) and the Python package.
+# (help2man from the program's --help), the bash completion and the
+# Python package.
 # make uninstall removes exactly those files (same PREFIX and DESTDIR).
 PREFIX     ?= /usr/local
 LIBDIR     ?= $(PREFIX)/lib
@@ -190,6 +191,7 @@ PYVER      := $(shell $(PY) -c 'import sys; print("%d.%d" % sys.version_info[:2]
 PYTHONDIR  ?= $(PREFIX)/lib/python$(PYVER)/dist-packages
 PY_PKG     := $(sort $(wildcard python/ballfilm/*.py))
 MAN        := $(BUILD)/ballfilm.1
+BASHCOMPDIR ?= $(PREFIX)/share/bash-completion/completions
 INSTALL_PKGS := help2man
 
 deps-install:
@@ -215,6 +217,7 @@ install: $(PROG) $(LIB) $(SHLIB) $(MAN)
 	    -e 's|@INCLUDEDIR@|$(INCLUDEDIR)|' -e 's|@VERSION@|$(VERSION)|' \
 	    src/ballfilm.pc.in > $(DESTDIR)$(LIBDIR)/pkgconfig/ballfilm.pc
 	install -m 644 $(MAN) $(DESTDIR)$(MANDIR)/man1/ballfilm.1
+	install -D -m 644 src/cli/ballfilm.bash $(DESTDIR)$(BASHCOMPDIR)/ballfilm
 	$(if $(PY_PKG),install -m 644 $(PY_PKG) $(DESTDIR)$(PYTHONDIR)/ballfilm/)
 	printf 'LIBRARY = "%s"\n' $(LIBDIR)/$(SONAME) \
 	  > $(DESTDIR)$(PYTHONDIR)/ballfilm/_install.py
@@ -225,6 +228,7 @@ uninstall:
 	  $(DESTDIR)$(LIBDIR)/$(notdir $(SHLIB)) \
 	  $(DESTDIR)$(LIBDIR)/pkgconfig/ballfilm.pc \
 	  $(DESTDIR)$(MANDIR)/man1/ballfilm.1 \
+	  $(DESTDIR)$(BASHCOMPDIR)/ballfilm \
 	  $(addprefix $(DESTDIR)$(INCLUDEDIR)/ballfilm/,$(notdir $(PUBLIC_H))) \
 	  $(addprefix $(DESTDIR)$(PYTHONDIR)/ballfilm/,$(notdir $(PY_PKG)) _install.py)
 	rm -rf $(DESTDIR)$(PYTHONDIR)/ballfilm/__pycache__
@@ -728,6 +732,7 @@ test:
 	@$(MAKE) --no-print-directory test-install
 	@$(MAKE) --no-print-directory test-examples
 	@$(MAKE) --no-print-directory test-python
+	@$(MAKE) --no-print-directory test-cli-docs
 
 # The code's layering against docs/architecture.md (include directions,
 # circles, public headers, file sizes, who reads scenes) and the docs'
@@ -775,6 +780,11 @@ test-python: $(PROG) $(SHLIB) $(KILLWRITE) | deps-python
 	BALLFILM_BIN=$(abspath $(PROG)) BALLFILM_LIB=$(abspath $(SHLIB)) \
 	  BALLFILM_KILLWRITE=$(abspath $(KILLWRITE)) \
 	  $(PY) -m pytest -q -p no:cacheprovider tests/python
+
+# The bash completion run in bash (a command, an option, a scene key):
+# tests/test_cli_docs.py.
+test-cli-docs: $(PROG)
+	$(PY) tests/test_cli_docs.py $(PROG) src/cli/ballfilm.bash
 
 # ASAN_LEAKS=0 turns off LeakSanitizer only (for containers that forbid
 # the ptrace it needs; .ci/run decides this by a probe and says so).

@@ -4,9 +4,11 @@
  * 6 interrupted. */
 #include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
+#include "ballfilm/error.h"
 #include "ballfilm/version.h"
 #include "cli.h"
 
@@ -91,6 +93,50 @@ static void install_handlers(void)
     sigprocmask(SIG_UNBLOCK, &set, NULL);
 }
 
+/* Hidden (for the shell completion, src/cli/ballfilm.bash): every scene
+ * key as section.key, one a line, from the key table `run --help` prints
+ * (a section header "[name]  doc" at the start of a line, its keys below
+ * it indented by two spaces). */
+static int print_key_names(void)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&text, &len);
+    if (!m)
+        return BF_EINTERNAL;
+    bf_cli_print_keys(m);
+    if (fclose(m))
+        return BF_EINTERNAL;
+    /* the names printed, each between newlines: a section of several
+     * integrators ([integrator]) repeats keys */
+    char *seen = calloc(len + 2, 1), section[128] = "", name[300];
+    if (!seen) {
+        free(text);
+        return BF_EINTERNAL;
+    }
+    seen[0] = '\n';
+    for (char *line = strtok(text, "\n"); line; line = strtok(NULL, "\n")) {
+        if (line[0] == '[' && strchr(line, ']')) {
+            snprintf(section, sizeof section, "%.*s",
+                     (int)(strchr(line, ']') - line - 1), line + 1);
+        } else if (line[0] != ' ') {
+            section[0] = '\0';
+        } else if (section[0] && line[1] == ' ' && line[2] != ' ') {
+            snprintf(name, sizeof name, "\n%s.%.*s\n", section,
+                     (int)strcspn(line + 2, " "), line + 2);
+            if (!strstr(seen, name) && strlen(seen) + strlen(name) <= len) {
+                strcat(seen, name + 1);
+                fputs(name + 1, stdout);
+            }
+        }
+    }
+    free(seen);
+    free(text);
+    return 0;
+}
+
+enum { OPT_KEYS = BF_CLI_LONG };
+
 int main(int argc, char **argv)
 {
     install_handlers();
@@ -98,6 +144,7 @@ int main(int argc, char **argv)
     static const struct option longopts[] = {
         {"help", no_argument, NULL, 'h'},
         {"version", no_argument, NULL, 'V'},
+        {"complete-keys", no_argument, NULL, OPT_KEYS},
         {NULL, 0, NULL, 0},
     };
     /* '+': the options before the command; the command's own follow it */
@@ -114,6 +161,8 @@ int main(int argc, char **argv)
             printf("%s\n", bf_version_string());
             return 0;
         }
+        if (c == OPT_KEYS)
+            return print_key_names();
     }
     if (optind >= argc) {
         usage(stderr);
