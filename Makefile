@@ -103,7 +103,7 @@ RUNNER    := $(BUILD)/tests/runner
         fig-g72-ex1-ensemble fig-g72-ex2 fig-g72-large fig-g73-hex \
         fig-g73-wall movies deps-movies deps-xdmf test-movies test-xdmf \
         shared install uninstall man deps-install test-install test-examples \
-        test-python deps-python test-cli-docs
+        test-python deps-python test-cli-docs deps-cli-docs
 
 all: $(PROG) shared
 
@@ -180,8 +180,8 @@ shared: $(SHLIB)
 # ---------------------------------------------------------------- install
 # make install [PREFIX=/usr/local] [DESTDIR=...]: the program, both
 # libraries, the public headers, ballfilm.pc (pkg-config), the man page
-# (help2man from the program's --help), the bash completion and the
-# Python package.
+# (src/cli/ballfilm.1.in with the scene keys of the program's own table,
+# src/cli/mkman.py), the bash completion and the Python package.
 # make uninstall removes exactly those files (same PREFIX and DESTDIR).
 PREFIX     ?= /usr/local
 LIBDIR     ?= $(PREFIX)/lib
@@ -197,9 +197,9 @@ INSTALL_PKGS := help2man
 deps-install:
 	$(call need_pkgs,$(INSTALL_PKGS))
 
-$(MAN): $(PROG) | deps-install
-	help2man -N --version-string=$(VERSION) \
-	  -n "balls and particle fluids in thin liquid films" -o $@ $(PROG)
+$(MAN): $(PROG) src/cli/ballfilm.1.in src/cli/mkman.py
+	$(PY) src/cli/mkman.py $(PROG) src/cli/ballfilm.1.in $(VERSION) > $@.tmp
+	mv $@.tmp $@
 man: $(MAN)
 
 # The installed package finds the installed library through _install.py.
@@ -781,10 +781,15 @@ test-python: $(PROG) $(SHLIB) $(KILLWRITE) | deps-python
 	  BALLFILM_KILLWRITE=$(abspath $(KILLWRITE)) \
 	  $(PY) -m pytest -q -p no:cacheprovider tests/python
 
-# The bash completion run in bash (a command, an option, a scene key):
-# tests/test_cli_docs.py.
-test-cli-docs: $(PROG)
-	$(PY) tests/test_cli_docs.py $(PROG) src/cli/ballfilm.bash
+# The man page as man-db shows it (every section, every option of every
+# command's --help) and the bash completion run in bash (a command, an
+# option, a scene key): tests/test_cli_docs.py.
+CLI_DOC_PKGS := man-db bsdextrautils
+deps-cli-docs:
+	$(call need_pkgs,$(CLI_DOC_PKGS))
+
+test-cli-docs: $(PROG) $(MAN) | deps-cli-docs
+	$(PY) tests/test_cli_docs.py $(PROG) $(MAN) src/cli/ballfilm.bash
 
 # ASAN_LEAKS=0 turns off LeakSanitizer only (for containers that forbid
 # the ptrace it needs; .ci/run decides this by a probe and says so).

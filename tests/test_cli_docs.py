@@ -1,9 +1,13 @@
 #!/usr/bin/python3
-"""test_cli_docs.py: the bash completion of the program.
+"""test_cli_docs.py: the man page and the bash completion of the program.
 
-  /usr/bin/python3 tests/test_cli_docs.py PROGRAM COMPLETION
+  /usr/bin/python3 tests/test_cli_docs.py PROGRAM MANPAGE COMPLETION
 
-(make test-cli-docs).  The completion, sourced into bash, must complete a command, an option of a
+(make test-cli-docs).  The man page as man-db shows it
+(`MANWIDTH=80 man -l MANPAGE | col -b`) must hold every section heading,
+every option that `PROGRAM CMD --help` lists for every command (and the
+program's own -h/-V), and every scene key of the program's table.  The
+completion, sourced into bash, must complete a command, an option of a
 command, the sections after --set and the keys of a section (--set
 scene.<TAB>, --set=ball.2.<TAB>).  Exit status 1 with a line per problem.
 """
@@ -13,6 +17,8 @@ import subprocess
 import sys
 
 COMMANDS = ["run", "sweep", "converge", "xdmf", "animate", "info"]
+SECTIONS = ["NAME", "SYNOPSIS", "DESCRIPTION", "OPTIONS", "SCENE KEYS",
+            "EXIT STATUS", "ENVIRONMENT", "FILES", "EXAMPLES"]
 problems = []
 
 
@@ -37,6 +43,41 @@ def help_options(prog, command):
         if usage or line.lstrip().startswith("-"):
             found |= set(re.findall(r"(?<![\w-])(--?[A-Za-z][\w-]*)", line))
     return found
+
+
+def man_text(page):
+    env = dict(os.environ, MANWIDTH="80", LC_ALL="C.UTF-8")
+    shown = run(["man", "-l", page], env=env)
+    check(shown.returncode == 0, "man -l %s: status %d: %s"
+          % (page, shown.returncode, shown.stderr[-500:]))
+    plain = run(["col", "-b"], input=shown.stdout).stdout
+    # groff's hyphen and minus, as the terminal shows them
+    return plain.replace("\u2010", "-").replace("\u2212", "-")
+
+
+def check_man(prog, page):
+    text = man_text(page)
+    heads = set(re.findall(r"^([A-Z][A-Z ]+)$", text, re.M))
+    for s in SECTIONS:
+        check(s in heads, "man page: no section %s" % s)
+    words = set(re.findall(r"(?<![\w-])(--?[A-Za-z][\w-]*)", text))
+    for c in COMMANDS:
+        check(("   " + c) in text, "man page: no OPTIONS of %s" % c)
+        for opt in sorted(help_options(prog, c)):
+            check(opt in words, "man page: %s %s (in its --help) is missing"
+                  % (c, opt))
+    for opt in ["-h", "--help", "-V", "--version", "--restart",
+                "--stop-after", "--keep-checkpoint"]:
+        check(opt in words, "man page: %s is missing" % opt)
+    keys = run([prog, "--complete-keys"]).stdout.split()
+    check(len(keys) > 100, "--complete-keys: %d keys" % len(keys))
+    sections = {k.rsplit(".", 1)[0] for k in keys}
+    for s in sections:
+        check("[%s]" % s in text, "man page: no scene section [%s]" % s)
+    for k in keys:
+        key = k.rsplit(".", 1)[1]
+        check(re.search(r"^\s+%s\b" % re.escape(key), text, re.M),
+              "man page: no scene key %s" % k)
 
 
 def complete(script, prog, words):
@@ -77,15 +118,16 @@ def check_completion(prog, script):
 
 
 def main():
-    if len(sys.argv) != 3:
+    if len(sys.argv) != 4:
         sys.exit(__doc__)
-    prog, script = (os.path.abspath(a) for a in sys.argv[1:])
+    prog, page, script = (os.path.abspath(a) for a in sys.argv[1:])
+    check_man(prog, page)
     check_completion(prog, script)
     for p in problems:
         print("test_cli_docs: " + p)
     if problems:
         sys.exit(1)
-    print("test_cli_docs: completion ok")
+    print("test_cli_docs: man page and completion ok")
 
 
 if __name__ == "__main__":
