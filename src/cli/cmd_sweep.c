@@ -66,6 +66,7 @@ static void sweep_usage(FILE *f)
             "N cases at a\n"
             "time (processes); with MPI use\n"
             "  mpirun -n N bin/ballfilm-mpi sweep ...\n"
+            "(as root: mpirun --allow-run-as-root ...).\n"
             "Default DIR: out/<scene name>_sweep.\n",
             BF_SWEEP_MAX_VARY);
 }
