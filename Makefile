@@ -106,7 +106,7 @@ RUNNER    := $(BUILD)/tests/runner
         fig-g73-wall movies deps-movies deps-xdmf test-movies test-xdmf \
         shared install uninstall man deps-install test-install test-examples \
         test-python deps-python test-pip deps-pip test-notebooks \
-        deps-notebooks
+        deps-notebooks test-cli-docs deps-cli-docs
 
 all: $(PROG) shared
 
@@ -183,7 +183,8 @@ shared: $(SHLIB)
 # ---------------------------------------------------------------- install
 # make install [PREFIX=/usr/local] [DESTDIR=...]: the program, both
 # libraries, the public headers, ballfilm.pc (pkg-config), the man page
-# (help2man from the program's --help), the Python package, and in
+# (src/cli/ballfilm.1.in with the scene keys of the program's own table,
+# src/cli/mkman.py), the bash completion, the Python package, and in
 # PREFIX/share/ballfilm the scenes (runs/) and the plot scripts (plots/)
 # that `ballfilm animate` and the figures run (the program finds them
 # beside itself: PREFIX/bin/../share/ballfilm), and the documentation in
@@ -204,14 +205,15 @@ DOC_TOP    := README.md
 DOC_PAGES  := $(sort $(wildcard docs/*.md))
 DOC_MODELS := $(sort $(wildcard docs/models/*.md))
 MAN        := $(BUILD)/ballfilm.1
-INSTALL_PKGS := help2man
+BASHCOMPDIR ?= $(PREFIX)/share/bash-completion/completions
+INSTALL_PKGS := pkg-config
 
 deps-install:
 	$(call need_pkgs,$(INSTALL_PKGS))
 
-$(MAN): $(PROG) | deps-install
-	help2man -N --version-string=$(VERSION) \
-	  -n "balls and particle fluids in thin liquid films" -o $@ $(PROG)
+$(MAN): $(PROG) src/cli/ballfilm.1.in src/cli/mkman.py
+	$(PY) src/cli/mkman.py $(PROG) src/cli/ballfilm.1.in $(VERSION) > $@.tmp
+	mv $@.tmp $@
 man: $(MAN)
 
 # The installed package finds the installed library through _install.py.
@@ -230,6 +232,7 @@ install: $(PROG) $(LIB) $(SHLIB) $(MAN)
 	    -e 's|@INCLUDEDIR@|$(INCLUDEDIR)|' -e 's|@VERSION@|$(VERSION)|' \
 	    src/ballfilm.pc.in > $(DESTDIR)$(LIBDIR)/pkgconfig/ballfilm.pc
 	install -m 644 $(MAN) $(DESTDIR)$(MANDIR)/man1/ballfilm.1
+	install -D -m 644 src/cli/ballfilm.bash $(DESTDIR)$(BASHCOMPDIR)/ballfilm
 	$(if $(PY_PKG),install -m 644 $(PY_PKG) $(DESTDIR)$(PYTHONDIR)/ballfilm/)
 	printf 'LIBRARY = "%s"\nSHARE = "%s"\n' $(LIBDIR)/$(SONAME) $(SHAREDIR) \
 	  > $(DESTDIR)$(PYTHONDIR)/ballfilm/_install.py
@@ -246,6 +249,7 @@ uninstall:
 	  $(DESTDIR)$(LIBDIR)/$(notdir $(SHLIB)) \
 	  $(DESTDIR)$(LIBDIR)/pkgconfig/ballfilm.pc \
 	  $(DESTDIR)$(MANDIR)/man1/ballfilm.1 \
+	  $(DESTDIR)$(BASHCOMPDIR)/ballfilm \
 	  $(addprefix $(DESTDIR)$(INCLUDEDIR)/ballfilm/,$(notdir $(PUBLIC_H))) \
 	  $(addprefix $(DESTDIR)$(PYTHONDIR)/ballfilm/,$(notdir $(PY_PKG)) _install.py _version.py) \
 	  $(addprefix $(DESTDIR)$(SHAREDIR)/runs/,$(notdir $(SHARE_RUNS))) \
@@ -758,6 +762,7 @@ test:
 	@$(MAKE) --no-print-directory test-python
 	@$(MAKE) --no-print-directory test-pip
 	@$(MAKE) --no-print-directory test-notebooks
+	@$(MAKE) --no-print-directory test-cli-docs
 
 # The code's layering against docs/architecture.md (include directions,
 # circles, public headers, file sizes, who reads scenes) and the docs'
@@ -829,6 +834,16 @@ deps-notebooks:
 
 test-notebooks: $(SHLIB) | deps-notebooks
 	$(PY) tests/test_notebooks.py
+
+# The man page as man-db shows it (every section, every option of every
+# command's --help) and the bash completion run in bash (a command, an
+# option, a scene key): tests/test_cli_docs.py.
+CLI_DOC_PKGS := man-db bsdextrautils
+deps-cli-docs:
+	$(call need_pkgs,$(CLI_DOC_PKGS))
+
+test-cli-docs: $(PROG) $(MAN) | deps-cli-docs
+	$(PY) tests/test_cli_docs.py $(PROG) $(MAN) src/cli/ballfilm.bash
 
 # ASAN_LEAKS=0 turns off LeakSanitizer only (for containers that forbid
 # the ptrace it needs; .ci/run decides this by a probe and says so).

@@ -69,20 +69,10 @@ static int find_script(char *out, size_t n, char *tried, size_t tn)
 
 /* The movie files the script may write for its arguments: -o/--output
  * (or OUT.mp4 beside OUT.h5) and the GIF it falls back to without ffmpeg
- * (plots/animate.py, writer_for); NULL when not known. */
-static void movie_paths(int argc, char **argv, char *mp4, char *gif,
+ * (plots/animate.py, writer_for). */
+static void movie_paths(const char *h5, const char *out, char *mp4, char *gif,
                         size_t cap)
 {
-    const char *h5 = NULL, *out = NULL;
-    for (int k = 1; k < argc; k++) {
-        if ((!strcmp(argv[k], "-o") || !strcmp(argv[k], "--output")) &&
-            k + 1 < argc)
-            out = argv[++k];
-        else if (!strncmp(argv[k], "--output=", 9))
-            out = argv[k] + 9;
-        else if (argv[k][0] != '-' && !h5)
-            h5 = argv[k];
-    }
     mp4[0] = gif[0] = '\0';
     if (out)
         snprintf(mp4, cap, "%s", out);
@@ -97,6 +87,94 @@ static void movie_paths(int argc, char **argv, char *mp4, char *gif,
                                              : (int)strlen(mp4);
     if (mp4[0])
         snprintf(gif, cap, "%.*s.gif", len, mp4);
+}
+
+static void animate_usage(FILE *f)
+{
+    fprintf(f,
+            "usage: ballfilm animate OUT.h5 [-o MOVIE.mp4] [--fps N] "
+            "[--frames N] [--t0 T]\n"
+            "                        [--t1 T] [--size WxH] [--field speed|p] "
+            "[--xlim A B] [-q]\n"
+            "\n"
+            "A movie of a run, one frame per output row (plots/animate.py "
+            "with Debian's\n"
+            "matplotlib and h5py; MP4 through ffmpeg, else a GIF through "
+            "Pillow).\n"
+            "\n"
+            "  -o, --output MOVIE.mp4\n"
+            "                   movie file (default: OUT.mp4 beside OUT.h5)\n"
+            "  --fps N          frames per second (default 20)\n"
+            "  --frames N       at most N frames, rows spread evenly "
+            "(default 200)\n"
+            "  --t0 T, --t1 T   the time span shown, s (default: the whole "
+            "run)\n"
+            "  --size WxH       frame size in pixels (default 960x540)\n"
+            "  --field F        mac: the field under the markers, speed or p "
+            "(default speed)\n"
+            "  --xlim A B       film: the x range shown, cm\n"
+            "  -q, --quiet      no progress bar\n");
+}
+
+/* The script's arguments from the command's (getopt_long's conventions
+ * here, one spelling there): args[2..] and the terminating NULL; the
+ * input and the movie file into *h5 and *out.  Returns -1 to go on, or
+ * the status to end with (--help, a bad option). */
+static int animate_args(int argc, char **argv, const char **args,
+                        const char **h5, const char **out)
+{
+    enum { FPS = BF_CLI_LONG, FRAMES, T0, T1, SIZE, FIELD, XLIM };
+    static const struct option longopts[] = {
+        {"help", no_argument, NULL, 'h'},
+        {"output", required_argument, NULL, 'o'},
+        {"quiet", no_argument, NULL, 'q'},
+        {"fps", required_argument, NULL, FPS},
+        {"frames", required_argument, NULL, FRAMES},
+        {"t0", required_argument, NULL, T0},
+        {"t1", required_argument, NULL, T1},
+        {"size", required_argument, NULL, SIZE},
+        {"field", required_argument, NULL, FIELD},
+        {"xlim", required_argument, NULL, XLIM},
+        {NULL, 0, NULL, 0},
+    };
+    /* how the script spells each option of the table */
+    static const char *const spelling[] = {
+        "--help", "--output", "--quiet", "--fps", "--frames", "--t0", "--t1",
+        "--size", "--field", "--xlim",
+    };
+    const bf_cli_cmd cmd = {"animate", ":ho:q", longopts, animate_usage};
+    int n = 2, idx;
+    *h5 = *out = NULL;
+    for (int c; (c = bf_cli_getopt(&cmd, argc, argv)) != -1;) {
+        if (c == BF_CLI_HELP || c == BF_CLI_BAD)
+            return c == BF_CLI_HELP ? 0 : BF_EINPUT;
+        for (idx = 0; longopts[idx].val != c; idx++)
+            ;
+        args[n++] = spelling[idx];
+        if (c == 'o')
+            *out = optarg;
+        if (c != 'q')
+            args[n++] = optarg;
+        if (c == XLIM) { /* two values: A B */
+            if (optind >= argc) {
+                bf_cli_error(&cmd, "option '--xlim' needs two values");
+                return BF_EINPUT;
+            }
+            args[n++] = argv[optind++];
+        }
+    }
+    if (optind + 1 != argc) {
+        if (optind < argc)
+            bf_cli_error(&cmd, "unexpected argument '%s'", argv[optind + 1]);
+        else
+            animate_usage(stderr);
+        return BF_EINPUT;
+    }
+    *h5 = argv[optind];
+    args[n++] = "--";
+    args[n++] = *h5;
+    args[n] = NULL;
+    return -1;
 }
 
 /* Identity and age of a file (st_ino 0: missing). */
@@ -125,11 +203,11 @@ static void remove_begun(const char *path, const struct stat *before)
 /* Run the script as a child until it ends, or until SIGINT/SIGTERM:
  * then its process group is ended (SIGTERM, SIGKILL a second later), the
  * movie it had begun removed, and the status is 6. */
-static int run_script(const char *py, const char **args, int argc,
-                      char **argv)
+static int run_script(const char *py, const char **args, const char *h5,
+                      const char *out)
 {
     char mp4[PATH_MAX], gif[PATH_MAX];
-    movie_paths(argc, argv, mp4, gif, sizeof mp4);
+    movie_paths(h5, out, mp4, gif, sizeof mp4);
     const struct stat mp4_0 = file_id(mp4), gif_0 = file_id(gif);
     fflush(stdout);
     fflush(stderr);
@@ -185,16 +263,28 @@ static int run_script(const char *py, const char **args, int argc,
 
 int bf_cmd_animate(int argc, char **argv)
 {
+    /* the script's arguments: at most two for each character of an
+     * option (-qo X: --quiet --output X), and five more */
+    size_t cap = 6;
+    for (int k = 0; k < argc; k++)
+        cap += 2 * strlen(argv[k]);
+    const char **args = calloc(cap, sizeof *args);
+    const char *h5, *out;
+    int rc = args ? animate_args(argc, argv, args, &h5, &out) : BF_EINTERNAL;
+    if (rc < 0 && bf_cli_no_such_file(h5))
+        rc = BF_EINPUT;
+    if (rc >= 0) {
+        free(args);
+        return rc;
+    }
     char script[PATH_MAX + 32], tried[3 * (PATH_MAX + 32)];
     if (find_script(script, sizeof script, tried, sizeof tried)) {
         fprintf(stderr, "ballfilm: error: cannot find the plot script "
                         ANIMATE_PY " (tried %s; set BALLFILM_ROOT to the "
                         "folder that holds plots/)\n", tried);
+        free(args);
         return BF_EIO;
     }
-    const char **args = calloc((size_t)argc + 3, sizeof *args);
-    if (!args)
-        return BF_EINTERNAL;
     const char *py = getenv("BALLFILM_PYTHON");
     if (!py || !*py)
         py = "/usr/bin/python3";
@@ -208,10 +298,7 @@ int bf_cmd_animate(int argc, char **argv)
     }
     args[0] = py;
     args[1] = script;
-    for (int k = 1; k < argc; k++)
-        args[k + 1] = argv[k];
-    args[argc + 1] = NULL;
-    int rc = run_script(py, args, argc, argv);
+    rc = run_script(py, args, h5, out);
     free(args);
     return rc;
 }

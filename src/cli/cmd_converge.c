@@ -66,9 +66,10 @@ static void converge_usage(FILE *f)
             "the scene's dt, else none;\n"
             "                   'none': no limit)\n"
             "  --set s.k=v      override a scene key (repeatable)\n"
-            "  -o OUT.h5        write the table (default "
+            "  -o, --output OUT.h5\n"
+            "                   write the table (default "
             "out/converge_<scene>.h5)\n"
-            "  -q               no progress lines\n");
+            "  -q, --quiet      no progress lines\n");
 }
 
 /* "a,b,c" -> reals; returns the count or -1 */
@@ -104,89 +105,105 @@ int bf_cmd_converge(int argc, char **argv)
     int nset = 0, rc = BF_EINPUT;
     if (!sets)
         return BF_EINTERNAL;
-    for (int k = 1; k < argc; k++) {
-        const char *a = argv[k];
-        const char *val = k + 1 < argc ? argv[k + 1] : NULL;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            converge_usage(stdout);
-            free(sets);
-            return 0;
-        } else if (!strcmp(a, "--methods") && val) {
+    enum { METHODS = BF_CLI_LONG, DT, TOL, T_END, ROWS, REPEATS, REF_RTOL,
+           MAX_STEP, REF_TABLE, SET };
+    static const struct option longopts[] = {
+        {"help", no_argument, NULL, 'h'},
+        {"output", required_argument, NULL, 'o'},
+        {"quiet", no_argument, NULL, 'q'},
+        {"methods", required_argument, NULL, METHODS},
+        {"dt", required_argument, NULL, DT},
+        {"tol", required_argument, NULL, TOL},
+        {"t-end", required_argument, NULL, T_END},
+        {"rows", required_argument, NULL, ROWS},
+        {"repeats", required_argument, NULL, REPEATS},
+        {"ref-rtol", required_argument, NULL, REF_RTOL},
+        {"max-step", required_argument, NULL, MAX_STEP},
+        {"ref-table", required_argument, NULL, REF_TABLE},
+        {"set", required_argument, NULL, SET},
+        {NULL, 0, NULL, 0},
+    };
+    const bf_cli_cmd cmd = {"converge", ":ho:q", longopts, converge_usage};
+    for (int c; (c = bf_cli_getopt(&cmd, argc, argv)) != -1;) {
+        const char *val = optarg;
+        long r;
+        switch (c) {
+        case BF_CLI_HELP:
+            rc = 0;
+            goto done;
+        case BF_CLI_BAD:
+            goto done;
+        case METHODS:
             methods = val;
-            k++;
-        } else if (!strcmp(a, "--dt") && val) {
+            break;
+        case DT:
             if ((ndt = parse_reals(val, dts, 64)) < 1) {
-                fprintf(stderr, "ballfilm: error: --dt needs positive numbers "
-                                "separated by commas\n");
+                bf_cli_error(&cmd, "--dt needs positive numbers separated "
+                                   "by commas");
                 goto done;
             }
-            k++;
-        } else if (!strcmp(a, "--tol") && val) {
+            break;
+        case TOL:
             if ((ntol = parse_reals(val, tols, 64)) < 1) {
-                fprintf(stderr, "ballfilm: error: --tol needs positive numbers "
-                                "separated by commas\n");
+                bf_cli_error(&cmd, "--tol needs positive numbers separated "
+                                   "by commas");
                 goto done;
             }
-            k++;
-        } else if (!strcmp(a, "--t-end") && val) {
+            break;
+        case T_END:
             if (!bf_parse_real(val, &o.t_end) || !(o.t_end > 0)) {
-                fprintf(stderr, "ballfilm: error: --t-end needs a time > 0\n");
+                bf_cli_error(&cmd, "--t-end needs a time > 0");
                 goto done;
             }
-            k++;
-        } else if (!strcmp(a, "--rows") && val) {
+            break;
+        case ROWS:
             if (!bf_parse_long(val, &o.rows) || o.rows < 1 ||
                 o.rows > 100000) {
-                fprintf(stderr, "ballfilm: error: --rows needs 1..100000\n");
+                bf_cli_error(&cmd, "--rows needs 1..100000");
                 goto done;
             }
-            k++;
-        } else if (!strcmp(a, "--repeats") && val) {
-            long r;
+            break;
+        case REPEATS:
             if (!bf_parse_long(val, &r) || r < 1 || r > 100) {
-                fprintf(stderr, "ballfilm: error: --repeats needs 1..100\n");
+                bf_cli_error(&cmd, "--repeats needs 1..100");
                 goto done;
             }
             o.repeats = (int)r;
-            k++;
-        } else if (!strcmp(a, "--ref-rtol") && val) {
+            break;
+        case REF_RTOL:
             if (!bf_parse_real(val, &o.ref_rtol) || !(o.ref_rtol > 0)) {
-                fprintf(stderr, "ballfilm: error: --ref-rtol needs a number "
-                                "> 0\n");
+                bf_cli_error(&cmd, "--ref-rtol needs a number > 0");
                 goto done;
             }
-            k++;
-        } else if (!strcmp(a, "--max-step") && val) {
+            break;
+        case MAX_STEP:
             if (!strcmp(val, "none"))
                 o.max_step = -1;
             else if (!bf_parse_real(val, &o.max_step) || !(o.max_step > 0)) {
-                fprintf(stderr, "ballfilm: error: --max-step needs a time > 0 "
-                                "or 'none'\n");
+                bf_cli_error(&cmd, "--max-step needs a time > 0 or 'none'");
                 goto done;
             }
-            k++;
-        } else if (!strcmp(a, "--ref-table") && val) {
+            break;
+        case REF_TABLE:
             o.ref_table = val;
-            k++;
-        } else if (!strcmp(a, "--set") && val) {
+            break;
+        case SET:
             sets[nset++] = val;
-            k++;
-        } else if ((!strcmp(a, "-o") || !strcmp(a, "--output")) && val) {
+            break;
+        case 'o':
             out_path = val;
-            k++;
-        } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
+            break;
+        case 'q':
             quiet = 1;
-        } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "ballfilm: error: unknown option '%s' (or it "
-                            "lacks its value)\n", a);
-            converge_usage(stderr);
-            goto done;
-        } else if (!scene_path) {
-            scene_path = a;
-        } else {
+            break;
+        }
+    }
+    for (int k = optind; k < argc; k++) {
+        if (scene_path) {
             fprintf(stderr, "ballfilm: error: more than one scene file\n");
             goto done;
         }
+        scene_path = argv[k];
     }
     if (!scene_path || !methods) {
         converge_usage(stderr);

@@ -187,23 +187,30 @@ static int show(const char *file, const char *note,
 
 int bf_cmd_info(int argc, char **argv)
 {
-    if (argc == 2 && (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help"))) {
-        info_usage(stdout);
-        return 0;
-    }
-    if (argc != 2 || argv[1][0] == '-') {
+    static const struct option longopts[] = {
+        {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0},
+    };
+    const bf_cli_cmd cmd = {"info", ":h", longopts, info_usage};
+    for (int c; (c = bf_cli_getopt(&cmd, argc, argv)) != -1;)
+        if (c == BF_CLI_HELP || c == BF_CLI_BAD)
+            return c == BF_CLI_HELP ? 0 : BF_EINPUT;
+    if (optind + 1 != argc) {
         info_usage(stderr);
         return BF_EINPUT;
     }
+    const char *given = argv[optind];
     char file[4096];
-    snprintf(file, sizeof file, "%s", argv[1]);
+    snprintf(file, sizeof file, "%s", given);
     const char *note = "";
-    if (access(file, F_OK) && strlen(argv[1]) + 6 < sizeof file) {
-        snprintf(file, sizeof file, "%s.part", argv[1]);
+    if (access(file, F_OK) && strlen(given) + 6 < sizeof file) {
+        snprintf(file, sizeof file, "%s.part", given);
         if (!access(file, F_OK))
             note = " (not finished: the run is going on or was interrupted)";
+        else if (bf_cli_no_such_file(given))
+            return BF_EINPUT;
         else
-            snprintf(file, sizeof file, "%s", argv[1]);
+            snprintf(file, sizeof file, "%s", given);
     }
     bf_h5_dataset *list;
     size_t n;

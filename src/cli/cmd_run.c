@@ -29,7 +29,8 @@ static void run_usage(FILE *f)
             "       ballfilm run --restart OUT.h5 [--set section.key=value]... "
             "[-q]\n"
             "\n"
-            "  -o OUT.h5        output file (default: out/<scene name>.h5)\n"
+            "  -o, --output OUT.h5\n"
+            "                   output file (default: out/<scene name>.h5)\n"
             "  --restart OUT.h5 continue the run of OUT.h5 from its checkpoint "
             "OUT.h5.ckpt\n"
             "                   (written every [scene] checkpoint_every and on "
@@ -52,6 +53,31 @@ static void run_usage(FILE *f)
             "  --progress       progress line even when stderr is not a "
             "terminal\n"
             "\n");
+}
+
+/* --restart OUT.h5 of a run that left nothing there: neither OUT.h5 nor
+ * its .part nor its checkpoint (one that left some of them is the
+ * restart's to judge and explain). */
+static int no_run_at(const char *out)
+{
+    char part[4096], ckpt[4096];
+    struct stat st;
+    snprintf(part, sizeof part, "%s.part", out);
+    snprintf(ckpt, sizeof ckpt, "%s.ckpt", out);
+    const char *const all[] = {out, part, ckpt};
+    for (size_t k = 0; k < 3; k++)
+        if (!stat(all[k], &st) || (errno != ENOENT && errno != ENOTDIR))
+            return 0;
+    fprintf(stderr, "ballfilm: error: %s: no such file (nor %s, nor its "
+                    "checkpoint %s)\n", out, part, ckpt);
+    return 1;
+}
+
+/* --help: the options and every scene key */
+static void run_usage_keys(FILE *f)
+{
+    run_usage(f);
+    bf_cli_print_keys(f);
 }
 
 int bf_cli_mkdir_out(void)
@@ -149,63 +175,61 @@ int bf_cmd_run(int argc, char **argv)
     const char **sets = calloc((size_t)argc, sizeof *sets);
     if (!sets)
         return BF_EINTERNAL;
-    for (int k = 1; k < argc; k++) {
-        const char *a = argv[k];
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            run_usage(stdout);
-            bf_cli_print_keys(stdout);
+    enum { RESTART = BF_CLI_LONG, STOP_AFTER, SET, KEEP, PROGRESS };
+    static const struct option longopts[] = {
+        {"help", no_argument, NULL, 'h'},
+        {"output", required_argument, NULL, 'o'},
+        {"quiet", no_argument, NULL, 'q'},
+        {"restart", required_argument, NULL, RESTART},
+        {"stop-after", required_argument, NULL, STOP_AFTER},
+        {"set", required_argument, NULL, SET},
+        {"keep-checkpoint", no_argument, NULL, KEEP},
+        {"progress", no_argument, NULL, PROGRESS},
+        {NULL, 0, NULL, 0},
+    };
+    const bf_cli_cmd cmd = {"run", ":ho:q", longopts, run_usage_keys};
+    for (int c; (c = bf_cli_getopt(&cmd, argc, argv)) != -1;) {
+        switch (c) {
+        case BF_CLI_HELP:
+        case BF_CLI_BAD:
             free(sets);
-            return 0;
-        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            if (++k >= argc) {
-                fprintf(stderr, "ballfilm: error: %s needs a file name\n", a);
+            return c == BF_CLI_HELP ? 0 : BF_EINPUT;
+        case 'o':
+            out_path = optarg;
+            break;
+        case RESTART:
+            restart = optarg;
+            break;
+        case STOP_AFTER:
+            if (!bf_parse_long(optarg, &stop_after) || stop_after < 1) {
+                bf_cli_error(&cmd, "--stop-after needs a number of steps "
+                                   ">= 1");
                 free(sets);
                 return BF_EINPUT;
             }
-            out_path = argv[k];
-        } else if (!strcmp(a, "--restart")) {
-            if (++k >= argc) {
-                fprintf(stderr, "ballfilm: error: --restart needs OUT.h5\n");
-                free(sets);
-                return BF_EINPUT;
-            }
-            restart = argv[k];
-        } else if (!strcmp(a, "--stop-after")) {
-            if (++k >= argc || !bf_parse_long(argv[k], &stop_after) ||
-                stop_after < 1) {
-                fprintf(stderr, "ballfilm: error: --stop-after needs a number "
-                                "of steps >= 1\n");
-                free(sets);
-                return BF_EINPUT;
-            }
-        } else if (!strcmp(a, "--set")) {
-            if (++k >= argc) {
-                fprintf(stderr, "ballfilm: error: --set needs section.key=value\n");
-                free(sets);
-                return BF_EINPUT;
-            }
-            sets[nset++] = argv[k];
-        } else if (!strncmp(a, "--set=", 6)) {
-            sets[nset++] = a + 6;
-        } else if (!strcmp(a, "--keep-checkpoint")) {
+            break;
+        case SET:
+            sets[nset++] = optarg;
+            break;
+        case KEEP:
             keep_ckpt = 1;
-        } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
+            break;
+        case 'q':
             quiet = 1;
-        } else if (!strcmp(a, "--progress")) {
+            break;
+        case PROGRESS:
             force_progress = 1;
-        } else if (a[0] == '-' && a[1]) {
-            fprintf(stderr, "ballfilm: error: unknown option '%s'\n", a);
-            run_usage(stderr);
-            free(sets);
-            return BF_EINPUT;
-        } else if (!scene_path) {
-            scene_path = a;
-        } else {
-            fprintf(stderr, "ballfilm: error: more than one scene file ('%s')\n",
-                    a);
+            break;
+        }
+    }
+    for (int k = optind; k < argc; k++) {
+        if (scene_path) {
+            fprintf(stderr, "ballfilm: error: more than one scene file "
+                            "('%s')\n", argv[k]);
             free(sets);
             return BF_EINPUT;
         }
+        scene_path = argv[k];
     }
     if (!scene_path == !restart || (restart && out_path)) {
         if (scene_path && restart)
@@ -215,6 +239,10 @@ int bf_cmd_run(int argc, char **argv)
             fprintf(stderr, "ballfilm: error: --restart continues OUT.h5 in "
                             "place; -o is not used with it\n");
         run_usage(stderr);
+        free(sets);
+        return BF_EINPUT;
+    }
+    if (restart && no_run_at(restart)) {
         free(sets);
         return BF_EINPUT;
     }

@@ -39,6 +39,18 @@ static void sweep_usage(FILE *f)
             " [--vary ...]\n"
             "                      [-o DIR] [--set section.key=value]... "
             "[--jobs N] [-q]\n"
+            "                      [--retry-failed]\n"
+            "\n"
+            "  --vary s.k=A:B:N varied key: N values from A to B inclusive, "
+            "or s.k=v1,v2,...\n"
+            "                   (repeatable, at most %d)\n"
+            "  -o, --output DIR directory of the cases and the summary\n"
+            "  --set s.k=v      override a scene key for every case "
+            "(repeatable)\n"
+            "  -j, --jobs N     run N cases at a time (processes)\n"
+            "  --retry-failed   run the failed cases of an earlier run "
+            "again\n"
+            "  -q, --quiet      no line per case\n"
             "\n"
             "Runs SCENE for every combination of the varied keys (COUNT values "
             "from START to\n"
@@ -54,7 +66,9 @@ static void sweep_usage(FILE *f)
             "N cases at a\n"
             "time (processes); with MPI use\n"
             "  mpirun -n N bin/ballfilm-mpi sweep ...\n"
-            "Default DIR: out/<scene name>_sweep.\n");
+            "(as root: mpirun --allow-run-as-root ...).\n"
+            "Default DIR: out/<scene name>_sweep.\n",
+            BF_SWEEP_MAX_VARY);
 }
 
 typedef struct sweep_args {
@@ -71,52 +85,64 @@ static int parse_args(int argc, char **argv, sweep_args *a)
 {
     memset(a, 0, sizeof *a);
     a->jobs = 1;
-    for (int k = 1; k < argc; k++) {
-        const char *s = argv[k];
-        if (!strcmp(s, "-h") || !strcmp(s, "--help")) {
-            sweep_usage(stdout);
+    enum { VARY = BF_CLI_LONG, SET, RETRY };
+    static const struct option longopts[] = {
+        {"help", no_argument, NULL, 'h'},
+        {"output", required_argument, NULL, 'o'},
+        {"quiet", no_argument, NULL, 'q'},
+        {"jobs", required_argument, NULL, 'j'},
+        {"vary", required_argument, NULL, VARY},
+        {"set", required_argument, NULL, SET},
+        {"retry-failed", no_argument, NULL, RETRY},
+        {NULL, 0, NULL, 0},
+    };
+    const bf_cli_cmd cmd = {"sweep", ":ho:qj:", longopts, sweep_usage};
+    for (int c; (c = bf_cli_getopt(&cmd, argc, argv)) != -1;) {
+        char *end;
+        switch (c) {
+        case BF_CLI_HELP:
             return -1;
-        }
-        if ((!strcmp(s, "--vary") || !strcmp(s, "--set") || !strcmp(s, "-o") ||
-             !strcmp(s, "--jobs")) &&
-            k + 1 >= argc) {
-            fprintf(stderr, "ballfilm: error: %s needs a value\n", s);
+        case BF_CLI_BAD:
             return 2;
-        }
-        if (!strcmp(s, "--vary")) {
+        case VARY:
             if (a->nvary == BF_SWEEP_MAX_VARY) {
                 fprintf(stderr, "ballfilm: error: at most %d --vary\n",
                         BF_SWEEP_MAX_VARY);
                 return 2;
             }
-            a->vary[a->nvary++] = argv[++k];
-        } else if (!strcmp(s, "--set")) {
-            if (a->nsets == 256)
-                return 2;
-            a->sets[a->nsets++] = argv[++k];
-        } else if (!strcmp(s, "-o")) {
-            a->dir = argv[++k];
-        } else if (!strcmp(s, "--jobs")) {
-            char *end;
-            a->jobs = strtol(argv[++k], &end, 10);
-            if (*end || a->jobs < 1 || a->jobs > 1024) {
-                fprintf(stderr, "ballfilm: error: --jobs needs 1..1024\n");
+            a->vary[a->nvary++] = optarg;
+            break;
+        case SET:
+            if (a->nsets == 256) {
+                fprintf(stderr, "ballfilm: error: at most 256 --set\n");
                 return 2;
             }
-        } else if (!strcmp(s, "-q") || !strcmp(s, "--quiet")) {
+            a->sets[a->nsets++] = optarg;
+            break;
+        case 'o':
+            a->dir = optarg;
+            break;
+        case 'j':
+            a->jobs = strtol(optarg, &end, 10);
+            if (!*optarg || *end || a->jobs < 1 || a->jobs > 1024) {
+                bf_cli_error(&cmd, "--jobs needs 1..1024");
+                return 2;
+            }
+            break;
+        case 'q':
             a->quiet = 1;
-        } else if (!strcmp(s, "--retry-failed")) {
+            break;
+        case RETRY:
             a->retry = BF_SWEEP_RETRY_FAILED;
-        } else if (s[0] == '-') {
-            fprintf(stderr, "ballfilm: error: unknown option '%s'\n", s);
-            sweep_usage(stderr);
-            return 2;
-        } else if (!a->scene) {
-            a->scene = s;
-        } else {
+            break;
+        }
+    }
+    for (int k = optind; k < argc; k++) {
+        if (a->scene) {
             fprintf(stderr, "ballfilm: error: more than one scene\n");
             return 2;
         }
+        a->scene = argv[k];
     }
     if (!a->scene || !a->nvary) {
         sweep_usage(stderr);

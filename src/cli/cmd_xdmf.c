@@ -20,7 +20,8 @@ static void xdmf_usage(FILE *f)
             "datasets of OUT.h5 (named relative to OUT.xmf; keep the two "
             "together).\n"
             "\n"
-            "  -o OUT.xmf       sidecar file (default: OUT.h5 with .xmf)\n"
+            "  -o, --output OUT.xmf\n"
+            "                   sidecar file (default: OUT.h5 with .xmf)\n"
             "  --max-steps N    at most N time steps per collection; longer "
             "series are\n"
             "                   thinned to every k-th row (default %d)\n"
@@ -32,34 +33,46 @@ int bf_cmd_xdmf(int argc, char **argv)
 {
     const char *h5 = NULL, *xmf = NULL;
     long max_steps = BF_XDMF_MAX_STEPS;
-    for (int k = 1; k < argc; k++) {
-        const char *a = argv[k];
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            xdmf_usage(stdout);
+    enum { ALL = BF_CLI_LONG, MAX_STEPS };
+    static const struct option longopts[] = {
+        {"help", no_argument, NULL, 'h'},
+        {"output", required_argument, NULL, 'o'},
+        {"all", no_argument, NULL, ALL},
+        {"max-steps", required_argument, NULL, MAX_STEPS},
+        {NULL, 0, NULL, 0},
+    };
+    const bf_cli_cmd cmd = {"xdmf", ":ho:", longopts, xdmf_usage};
+    for (int c; (c = bf_cli_getopt(&cmd, argc, argv)) != -1;) {
+        switch (c) {
+        case BF_CLI_HELP:
             return 0;
-        } else if (!strcmp(a, "-o") && k + 1 < argc) {
-            xmf = argv[++k];
-        } else if (!strcmp(a, "--all")) {
+        case BF_CLI_BAD:
+            return BF_EINPUT;
+        case 'o':
+            xmf = optarg;
+            break;
+        case ALL:
             max_steps = 0;
-        } else if (!strcmp(a, "--max-steps")) {
-            if (++k >= argc || !bf_parse_long(argv[k], &max_steps) ||
-                max_steps < 2) {
-                fprintf(stderr, "ballfilm: error: --max-steps needs a number "
-                                ">= 2\n");
+            break;
+        case MAX_STEPS:
+            if (!bf_parse_long(optarg, &max_steps) || max_steps < 2) {
+                bf_cli_error(&cmd, "--max-steps needs a number >= 2");
                 return BF_EINPUT;
             }
-        } else if (a[0] == '-' || h5) {
-            fprintf(stderr, "ballfilm: error: unexpected argument '%s'\n", a);
-            xdmf_usage(stderr);
-            return BF_EINPUT;
-        } else {
-            h5 = a;
+            break;
         }
     }
-    if (!h5) {
+    if (optind + 1 < argc) {
+        bf_cli_error(&cmd, "unexpected argument '%s'", argv[optind + 1]);
+        return BF_EINPUT;
+    }
+    if (optind >= argc) {
         xdmf_usage(stderr);
         return BF_EINPUT;
     }
+    h5 = argv[optind];
+    if (bf_cli_no_such_file(h5))
+        return BF_EINPUT;
     char *def = xmf ? NULL : bf_xdmf_default_path(h5);
     if (!xmf && !def)
         return BF_EINTERNAL;

@@ -4,16 +4,21 @@
  * 6 interrupted. */
 #include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
+#include "ballfilm/error.h"
 #include "ballfilm/version.h"
 #include "cli.h"
 
 static void usage(FILE *f)
 {
     fprintf(f,
-            "usage: ballfilm COMMAND [ARGS]\n"
+            "usage: ballfilm [-h | -V] COMMAND [OPTIONS] [ARGS]\n"
+            "\n"
+            "  -h, --help         this text and every scene key\n"
+            "  -V, --version      print the version\n"
             "\n"
             "commands:\n"
             "  run SCENE.ini [-o OUT.h5] [--set section.key=value]... [-q]\n"
@@ -88,17 +93,87 @@ static void install_handlers(void)
     sigprocmask(SIG_UNBLOCK, &set, NULL);
 }
 
+/* Hidden (for the shell completion, src/cli/ballfilm.bash): every scene
+ * key as section.key, one a line, from the key table `run --help` prints
+ * (a section header "[name]  doc" at the start of a line, its keys below
+ * it indented by two spaces). */
+static int print_key_names(void)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&text, &len);
+    if (!m)
+        return BF_EINTERNAL;
+    bf_cli_print_keys(m);
+    if (fclose(m))
+        return BF_EINTERNAL;
+    /* the names printed, each between newlines: a section of several
+     * integrators ([integrator]) repeats keys */
+    char *seen = calloc(len + 2, 1), section[128] = "", name[300];
+    if (!seen) {
+        free(text);
+        return BF_EINTERNAL;
+    }
+    seen[0] = '\n';
+    for (char *line = strtok(text, "\n"); line; line = strtok(NULL, "\n")) {
+        if (line[0] == '[' && strchr(line, ']')) {
+            snprintf(section, sizeof section, "%.*s",
+                     (int)(strchr(line, ']') - line - 1), line + 1);
+        } else if (line[0] != ' ') {
+            section[0] = '\0';
+        } else if (section[0] && line[1] == ' ' && line[2] != ' ') {
+            snprintf(name, sizeof name, "\n%s.%.*s\n", section,
+                     (int)strcspn(line + 2, " "), line + 2);
+            if (!strstr(seen, name) && strlen(seen) + strlen(name) <= len) {
+                strcat(seen, name + 1);
+                fputs(name + 1, stdout);
+            }
+        }
+    }
+    free(seen);
+    free(text);
+    return 0;
+}
+
+enum { OPT_KEYS = BF_CLI_LONG };
+
 int main(int argc, char **argv)
 {
     install_handlers();
     bf_cli_warm_heap();
-    if (argc < 2) {
+    static const struct option longopts[] = {
+        {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, 'V'},
+        {"complete-keys", no_argument, NULL, OPT_KEYS},
+        {NULL, 0, NULL, 0},
+    };
+    /* '+': the options before the command; the command's own follow it */
+    const bf_cli_cmd top = {NULL, "+:hV", longopts, usage};
+    for (int c; (c = bf_cli_getopt(&top, argc, argv)) != -1;) {
+        if (c == BF_CLI_HELP) {
+            printf("\n");
+            bf_cli_print_keys(stdout);
+            return 0;
+        }
+        if (c == BF_CLI_BAD)
+            return 2;
+        if (c == 'V') {
+            printf("%s\n", bf_version_string());
+            return 0;
+        }
+        if (c == OPT_KEYS)
+            return print_key_names();
+    }
+    if (optind >= argc) {
         usage(stderr);
         return 2;
     }
-    const char *cmd = argv[1];
+    const char *cmd = argv[optind];
+    argc -= optind;
+    argv += optind;
+    optind = 0; /* glibc's full reset: each command parses its own argv */
     if (!strcmp(cmd, "run")) {
-        int rc = bf_cmd_run(argc - 1, argv + 1);
+        int rc = bf_cmd_run(argc, argv);
         if (rc == 5) {
             /* After a failed write (disk full) HDF5 keeps the file open
              * internally and its exit handler crashes closing it again
@@ -111,26 +186,25 @@ int main(int argc, char **argv)
         return rc;
     }
     if (!strcmp(cmd, "sweep"))
-        return bf_cmd_sweep(argc - 1, argv + 1);
+        return bf_cmd_sweep(argc, argv);
     if (!strcmp(cmd, "converge"))
-        return bf_cmd_converge(argc - 1, argv + 1);
+        return bf_cmd_converge(argc, argv);
     if (!strcmp(cmd, "xdmf"))
-        return bf_cmd_xdmf(argc - 1, argv + 1);
+        return bf_cmd_xdmf(argc, argv);
     if (!strcmp(cmd, "animate"))
-        return bf_cmd_animate(argc - 1, argv + 1);
+        return bf_cmd_animate(argc, argv);
     if (!strcmp(cmd, "info"))
-        return bf_cmd_info(argc - 1, argv + 1);
-    if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
+        return bf_cmd_info(argc, argv);
+    if (!strcmp(cmd, "help")) {
         usage(stdout);
         printf("\n");
         bf_cli_print_keys(stdout);
         return 0;
     }
-    if (!strcmp(cmd, "version") || !strcmp(cmd, "--version")) {
+    if (!strcmp(cmd, "version")) {
         printf("%s\n", bf_version_string());
         return 0;
     }
-    fprintf(stderr, "ballfilm: error: unknown command '%s'\n\n", cmd);
-    usage(stderr);
+    bf_cli_error(&top, "unknown command '%s'", cmd);
     return 2;
 }
