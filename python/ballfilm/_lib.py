@@ -7,7 +7,7 @@ Where the library comes from, first found wins:
      repository's python/ballfilm (run `make` first);
   3. the library `make install` installed next to this package
      (_install.py, written by make install);
-  4. the system's loader (libballfilm.so.0.1 on its search path).
+  4. the system's loader (libballfilm.so.0.2 on its search path).
 Every mirror is checked against the library's own sizes (bf_sizeof) when
 the library is loaded, so a package and a library that do not match fail
 with a message instead of corrupting memory.
@@ -15,7 +15,7 @@ with a message instead of corrupting memory.
 import ctypes
 import os
 
-ABI = "0.1"  # the soname's version: libballfilm.so.0.1
+ABI = "0.2"  # the soname's version: libballfilm.so.0.2
 
 c_int, c_long, c_size_t, c_double = (ctypes.c_int, ctypes.c_long,
                                      ctypes.c_size_t, ctypes.c_double)
