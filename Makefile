@@ -138,7 +138,7 @@ $(PROG): $(CLI_OBJ) $(LIB)
 # libballfilm.so from a second set of objects compiled with -fPIC
 # (build/pic/).  The soname carries the ABI: the major version, and while
 # the major version is 0 also the minor one (every 0.x may change the
-# ABI): libballfilm.so.0.1 for 0.1.0.  Only the functions and variables
+# ABI): libballfilm.so.0.2 for 0.2.0.  Only the functions and variables
 # that the public headers declare are exported (a version script made from
 # the headers, comments stripped, and the objects' symbols); everything
 # else, bf_-prefixed internals included, is local.  The program and the

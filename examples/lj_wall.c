@@ -43,9 +43,8 @@ static const bf_section_spec lj_spec =
                lj_wall);
 
 static bf_status lj_create(void **self, const void *params, const bf_balls *b,
-                           const bf_effect_env *env, bf_err *err)
+                           bf_err *err)
 {
-    (void)env;
     for (size_t i = 0; i < b->n; i++)
         if (!(b->x[i] > 0)) {
             char sec[32];
@@ -61,10 +60,12 @@ static bf_status lj_create(void **self, const void *params, const bf_balls *b,
     return BF_OK;
 }
 
+/* a force of the positions only: t and v are not read */
 static int lj_accel(const void *self, const bf_balls *b, double t,
-                    const double *x, double *acc)
+                    const double *x, const double *v, double *acc)
 {
     (void)t;
+    (void)v;
     const lj_wall *w = self;
     for (size_t i = 0; i < b->n; i++) {
         if (!(x[i] > 0))

@@ -64,10 +64,8 @@ static double floor_at(const vfloor *w, double t)
 }
 
 static bf_status vfloor_create(void **self, const void *params,
-                               const bf_balls *b, const bf_effect_env *env,
-                               bf_err *err)
+                               const bf_balls *b, bf_err *err)
 {
-    (void)env;
     const vfloor *p = params;
     if (b->x[0] - b->R[0] < p->A) /* above the floor's highest point */
         return bf_fail_key(err, BF_EINPUT, "ball.1", "position",
@@ -89,8 +87,9 @@ static double overlap(const vfloor *w, const bf_balls *b, size_t i, double t,
 }
 
 static int vfloor_accel(const void *self, const bf_balls *b, double t,
-                        const double *x, double *acc)
+                        const double *x, const double *v, double *acc)
 {
+    (void)v;
     const vfloor *w = self;
     for (size_t i = 0; i < b->n; i++) {
         const double d = overlap(w, b, i, t, x);
@@ -117,6 +116,7 @@ static const bf_effect_type vibrating_floor = {
     .name = "vibrating_floor",
     .doc = "a floor moving as A sin(2 pi f t) with Hertz contact",
     .spec = &vfloor_spec,
+    .flags = BF_EFFECT_TIME, /* s(t): the force depends on t */
     .create = vfloor_create,
     .accel = vfloor_accel,
     .potential = vfloor_potential,

@@ -5,7 +5,7 @@
     version is written;
   - build_py: runs `make shared` in the repository (libballfilm.so), then
     puts into the package what it needs away from the repository: the
-    library under its soname (ballfilm/libballfilm.so.0.1), the scenes and
+    library under its soname (ballfilm/libballfilm.so.0.2), the scenes and
     plot scripts (ballfilm/share/runs, ballfilm/share/plots) and
     _version.py.  For `pip install -e .` it only runs make: the package is
     then python/ballfilm itself, which finds build/, runs/ and plots/ in

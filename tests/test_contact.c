@@ -69,7 +69,7 @@ START_TEST(effects_accel_matches_potential)
     /* positions where both contacts are active */
     double x[2] = {0.092, 0.19}, a[2], xp[2], xm[2];
     bf_ballsys *sys = bf_balls_model_system(bf_sim_model(sim));
-    ck_assert_int_eq(bf_effects_accel(sys->eff, sys->neff, &sys->b, 0, x, a), 0);
+    ck_assert_int_eq(bf_effects_accel(sys->eff, sys->neff, &sys->b, 0, x, sys->b.v, a), 0);
     for (int i = 0; i < 2; i++) {
         double h = 1e-7;
         for (int j = 0; j < 2; j++)

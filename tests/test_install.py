@@ -134,7 +134,7 @@ def main():
         have = files_under(prefix)
         py = [f for f in have if f.endswith("ballfilm/__init__.py")]
         for f in ["bin/ballfilm", "lib/libballfilm.a", "lib/libballfilm.so",
-                  "lib/libballfilm.so.0.1", "lib/libballfilm.so.0.1.0",
+                  "lib/libballfilm.so.0.2", "lib/libballfilm.so.0.2.0",
                   "lib/pkgconfig/ballfilm.pc", "include/ballfilm/run.h",
                   "include/ballfilm/sim.h", "share/man/man1/ballfilm.1"]:
             check(f in have, "installed " + f)
@@ -158,8 +158,8 @@ def main():
               f"all {n_headers} public headers installed")
         so = os.path.join(prefix, "lib", "libballfilm.so")
         r = run(["readelf", "-d", so])
-        check("Library soname: [libballfilm.so.0.1]" in r.stdout,
-              "soname libballfilm.so.0.1")
+        check("Library soname: [libballfilm.so.0.2]" in r.stdout,
+              "soname libballfilm.so.0.2")
         r = run(["nm", "-D", "--defined-only", so])
         exported = {ln.split()[-1] for ln in r.stdout.splitlines()
                     if len(ln.split()) == 3}
@@ -179,8 +179,8 @@ def main():
         exe = os.path.join(work, "yoshida")
         if compile_example(prefix, exe):
             r = run(["readelf", "-d", exe])
-            check("libballfilm.so.0.1" in r.stdout,
-                  "the example needs libballfilm.so.0.1")
+            check("libballfilm.so.0.2" in r.stdout,
+                  "the example needs libballfilm.so.0.2")
             r = run([exe], env=dict(os.environ, LD_LIBRARY_PATH=os.path.join(
                 prefix, "lib")))
             check(r.returncode == 0 and "observed order 4.0" in r.stdout,
@@ -218,7 +218,7 @@ def main():
             lines = r.stdout.split()
             check(r.returncode == 0 and lines and
                   lines[0] == os.path.join(prefix, "lib",
-                                           "libballfilm.so.0.1"),
+                                           "libballfilm.so.0.2"),
                   "the installed package uses the installed library",
                   r.stdout + r.stderr)
             check(len(lines) > 2 and lines[1] == os.path.join(

@@ -2,9 +2,9 @@
 #ifndef BALLFILM_VERSION_H
 #define BALLFILM_VERSION_H
 
-#define BF_VERSION "0.1.0"
+#define BF_VERSION "0.2.0"
 
-/* "ballfilm 0.1.0 (git <commit>)" */
+/* "ballfilm 0.2.0 (git <commit>)" */
 const char *bf_version_string(void);
 
 #endif

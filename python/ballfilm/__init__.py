@@ -32,7 +32,7 @@ def library_path():
 
 
 def version():
-    """The library's version string ("ballfilm 0.1.0 (git ...)")."""
+    """The library's version string ("ballfilm 0.2.0 (git ...)")."""
     from . import _lib
     return _lib.lib().bf_version_string().decode()
 

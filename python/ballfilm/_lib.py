@@ -3,13 +3,13 @@ the public C structs and functions the package calls.
 
 Where the library comes from, first found wins:
   1. $BALLFILM_LIB, the path of a libballfilm.so;
-  2. the library inside the package, libballfilm.so.0.1 beside this file
+  2. the library inside the package, libballfilm.so.0.2 beside this file
      (pip install puts it there);
   3. the repository's build/libballfilm.so, when this package is the
      repository's python/ballfilm (run `make` first; pip install -e .);
   4. the library `make install` installed next to this package
      (_install.py, written by make install);
-  5. the system's loader (libballfilm.so.0.1 on its search path).
+  5. the system's loader (libballfilm.so.0.2 on its search path).
 Every mirror is checked against the library's own sizes (bf_sizeof) when
 the library is loaded, so a package and a library that do not match fail
 with a message instead of corrupting memory.
@@ -17,7 +17,7 @@ with a message instead of corrupting memory.
 import ctypes
 import os
 
-ABI = "0.1"  # the soname's version: libballfilm.so.0.1
+ABI = "0.2"  # the soname's version: libballfilm.so.0.2
 
 c_int, c_long, c_size_t, c_double = (ctypes.c_int, ctypes.c_long,
                                      ctypes.c_size_t, ctypes.c_double)

@@ -30,6 +30,7 @@ extern const bf_effect_type bf_effect_floor;
 extern const bf_effect_type bf_effect_contact;
 extern const bf_effect_type bf_effect_spring;
 extern const bf_effect_type bf_effect_coupling;
+extern const bf_effect_type bf_effect_drag;
 
 extern const bf_analysis_type bf_retmap_analysis;
 extern const bf_analysis_type bf_lyap_analysis;
@@ -49,7 +50,7 @@ static const bf_integrator_type *const integrators[] = {
 
 static const bf_effect_type *const effects[] = {
     &bf_effect_gravity, &bf_effect_floor,    &bf_effect_contact,
-    &bf_effect_spring,  &bf_effect_coupling,
+    &bf_effect_spring,  &bf_effect_coupling, &bf_effect_drag,
 };
 
 /* analyses of balls, observed in this order */

@@ -269,8 +269,7 @@ bf_status bf_ballsys_from_scene(bf_ballsys **out, const bf_catalog *c,
     bf_status st = bf_setup_create(&setup, c, sc, &run, err);
     if (st)
         return st;
-    bf_effect_env env = {0};
-    st = bf_ballsys_create(out, &setup->pub, &env, err);
+    st = bf_ballsys_create(out, &setup->pub, NULL, 0, err);
     if (st)
         bf_scene_locate(sc, err);
     bf_setup_free(setup);

@@ -2,8 +2,8 @@
  * -M dF_p/dr_p with F_p of eq. 3.10 (coupling.h), and the potential
  * energy sum_p m_p M F_p; the keys of [coupling].  The coupling itself
  * belongs to the model that couples balls and film: it creates it from
- * these keys and the film and hands it to the effect through the effect
- * environment (effect.h). */
+ * these keys and the film and hands it to its ball system as this
+ * effect's instance (bf_ballsys_create's `given`). */
 #include "coupling/force.h"
 
 static const double PI = 3.14159265358979323846;
@@ -48,26 +48,26 @@ bf_coupling_params bf_coupling_params_from_keys(const bf_coupling_keys *k)
 }
 
 /* The coupling itself belongs to the model that couples balls and film
- * (it creates it from this effect's keys and the film); the effect only
- * applies its force. */
+ * (it creates it from this effect's keys and the film, and hands it over
+ * as the instance); created by any other model, the effect has no film. */
 static bf_status coupling_effect_create(void **self, const void *params,
-                                        const bf_balls *b,
-                                        const bf_effect_env *env, bf_err *err)
+                                        const bf_balls *b, bf_err *err)
 {
+    (void)self;
     (void)params;
     (void)b;
-    if (!env || !env->coupling)
-        return bf_fail_key(err, BF_EINPUT, "scene", "effects",
-                           "the coupling effect needs a film: use model = "
-                           "coupled (with film = static for a fixed kink)");
-    *self = env->coupling;
-    return BF_OK;
+    return bf_fail_key(err, BF_EINPUT, "scene", "effects",
+                       "the coupling effect needs a film: use model = "
+                       "coupled (with film = static for a fixed kink)");
 }
 
+/* a = -M dF/dr (eq. 3.12): a function of x and of the film (whose changes
+ * bump the ode's epoch), not of v */
 static int coupling_accel(const void *self, const bf_balls *b, double t,
-                          const double *x, double *acc)
+                          const double *x, const double *v, double *acc)
 {
     (void)t;
+    (void)v;
     bf_coupling *c = (bf_coupling *)self; /* caches are not state */
     const bf_coupling_params *p = bf_coupling_params_of(c);
     const double k = 4.0 * PI * p->V0 * p->M;

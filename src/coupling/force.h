@@ -2,8 +2,8 @@
  * + ...) and the keys of its section [coupling], private to the library.
  * The catalog lists the effect (src/compose/catalog.c); the coupled model
  * makes the coupling from the keys (bf_coupling_params_from_keys) and
- * hands it over in bf_effect_env.coupling; the effect's `self` is that
- * bf_coupling.
+ * hands it to its ball system as the effect's `self` (bf_ballsys_create's
+ * `given`).
  */
 #ifndef BALLFILM_COUPLING_FORCE_H
 #define BALLFILM_COUPLING_FORCE_H
@@ -23,8 +23,8 @@ extern const bf_section_spec bf_coupling_spec;
 /* The coupling's parameters from the keys (taylor: a radius of 2e-3 r0). */
 bf_coupling_params bf_coupling_params_from_keys(const bf_coupling_keys *k);
 
-/* The effect applying -M dF/dr to the balls; its env hands over the
- * coupling (effect.h). */
+/* The effect applying -M dF/dr to the balls; its instance is the
+ * coupled model's bf_coupling. */
 extern const bf_effect_type bf_effect_coupling;
 
 #endif

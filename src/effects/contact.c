@@ -16,11 +16,9 @@ static const bf_section_spec contact_spec = BF_SECTION(
     contact_params, bf_contact);
 
 static bf_status contact_create(void **self, const void *params,
-                                const bf_balls *b, const bf_effect_env *env,
-                                bf_err *err)
+                                const bf_balls *b, bf_err *err)
 {
     (void)b;
-    (void)env;
     return bf_effect_copy_params(self, params, sizeof(bf_contact), err);
 }
 
@@ -30,7 +28,6 @@ const bf_effect_type bf_effect_contact = {
     .name = "contact",
     .doc = "Hertz contact between neighbouring balls",
     .spec = &contact_spec,
-    .kernel = BF_KERNEL_CONTACT,
     .flags = BF_EFFECT_MIRROR_ODD | BF_EFFECT_CONSERVATIVE,
     .create = contact_create,
     .accel = contact_accel,

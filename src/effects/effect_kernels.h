@@ -11,6 +11,12 @@
  *
  * The parameter struct of each built-in effect is its kernel's struct
  * (the section's keys are its members).
+ *
+ * A built-in effect is recognised by the address of its descriptor
+ * (bf_effect_kernel_of): the public descriptor names no kernel, and an
+ * effect defined outside the library, or a built-in one without a kernel
+ * here (drag), is called through its `accel`.  The kernels below are forces
+ * of the positions only (a = a(x)); they ignore t and v.
  */
 #ifndef BALLFILM_EFFECT_KERNELS_H
 #define BALLFILM_EFFECT_KERNELS_H
@@ -38,6 +44,34 @@
 #else
 #define BF_UNROLL
 #endif
+
+/* The built-in effects whose forces are inlined below. */
+typedef enum bf_effect_kernel {
+    BF_KERNEL_NONE = 0, /* called through its accel */
+    BF_KERNEL_GRAVITY,
+    BF_KERNEL_FLOOR,
+    BF_KERNEL_CONTACT,
+    BF_KERNEL_SPRING
+} bf_effect_kernel;
+
+extern const bf_effect_type bf_effect_gravity;
+extern const bf_effect_type bf_effect_floor;
+extern const bf_effect_type bf_effect_contact;
+extern const bf_effect_type bf_effect_spring;
+
+/* the kernel of an effect, by its descriptor's address */
+BF_EFFECT_INLINE bf_effect_kernel bf_effect_kernel_of(const bf_effect_type *t)
+{
+    if (t == &bf_effect_gravity)
+        return BF_KERNEL_GRAVITY;
+    if (t == &bf_effect_floor)
+        return BF_KERNEL_FLOOR;
+    if (t == &bf_effect_contact)
+        return BF_KERNEL_CONTACT;
+    if (t == &bf_effect_spring)
+        return BF_KERNEL_SPRING;
+    return BF_KERNEL_NONE;
+}
 
 typedef struct bf_gravity {
     double g; /* cm/s^2, pulls towards x = -inf ([gravity] g) */
@@ -199,7 +233,8 @@ BF_EFFECT_INLINE void bf_spring_daccel(const bf_spring *p, const bf_balls *b,
 
 /* Any other effect: the symmetrised coordinate-increment (Itoh-Abe)
  * discrete gradient of its potential (effects.c); through its force at the
- * mid-point if it has no potential. */
+ * mid-point if it has no potential (with the velocities b->v: only
+ * integrators for a = a(x) use discrete gradients). */
 int bf_effect_daccel_generic(const bf_effect *e, const bf_balls *b, double t,
                              const double *x, const double *xn, double *abar);
 
@@ -213,7 +248,7 @@ BF_EFFECT_INLINE int bf_effects_daccel_inline(const bf_effect *e, size_t ne,
     for (size_t i = 0; i < b->n; i++)
         abar[i] = 0.0;
     for (size_t k = 0; k < ne; k++) {
-        switch (e[k].type->kernel) {
+        switch (bf_effect_kernel_of(e[k].type)) {
         case BF_KERNEL_GRAVITY:
             bf_gravity_daccel(e[k].self, b, abar);
             break;
@@ -239,9 +274,10 @@ BF_EFFECT_INLINE int bf_effects_daccel_inline(const bf_effect *e, size_t ne,
  * signatures (the effect's .c file instantiates them once). */
 #define BF_EFFECT_KERNEL_WRAPPERS(NAME)                                        \
     static int NAME##_accel(const void *self, const bf_balls *b, double t,     \
-                            const double *x, double *acc)                      \
+                            const double *x, const double *v, double *acc)     \
     {                                                                          \
         (void)t;                                                               \
+        (void)v;                                                               \
         bf_##NAME##_accel(self, b, x, acc);                                    \
         return 0;                                                              \
     }                                                                          \
@@ -265,7 +301,7 @@ BF_EFFECT_INLINE double bf_effects_potential_inline(const bf_effect *e,
 {
     double u = 0.0;
     for (size_t k = 0; k < ne; k++) {
-        switch (e[k].type->kernel) {
+        switch (bf_effect_kernel_of(e[k].type)) {
         case BF_KERNEL_GRAVITY:
             u += bf_gravity_potential(e[k].self, b, x);
             break;
@@ -286,16 +322,18 @@ BF_EFFECT_INLINE double bf_effects_potential_inline(const bf_effect *e,
     return u;
 }
 
-/* acc = sum over the effects; returns non-zero if an effect fails. */
+/* acc = sum over the effects at (t, x, v); returns non-zero if an effect
+ * fails. */
 BF_EFFECT_INLINE int bf_effects_accel_inline(const bf_effect *e, size_t ne,
                                           const bf_balls *b, double t,
-                                          const double *x, double *acc)
+                                          const double *x, const double *v,
+                                          double *acc)
 {
     BF_UNROLL
     for (size_t i = 0; i < b->n; i++)
         acc[i] = 0.0;
     for (size_t k = 0; k < ne; k++) {
-        switch (e[k].type->kernel) {
+        switch (bf_effect_kernel_of(e[k].type)) {
         case BF_KERNEL_GRAVITY:
             bf_gravity_accel(e[k].self, b, x, acc);
             break;
@@ -309,7 +347,7 @@ BF_EFFECT_INLINE int bf_effects_accel_inline(const bf_effect *e, size_t ne,
             bf_spring_accel(e[k].self, b, x, acc);
             break;
         default:
-            if (e[k].type->accel(e[k].self, b, t, x, acc))
+            if (e[k].type->accel(e[k].self, b, t, x, v, acc))
                 return 1;
         }
     }

@@ -13,9 +13,9 @@
 __attribute__((optimize("no-tree-loop-distribute-patterns")))
 #endif
 int bf_effects_accel(const bf_effect *e, size_t ne, const bf_balls *b, double t,
-                     const double *x, double *acc)
+                     const double *x, const double *v, double *acc)
 {
-    return bf_effects_accel_inline(e, ne, b, t, x, acc);
+    return bf_effects_accel_inline(e, ne, b, t, x, v, acc);
 }
 
 double bf_effects_potential(const bf_effect *e, size_t ne, const bf_balls *b,
@@ -53,7 +53,7 @@ int bf_effect_daccel_generic(const bf_effect *e, const bf_balls *b, double t,
         xm[i] = 0.5 * (x[i] + xn[i]);
         am[i] = 0.0;
     }
-    int fail = e->type->accel(e->self, b, t, xm, am);
+    int fail = e->type->accel(e->self, b, t, xm, b->v, am);
     const bf_effect_type *T = e->type;
     for (size_t i = 0; !fail && i < n; i++) {
         double dx = xn[i] - x[i];

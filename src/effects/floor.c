@@ -16,10 +16,8 @@ static const bf_section_spec floor_spec = BF_SECTION(
     floor_params, bf_floor);
 
 static bf_status floor_create(void **self, const void *params,
-                              const bf_balls *b, const bf_effect_env *env,
-                              bf_err *err)
+                              const bf_balls *b, bf_err *err)
 {
-    (void)env;
     for (size_t i = 0; i < b->n; i++) {
         if (b->x[i] < b->R[i]) {
             char sec[32];
@@ -40,7 +38,6 @@ const bf_effect_type bf_effect_floor = {
     .name = "floor",
     .doc = "Hertz contact with a rigid floor at x = 0",
     .spec = &floor_spec,
-    .kernel = BF_KERNEL_FLOOR,
     .flags = BF_EFFECT_FLOOR | BF_EFFECT_CONSERVATIVE,
     .create = floor_create,
     .accel = floor_accel,

@@ -14,11 +14,9 @@ static const bf_section_spec gravity_spec = BF_SECTION(
     gravity_params, bf_gravity);
 
 static bf_status gravity_create(void **self, const void *params,
-                                const bf_balls *b, const bf_effect_env *env,
-                                bf_err *err)
+                                const bf_balls *b, bf_err *err)
 {
     (void)b;
-    (void)env;
     return bf_effect_copy_params(self, params, sizeof(bf_gravity), err);
 }
 
@@ -28,7 +26,6 @@ const bf_effect_type bf_effect_gravity = {
     .name = "gravity",
     .doc = "uniform gravity g along -x",
     .spec = &gravity_spec,
-    .kernel = BF_KERNEL_GRAVITY,
     .flags = BF_EFFECT_CONSERVATIVE,
     .create = gravity_create,
     .accel = gravity_accel,

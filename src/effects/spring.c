@@ -16,11 +16,9 @@ static const bf_section_spec spring_spec = BF_SECTION(
     spring_params, bf_spring);
 
 static bf_status spring_create(void **self, const void *params,
-                               const bf_balls *b, const bf_effect_env *env,
-                               bf_err *err)
+                               const bf_balls *b, bf_err *err)
 {
     (void)b;
-    (void)env;
     return bf_effect_copy_params(self, params, sizeof(bf_spring), err);
 }
 
@@ -30,7 +28,6 @@ const bf_effect_type bf_effect_spring = {
     .name = "spring",
     .doc = "linear restoring force (harmonic oscillator)",
     .spec = &spring_spec,
-    .kernel = BF_KERNEL_SPRING,
     .flags = BF_EFFECT_CONSERVATIVE,
     .create = spring_create,
     .accel = spring_accel,

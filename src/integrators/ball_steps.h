@@ -17,8 +17,12 @@
  *          kernels are the same inline functions, called in the scene's
  *          order, so every force is computed exactly as in the generic
  *          dispatch.
- * A shape is matched by the kernels the effects declare (effect.h), never
- * by name.
+ * A shape is matched by the effects' descriptors (bf_effect_kernel_of,
+ * effect_kernels.h), never by name.  The ball system takes none of these
+ * steps for a scene with an effect whose force depends on velocity or
+ * explicitly on time (BF_EFFECT_VELOCITY, BF_EFFECT_TIME; ballsys.c): their
+ * kernels evaluate forces at predicted positions with the step's initial
+ * velocities.
  *
  * Runs of steps (advance): the run kernels of step_kernels.h keep the
  * state, Verlet's carried force and the counters in locals for the whole
@@ -53,9 +57,8 @@
 BF_ALWAYS_INLINE int bf_ball_accel_any(void *ctx, double t, const double *x,
                                        const double *v, double *acc)
 {
-    (void)v;
     const bf_ball_forces *f = ctx;
-    return bf_effects_accel_inline(f->eff, f->neff, f->b, t, x, acc);
+    return bf_effects_accel_inline(f->eff, f->neff, f->b, t, x, v, acc);
 }
 
 /* What the forces of a fixed effect list read: the balls with n a
@@ -111,7 +114,7 @@ static inline int bf_shape_is(const bf_ball_forces *f, size_t n,
     if (f->b->n != n || f->neff != nk)
         return 0;
     for (size_t j = 0; j < nk; j++)
-        if (f->eff[j].type->kernel != k[j])
+        if (bf_effect_kernel_of(f->eff[j].type) != k[j])
             return 0;
     return 1;
 }

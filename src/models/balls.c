@@ -39,8 +39,7 @@ static bf_status balls_create(void **self, const bf_model_setup *setup,
     balls_model *m = calloc(1, sizeof *m);
     if (!m)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    bf_effect_env env = {0};
-    bf_status st = bf_ballsys_create(&m->sys, setup, &env, err);
+    bf_status st = bf_ballsys_create(&m->sys, setup, NULL, 0, err);
     if (st) {
         balls_destroy(m);
         return st;

@@ -6,7 +6,14 @@
  * bf_ode callback; the same operations in the same order, so the same bits
  * as the generic path (bench/bench_balls.c compares them), same counters.
  * Every other integrator takes the generic path, and so does every step
- * when a caller has replaced s->ode.accel by its own force function.
+ * when a caller has replaced s->ode.accel by its own force function, and
+ * every step of a scene with an effect whose force depends on velocity or
+ * explicitly on time (BF_EFFECT_VELOCITY, BF_EFFECT_TIME).
+ *
+ * Velocity-dependent forces: the callback passes the stage velocities the
+ * integrator evaluates at to the effects; an integrator made for a = a(x)
+ * (BF_INT_POSITION_ONLY) is refused at creation, naming [scene] integrator
+ * and the effect (docs/forces.md).
  */
 #include "models/ballsys.h"
 
@@ -47,9 +54,8 @@ __attribute__((optimize("no-tree-loop-distribute-patterns")))
 int bf_ballsys_accel(void *ctx, double t, const double *x, const double *v,
                      double *acc)
 {
-    (void)v;
     const bf_ballsys *s = ctx;
-    return bf_effects_accel_inline(s->eff, s->neff, &s->b, t, x, acc);
+    return bf_effects_accel_inline(s->eff, s->neff, &s->b, t, x, v, acc);
 }
 
 int bf_ballsys_daccel(void *ctx, double t, const double *x, const double *xn,
@@ -106,8 +112,10 @@ void bf_ballsys_free(bf_ballsys *s)
     if (!s)
         return;
     for (size_t k = 0; k < s->neff; k++)
-        if (s->eff[k].type->destroy && s->eff[k].self)
+        if (s->eff[k].type->destroy && s->eff[k].self &&
+            !(s->lent && s->lent[k]))
             s->eff[k].type->destroy(s->eff[k].self);
+    free(s->lent);
     for (size_t k = 0; s->effect_params && k < s->neff; k++)
         free(s->effect_params[k]);
     free(s->effect_params);
@@ -218,8 +226,9 @@ static void gaps_setup(bf_ballsys *s)
 {
     const size_t n = s->b.n;
     for (size_t k = 0; k < s->neff; k++) {
-        s->gap_floor |= s->eff[k].type->kernel == BF_KERNEL_FLOOR;
-        s->gap_pair |= s->eff[k].type->kernel == BF_KERNEL_CONTACT && n > 1;
+        const bf_effect_kernel kk = bf_effect_kernel_of(s->eff[k].type);
+        s->gap_floor |= kk == BF_KERNEL_FLOOR;
+        s->gap_pair |= kk == BF_KERNEL_CONTACT && n > 1;
     }
     s->ngaps = (s->gap_floor ? (int)n : 0) + (s->gap_pair ? (int)n - 1 : 0);
 }
@@ -505,8 +514,32 @@ bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
     return BF_OK;
 }
 
+/* An integrator for a = a(x) (BF_INT_POSITION_ONLY) with an effect whose
+ * force depends on velocity: refused, naming [scene] integrator and the
+ * effect.  Such a method evaluates the force at predicted positions with
+ * the velocities of the step's start, which is first order in v. */
+static bf_status check_velocity_forces(const bf_ballsys *s, bf_err *err)
+{
+    const bf_integrator_type *it = s->it->type;
+    if (!s->ode.velocity_dependent || !(it->flags & BF_INT_POSITION_ONLY))
+        return BF_OK;
+    const char *name = "";
+    for (size_t k = 0; k < s->neff; k++)
+        if (s->eff[k].type->flags & BF_EFFECT_VELOCITY) {
+            name = s->eff[k].type->name;
+            break;
+        }
+    return bf_fail_key(err, BF_EINPUT, "scene", "integrator",
+                       "integrator '%s' is made for forces of the positions "
+                       "only, and effect '%s' depends on velocity (it would "
+                       "lose its order): use rk4, rk3, verlet, impmid or "
+                       "arkode (docs/forces.md)",
+                       it->name, name);
+}
+
 bf_status bf_ballsys_create(bf_ballsys **out, const bf_model_setup *setup,
-                            const bf_effect_env *env, bf_err *err)
+                            const bf_effect *given, size_t ngiven,
+                            bf_err *err)
 {
     *out = NULL;
     size_t nb;
@@ -542,19 +575,32 @@ bf_status bf_ballsys_create(bf_ballsys **out, const bf_model_setup *setup,
     /* effects, in the order the scene lists them */
     const size_t ne = setup->neffects;
     s->eff = calloc(ne ? ne : 1, sizeof *s->eff);
-    if (!st && !s->eff)
+    s->lent = calloc(ne ? ne : 1, sizeof *s->lent);
+    if (!st && (!s->eff || !s->lent))
         st = bf_fail(err, BF_EINTERNAL, "out of memory");
     for (size_t k = 0; !st && k < ne; k++) {
         s->eff[k].type = setup->effects[k];
         s->neff = k + 1;
-        st = s->eff[k].type->create(&s->eff[k].self, setup->effect_params[k],
-                                    &s->b, env, err);
+        for (size_t j = 0; j < ngiven && !s->lent[k]; j++)
+            if (given[j].type == s->eff[k].type) {
+                s->eff[k].self = given[j].self;
+                s->lent[k] = 1;
+            }
+        if (!s->lent[k])
+            st = s->eff[k].type->create(&s->eff[k].self,
+                                        setup->effect_params[k], &s->b, err);
+        if (s->eff[k].type->flags & BF_EFFECT_VELOCITY)
+            s->ode.velocity_dependent = 1;
+        if (s->eff[k].type->flags & (BF_EFFECT_VELOCITY | BF_EFFECT_TIME))
+            s->no_fast = 1;
     }
     if (!st)
         st = check_initial_energy(s, err);
     if (!st)
         st = bf_integrator_create(&s->it, setup->integrator, nb,
                                   setup->integrator_params, err);
+    if (!st)
+        st = check_velocity_forces(s, err);
     if (st) {
         bf_ballsys_free(s);
         return st;
@@ -568,7 +614,6 @@ bf_status bf_ballsys_create(bf_ballsys **out, const bf_model_setup *setup,
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
     memcpy(s->effect_types, setup->effects, ne * sizeof *s->effect_types);
-    s->env = *env;
     s->effect_params = calloc(ne ? ne : 1, sizeof *s->effect_params);
     for (size_t k = 0; s->effect_params && k < ne; k++) {
         const bf_section_spec *sp = setup->effects[k]->spec;
@@ -589,11 +634,10 @@ bf_status bf_ballsys_create(bf_ballsys **out, const bf_model_setup *setup,
     s->ode.n = nb;
     s->ode.accel = bf_ballsys_accel;
     s->ode.ctx = s;
-    s->ode.velocity_dependent = 0;
     s->ode.epoch = 0;
     s->ode.daccel = bf_ballsys_daccel;
     s->forces = (bf_ball_forces){&s->b, s->eff, s->neff};
-    if (s->it->type->balls)
+    if (s->it->type->balls && !s->no_fast)
         s->it->type->balls->pick(&s->forces, &s->fast_step, &s->fast_advance);
     gaps_setup(s);
     if (s->it->split_events && (st = events_setup(s, err))) {
@@ -625,14 +669,17 @@ size_t bf_ballsys_state(bf_ballsys *s, bf_state_var *vars, size_t cap)
 }
 
 /* The positions now in s->b.x as a scene's would be checked: order,
- * overlap, each effect's own check (a trial instance of it). */
+ * overlap, each effect's own check (a trial instance of it; not of an
+ * effect the caller handed over, which it checks itself). */
 static bf_status check_positions(bf_ballsys *s, bf_err *err)
 {
     bf_status st = check_order(&s->b, err);
     for (size_t k = 0; !st && k < s->neff; k++) {
         const bf_effect_type *t = s->eff[k].type;
         void *trial = NULL;
-        st = t->create(&trial, s->effect_params[k], &s->b, &s->env, err);
+        if (s->lent[k])
+            continue;
+        st = t->create(&trial, s->effect_params[k], &s->b, err);
         if (trial && t->destroy)
             t->destroy(trial);
     }

@@ -32,7 +32,11 @@ typedef struct bf_ballsys {
     const bf_effect_type **effect_types; /* the effects' types (owned) */
     void **effect_params; /* copies of the effects' structs (set_state
                              checks new positions with them) */
-    bf_effect_env env;
+    unsigned char *lent;  /* per effect: its self was handed over by the
+                             caller (bf_ballsys_create's `given`), not
+                             created or destroyed here */
+    int no_fast; /* an effect depends on velocity or explicitly on time:
+                    no specialised steps (ball_steps.h) */
     bf_ode ode;
     /* what the integrator's specialised steps see (b, eff, neff) */
     bf_ball_forces forces;
@@ -55,12 +59,17 @@ typedef struct bf_ballsys {
     double *x_start, *v_start;
 } bf_ballsys;
 
-/* Read the balls of the setup, create its effects (env is passed to them)
- * and its integrator.  Refuses overlapping or unordered balls, naming the
- * key.  The system keeps what it needs of the setup (the setup may be
- * freed after; strings in the integrator's struct point into the scene). */
+/* Read the balls of the setup, create its effects and its integrator.
+ * An effect of the setup whose type is among the ngiven of `given` is not
+ * created: it takes that entry's self, which stays the caller's (the
+ * coupled model hands over its coupling this way).  Refuses overlapping or
+ * unordered balls, naming the key, and an integrator for a = a(x) with an
+ * effect whose force depends on velocity, naming [scene] integrator.  The
+ * system keeps what it needs of the setup (the setup may be freed after;
+ * strings in the integrator's struct point into the scene). */
 bf_status bf_ballsys_create(bf_ballsys **out, const bf_model_setup *setup,
-                            const bf_effect_env *env, bf_err *err);
+                            const bf_effect *given, size_t ngiven,
+                            bf_err *err);
 void bf_ballsys_free(bf_ballsys *s);
 
 /* The force callback the ball system installs in ode: the sum of its

@@ -4,8 +4,8 @@
  * The balls are a ball system (ballsys.h) whose effects include
  * "coupling" (src/coupling: -M dF/dr, eqs 3.10-3.12) and "contact"
  * (Hertz, eqs 3.13-3.14); the film is a film system (filmsys.h).  The
- * model makes the coupling from the [coupling] keys and hands it to the
- * effect (bf_effect_env.coupling); it owns mu_cpl and hands it to the
+ * model makes the coupling from the [coupling] keys and hands it to its
+ * ball system as the coupling effect's instance; it owns mu_cpl and hands it to the
  * film step.
  *
  *   film = static   the film is never stepped (the kink potential of sec.
@@ -316,8 +316,9 @@ static bf_status coupled_build(coupled_model **self,
         coupled_destroy(m);
         return st;
     }
-    bf_effect_env env = {.coupling = m->cpl};
-    if ((st = bf_ballsys_create(&m->sys, setup, &env, err))) {
+    /* the coupling effect's instance is this model's coupling */
+    const bf_effect cpl_effect = {&bf_effect_coupling, m->cpl};
+    if ((st = bf_ballsys_create(&m->sys, setup, &cpl_effect, 1, err))) {
         coupled_destroy(m);
         return st;
     }

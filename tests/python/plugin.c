@@ -27,11 +27,9 @@ static const bf_section_spec quartic_spec =
     BF_SECTION("quartic", "a quartic well", quartic_params, quartic);
 
 static bf_status quartic_create(void **self, const void *params,
-                                const bf_balls *b, const bf_effect_env *env,
-                                bf_err *err)
+                                const bf_balls *b, bf_err *err)
 {
     (void)b;
-    (void)env;
     quartic *w = malloc(sizeof *w);
     if (!w)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
@@ -41,9 +39,10 @@ static bf_status quartic_create(void **self, const void *params,
 }
 
 static int quartic_accel(const void *self, const bf_balls *b, double t,
-                         const double *x, double *acc)
+                         const double *x, const double *v, double *acc)
 {
     (void)t;
+    (void)v;
     const quartic *w = self;
     for (size_t i = 0; i < b->n; i++) {
         const double d = x[i] - w->centre;
