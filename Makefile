@@ -21,6 +21,7 @@ BUILD_PKGS := gcc make pkg-config libsundials-dev libgsl-dev libhdf5-dev \
 PLOT_PKGS  := python3-numpy python3-matplotlib python3-h5py
 MOVIE_PKGS := ffmpeg python3-pil
 XDMF_PKGS  := paraview
+UNITS_PKGS := udunits-bin
 PY         := /usr/bin/python3
 
 # ---------------------------------------------------------------- flags
@@ -103,7 +104,7 @@ RUNNER    := $(BUILD)/tests/runner
         film-orders fig6 fig8 fig9 fig8-sym fig9-sym sym-divergence \
         multirate fig-g72-ex1 \
         fig-g72-ex1-ensemble fig-g72-ex2 fig-g72-large fig-g73-hex \
-        fig-g73-wall movies deps-movies deps-xdmf test-movies test-xdmf \
+        fig-g73-wall movies deps-movies deps-xdmf test-movies test-xdmf deps-units test-units \
         shared install uninstall man deps-install test-install test-examples \
         test-python deps-python test-pip deps-pip test-notebooks \
         deps-notebooks test-cli-docs deps-cli-docs
@@ -328,6 +329,9 @@ deps-movies:
 
 deps-xdmf:
 	$(call need_pkgs,$(PLOT_PKGS) $(XDMF_PKGS))
+
+deps-units:
+	$(call need_pkgs,$(PLOT_PKGS) $(UNITS_PKGS))
 
 # ---------------------------------------------------------------- main job
 run:
@@ -757,6 +761,7 @@ test:
 	@$(MAKE) --no-print-directory test-run
 	@$(MAKE) --no-print-directory test-movies
 	@$(MAKE) --no-print-directory test-xdmf
+	@$(MAKE) --no-print-directory test-units
 	@$(MAKE) --no-print-directory test-install
 	@$(MAKE) --no-print-directory test-examples
 	@$(MAKE) --no-print-directory test-python
@@ -780,6 +785,11 @@ test-movies: $(PROG) | deps-movies
 
 test-xdmf: $(PROG) | deps-xdmf
 	$(PY) tests/test_xdmf.py $(PROG) build/test-xdmf
+
+# Every unit of a run of each model parses with UDUNITS-2, and
+# docs/output.md documents every dataset with its unit.
+test-units: $(PROG) | deps-units
+	$(PY) tests/test_units.py $(PROG) build/test-units
 
 # The library as its users get it (docs/library.md): make install into a
 # fresh temporary prefix, an example compiled with pkg-config alone

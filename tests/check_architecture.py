@@ -16,7 +16,10 @@ and include/ballfilm/*.h, and fails (exit 1, one line per problem) when
   - a source file of src/ has more than 900 lines;
   - a file outside src/io and src/compose calls the scene API (bf_scene_);
   - git tracks an entry at the top level other than TOP_LEVEL (the
-    repository's fixed layout; README.md's "Where things are").
+    repository's fixed layout; README.md's "Where things are");
+  - more than MAX_SHARED_PATHS dataset paths are written as string
+    literals in two or more files of src/ (dataset_path_literals below
+    states the rule; src/io/xdmf*.c is counted and reported apart).
 Run from the repository root: /usr/bin/python3 tests/check_architecture.py
 """
 import os
@@ -35,6 +38,60 @@ TOP_LEVEL = {"Makefile", "README.md", "src", "include", "runs", "tests",
              # a link to python/ballfilm, so that /usr/bin/python3 run
              # from the root imports the package with no PYTHONPATH
              "ballfilm"}
+
+
+MAX_SHARED_PATHS = 5
+# The first components of file-system paths written in src/ ("/proc/...",
+# "/usr/bin/python3"): such literals name no dataset.
+FS_ROOTS = {"proc", "dev", "usr", "share", "plots", "etc", "tmp", "sys",
+            "bin", "lib", "var", "home"}
+PATH_LITERAL = re.compile(r'"(/[A-Za-z_][A-Za-z0-9_]*(?:/[A-Za-z0-9_]+)*)"')
+COMMENT = re.compile(r"/\*.*?\*/|//[^\n]*", re.S)
+
+
+def dataset_path_literals(exclude=()):
+    """{path: set of files}: the dataset paths written as string literals
+    in src/**/*.{c,h}.  The rule: a C string literal (outside comments)
+    that is exactly "/" followed by one or more names of letters, digits
+    and '_' separated by '/' ("/time", "/film/h", "/mac/particles/x"),
+    whose first name is no FS_ROOTS entry.  A literal spliced from several
+    ("/a" "/b") counts as its parts; a path built at run time, or taken
+    from a table or a macro of one header, counts once, where its text
+    is."""
+    found = {}
+    for dirpath, _, names in os.walk(os.path.join(ROOT, "src")):
+        for n in names:
+            if not n.endswith((".c", ".h")):
+                continue
+            rel = os.path.relpath(os.path.join(dirpath, n), ROOT)
+            if any(rel.startswith(e) for e in exclude):
+                continue
+            with open(os.path.join(ROOT, rel), encoding="utf-8") as fh:
+                text = COMMENT.sub(" ", fh.read())
+            for m in PATH_LITERAL.finditer(text):
+                path = m.group(1)
+                if path.split("/")[1] in FS_ROOTS:
+                    continue
+                found.setdefault(path, set()).add(rel)
+    return found
+
+
+def shared_path_problems():
+    """dataset paths written in two or more files (xdmf*.c counted; the
+    count without it is printed too)"""
+    every = dataset_path_literals()
+    shared = sorted(p for p, fs in every.items() if len(fs) > 1)
+    without = dataset_path_literals(exclude=("src/io/xdmf",))
+    shared_wo = sorted(p for p, fs in without.items() if len(fs) > 1)
+    print(f"check_architecture: dataset paths as literals: {len(every)}, "
+          f"{len(shared)} in two or more files ({len(shared_wo)} without "
+          "src/io/xdmf*.c)")
+    if len(shared_wo) <= MAX_SHARED_PATHS:
+        return []
+    return [f"{p}: a dataset path written in {len(without[p])} files "
+            f"({', '.join(sorted(without[p]))}); more than "
+            f"{MAX_SHARED_PATHS} such paths: take it from its table or a "
+            "header" for p in shared_wo]
 
 
 def top_level_problems():
@@ -147,7 +204,7 @@ def inline_kernels(path, text):
 
 def main():
     folder_layer, header_folder = read_table()
-    problems = top_level_problems()
+    problems = top_level_problems() + shared_path_problems()
     files = sources()
     folder_graph, unit_graph = {}, {}
     nedges = 0

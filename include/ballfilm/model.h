@@ -21,6 +21,7 @@
 #include "ballfilm/h5out.h"
 #include "ballfilm/integrator.h"
 #include "ballfilm/params.h"
+#include "ballfilm/series.h"
 
 enum {
     BF_MODEL_INTEGRATOR = 1u << 0,    /* uses [scene] integrator */
@@ -160,6 +161,10 @@ typedef struct bf_model_type {
      * bound).  The loop stops a run beyond it as unstable unless [scene]
      * max_energy_error replaces it or energy_bound = no.  Optional. */
     double (*energy_bound)(const void *self);
+    /* The tables of the datasets output_open creates (series.h),
+     * NULL-terminated: what the model's files hold, for listings and the
+     * documentation check (the loop's own are bf_sim_series). */
+    const bf_series_table *const *series;
     /* Create the model's datasets; called once before the first row. */
     bf_status (*output_open)(void *self, bf_out *out, bf_err *err);
     /* Append one output row of the model's series (state at t). */

@@ -41,8 +41,13 @@
 #include "ballfilm/integrator.h"
 #include "ballfilm/model.h"
 #include "ballfilm/params.h"
+#include "ballfilm/series.h"
 
 typedef struct bf_sim bf_sim;
+
+/* The datasets of the loop itself: /time, /step and, for a model with an
+ * energy, /energy/{kinetic,potential,total} (series.h). */
+extern const bf_series_table bf_sim_series;
 
 /* The keys of [scene], the section every scene has. */
 typedef struct bf_sim_keys {
@@ -199,6 +204,8 @@ typedef struct bf_analysis_type {
     const char *name;
     const bf_section_spec *spec;
     const bf_observer_type *observer;
+    /* the datasets its observer writes (series.h; NULL: none) */
+    const bf_series_table *series;
     /* *self = NULL when the keys leave it off; failures name the key */
     bf_status (*create)(void **self, const void *keys,
                         const bf_analysis_env *env, bf_err *err);

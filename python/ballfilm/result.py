@@ -77,7 +77,22 @@ class Result:
     r["balls/position"]       a dataset as a numpy array (leading "/"
                               optional); r.keys() lists them all
     r.units[name], r.descriptions[name]
-                              each dataset's unit and description
+                              each dataset's unit (UDUNITS-2) and
+                              description
+    r.column_units[name]      a unit per column (a list): the dataset's
+                              "column_units" where its columns differ, else
+                              its unit for every fixed column ([] for a
+                              column per item or none)
+    r.columns[name]           the names of its fixed columns (a list)
+    r.scaled_units[name]      the model's scaled unit ("L", "R W^2"; the
+                              MAC model), or "" (a list per column where
+                              they differ)
+    r.roles[name], r.kinds[name]
+                              what it is for ("time", "position_x",
+                              "velocity_half_step", "field", ...) and how it
+                              grows ("rows", "snapshot", "events",
+                              "static"); "" in files of programs that did
+                              not write them
     r.time                    /time (s), the output rows' times
     r.params                  every resolved scene key: {"ball.1.mass": 1.0}
     r.param_units             their units; r.defaults: the keys left at their
@@ -96,6 +111,8 @@ class Result:
         self._cache = {}
         self._obj_attrs = None  # {name: attributes} when read at once
         self.units, self.descriptions, self.shapes = {}, {}, {}
+        self.column_units, self.columns, self.scaled_units = {}, {}, {}
+        self.roles, self.kinds = {}, {}
         with _open(self.path) as f:
             self.attrs = {k: f.attrs[k] for k in f.attrs}
             self._rows = _flushed_rows(f)
@@ -110,6 +127,7 @@ class Result:
                     self.units[name] = _text(obj.attrs.get("unit", ""))
                     self.descriptions[name] = _text(
                         obj.attrs.get("description", ""))
+                    self._describe(name, obj)
                     shape = obj.shape
                     if name in self._rows and shape:
                         shape = (min(shape[0], self._rows[name]),) + shape[1:]
@@ -140,6 +158,21 @@ class Result:
                     else a[key]
         e = a.get("max_relative_energy_error")
         self.energy_error = float(e) if e is not None else None
+
+    def _describe(self, name, obj):
+        """the attributes of series.h: columns, their units, role, kind"""
+        def listed(key, sep):
+            t = _text(obj.attrs.get(key, ""))
+            return [x.strip() for x in t.split(sep)] if t else []
+        self.columns[name] = listed("columns", ",")
+        cu = listed("column_units", ";")
+        if not cu and self.columns[name]:
+            cu = [self.units[name]] * len(self.columns[name])
+        self.column_units[name] = cu
+        su = listed("scaled_unit", ";")
+        self.scaled_units[name] = (su[0] if len(su) == 1 else su) if su else ""
+        self.roles[name] = _text(obj.attrs.get("role", ""))
+        self.kinds[name] = _text(obj.attrs.get("kind", ""))
 
     def _read(self, obj, name):
         if name in self._rows and obj.shape:

@@ -90,15 +90,22 @@ static void compare_free(void *self)
     free(c);
 }
 
+static const bf_series_spec compare_series[] = {
+    {.path = "/compare/dv", .unit = "cm/s", .per = "ball",
+     .doc = "velocity after one step of [compare] a minus after one step of "
+            "[compare] b, both from the state of the row",
+     .slot = BF_SLOT(bf_compare, s)},
+};
+
+const bf_series_table bf_compare_series = {"compare", compare_series,
+                                           BF_NSERIES(compare_series)};
+
 static bf_status compare_output_open(void *self, bf_out *out, bf_err *err)
 {
     bf_compare *c = self;
-    c->s = bf_out_series(out, "/compare/dv", c->n, 0, "cm/s",
-                         "velocity after one step of [compare] a minus after "
-                         "one step of [compare] b, both from the state of "
-                         "the row",
-                         err);
-    return c->s ? BF_OK : err->status;
+    const bf_series_extent ext[] = {{"ball", c->n}};
+    return bf_out_open_table(out, compare_series, BF_NSERIES(compare_series),
+                             c, ext, 1, 0, err);
 }
 
 /* At every output row: one step of a and one of b from the row's state. */
@@ -136,5 +143,6 @@ const bf_analysis_type bf_compare_analysis = {
     .name = "compare",
     .spec = &compare_spec,
     .observer = &bf_compare_observer,
+    .series = &bf_compare_series,
     .create = compare_create,
 };

@@ -22,6 +22,7 @@ typedef struct bf_compare_keys {
     const char *a, *b; /* integrator names ("": no comparison) */
 } bf_compare_keys;
 
+extern const bf_series_table bf_compare_series; /* its datasets */
 extern const bf_analysis_type bf_compare_analysis; /* [compare] */
 extern const bf_observer_type bf_compare_observer;
 

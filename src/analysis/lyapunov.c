@@ -178,5 +178,6 @@ const bf_analysis_type bf_lyap_analysis = {
     .name = "lyapunov",
     .spec = &bf_lyap_spec,
     .observer = &bf_lyap_observer,
+    .series = &bf_lyap_series,
     .create = lyap_create,
 };

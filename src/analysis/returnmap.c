@@ -282,32 +282,35 @@ static bf_status retmap_watched(void *self, const bf_ball_watch *w,
     return retmap_after_step(self, n_done, t, dt, err);
 }
 
+static const bf_series_spec retmap_series[] = {
+    {.path = "/return_map/time", .unit = "s", .kind = BF_SK_EVENTS,
+     .role = BF_SR_TIME,
+     .doc = "time of each lowest point of the trigger ball on the floor (one "
+            "per contact, the deepest)",
+     .slot = BF_SLOT(bf_retmap, s_t)},
+    {.path = "/return_map/z", .unit = "cm", .kind = BF_SK_EVENTS,
+     .doc = "position of the recorded ball at that time",
+     .slot = BF_SLOT(bf_retmap, s_z)},
+    {.path = "/return_map/v", .unit = "cm/s", .kind = BF_SK_EVENTS,
+     .doc = "velocity of the recorded ball at that time",
+     .slot = BF_SLOT(bf_retmap, s_v)},
+    {.path = "/return_map/z_trigger", .unit = "cm", .kind = BF_SK_EVENTS,
+     .doc = "lowest position of the trigger ball",
+     .slot = BF_SLOT(bf_retmap, s_zt)},
+    {.path = "/return_map/minima", .unit = "1", .kind = BF_SK_EVENTS,
+     .is_int = 1,
+     .doc = "number of minima of the trigger ball in this floor contact (the "
+            "deepest is recorded)",
+     .slot = BF_SLOT(bf_retmap, s_min)},
+};
+
+const bf_series_table bf_retmap_series = {"return_map", retmap_series,
+                                          BF_NSERIES(retmap_series)};
+
 static bf_status retmap_output_open(void *self, bf_out *out, bf_err *err)
 {
-    bf_retmap *rm = self;
-    rm->s_t = bf_out_series(out, "/return_map/time", 0, 0, "s",
-                            "time of each lowest point of the trigger ball on "
-                            "the floor (one per contact, the deepest)",
-                            err);
-    if (!rm->s_t)
-        return err->status;
-    rm->s_z = bf_out_series(out, "/return_map/z", 0, 0, "cm",
-                            "position of the recorded ball at that time", err);
-    if (!rm->s_z)
-        return err->status;
-    rm->s_v = bf_out_series(out, "/return_map/v", 0, 0, "cm/s",
-                            "velocity of the recorded ball at that time", err);
-    if (!rm->s_v)
-        return err->status;
-    rm->s_zt = bf_out_series(out, "/return_map/z_trigger", 0, 0, "cm",
-                             "lowest position of the trigger ball", err);
-    if (!rm->s_zt)
-        return err->status;
-    rm->s_min = bf_out_series(out, "/return_map/minima", 0, 1, "1",
-                              "number of minima of the trigger ball in this "
-                              "floor contact (the deepest is recorded)",
-                              err);
-    return rm->s_min ? BF_OK : err->status;
+    return bf_out_open_table(out, retmap_series, BF_NSERIES(retmap_series),
+                             self, NULL, 0, 0, err);
 }
 
 static bf_status retmap_output_close(void *self, bf_out *out, bf_err *err)
@@ -412,5 +415,6 @@ const bf_analysis_type bf_retmap_analysis = {
     .name = "return_map",
     .spec = &retmap_spec,
     .observer = &bf_retmap_observer,
+    .series = &bf_retmap_series,
     .create = retmap_create,
 };

@@ -54,6 +54,7 @@ typedef struct bf_retmap_keys {
 
 typedef struct bf_retmap bf_retmap;
 
+extern const bf_series_table bf_retmap_series; /* its datasets */
 extern const bf_analysis_type bf_retmap_analysis; /* [return_map] */
 extern const bf_observer_type bf_retmap_observer;
 

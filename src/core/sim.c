@@ -302,40 +302,6 @@ bf_status bf_sim_set_ckpt_path_(bf_sim *s, const char *path, bf_err *err)
     return st;
 }
 
-/* Datasets of the loop itself (created, or reopened on restart), then the
- * model's and the observers'. */
-bf_status bf_sim_open_series_(bf_sim *s, bf_err *err)
-{
-    bf_out *o = s->out;
-    s->s_time = bf_out_series(o, "/time", 0, 0, "s", "simulated time of each "
-                              "output row (t = step dt)", err);
-    if (!s->s_time)
-        return err->status;
-    s->s_step = bf_out_series(o, "/step", 0, 1, "1", "step number of each "
-                              "output row", err);
-    if (!s->s_step)
-        return err->status;
-    if (s->has_energy) {
-        s->s_ek = bf_out_series(o, "/energy/kinetic", 0, 0, "erg",
-                                "kinetic energy", err);
-        s->s_ep = s->s_ek ? bf_out_series(o, "/energy/potential", 0, 0, "erg",
-                                          "potential energy of all effects",
-                                          err)
-                          : NULL;
-        s->s_et = s->s_ep ? bf_out_series(o, "/energy/total", 0, 0, "erg",
-                                          "kinetic + potential", err)
-                          : NULL;
-        if (!s->s_et)
-            return err->status;
-    }
-    bf_status st = BF_OK;
-    if (s->mt->output_open)
-        st = bf_sim_hook_status_(s->mt->output_open(s->model, o, err),
-                                 "model", s->mt->name, "output_open", err);
-    EACH_OBSERVER(s, st, output_open, o, err);
-    return st;
-}
-
 static bf_status open_output(bf_sim *s, const char *path, bf_err *err)
 {
     bf_status st = bf_sim_set_ckpt_path_(s, path, err);

@@ -136,17 +136,23 @@ void bf_lyap_sum_report(const bf_lyap_sum *ls, unsigned long long evals,
                 l, tr, evals);
 }
 
+static const bf_series_spec lyap_series[] = {
+    {.path = "/lyapunov/time", .unit = "s", .kind = BF_SK_EVENTS,
+     .role = BF_SR_TIME, .doc = "time of each renormalisation",
+     .slot = BF_SLOT(bf_lyap_sum, s_t)},
+    {.path = "/lyapunov/estimate", .unit = "s-1", .kind = BF_SK_EVENTS,
+     .doc = "running estimate of the largest Lyapunov exponent: sum of "
+            "log(d/d_start) over time",
+     .slot = BF_SLOT(bf_lyap_sum, s_l)},
+};
+
+const bf_series_table bf_lyap_series = {"lyapunov", lyap_series,
+                                        BF_NSERIES(lyap_series)};
+
 bf_status bf_lyap_sum_output_open(bf_lyap_sum *ls, bf_out *out, bf_err *err)
 {
-    ls->s_t = bf_out_series(out, "/lyapunov/time", 0, 0, "s",
-                            "time of each renormalisation", err);
-    if (!ls->s_t)
-        return err->status;
-    ls->s_l = bf_out_series(out, "/lyapunov/estimate", 0, 0, "1/s",
-                            "running estimate of the largest Lyapunov "
-                            "exponent: sum of log(d/d_start) over time",
-                            err);
-    return ls->s_l ? BF_OK : err->status;
+    return bf_out_open_table(out, lyap_series, BF_NSERIES(lyap_series), ls,
+                             NULL, 0, 0, err);
 }
 
 bf_status bf_lyap_sum_output_close(const bf_lyap_sum *ls, bf_out *out,

@@ -46,6 +46,7 @@
 #include "ballfilm/checkpoint.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/params.h"
+#include "ballfilm/series.h"
 
 /* The keys of [lyapunov]. */
 typedef struct bf_lyap_keys {
@@ -108,6 +109,8 @@ double bf_lyap_sum_estimate(const bf_lyap_sum *ls, double *t_ref);
 /* The summary line, with the shadow's force evaluations. */
 void bf_lyap_sum_report(const bf_lyap_sum *ls, unsigned long long evals,
                         FILE *f);
+/* /lyapunov/time and /lyapunov/estimate (series.h). */
+extern const bf_series_table bf_lyap_series;
 bf_status bf_lyap_sum_output_open(bf_lyap_sum *ls, bf_out *out, bf_err *err);
 bf_status bf_lyap_sum_output_close(const bf_lyap_sum *ls, bf_out *out,
                                    bf_err *err);

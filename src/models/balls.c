@@ -11,12 +11,13 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "models/balls_out.h"
 #include "models/ballsys.h"
 #include "ballfilm/model.h"
 
 typedef struct balls_model {
     bf_ballsys *sys;
-    bf_series *pos, *vel;
+    bf_balls_out o;
 } balls_model;
 
 bf_ballsys *bf_balls_model_system(void *self)
@@ -75,21 +76,7 @@ static double balls_energy_bound(const void *self)
 static bf_status balls_output_open(void *self, bf_out *out, bf_err *err)
 {
     balls_model *m = self;
-    const bf_balls *b = &m->sys->b;
-    m->pos = bf_out_series(out, "/balls/position", b->n, 0, "cm",
-                           "ball centre positions, one column per ball", err);
-    if (!m->pos)
-        return err->status;
-    m->vel = bf_out_series(out, "/balls/velocity", b->n, 0, "cm/s",
-                           "ball velocities, one column per ball", err);
-    if (!m->vel)
-        return err->status;
-    bf_status st = bf_out_array(out, "/balls/mass", b->m, b->n, 0, "g",
-                                "ball masses", err);
-    if (!st)
-        st = bf_out_array(out, "/balls/radius", b->R, b->n, 0, "cm",
-                          "ball radii", err);
-    return st;
+    return bf_balls_output_open(&m->o, out, &m->sys->b, err);
 }
 
 static bf_status balls_output_row(void *self, long n, double t, bf_err *err)
@@ -97,11 +84,13 @@ static bf_status balls_output_row(void *self, long n, double t, bf_err *err)
     (void)n;
     (void)t;
     balls_model *m = self;
-    if (bf_series_append(m->pos, m->sys->b.x) ||
-        bf_series_append(m->vel, m->sys->b.v))
+    if (bf_balls_output_row(&m->o, &m->sys->b))
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     return BF_OK;
 }
+
+static const bf_series_table *const balls_tables[] = {&bf_balls_series,
+                                                      NULL};
 
 static void balls_counters(const void *self, bf_counters *c)
 {
@@ -143,6 +132,7 @@ static const bf_section_spec *const balls_specs[] = {&bf_ballsys_ball_spec,
 
 const bf_model_type bf_model_balls = {
     .name = "balls",
+    .series = balls_tables,
     .doc = "balls on a line under the listed effects (Yasuda sec. 2)",
     .flags = BF_MODEL_INTEGRATOR | BF_MODEL_EFFECTS | BF_MODEL_BALL_ANALYSES |
              BF_MODEL_WATCH,

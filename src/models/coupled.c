@@ -488,49 +488,67 @@ static void coupled_energy(const void *self, double t, double *kin,
 
 /* ------------------------------------------------------------ output */
 
+enum { ON_SYM = 1u << 0, ON_ADAPTIVE = 1u << 1 };
+static const bf_series_spec coupled_series[] = {
+    {.path = "/coupled/psi_probe", .unit = "1",
+     .doc = "psi at [coupled] probe, linear between nodes",
+     .slot = BF_SLOT(coupled_model, probe_s)},
+    {.path = "/coupled/sym_balls", .unit = "cm",
+     .doc = "left/right symmetry error of the balls max_i |x_i + x_(n+1-i)|",
+     .slot = BF_SLOT(coupled_model, symb)},
+    {.path = "/coupled/sym_film", .unit = "1",
+     .doc = "left/right symmetry error of the film max_i |psi_i + "
+            "psi_(N-i)|",
+     .slot = BF_SLOT(coupled_model, symf)},
+    {.path = "/coupled/return_map", .unit = "1", .kind = BF_SK_EVENTS,
+     .ncols = 3, .columns = "t, x, v", .column_units = "s; cm; cm/s",
+     .doc = "t, x, v of map_ball when map_pivot is closest to the origin "
+            "while touching its inner neighbour (Fig. 8A)",
+     .slot = BF_SLOT(coupled_model, map)},
+    {.path = "/coupled/peaks", .unit = "1", .kind = BF_SK_EVENTS, .ncols = 2,
+     .columns = "t, x", .column_units = "s; cm",
+     .doc = "t, x of the maxima of peak_ball's position (Fig. 6C)",
+     .slot = BF_SLOT(coupled_model, peaks)},
+    {.path = "/coupled/sym_correction", .unit = "1", .ncols = 4,
+     .when = ON_SYM, .columns = "film A, film u, ball x, ball v",
+     .doc = "symmetrize: largest relative change of the projection since "
+            "the previous row: film alpha_k h (/ max h), film u (/ max "
+            "|u_k|), ball x (/ max |x|), ball v (/ max |v|)",
+     .slot = BF_SLOT(coupled_model, symc_s)},
+    {.path = "/coupled/film_every", .unit = "1", .when = ON_ADAPTIVE,
+     .doc = "film_every = auto: ball steps K of the film step under way at "
+            "each output row",
+     .slot = BF_SLOT(coupled_model, kser)},
+    {.path = "/coupled/symmetry_break", .unit = "1", .kind = BF_SK_STATIC,
+     .per = "level", .ncols = 2, .columns = "level, t",
+     .column_units = "cm; s",
+     .doc = "first time the ball symmetry error exceeded each level (NaN: "
+            "never)"},
+    {.path = "/coupled/sym_correction_max", .unit = "1", .kind = BF_SK_STATIC,
+     .ncols = 4, .when = ON_SYM, .columns = "film A, film u, ball x, ball v",
+     .doc = "symmetrize: largest relative change of the projection over the "
+            "run (columns as /coupled/sym_correction)"},
+};
+enum { CPL_SYMBREAK = BF_NSERIES(coupled_series) - 2, CPL_SYMMAX };
+static const bf_series_table coupled_table = {"coupled", coupled_series,
+                                              BF_NSERIES(coupled_series)};
+static const bf_series_table *const coupled_tables[] = {
+    &bf_filmsys_series, &bf_balls_series, &coupled_table, &bf_lyap_series,
+    NULL};
+
 static bf_status coupled_output_open(void *self, bf_out *out, bf_err *err)
 {
     coupled_model *m = self;
     bf_status st = bf_filmsys_output_open(m->fs, out, err);
-    if (st)
-        return st;
-#define SER(var, path, cols, unit, doc)                                        \
-    do {                                                                       \
-        m->var = bf_out_series(out, path, cols, 0, unit, doc, err);           \
-        if (!m->var)                                                           \
-            return err->status;                                                \
-    } while (0)
-    SER(pos, "/balls/position", m->nb, "cm",
-        "ball centre positions, one column per ball");
-    SER(vel, "/balls/velocity", m->nb, "cm/s",
-        "ball velocities, one column per ball");
-    SER(probe_s, "/coupled/psi_probe", 0, "1",
-        "psi at [coupled] probe, linear between nodes");
-    SER(symb, "/coupled/sym_balls", 0, "cm",
-        "left/right symmetry error of the balls max_i |x_i + x_(n+1-i)|");
-    SER(symf, "/coupled/sym_film", 0, "1",
-        "left/right symmetry error of the film max_i |psi_i + psi_(N-i)|");
-    SER(map, "/coupled/return_map", 3, "s, cm, cm/s",
-        "t, x, v of map_ball when map_pivot is closest to the origin while "
-        "touching its inner neighbour (Fig. 8A)");
-    SER(peaks, "/coupled/peaks", 2, "s, cm",
-        "t, x of the maxima of peak_ball's position (Fig. 6C)");
-    if (m->sym)
-        SER(symc_s, "/coupled/sym_correction", 4, "1",
-            "symmetrize: largest relative change of the projection since the "
-            "previous row: film alpha_k h (/ max h), film u (/ max |u_k|), "
-            "ball x (/ max |x|), ball v (/ max |v|)");
-#undef SER
-    if ((st = bf_coupled_mr_output_open(m, out, err)))
-        return st;
-    if (m->ly && (st = bf_lyap_sum_output_open(m->ly, out, err)))
-        return st;
-    const bf_balls *b = &m->sys->b;
-    if ((st = bf_out_array(out, "/balls/mass", b->m, b->n, 0, "g",
-                           "ball masses", err)))
-        return st;
-    return bf_out_array(out, "/balls/radius", b->R, b->n, 0, "cm",
-                        "ball radii", err);
+    if (!st)
+        st = bf_balls_output_open(&m->bo, out, &m->sys->b, err);
+    const unsigned on = (m->sym ? ON_SYM : 0) | (m->adaptive ? ON_ADAPTIVE : 0);
+    if (!st)
+        st = bf_out_open_table(out, coupled_series, BF_NSERIES(coupled_series),
+                               m, NULL, 0, on, err);
+    if (!st && m->ly)
+        st = bf_lyap_sum_output_open(m->ly, out, err);
+    return st;
 }
 
 static double probe_psi(const coupled_model *m)
@@ -560,8 +578,7 @@ static bf_status coupled_output_row(void *self, long n, double t, bf_err *err)
         sf = fmax(sf, fabs(psi[i] + psi[nn - 1 - i]));
     double pr = probe_psi(m),
            sb = bf_coupled_symmetry_error(m->sys->b.x, m->nb);
-    if (bf_series_append(m->pos, m->sys->b.x) ||
-        bf_series_append(m->vel, m->sys->b.v) ||
+    if (bf_balls_output_row(&m->bo, &m->sys->b) ||
         bf_series_append(m->probe_s, &pr) || bf_series_append(m->symb, &sb) ||
         bf_series_append(m->symf, &sf) ||
         (m->sym && bf_series_append(m->symc_s, m->sym_correction)) ||
@@ -580,18 +597,11 @@ static bf_status coupled_output_close(void *self, bf_out *out, bf_err *err)
         rows[2 * k] = bf_coupled_sym_levels[k];
         rows[2 * k + 1] = m->sym_t[k];
     }
-    bf_status st = bf_out_array(out, "/coupled/symmetry_break", rows,
-                                BF_COUPLED_NSYM, 2, "cm, s",
-                                "first time the ball symmetry error exceeded "
-                                "each level (NaN: never)",
-                                err);
+    bf_status st = bf_out_table_array(out, &coupled_series[CPL_SYMBREAK], rows,
+                                      BF_COUPLED_NSYM, err);
     if (!st && m->sym)
-        st = bf_out_array(out, "/coupled/sym_correction_max",
-                          m->sym_correction + 4, 4, 0, "1",
-                          "symmetrize: largest relative change of the "
-                          "projection over the run (columns as "
-                          "/coupled/sym_correction)",
-                          err);
+        st = bf_out_table_array(out, &coupled_series[CPL_SYMMAX],
+                                m->sym_correction + 4, 4, err);
     if (!st && m->ly)
         st = bf_lyap_sum_output_close(m->ly, out, err);
     return st;
@@ -767,6 +777,7 @@ static size_t coupled_state(void *self, bf_state_var *vars, size_t cap)
 
 const bf_model_type bf_model_coupled = {
     .name = "coupled",
+    .series = coupled_tables,
     .doc = "balls coupled to the two-phase film, static kink or dynamic "
            "film (Yasuda sec. 3.4-3.5)",
     .flags = BF_MODEL_INTEGRATOR | BF_MODEL_EFFECTS,

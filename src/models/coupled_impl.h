@@ -16,6 +16,7 @@
 #include "ballfilm/model.h"
 #include "coupling/coupling.h"
 #include "diag/lyapsum.h"
+#include "models/balls_out.h"
 #include "models/ballsys.h"
 #include "models/filmsys.h"
 
@@ -76,7 +77,8 @@ typedef struct coupled_model {
      * ball v) since the last row [0..3] and over the run [4..7] */
     double sym_correction[8];
     long nmap, npeak;
-    bf_series *pos, *vel, *probe_s, *symb, *symf, *map, *peaks, *symc_s;
+    bf_balls_out bo;
+    bf_series *probe_s, *symb, *symf, *map, *peaks, *symc_s;
 } coupled_model;
 
 /* ---- coupled_symmetry.c ---- */
@@ -115,10 +117,9 @@ long bf_coupled_window_ends(const coupled_model *m, long n);
  * coupling refreshed), the lag and the next window's K. */
 void bf_coupled_mr_before(coupled_model *m);
 void bf_coupled_mr_after(coupled_model *m, long n, double dt);
-/* The output series /coupled/film_every, its row, the record in the
- * report and the state in checkpoints (prefix: the entry's name). */
-bf_status bf_coupled_mr_output_open(coupled_model *m, bf_out *out,
-                                    bf_err *err);
+/* The row of the output series /coupled/film_every (coupled.c opens it),
+ * the record in the report and the state in checkpoints (prefix: the
+ * entry's name). */
 int bf_coupled_mr_output_row(coupled_model *m);
 void bf_coupled_mr_report(const coupled_model *m, FILE *f);
 bf_status bf_coupled_mr_save(const coupled_model *m, bf_ckpt *ck,

@@ -152,18 +152,6 @@ void bf_coupled_mr_after(coupled_model *m, long n, double dt)
     m->win_k = next < 1 ? 1 : (long)next;
 }
 
-bf_status bf_coupled_mr_output_open(coupled_model *m, bf_out *out,
-                                    bf_err *err)
-{
-    if (!m->adaptive)
-        return BF_OK;
-    m->kser = bf_out_series(out, "/coupled/film_every", 0, 0, "steps",
-                            "film_every = auto: ball steps K of the film "
-                            "step under way at each output row",
-                            err);
-    return m->kser ? BF_OK : err->status;
-}
-
 int bf_coupled_mr_output_row(coupled_model *m)
 {
     if (!m->adaptive)

@@ -85,8 +85,12 @@ static bf_status film_set_state(void *self, const char *name,
 
 static const bf_section_spec *const film_specs[] = {&bf_filmsys_spec, NULL};
 
+static const bf_series_table *const film_tables[] = {&bf_filmsys_series,
+                                                     NULL};
+
 const bf_model_type bf_model_film = {
     .name = "film",
+    .series = film_tables,
     .doc = "two-phase shallow-water film with Ginzburg-Landau phase "
            "separation, invariant scheme (Yasuda sec. 3.1-3.4)",
     .flags = 0,

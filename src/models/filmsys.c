@@ -31,6 +31,14 @@
 #include "models/filmsys.h"
 #include "models/state_names.h"
 
+/* The film's profiles: datasets (series.h), the state's names (without
+ * the slash) and what initial = file reads. */
+#define FILM_H "/film/h"
+#define FILM_PSI "/film/psi"
+#define FILM_UD "/film/u_d"
+#define FILM_UC "/film/u_c"
+#define FILM_X "/film/x"
+
 enum { INIT_KINK, INIT_UNIFORM, INIT_FILE };
 enum { PERT_POSITIVE, PERT_SIGNED };
 
@@ -201,7 +209,7 @@ static bf_status read_file(bf_filmsys *fs, const char *path, double *h,
         return bf_fail_key(err, BF_EINPUT, "film", "file",
                            "initial = file needs the HDF5 file of an "
                            "earlier run");
-    const char *names[4] = {"/film/h", "/film/psi", "/film/u_d", "/film/u_c"};
+    const char *names[4] = {FILM_H, FILM_PSI, FILM_UD, FILM_UC};
     double *dst[4] = {h, psi, ud, uc};
     for (int k = 0; k < 4; k++) {
         double *d;
@@ -487,8 +495,9 @@ void bf_filmsys_stable_dt(const bf_filmsys *fs, bf_dt_limit *lim)
     snprintf(lim->key, sizeof lim->key, "film_every");
 }
 
-static const char *const state_names[5] = {"film/h", "film/psi", "film/u_d",
-                                           "film/u_c", "film/x"};
+static const char *const state_names[5] = {FILM_H + 1, FILM_PSI + 1,
+                                           FILM_UD + 1, FILM_UC + 1,
+                                           FILM_X + 1};
 
 size_t bf_filmsys_state(bf_filmsys *fs, bf_state_var *vars, size_t cap,
                         int settable)
@@ -616,38 +625,52 @@ double bf_filmsys_mass_drift(const bf_filmsys *fs)
                 fmax(rel_change(md, fs->m0[0]), rel_change(mc, fs->m0[1])));
 }
 
+enum { ON_KINK = 1u << 0 };
+#define PROFILE(m, path_, unit_, doc_)                                         \
+    {.path = path_, .unit = unit_, .doc = doc_, .kind = BF_SK_SNAPSHOT,        \
+     .role = BF_SR_FIELD, .per = "node", .slot = BF_SLOT(bf_filmsys, m)}
+static const bf_series_spec film_series[] = {
+    {.path = FILM_X, .unit = "cm", .kind = BF_SK_STATIC, .role = BF_SR_GRID,
+     .per = "node", .doc = "node positions x_i = -L/2 + i dx"},
+    {.path = "/film/time", .unit = "s", .kind = BF_SK_SNAPSHOT,
+     .role = BF_SR_TIME, .doc = "time of each profile row",
+     .slot = BF_SLOT(bf_filmsys, s_time)},
+    PROFILE(s_h, FILM_H, "cm", "film height h on the nodes"),
+    PROFILE(s_psi, FILM_PSI, "1", "order parameter alpha_d - alpha_c"),
+    PROFILE(s_ud, FILM_UD, "cm/s", "velocity of phase d"),
+    PROFILE(s_uc, FILM_UC, "cm/s", "velocity of phase c"),
+    {.path = "/film/mass_d", .unit = "cm^2",
+     .doc = "integral of alpha_d h dx (trapezoid), at every output row",
+     .slot = BF_SLOT(bf_filmsys, s_md)},
+    {.path = "/film/mass_c", .unit = "cm^2",
+     .doc = "integral of alpha_c h dx (trapezoid), at every output row",
+     .slot = BF_SLOT(bf_filmsys, s_mc)},
+    {.path = "/film/max_u", .unit = "cm/s",
+     .doc = "max |u_d|, |u_c| over nodes", .slot = BF_SLOT(bf_filmsys, s_umax)},
+    {.path = "/film/min_alpha", .unit = "1",
+     .doc = "smallest volume fraction of either phase over the nodes",
+     .slot = BF_SLOT(bf_filmsys, s_amin)},
+    {.path = "/film/limited_faces", .unit = "1", .is_int = 1,
+     .doc = "cumulative number of face fluxes changed by the positivity "
+            "limiter",
+     .slot = BF_SLOT(bf_filmsys, s_lim)},
+    {.path = "/film/kink_error", .unit = "1", .when = ON_KINK,
+     .doc = "max |psi - tanh((x - x0)/(sqrt(2) xi))| over nodes",
+     .slot = BF_SLOT(bf_filmsys, s_kerr)},
+};
+#undef PROFILE
+
+const bf_series_table bf_filmsys_series = {"film", film_series,
+                                           BF_NSERIES(film_series)};
+
 bf_status bf_filmsys_output_open(bf_filmsys *fs, bf_out *out, bf_err *err)
 {
-    const size_t n = fs->n;
-    bf_status st = bf_out_array(out, "/film/x", bf_film_x(fs->film), n, 0, "cm",
-                                "node positions x_i = -L/2 + i dx", err);
-    if (st)
-        return st;
-#define SER(var, path, cols, isint, unit, doc)                                 \
-    do {                                                                       \
-        fs->var = bf_out_series(out, path, cols, isint, unit, doc, err);      \
-        if (!fs->var)                                                          \
-            return err->status;                                                \
-    } while (0)
-    SER(s_time, "/film/time", 0, 0, "s", "time of each profile row");
-    SER(s_h, "/film/h", n, 0, "cm", "film height h on the nodes");
-    SER(s_psi, "/film/psi", n, 0, "1", "order parameter alpha_d - alpha_c");
-    SER(s_ud, "/film/u_d", n, 0, "cm/s", "velocity of phase d");
-    SER(s_uc, "/film/u_c", n, 0, "cm/s", "velocity of phase c");
-    SER(s_md, "/film/mass_d", 0, 0, "cm^2",
-        "integral of alpha_d h dx (trapezoid), at every output row");
-    SER(s_mc, "/film/mass_c", 0, 0, "cm^2",
-        "integral of alpha_c h dx (trapezoid), at every output row");
-    SER(s_umax, "/film/max_u", 0, 0, "cm/s", "max |u_d|, |u_c| over nodes");
-    SER(s_amin, "/film/min_alpha", 0, 0, "1",
-        "smallest volume fraction of either phase over the nodes");
-    SER(s_lim, "/film/limited_faces", 0, 1, "1",
-        "cumulative number of face fluxes changed by the positivity limiter");
-    if (fs->kink)
-        SER(s_kerr, "/film/kink_error", 0, 0, "1",
-            "max |psi - tanh((x - x0)/(sqrt(2) xi))| over nodes");
-#undef SER
-    return BF_OK;
+    const bf_series_extent ext[] = {{"node", fs->n}};
+    bf_status st = bf_out_table_array(out, &film_series[0],
+                                      bf_film_x(fs->film), fs->n, err);
+    return st ? st
+              : bf_out_open_table(out, film_series, BF_NSERIES(film_series),
+                                  fs, ext, 1, fs->kink ? ON_KINK : 0, err);
 }
 
 bf_status bf_filmsys_output_row(bf_filmsys *fs, long n, double t, bf_err *err)

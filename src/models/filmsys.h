@@ -24,6 +24,7 @@
 #include "ballfilm/film.h"
 #include "ballfilm/h5out.h"
 #include "ballfilm/model.h"
+#include "ballfilm/series.h"
 #include "ballfilm/params.h"
 
 /* The keys of [film]. */
@@ -134,6 +135,9 @@ void bf_filmsys_describe(const bf_filmsys *fs, char *buf, size_t cap,
  * invariant scheme its steps, each counted as one evaluation. */
 void bf_filmsys_counters(const bf_filmsys *fs, bf_counters *c);
 
+/* Its datasets (series.h): /film/x, the profiles at [film] profile_every
+ * and the diagnostics at every output row. */
+extern const bf_series_table bf_filmsys_series;
 bf_status bf_filmsys_output_open(bf_filmsys *fs, bf_out *out, bf_err *err);
 bf_status bf_filmsys_output_row(bf_filmsys *fs, long n, double t, bf_err *err);
 void bf_filmsys_report(const bf_filmsys *fs, FILE *f);

@@ -8,6 +8,7 @@
 
 #include "ballfilm/model.h"
 #include "ballfilm/particles.h"
+#include "ballfilm/series.h"
 #include "particles/support.h"
 #include "particles/walls.h"
 
@@ -35,6 +36,29 @@ size_t bf_particles_state_vars(bf_particles *p, bf_state_var *vars,
 bf_status bf_particles_set_var(bf_particles *p, const bf_box *box,
                                const char *name, const double *v, size_t n,
                                bf_err *err);
+/* The per-particle datasets the two models share (series.h):
+ * /particles/step (the step axis of rows written at a pace of their own),
+ * x, y, vx, vy (velocities at t, or leapfrog half-step velocities), and
+ * the static /particles/mass.  `on` picks the lines (BF_PO_*). */
+typedef struct bf_particle_out {
+    bf_series *step, *x, *y, *vx, *vy;
+} bf_particle_out;
+enum {
+    BF_PO_STEP = 1u << 0,     /* /particles/step */
+    BF_PO_POS = 1u << 1,      /* x, y */
+    BF_PO_VEL = 1u << 2,      /* vx, vy at t */
+    BF_PO_VEL_HALF = 1u << 3  /* vx, vy at t - dt/2 (leapfrog) */
+};
+extern const bf_series_table bf_particle_series;
+/* Open the lines of `on` and write /particles/mass. */
+bf_status bf_particles_output_open(bf_particle_out *po, bf_out *out,
+                                   const bf_particles *p, unsigned on,
+                                   bf_err *err);
+/* Append the state to the series that are open (the step axis gets
+ * `step`); nonzero when a buffer could not grow. */
+int bf_particles_output_row(const bf_particle_out *po, const bf_particles *p,
+                            int64_t step);
+
 /* The particles as one vector y = (x, y, vx, vy) of 4n values (for
  * ARKODE), and back. */
 void bf_particles_pack(const bf_particles *p, double *y);

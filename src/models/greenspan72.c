@@ -180,7 +180,8 @@ typedef struct g72 {
     unsigned long long kind_total[4]; /* particle-steps of each BF_SUP_ kind */
     int out_mode, threads, nthr; /* requested threads, threads used */
     long particles_every, rows; /* output rows written */
-    bf_series *s_pstep, *s_x, *s_y, *s_vx, *s_vy, *s_kin, *s_mean, *s_layers, *s_kinds,
+    bf_particle_out po;
+    bf_series *s_kin, *s_mean, *s_layers, *s_kinds,
         *s_settle;
     /* settling criteria at output rows: first step it held, last step it
      * failed (-1: never) */
@@ -576,64 +577,59 @@ static bf_status g72_step(void *self, long n, double t, double dt, bf_err *err)
     return g72_accel(m, err);
 }
 
-static const char *const vdoc[2][2] = {
-    {"x velocity at t - dt/2 (leapfrog half step; the initial velocity in "
-     "row 0)", "x velocity at t (arkode)"},
-    {"y velocity at t - dt/2 (leapfrog half step; the initial velocity in "
-     "row 0)", "y velocity at t (arkode)"}};
+static const bf_series_spec g72_series[] = {
+    {.path = "/diag/kinetic", .unit = "erg", .ncols = 3,
+     .columns = "all, heavy (L1), light (L2)",
+     .doc = "kinetic energy sum m|v|^2/2 with the half-step velocities: all, "
+            "heavy (L1), light (L2)",
+     .slot = BF_SLOT(g72, s_kin)},
+    {.path = "/diag/mean_y", .unit = "cm", .ncols = 2,
+     .columns = "heavy (L1), light (L2)",
+     .doc = "mean height of the heavy (L1) and light (L2) particles",
+     .slot = BF_SLOT(g72, s_mean)},
+    {.path = "/diag/quarters", .unit = "1", .ncols = 8,
+     .columns = "heavy q1, heavy q2, heavy q3, heavy q4, light q1, light q2, "
+                "light q3, light q4",
+     .doc = "particles per horizontal quarter of the box, bottom to top: "
+            "heavy q1..q4, then light q1..q4",
+     .slot = BF_SLOT(g72, s_layers)},
+    {.path = "/diag/support_kinds", .unit = "1", .ncols = 4,
+     .columns = "resting, partial, free fall, antigravity",
+     .doc = "particles whose support-set gravity is: resting (g = 0), "
+            "partial, free fall (g = -g0), antigravity (g > 0)",
+     .slot = BF_SLOT(g72, s_kinds)},
+    {.path = "/diag/settle", .unit = "1", .ncols = 4,
+     .columns = "a, b, c, d",
+     .doc = "(a) 1 if every heavy particle is below every light one; (b) 1 if "
+            "every heavy one is below 'bottom'; (c) heavy particles below "
+            "'bottom'; (d) 1 if the mean height of the heavy is below that of "
+            "the light",
+     .slot = BF_SLOT(g72, s_settle)},
+    {.path = "/particles/tag", .unit = "1", .kind = BF_SK_STATIC,
+     .role = BF_SR_PROPERTY, .per = "particle",
+     .doc = "1: heavy fluid L1 (started above the interface), 2: light fluid "
+            "L2"},
+};
+enum { G72_TAG = BF_NSERIES(g72_series) - 1 };
+static const bf_series_table g72_table = {"greenspan72", g72_series,
+                                          BF_NSERIES(g72_series)};
+static const bf_series_table *const g72_tables[] = {&bf_particle_series,
+                                                    &g72_table, NULL};
 
 static bf_status g72_output_open(void *self, bf_out *out, bf_err *err)
 {
     g72 *m = self;
     const size_t n = m->p.n;
-    if (m->out_mode != OUT_DIAG) {
-        if (!(m->s_pstep = bf_out_series(out, "/particles/step", 0, 1, "1",
-                                         "step of each row of the "
-                                         "per-particle datasets",
-                                         err)) ||
-            !(m->s_x = bf_out_series(out, "/particles/x", n, 0, "cm",
-                                     "x of every particle", err)) ||
-            !(m->s_y = bf_out_series(out, "/particles/y", n, 0, "cm",
-                                     "y of every particle", err)))
-            return err->status;
-    }
-    if (m->out_mode == OUT_ALL) {
-        if (!(m->s_vx = bf_out_series(out, "/particles/vx", n, 0, "cm/s",
-                                      vdoc[0][m->ode != NULL], err)) ||
-            !(m->s_vy = bf_out_series(out, "/particles/vy", n, 0, "cm/s",
-                                      vdoc[1][m->ode != NULL], err)))
-            return err->status;
-    }
-    if (!(m->s_kin = bf_out_series(out, "/diag/kinetic", 3, 0, "erg",
-                                   "kinetic energy sum m|v|^2/2 with the "
-                                   "half-step velocities: all, heavy (L1), "
-                                   "light (L2)",
-                                   err)) ||
-        !(m->s_mean = bf_out_series(out, "/diag/mean_y", 2, 0, "cm",
-                                    "mean height of the heavy (L1) and light "
-                                    "(L2) particles",
-                                    err)) ||
-        !(m->s_layers = bf_out_series(out, "/diag/quarters", 8, 0, "1",
-                                      "particles per horizontal quarter of "
-                                      "the box, bottom to top: heavy q1..q4, "
-                                      "then light q1..q4",
-                                      err)) ||
-        !(m->s_kinds = bf_out_series(out, "/diag/support_kinds", 4, 0, "1",
-                                     "particles whose support-set gravity is: "
-                                     "resting (g = 0), partial, free fall "
-                                     "(g = -g0), antigravity (g > 0)",
-                                     err)) ||
-        !(m->s_settle = bf_out_series(out, "/diag/settle", 4, 0, "1",
-                                      "(a) 1 if every heavy particle is below "
-                                      "every light one; (b) 1 if every heavy "
-                                      "one is below 'bottom'; (c) heavy "
-                                      "particles below 'bottom'; (d) 1 if the "
-                                      "mean height of the heavy is below that "
-                                      "of the light",
-                                      err)))
-        return err->status;
-    bf_status st = bf_out_array(out, "/particles/mass", m->p.m, n, 0, "g",
-                                "particle masses", err);
+    unsigned on = 0;
+    if (m->out_mode != OUT_DIAG)
+        on |= BF_PO_STEP | BF_PO_POS;
+    if (m->out_mode == OUT_ALL)
+        on |= m->ode ? BF_PO_VEL : BF_PO_VEL_HALF;
+    const bf_series_extent ext[] = {{"particle", n}};
+    bf_status st = bf_particles_output_open(&m->po, out, &m->p, on, err);
+    if (!st)
+        st = bf_out_open_table(out, g72_series, BF_NSERIES(g72_series), m,
+                               ext, 1, 0, err);
     if (st)
         return st;
     double *tag = malloc((n ? n : 1) * sizeof *tag);
@@ -641,10 +637,7 @@ static bf_status g72_output_open(void *self, bf_out *out, bf_err *err)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     for (size_t i = 0; i < n; i++)
         tag[i] = m->p.tag[i];
-    st = bf_out_array(out, "/particles/tag", tag, n, 0, "1",
-                      "1: heavy fluid L1 (started above the interface), 2: "
-                      "light fluid L2",
-                      err);
+    st = bf_out_table_array(out, &g72_series[G72_TAG], tag, n, err);
     free(tag);
     if (!st)
         st = bf_out_attr_real(out, "/diag", "bottom", m->bottom, err);
@@ -680,14 +673,7 @@ static bf_status g72_output_row(void *self, long n, double t, bf_err *err)
         return st;
     int fail = 0;
     if (m->rows++ % m->particles_every == 0) {
-        int64_t st64 = n;
-        if (m->s_x)
-            fail |= bf_series_append_i64(m->s_pstep, &st64) |
-                    bf_series_append(m->s_x, p->x) |
-                    bf_series_append(m->s_y, p->y);
-        if (m->s_vx)
-            fail |= bf_series_append(m->s_vx, p->vx) |
-                    bf_series_append(m->s_vy, p->vy);
+        fail |= bf_particles_output_row(&m->po, p, (int64_t)n);
     }
     bf_pdiag_group h = bf_pdiag_group_of(p, TAG_HEAVY);
     bf_pdiag_group l = bf_pdiag_group_of(p, TAG_LIGHT);
@@ -865,6 +851,7 @@ static const bf_section_spec *const g72_specs[] = {
 
 const bf_model_type bf_model_greenspan72 = {
     .name = "greenspan72",
+    .series = g72_tables,
     .doc = "two fluids mixing: support-set gravity, repulsion, damped walls "
            "(Greenspan 1972)",
     .flags = 0,

@@ -198,7 +198,8 @@ typedef struct g73 {
     int depth_max;  /* most halvings in one step */
     long last_iter, last_sub;
     double e0, eint0; /* E and E - K_cm of the initial state */
-    bf_series *s_x, *s_y, *s_vx, *s_vy, *s_e, *s_drift, *s_it, *s_sub;
+    bf_particle_out po;
+    bf_series *s_e, *s_drift, *s_it, *s_sub;
 } g73;
 
 static void g73_destroy(void *self)
@@ -594,54 +595,60 @@ void bf_greenspan73_describe(void *model, char *buf, size_t cap, int *order)
     *order = 2;
 }
 
+static const bf_series_spec g73_series[] = {
+    {.path = "/diag/energy", .unit = "erg", .ncols = 5,
+     .columns = "K, V pair, V gravity, E, E - K_cm",
+     .doc = "K (inertia of the update), V pair (2.17), V gravity, E = K + V, "
+            "E - K of the centre of mass",
+     .slot = BF_SLOT(g73, s_e)},
+    {.path = "/diag/energy_drift", .unit = "1", .ncols = 2,
+     .columns = "E, E - K_cm",
+     .doc = "relative change since t = 0 of E and of E - K_cm",
+     .slot = BF_SLOT(g73, s_drift)},
+    {.path = "/diag/iterations", .unit = "1", .is_int = 1,
+     .doc = "solver iterations of the step ending at the row (all substeps)",
+     .slot = BF_SLOT(g73, s_it)},
+    {.path = "/diag/substeps", .unit = "1", .is_int = 1,
+     .doc = "substeps of the step ending at the row (> 1 after halvings)",
+     .slot = BF_SLOT(g73, s_sub)},
+    {.path = "/particles/inertia", .unit = "g", .kind = BF_SK_STATIC,
+     .role = BF_SR_PROPERTY, .per = "particle",
+     .doc = "inertia of the update (mass, or 1 for mass = fortran)"},
+    {.path = "/particles/fixed", .unit = "1", .kind = BF_SK_STATIC,
+     .role = BF_SR_PROPERTY, .per = "particle", .doc = "1: held fixed"},
+    {.path = "/particles/gravity", .unit = "1", .kind = BF_SK_STATIC,
+     .role = BF_SR_PROPERTY, .per = "particle", .doc = "1: feels gravity"},
+};
+enum { G73_INERTIA = 4, G73_FIXED, G73_GRAVITY };
+static const bf_series_table g73_table = {"greenspan73", g73_series,
+                                          BF_NSERIES(g73_series)};
+static const bf_series_table *const g73_tables[] = {&bf_particle_series,
+                                                    &g73_table, NULL};
+
 static bf_status g73_output_open(void *self, bf_out *out, bf_err *err)
 {
     g73 *m = self;
     const size_t n = m->p.n;
-    if (!(m->s_x = bf_out_series(out, "/particles/x", n, 0, "cm", "x", err)) ||
-        !(m->s_y = bf_out_series(out, "/particles/y", n, 0, "cm", "y", err)) ||
-        !(m->s_vx = bf_out_series(out, "/particles/vx", n, 0, "cm/s", "vx",
-                                  err)) ||
-        !(m->s_vy = bf_out_series(out, "/particles/vy", n, 0, "cm/s", "vy",
-                                  err)) ||
-        !(m->s_e = bf_out_series(out, "/diag/energy", 5, 0, "erg",
-                                 "K (inertia of the update), V pair (2.17), "
-                                 "V gravity, E = K + V, E - K of the centre "
-                                 "of mass",
-                                 err)) ||
-        !(m->s_drift = bf_out_series(out, "/diag/energy_drift", 2, 0, "1",
-                                     "relative change since t = 0 of E and "
-                                     "of E - K_cm",
-                                     err)) ||
-        !(m->s_it = bf_out_series(out, "/diag/iterations", 0, 1, "1",
-                                  "solver iterations of the step ending at "
-                                  "the row (all substeps)",
-                                  err)) ||
-        !(m->s_sub = bf_out_series(out, "/diag/substeps", 0, 1, "1",
-                                   "substeps of the step ending at the row "
-                                   "(> 1 after halvings)",
-                                   err)))
-        return err->status;
+    const bf_series_extent ext[] = {{"particle", n}};
+    bf_status st = bf_particles_output_open(&m->po, out, &m->p,
+                                            BF_PO_POS | BF_PO_VEL, err);
+    if (!st)
+        st = bf_out_open_table(out, g73_series, BF_NSERIES(g73_series), m,
+                               ext, 1, 0, err);
+    if (st)
+        return st;
     double *tmp = malloc((n ? n : 1) * sizeof *tmp);
     if (!tmp)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    bf_status st = bf_out_array(out, "/particles/mass", m->p.m, n, 0, "g",
-                                "masses (pair strengths, gravity)", err);
-    if (!st)
-        st = bf_out_array(out, "/particles/inertia", m->mu, n, 0, "g",
-                          "inertia of the update (mass, or 1 for mass = "
-                          "fortran)",
-                          err);
+    st = bf_out_table_array(out, &g73_series[G73_INERTIA], m->mu, n, err);
     for (size_t i = 0; i < n; i++)
         tmp[i] = m->f.fixed[i];
     if (!st)
-        st = bf_out_array(out, "/particles/fixed", tmp, n, 0, "1",
-                          "1: held fixed", err);
+        st = bf_out_table_array(out, &g73_series[G73_FIXED], tmp, n, err);
     for (size_t i = 0; i < n; i++)
         tmp[i] = m->f.gravity[i];
     if (!st)
-        st = bf_out_array(out, "/particles/gravity", tmp, n, 0, "1",
-                          "1: feels gravity", err);
+        st = bf_out_table_array(out, &g73_series[G73_GRAVITY], tmp, n, err);
     free(tmp);
     if (!st)
         st = bf_out_attr_str(out, "/", "reading", m->reading, err);
@@ -661,9 +668,8 @@ static bf_status g73_output_row(void *self, long n, double t, bf_err *err)
                        (e[4] - m->eint0) / fabs(m->eint0)};
     int64_t it = m->last_iter, sub = m->last_sub;
     if (bf_series_append(m->s_drift, drift) ||
-        bf_series_append(m->s_x, m->p.x) || bf_series_append(m->s_y, m->p.y) ||
-        bf_series_append(m->s_vx, m->p.vx) ||
-        bf_series_append(m->s_vy, m->p.vy) || bf_series_append(m->s_e, e) ||
+        bf_particles_output_row(&m->po, &m->p, 0) ||
+        bf_series_append(m->s_e, e) ||
         bf_series_append_i64(m->s_it, &it) ||
         bf_series_append_i64(m->s_sub, &sub))
         return bf_fail(err, BF_EINTERNAL, "out of memory");
@@ -766,6 +772,7 @@ static bf_status g73_set_state(void *self, const char *name, const double *v,
 
 const bf_model_type bf_model_greenspan73 = {
     .name = "greenspan73",
+    .series = g73_tables,
     .doc = "implicit, exactly energy-conserving particle scheme (Greenspan "
            "1973)",
     .flags = 0,

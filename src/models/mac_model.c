@@ -238,54 +238,88 @@ static bf_status mac_model_step(void *self, long n, double t, double dt,
     return bf_mac_step(((mac_model *)self)->mac, dt, err);
 }
 
-#define SERIES(field, path, cols, isint, unit, doc)                            \
-    do {                                                                       \
-        if (!(mm->field = bf_out_series(out, path, cols, isint, unit, doc,     \
-                                        err)))                                 \
-            return err->status;                                                \
-    } while (0)
+/* The thesis's scaled units (L length, W velocity, R density, dT
+ * temperature) are not UDUNITS-2 units: such datasets have unit "1" and
+ * the scaled unit in "scaled_unit" (series.h). */
+#define FIELD(m, path_, scaled_, per_, doc_)                                   \
+    {.path = path_, .unit = "1", .scaled_unit = scaled_, .doc = doc_,         \
+     .role = BF_SR_FIELD, .per = per_, .slot = BF_SLOT(mac_model, m)}
+#define MARKER(m, path_, scaled_, role_, doc_)                                 \
+    {.path = path_, .unit = "1", .scaled_unit = scaled_, .doc = doc_,         \
+     .role = role_, .per = "marker slot", .slot = BF_SLOT(mac_model, m)}
+static const bf_series_spec mac_series[] = {
+    FIELD(u, "/mac/u", "W", "u face",
+          "horizontal velocity U(I,J), I = 1..ni+1 (left faces), J = 1..nj; "
+          "row-major, J fastest"),
+    FIELD(v, "/mac/v", "W", "v face",
+          "vertical velocity V(I,J), I = 1..ni, J = 1..nj+1 (bottom faces)"),
+    FIELD(p, "/mac/p", "R W^2", "cell", "pressure P(I,J), cell centres"),
+    FIELD(rho, "/mac/rho", "R", "cell",
+          "cell density R(I,J) (mean of the markers in the cell)"),
+    FIELD(temp, "/mac/T", "dT", "cell", "temperature T(I,J)"),
+    {.path = "/mac/flags", .unit = "1", .is_int = 1, .role = BF_SR_FIELD,
+     .per = "cell",
+     .doc = "cell flags: 1 NOSLIP, 2 IN, 3 OUT, 4 FREESLIP, 10 FULL, 11 SUR, "
+            "12 EMP",
+     .slot = BF_SLOT(mac_model, flags)},
+    MARKER(px, "/mac/particles/x", "L", BF_SR_POSITION_X,
+           "marker x (0 for free slots); the fluid is 0 <= x < 1.4"),
+    MARKER(py, "/mac/particles/y", "L", BF_SR_POSITION_Y, "marker y"),
+    MARKER(pd, "/mac/particles/density", "R", BF_SR_PROPERTY,
+           "marker density"),
+    {.path = "/mac/particles/flag", .unit = "1", .is_int = 1,
+     .role = BF_SR_PROPERTY, .per = "marker slot",
+     .doc = "marker flag: 1 free slot, 2 IN, 3 OUT, 4 fluid",
+     .slot = BF_SLOT(mac_model, pf)},
+    {.path = "/mac/counts", .unit = "1", .is_int = 1, .ncols = 8,
+     .columns = "IN, fluid, OUT, free slots, entered, into the sink, back "
+                "into IN, lost",
+     .doc = "IN, fluid (REG), OUT particles, free slots; cumulative: entered "
+            "the fluid, entered the sink (OUT cells), went back into the IN "
+            "column, lost through a wall or the top",
+     .slot = BF_SLOT(mac_model, counts)},
+    {.path = "/mac/mass", .unit = "1", .scaled_unit = "R L^2", .ncols = 4,
+     .columns = "entered, into the sink, fluid now, lost",
+     .doc = "cumulative mass entered, cumulative mass into the sink, fluid "
+            "mass now (markers x dx dy/4), cumulative mass lost",
+     .slot = BF_SLOT(mac_model, mass)},
+    {.path = "/mac/diag", .unit = "1", .ncols = 6,
+     .columns = "max |u|, max |v|, max |div w|, passes, sweeps, forced fine "
+                "passes",
+     .scaled_unit = "W; W; W/L; 1; 1; 1",
+     .doc = "max |u| and max |v| on fluid faces (W), max |div w| in FULL cells "
+            "(W/L), corrector passes and Gauss-Seidel sweeps of the last step, "
+            "cumulative forced fine passes (oscillating particle)",
+     .slot = BF_SLOT(mac_model, diag)},
+    {.path = "/mac/grid", .unit = "1", .kind = BF_SK_STATIC, .ncols = 4,
+     .role = BF_SR_GRID, .columns = "ni, nj, dx, dy",
+     .scaled_unit = "1; 1; L; L",
+     .doc = "ni, nj (cells incl. the ring), dx, dy; cell (I,J) covers x in "
+            "[(I-2)dx, (I-1)dx), y in [(J-2)dy, (J-1)dy)"},
+};
+#undef FIELD
+#undef MARKER
+enum { MAC_GRID = BF_NSERIES(mac_series) - 1 };
+static const bf_series_table mac_table = {"mac", mac_series,
+                                          BF_NSERIES(mac_series)};
+static const bf_series_table *const mac_tables[] = {&mac_table, NULL};
 
 static bf_status mac_model_output_open(void *self, bf_out *out, bf_err *err)
 {
     mac_model *mm = self;
     const size_t ni = (size_t)mm->ni, nj = (size_t)mm->nj;
-    SERIES(u, "/mac/u", (ni + 1) * nj, 0, "W",
-           "horizontal velocity U(I,J), I = 1..ni+1 (left faces), J = 1..nj; "
-           "row-major, J fastest");
-    SERIES(v, "/mac/v", ni * (nj + 1), 0, "W",
-           "vertical velocity V(I,J), I = 1..ni, J = 1..nj+1 (bottom faces)");
-    SERIES(p, "/mac/p", ni * nj, 0, "R W^2", "pressure P(I,J), cell centres");
-    SERIES(rho, "/mac/rho", ni * nj, 0, "R",
-           "cell density R(I,J) (mean of the markers in the cell)");
-    SERIES(temp, "/mac/T", ni * nj, 0, "dT", "temperature T(I,J)");
-    SERIES(flags, "/mac/flags", ni * nj, 1, "1",
-           "cell flags: 1 NOSLIP, 2 IN, 3 OUT, 4 FREESLIP, 10 FULL, 11 SUR, "
-           "12 EMP");
-    SERIES(px, "/mac/particles/x", mm->slots, 0, "L",
-           "marker x (0 for free slots); the fluid is 0 <= x < 1.4");
-    SERIES(py, "/mac/particles/y", mm->slots, 0, "L", "marker y");
-    SERIES(pd, "/mac/particles/density", mm->slots, 0, "R", "marker density");
-    SERIES(pf, "/mac/particles/flag", mm->slots, 1, "1",
-           "marker flag: 1 free slot, 2 IN, 3 OUT, 4 fluid");
-    SERIES(counts, "/mac/counts", 8, 1, "particles",
-           "IN, fluid (REG), OUT particles, free slots; cumulative: entered "
-           "the fluid, entered the sink (OUT cells), went back into the IN "
-           "column, lost through a wall or the top");
-    SERIES(mass, "/mac/mass", 4, 0, "R L^2",
-           "cumulative mass entered, cumulative mass into the sink, fluid "
-           "mass now (markers x dx dy/4), cumulative mass lost");
-    SERIES(diag, "/mac/diag", 6, 0, "mixed",
-           "max |u| and max |v| on fluid faces (W), max |div w| in FULL cells "
-           "(W/L), corrector passes and Gauss-Seidel sweeps of the last step, "
-           "cumulative forced fine passes (oscillating particle)");
+    const bf_series_extent ext[] = {{"u face", (ni + 1) * nj},
+                                    {"v face", ni * (nj + 1)},
+                                    {"cell", ni * nj},
+                                    {"marker slot", mm->slots}};
+    bf_status st = bf_out_open_table(out, mac_series, BF_NSERIES(mac_series),
+                                     mm, ext, 4, 0, err);
+    if (st)
+        return st;
     double dx, dy;
     bf_mac_dims(mm->mac, NULL, NULL, &dx, &dy);
     double grid[4] = {(double)mm->ni, (double)mm->nj, dx, dy};
-    return bf_out_array(out, "/mac/grid", grid, 4, 0, "1, 1, L, L",
-                        "ni, nj (cells incl. the ring), dx, dy; cell (I,J) "
-                        "covers x in [(I-2)dx, (I-1)dx), y in [(J-2)dy, "
-                        "(J-1)dy)",
-                        err);
+    return bf_out_table_array(out, &mac_series[MAC_GRID], grid, 4, err);
 }
 
 /* Copy field f (defined for I = 1..ni1, J = 1..nj1) into the row buffer. */
@@ -490,6 +524,7 @@ static const bf_section_spec *const mac_specs[] = {&bf_mac_spec, NULL};
 
 const bf_model_type bf_model_mac = {
     .name = "mac",
+    .series = mac_tables,
     .doc = "stratified viscous fluid, predictor-corrector MAC with markers "
            "(thesis, PROGRAM STRATRES)",
     .flags = 0,

@@ -6,8 +6,76 @@
 #include "models/greenspan.h"
 #include "models/state_names.h"
 
-static const char *const names[4] = {"particles/x", "particles/y",
-                                     "particles/vx", "particles/vy"};
+#define P_X "/particles/x"
+#define P_Y "/particles/y"
+#define P_VX "/particles/vx"
+#define P_VY "/particles/vy"
+#define VDOC_HALF(c)                                                           \
+    c " velocity at t - dt/2 (leapfrog half step; the initial velocity in "   \
+      "row 0)"
+
+static const bf_series_spec particle_series[] = {
+    {.path = "/particles/step", .unit = "1", .is_int = 1,
+     .kind = BF_SK_SNAPSHOT, .role = BF_SR_STEP, .when = BF_PO_STEP,
+     .doc = "step of each row of the per-particle datasets",
+     .slot = BF_SLOT(bf_particle_out, step)},
+    {.path = P_X, .unit = "cm", .kind = BF_SK_SNAPSHOT,
+     .role = BF_SR_POSITION_X, .per = "particle", .when = BF_PO_POS,
+     .doc = "x of every particle", .slot = BF_SLOT(bf_particle_out, x)},
+    {.path = P_Y, .unit = "cm", .kind = BF_SK_SNAPSHOT,
+     .role = BF_SR_POSITION_Y, .per = "particle", .when = BF_PO_POS,
+     .doc = "y of every particle", .slot = BF_SLOT(bf_particle_out, y)},
+    {.path = P_VX, .unit = "cm/s", .kind = BF_SK_SNAPSHOT,
+     .role = BF_SR_VELOCITY, .per = "particle", .when = BF_PO_VEL,
+     .doc = "x velocity at t", .slot = BF_SLOT(bf_particle_out, vx)},
+    {.path = P_VY, .unit = "cm/s", .kind = BF_SK_SNAPSHOT,
+     .role = BF_SR_VELOCITY, .per = "particle", .when = BF_PO_VEL,
+     .doc = "y velocity at t", .slot = BF_SLOT(bf_particle_out, vy)},
+    {.path = P_VX, .unit = "cm/s", .kind = BF_SK_SNAPSHOT,
+     .role = BF_SR_VELOCITY_HALF, .per = "particle", .when = BF_PO_VEL_HALF,
+     .doc = VDOC_HALF("x"), .slot = BF_SLOT(bf_particle_out, vx)},
+    {.path = P_VY, .unit = "cm/s", .kind = BF_SK_SNAPSHOT,
+     .role = BF_SR_VELOCITY_HALF, .per = "particle", .when = BF_PO_VEL_HALF,
+     .doc = VDOC_HALF("y"), .slot = BF_SLOT(bf_particle_out, vy)},
+    {.path = "/particles/mass", .unit = "g", .kind = BF_SK_STATIC,
+     .role = BF_SR_PROPERTY, .per = "particle",
+     .doc = "particle masses (pair strengths, gravity)"},
+};
+enum { PS_MASS = BF_NSERIES(particle_series) - 1 };
+
+const bf_series_table bf_particle_series = {"particles", particle_series,
+                                            BF_NSERIES(particle_series)};
+
+bf_status bf_particles_output_open(bf_particle_out *po, bf_out *out,
+                                   const bf_particles *p, unsigned on,
+                                   bf_err *err)
+{
+    const bf_series_extent ext[] = {{"particle", p->n}};
+    bf_status st = bf_out_open_table(out, particle_series,
+                                     BF_NSERIES(particle_series), po, ext, 1,
+                                     on, err);
+    return st ? st
+              : bf_out_table_array(out, &particle_series[PS_MASS], p->m, p->n,
+                                   err);
+}
+
+int bf_particles_output_row(const bf_particle_out *po, const bf_particles *p,
+                            int64_t step)
+{
+    int fail = 0;
+    if (po->step)
+        fail |= bf_series_append_i64(po->step, &step) != BF_OK;
+    if (po->x)
+        fail |= (bf_series_append(po->x, p->x) |
+                 bf_series_append(po->y, p->y)) != BF_OK;
+    if (po->vx)
+        fail |= (bf_series_append(po->vx, p->vx) |
+                 bf_series_append(po->vy, p->vy)) != BF_OK;
+    return fail;
+}
+
+/* the state's names are the datasets' without the leading slash */
+static const char *const names[4] = {P_X + 1, P_Y + 1, P_VX + 1, P_VY + 1};
 
 size_t bf_particles_state_vars(bf_particles *p, bf_state_var *vars,
                                size_t cap)
