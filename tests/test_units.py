@@ -113,7 +113,35 @@ def main(prog, work):
                           f"'{shown}'", row.strip())
     for p in sorted(set(docs) - written):
         check(False, f"docs/output.md: {p} is written by a run")
+    check_sweep_summary(prog, work)
     return CK.done()
+
+
+def check_sweep_summary(prog, work):
+    """A sweep's summary.h5: every unit parses, and /params keeps the unit
+    of each swept key (g for a mass, cm for a position) in column_units,
+    with unit "1" since the two differ."""
+    out = os.path.join(work, "sweep")
+    r = subprocess.run([prog, "sweep", os.path.join(ROOT, "runs",
+                                                    "two_balls_B.ini"),
+                        "--vary", "ball.1.mass=0.8:1.2:2",
+                        "--vary", "ball.2.position=0.6:0.7:2",
+                        "--set", "scene.t_end=0.2", "-o", out],
+                       capture_output=True, text=True)
+    if not check(r.returncode == 0, "sweep: the run", r.stderr[-400:]):
+        return
+    with h5py.File(os.path.join(out, "summary.h5"), "r") as f:
+        for n, d in f.items():
+            if isinstance(d, h5py.Dataset):
+                unit = text(d.attrs.get("unit", ""))
+                check(parses(unit) and unit != "",
+                      f"sweep summary: /{n}: unit '{unit}' parses")
+        a = f["params"].attrs
+        check(text(a.get("column_units", "")) == "g; cm" and
+              text(a.get("unit", "")) == "1",
+              "sweep summary: /params keeps the swept keys' units",
+              f"unit {a.get('unit')!r}, column_units "
+              f"{a.get('column_units')!r}")
 
 
 if __name__ == "__main__":

@@ -503,6 +503,48 @@ bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
 
 /* --------------------------------------------------------------- summary */
 
+/* The units of the swept keys, as the resolved scene records them. */
+typedef struct axis_units {
+    const bf_sweep *sw;
+    char unit[BF_SWEEP_MAX_VARY][32];
+} axis_units;
+
+static int note_axis_unit(void *ctx, const char *name, const char *value,
+                          const char *unit, int is_default)
+{
+    (void)value;
+    (void)is_default;
+    axis_units *u = ctx;
+    for (size_t a = 0; a < u->sw->naxis; a++)
+        if (!strcmp(name, u->sw->axis[a].key))
+            snprintf(u->unit[a], sizeof u->unit[a], "%s", unit ? unit : "");
+    return 0;
+}
+
+/* The unit of /params and its column_units ("cm; g"): the one unit of a
+ * one-key sweep, or "1" with a unit per column when the keys differ, as
+ * every dataset whose columns differ in unit (series.h). */
+static void params_units(const bf_sweep *sw, char *unit, size_t ucap,
+                         char *cols, size_t ccap)
+{
+    axis_units u = {.sw = sw};
+    bf_scene *probe = bf_scene_clone(sw->base);
+    bf_err ignore = {0};
+    if (probe && !bf_catalog_resolve(bf_catalog_builtin(), probe, &ignore))
+        bf_scene_visit(probe, note_axis_unit, &u);
+    bf_scene_free(probe);
+    int same = 1;
+    cols[0] = '\0';
+    for (size_t a = 0; a < sw->naxis; a++) {
+        if (!u.unit[a][0])
+            snprintf(u.unit[a], sizeof u.unit[a], "1");
+        same &= !strcmp(u.unit[a], u.unit[0]);
+        size_t used = strlen(cols);
+        snprintf(cols + used, ccap - used, "%s%s", a ? "; " : "", u.unit[a]);
+    }
+    snprintf(unit, ucap, "%s", same && sw->naxis ? u.unit[0] : "1");
+}
+
 bf_status bf_sweep_write_summary(const bf_sweep *sw, const bf_sweep_row *rows,
                                  bf_err *err)
 {
@@ -543,8 +585,13 @@ bf_status bf_sweep_write_summary(const bf_sweep *sw, const bf_sweep_row *rows,
     for (size_t k = 0; k < n; k++)
         for (size_t a = 0; a < na; a++)
             params[k * na + a] = rows[k].values[a];
-    st = bf_out_array(o, "/params", params, n, na, "",
-                      "varied parameter values, one column per --vary", err);
+    char unit[32], col_units[BF_SWEEP_MAX_VARY * 34];
+    params_units(sw, unit, sizeof unit, col_units, sizeof col_units);
+    st = bf_out_array(o, "/params", params, n, na, unit,
+                      "varied parameter values, one column per --vary "
+                      "(attribute keys; units in column_units)", err);
+    if (!st)
+        st = bf_out_attr_str(o, "/params", "column_units", col_units, err);
     char keys[4096] = "";
     for (size_t a = 0; a < na; a++) {
         strncat(keys, sw->axis[a].key, sizeof keys - strlen(keys) - 2);
@@ -562,7 +609,7 @@ bf_status bf_sweep_write_summary(const bf_sweep *sw, const bf_sweep_row *rows,
         st = bf_out_array(o, name, col, n, 0, unit, doc, err);                 \
     }
     COLUMN(wall, "/wall", "s", "wall time of the case")
-    COLUMN(lyapunov, "/lyapunov", "1/s", "largest Lyapunov exponent (NaN: "
+    COLUMN(lyapunov, "/lyapunov", "s-1", "largest Lyapunov exponent (NaN: "
                                          "not measured)")
     COLUMN(map_points, "/return_map_points", "1", "number of return-map points")
     COLUMN(map_fill, "/return_map_fill", "1",
