@@ -120,6 +120,7 @@ int main(int argc, char **argv)
         return bf_cmd_animate(argc - 1, argv + 1);
     if (!strcmp(cmd, "info"))
         return bf_cmd_info(argc - 1, argv + 1);
+    if (!strcmp(cmd, "export")) return bf_cmd_export(argc - 1, argv + 1);
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
         usage(stdout);
         printf("\n");
