@@ -21,6 +21,7 @@ BUILD_PKGS := gcc make pkg-config libsundials-dev libgsl-dev libhdf5-dev \
 PLOT_PKGS  := python3-numpy python3-matplotlib python3-h5py
 MOVIE_PKGS := ffmpeg python3-pil
 XDMF_PKGS  := paraview
+EXPORT_PKGS := python3-mdanalysis python3-ase
 PY         := /usr/bin/python3
 
 # ---------------------------------------------------------------- flags
@@ -104,6 +105,7 @@ RUNNER    := $(BUILD)/tests/runner
         multirate fig-g72-ex1 \
         fig-g72-ex1-ensemble fig-g72-ex2 fig-g72-large fig-g73-hex \
         fig-g73-wall movies deps-movies deps-xdmf test-movies test-xdmf \
+        deps-export test-export \
         shared install uninstall man deps-install test-install test-examples \
         test-python deps-python test-pip deps-pip test-notebooks \
         deps-notebooks
@@ -324,6 +326,9 @@ deps-movies:
 
 deps-xdmf:
 	$(call need_pkgs,$(PLOT_PKGS) $(XDMF_PKGS))
+
+deps-export:
+	$(call need_pkgs,$(PLOT_PKGS) $(EXPORT_PKGS))
 
 # ---------------------------------------------------------------- main job
 run:
@@ -753,6 +758,7 @@ test:
 	@$(MAKE) --no-print-directory test-run
 	@$(MAKE) --no-print-directory test-movies
 	@$(MAKE) --no-print-directory test-xdmf
+	@$(MAKE) --no-print-directory test-export
 	@$(MAKE) --no-print-directory test-install
 	@$(MAKE) --no-print-directory test-examples
 	@$(MAKE) --no-print-directory test-python
@@ -775,6 +781,12 @@ test-movies: $(PROG) | deps-movies
 
 test-xdmf: $(PROG) | deps-xdmf
 	$(PY) tests/test_xdmf.py $(PROG) build/test-xdmf
+
+# `ballfilm export`: H5MD read with h5py and MDAnalysis, extended XYZ read
+# with ASE, against the runs' files, and its refusals (tests/
+# test_export.py); MDAnalysis and ASE are installed when run as root.
+test-export: $(PROG) | deps-export
+	$(PY) tests/test_export.py $(PROG) $(BUILD)/test-export
 
 # The library as its users get it (docs/library.md): make install into a
 # fresh temporary prefix, an example compiled with pkg-config alone
