@@ -64,6 +64,9 @@ typedef struct xw {
 } xw;
 
 static dset dset_read(const xw *x, const char *path);
+/* 1 (and the sidecar fails) once what was written, and extra bytes more,
+ * exceed the budget. */
+static int over_budget(const xw *x, double extra);
 static char *whole_line(const xw *x, const char *path, const dset *d);
 
 static dset dset_of(const xw *x, const char *path)
@@ -315,6 +318,9 @@ static void point_set(const xw *x, const char *px, const char *py, size_t k,
 {
     dset a = dset_of(x, px);
     const size_t n = a.n1;
+    /* values written inline: checked before, not found after */
+    if (over_budget(x, (double)n * (py ? 8.0 : 6.0)))
+        return;
     double *vx = read_row(x, px, k, n), *vy = py ? read_row(x, py, k, n)
                                                   : NULL;
     if (!vx || (py && !vy)) {
@@ -366,10 +372,10 @@ static void point_set(const xw *x, const char *px, const char *py, size_t k,
 enum { GRID_BYTES_MIN = 200 };
 
 /* 1 (and the sidecar fails) once what was written exceeds the budget. */
-static int over_budget(const xw *x)
+static int over_budget(const xw *x, double extra)
 {
     off_t at = ftello(x->f); /* -1 on a pipe, which fills no disk */
-    if (at < 0 || (double)at <= x->budget)
+    if (at < 0 || (double)at + extra <= x->budget)
         return 0;
     return failed(x, bf_fail(x->fail->err, BF_EINPUT, "%s: its sidecar "
                              "would be larger than %.0f bytes, the most one "
@@ -410,7 +416,7 @@ static void collection(const xw *x, const char *name, const double *times,
     for (size_t k = 0, g = 0; k < rows; k += s, g++) {
         if (k + s >= rows)
             k = rows - 1;
-        if (stopped(x) || (!(g & 63) && over_budget(x)))
+        if (stopped(x) || (!(g & 63) && over_budget(x, 0)))
             return;
         fprintf(x->f, "      <Grid Name=\"%s\" GridType=\"Uniform\">\n"
                       "        <Time Value=\"%.17g\"/>\n", name, times[k]);
@@ -556,6 +562,8 @@ typedef struct mac_mesh {
 static void mac_grid(const xw *x, size_t k, const void *ctx, int depth)
 {
     const mac_mesh *m = ctx;
+    if (over_budget(x, 4.0 * (double)m->ni1 * (double)m->nj1))
+        return;
     indent(x, depth);
     fprintf(x->f, "<Topology TopologyType=\"2DSMesh\" Dimensions=\"%zu "
                   "%zu\"/>\n", m->ni1, m->nj1);
