@@ -22,6 +22,7 @@ PLOT_PKGS  := python3-numpy python3-matplotlib python3-h5py
 MOVIE_PKGS := ffmpeg python3-pil
 XDMF_PKGS  := paraview
 UNITS_PKGS := udunits-bin
+EXPORT_PKGS := python3-mdanalysis python3-ase
 PY         := /usr/bin/python3
 
 # ---------------------------------------------------------------- flags
@@ -105,6 +106,7 @@ RUNNER    := $(BUILD)/tests/runner
         multirate fig-g72-ex1 \
         fig-g72-ex1-ensemble fig-g72-ex2 fig-g72-large fig-g73-hex \
         fig-g73-wall movies deps-movies deps-xdmf test-movies test-xdmf deps-units test-units \
+        deps-export test-export \
         shared install uninstall man deps-install test-install test-examples \
         test-python deps-python test-pip deps-pip test-notebooks \
         deps-notebooks test-cli-docs deps-cli-docs
@@ -332,6 +334,9 @@ deps-xdmf:
 
 deps-units:
 	$(call need_pkgs,$(PLOT_PKGS) $(UNITS_PKGS))
+
+deps-export:
+	$(call need_pkgs,$(PLOT_PKGS) $(EXPORT_PKGS))
 
 # ---------------------------------------------------------------- main job
 run:
@@ -762,6 +767,7 @@ test:
 	@$(MAKE) --no-print-directory test-movies
 	@$(MAKE) --no-print-directory test-xdmf
 	@$(MAKE) --no-print-directory test-units
+	@$(MAKE) --no-print-directory test-export
 	@$(MAKE) --no-print-directory test-install
 	@$(MAKE) --no-print-directory test-examples
 	@$(MAKE) --no-print-directory test-python
@@ -790,6 +796,12 @@ test-xdmf: $(PROG) | deps-xdmf
 # docs/output.md documents every dataset with its unit.
 test-units: $(PROG) | deps-units
 	$(PY) tests/test_units.py $(PROG) build/test-units
+
+# `ballfilm export`: H5MD read with h5py and MDAnalysis, extended XYZ read
+# with ASE, against the runs' files, and its refusals (tests/
+# test_export.py); MDAnalysis and ASE are installed when run as root.
+test-export: $(PROG) | deps-export
+	$(PY) tests/test_export.py $(PROG) $(BUILD)/test-export
 
 # The library as its users get it (docs/library.md): make install into a
 # fresh temporary prefix, an example compiled with pkg-config alone

@@ -16,7 +16,7 @@ import re
 import subprocess
 import sys
 
-COMMANDS = ["run", "sweep", "converge", "xdmf", "animate", "info"]
+COMMANDS = ["run", "sweep", "converge", "xdmf", "animate", "info", "export"]
 SECTIONS = ["NAME", "SYNOPSIS", "DESCRIPTION", "OPTIONS", "SCENE KEYS",
             "EXIT STATUS", "ENVIRONMENT", "FILES", "EXAMPLES"]
 problems = []

@@ -1,13 +1,17 @@
 #!/usr/bin/python3
-"""test_xdmf.py: the XDMF sidecars open in ParaView.
+"""test_xdmf.py: the XDMF sidecars open in ParaView, with either reader.
 
-Short film, balls, Greenspan and MAC runs write OUT.xmf beside OUT.h5
-(ballfilm run does it at the end of every run).  ParaView's XDMF Reader
-(pvpython, Debian's paraview package, through xdmf_probe.py) must see,
-for every block, the number of points, cells and time steps the HDF5
-file implies (read here with h5py) and one array's range equal to that
-of the dataset row.  Also: `ballfilm xdmf -o` into another folder names
-the HDF5 file relatively, and --max-steps thins the time steps.
+Short film, balls, coupled, Greenspan 1972 and 1973 and MAC runs write
+OUT.xmf beside OUT.h5 (ballfilm run does it at the end of every run).
+Both of ParaView's readers (pvpython, Debian's paraview package, through
+xdmf_probe.py): OpenDataFile, what File > Open does (the Xdmf3 reader),
+and the legacy XDMF Reader, must load every block at every time step the
+HDF5 file implies (read here with h5py), with the number of points and
+cells, the sums of the point coordinates and each array's minimum,
+maximum and sum equal to those of the dataset row of that time (the
+coupled run's film: the last profile at or before it).  Also: `ballfilm
+xdmf -o` into another folder names the HDF5 file relatively, and
+--max-steps thins the time steps.
 
 usage: test_xdmf.py BIN/ballfilm WORKDIR   (make test-xdmf)
 Ends with 'xdmf: N passed, N failed'; exit 1 on a failure."""
@@ -30,18 +34,25 @@ RUNS = {
     "film": ("runs/kink_steady.ini", ["scene.t_end=1",
                                       "scene.output_every=0.1 s",
                                       "film.profile_every=0.1 s"]),
-    "balls": ("runs/two_balls_B.ini", ["scene.t_end=1"]),
+    "balls": ("runs/two_balls_B.ini", ["scene.t_end=0.5",
+                                       "scene.output_every=200"]),
+    "coupled": ("runs/coupled_fig8.ini", ["scene.t_end=0.03",
+                                          "scene.output_every=100",
+                                          "film.profile_every=0.004 s"]),
     "greenspan72": ("runs/greenspan72_ex2.ini", ["scene.t_end=1",
                                                  "scene.output_every=5"]),
+    "greenspan73": ("runs/greenspan73_wall_friction.ini",
+                    ["scene.output_every=10"]),
     "mac": ("runs/stratres.ini", ["scene.t_end=1", "scene.output_every=2"]),
 }
+READERS = ("open", "legacy")
 
 CK = Checks("xdmf")
 check = CK.check
 
 
-def probe(xmf):
-    r = run(["pvpython", os.path.join(HERE, "xdmf_probe.py"), xmf])
+def probe(reader, xmf):
+    r = run(["pvpython", os.path.join(HERE, "xdmf_probe.py"), reader, xmf])
     for line in r.stdout.splitlines():
         if line.startswith("XDMF-PROBE "):
             return json.loads(line[len("XDMF-PROBE "):])
@@ -49,71 +60,116 @@ def probe(xmf):
     return None
 
 
-def block(seen, name):
-    """The block of that name (a file of one grid comes back unnamed)."""
-    blocks = seen["blocks"]
-    for k, v in blocks.items():
-        if k.split("@")[0] == name:
-            return v
-    if len(blocks) == 1 and next(iter(blocks)).startswith("@"):
-        return next(iter(blocks.values()))
-    return None
+def stats(a):
+    a = np.asarray(a, dtype=float)
+    return [float(a.min()), float(a.max()), float(a.sum())]
 
 
-def rng(a):
-    return [float(np.min(a)), float(np.max(a))]
+def points(x, y=None):
+    return {"points": len(x), "x": float(np.sum(x)),
+            "y": float(np.sum(y)) if y is not None else 0.0}
 
 
 def expect(h5):
-    """{block: (points, cells, array, range at the last row)}, times."""
+    """The times, and for each time {block: (points, cells, x sum, y sum,
+    {array: [min, max, sum]})} from the HDF5 file."""
     with h5py.File(h5, "r") as f:
-        if "/film/psi" in f:
-            n = f["/film/x"].shape[0]
-            return {"film": (n, n - 1, "psi", rng(f["/film/psi"][-1]))}, \
-                f["/film/time"].shape[0]
-        if "/particles/x" in f:
-            n = f["/particles/x"].shape[1]
-            return {"particles": (n, n, "vx",
-                                  rng(f["/particles/vx"][-1]))}, \
-                f["/particles/step"].shape[0]
-        if "/mac/p" in f:
-            ni, nj = (int(v) for v in f["/mac/grid"][:2])
-            slots = f["/mac/particles/x"].shape[1]
-            return {"mac_cells": ((ni + 1) * (nj + 1), ni * nj, "p",
-                                  rng(f["/mac/p"][-1])),
-                    "mac_u": ((ni + 1) * nj, ni * (nj - 1), "u",
-                              rng(f["/mac/u"][-1])),
-                    "mac_v": (ni * (nj + 1), (ni - 1) * nj, "v",
-                              rng(f["/mac/v"][-1])),
-                    "mac_markers": (slots, slots, "density",
-                                    rng(f["/mac/particles/density"][-1]))}, \
-                f["/time"].shape[0]
-        n = f["/balls/position"].shape[1]
-        return {"balls": (n, n, "velocity",
-                          rng(f["/balls/velocity"][-1]))}, f["/time"].shape[0]
+        g = lambda p: f[p][()]
+        if "/balls/position" in f:
+            times = g("/time")
+        elif "/particles/step" in f:
+            times = g("/particles/step") * f.attrs["scene.dt"]
+        elif "/film/psi" in f:
+            times = g("/film/time")
+        else:
+            times = g("/time")
+        steps = []
+        for k, t in enumerate(times):
+            b = {}
+            if "/film/psi" in f:
+                ft = g("/film/time")
+                j = int(np.searchsorted(ft, t + 1e-9 * abs(t), "right")) - 1
+                j = max(j, 0)
+                n = f["/film/x"].shape[0]
+                b["film"] = dict(points(g("/film/x")), cells=n - 1, y=0.0,
+                                 arrays={a: stats(f["/film/" + a][j])
+                                         for a in ("psi", "h", "u_d", "u_c")})
+            if "/balls/position" in f:
+                x = f["/balls/position"][k]
+                b["balls"] = dict(points(x), cells=len(x), arrays={
+                    "velocity": stats(f["/balls/velocity"][k]),
+                    "mass": stats(g("/balls/mass")),
+                    "radius": stats(g("/balls/radius"))})
+            if "/particles/x" in f:
+                x, y = f["/particles/x"][k], f["/particles/y"][k]
+                arr = {"vx": stats(f["/particles/vx"][k]),
+                       "vy": stats(f["/particles/vy"][k]),
+                       "mass": stats(g("/particles/mass"))}
+                for name, p in (("fluid", "tag"), ("inertia", "inertia"),
+                                ("fixed", "fixed"), ("gravity", "gravity")):
+                    if "/particles/" + p in f:
+                        arr[name] = stats(g("/particles/" + p))
+                b["particles"] = dict(points(x, y), cells=len(x), arrays=arr)
+            if "/mac/p" in f:
+                ni, nj, dx, dy = (float(v) for v in f["/mac/grid"][:4])
+                ni, nj = int(ni), int(nj)
+
+                def mesh(n1, n2, ox, oy):
+                    i, j = np.meshgrid(np.arange(n1), np.arange(n2),
+                                       indexing="ij")
+                    return points(((i + ox) * dx).ravel(),
+                                  ((j + oy) * dy).ravel())
+                b["mac_cells"] = dict(mesh(ni + 1, nj + 1, -1, -1),
+                                      cells=ni * nj, arrays={
+                                          a: stats(f["/mac/" + a][k])
+                                          for a in ("p", "rho", "T",
+                                                    "flags")})
+                b["mac_u"] = dict(mesh(ni + 1, nj, -1, -0.5),
+                                  cells=ni * (nj - 1),
+                                  arrays={"u": stats(f["/mac/u"][k])})
+                b["mac_v"] = dict(mesh(ni, nj + 1, -0.5, -1),
+                                  cells=(ni - 1) * nj,
+                                  arrays={"v": stats(f["/mac/v"][k])})
+                mx, my = f["/mac/particles/x"][k], f["/mac/particles/y"][k]
+                b["mac_markers"] = dict(points(mx, my), cells=len(mx), arrays={
+                    "density": stats(f["/mac/particles/density"][k]),
+                    "flag": stats(f["/mac/particles/flag"][k])})
+            steps.append(b)
+        return [float(t) for t in times], steps
+
+
+def close(a, b):
+    return np.allclose(a, b, rtol=1e-9, atol=1e-12)
 
 
 def compare(name, xmf, h5):
-    seen = probe(xmf)
-    check(seen is not None, "%s: pvpython reads %s" % (name, xmf))
-    if seen is None:
-        return
-    want, ntimes = expect(h5)
-    check(len(seen["times"]) == ntimes, "%s: %d time steps" % (name, ntimes),
-          "ParaView sees %d" % len(seen["times"]))
-    for b, (pts, cells, arr, r) in want.items():
-        got = block(seen, b)
-        if got is None:
-            check(False, "%s: block %s" % (name, b), "not in %s"
-                  % sorted(seen["blocks"]))
+    times, want = expect(h5)
+    for reader in READERS:
+        seen = probe(reader, xmf)
+        tag = "%s (%s)" % (name, reader)
+        check(seen is not None, "%s: pvpython reads %s" % (tag, xmf))
+        if seen is None:
             continue
-        check(got["points"] == pts and got["cells"] == cells,
-              "%s: %s has %d points, %d cells" % (name, b, pts, cells),
-              "ParaView sees %d, %d" % (got["points"], got["cells"]))
-        g = got["arrays"].get(arr)
-        check(g is not None and np.allclose(g, r, rtol=1e-12, atol=0),
-              "%s: %s range of %s at the last step = h5py's %s"
-              % (name, b, arr, r), "ParaView: %s" % g)
+        check(close(seen["times"], times) if len(seen["times"]) ==
+              len(times) else False, "%s: %d time steps, those of the file"
+              % (tag, len(times)), "ParaView sees %d" % len(seen["times"]))
+        bad = []
+        for k, (got, exp) in enumerate(zip(seen["steps"], want)):
+            for b, e in exp.items():
+                g = got.get(b)
+                if g is None:
+                    bad.append("t=%g: no block %s" % (times[k], b))
+                    continue
+                if (g["points"], g["cells"]) != (e["points"], e["cells"]) \
+                        or not close([g["x"], g["y"]], [e["x"], e["y"]]):
+                    bad.append("t=%g %s: points %s" % (times[k], b, g))
+                for a, v in e["arrays"].items():
+                    if a not in g["arrays"] or not close(g["arrays"][a], v):
+                        bad.append("t=%g %s.%s: %s, h5py %s" % (
+                            times[k], b, a, g["arrays"].get(a), v))
+        check(not bad and len(seen["steps"]) == len(want),
+              "%s: every block with its arrays, the file's values, at every "
+              "time step" % tag, "; ".join(bad[:5]))
 
 
 def main(prog, work):

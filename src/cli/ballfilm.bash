@@ -58,7 +58,7 @@ _ballfilm()
             COMPREPLY=($(compgen -W "-h --help -V --version" -- "$cur"))
         else
             COMPREPLY=($(compgen -W "run sweep converge xdmf animate info
-                                     help version" -- "$cur"))
+                                     export help version" -- "$cur"))
         fi
         return 0
     fi
@@ -98,7 +98,7 @@ _ballfilm()
         run | sweep | converge)
             COMPREPLY=($(compgen -f -X '!*.ini' -- "$cur")
                        $(compgen -d -- "$cur")) ;;
-        xdmf | animate | info)
+        xdmf | animate | info | export)
             COMPREPLY=($(compgen -f -X '!*.h5*' -- "$cur")
                        $(compgen -d -- "$cur")) ;;
     esac

@@ -16,6 +16,7 @@ int bf_cmd_converge(int argc, char **argv);
 int bf_cmd_xdmf(int argc, char **argv);
 int bf_cmd_animate(int argc, char **argv);
 int bf_cmd_info(int argc, char **argv);
+int bf_cmd_export(int argc, char **argv);
 /* Write OUT.xmf beside OUT.h5 after a run; a failure is a warning.
  * Returns the sidecar's status (6 when SIGINT/SIGTERM stopped it). */
 int bf_cli_write_xdmf(const char *h5_path);

@@ -39,6 +39,10 @@ static void usage(FILE *f)
             "  animate OUT.h5 [-o MOVIE.mp4] [--fps N] [--t0 T] [--t1 T]\n"
             "                     a movie of a run (see 'ballfilm animate "
             "--help')\n"
+            "  export OUT.h5 --format h5md|extxyz [-o FILE]\n"
+            "                     particles for MDAnalysis, VMD, OVITO, ASE "
+            "(see 'ballfilm\n"
+            "                     export --help')\n"
             "  info OUT.h5        what a run's file holds: scene, status, "
             "counters, energy\n"
             "                     error, every dataset with shape and unit\n"
@@ -195,6 +199,8 @@ int main(int argc, char **argv)
         return bf_cmd_animate(argc, argv);
     if (!strcmp(cmd, "info"))
         return bf_cmd_info(argc, argv);
+    if (!strcmp(cmd, "export"))
+        return bf_cmd_export(argc, argv);
     if (!strcmp(cmd, "help")) {
         usage(stdout);
         printf("\n");

@@ -1,12 +1,12 @@
 /* xdmf.c: the XDMF sidecar of an output file (see xdmf.h).
  *
- * XDMF 3 with HDF5 DataItems: a whole dataset is "FILE.h5:/path"; row k of
- * a [rows x n] series is a HyperSlab (start k 0, stride 1 1, count 1 n) of
- * it.  The structured meshes of the MAC grid are curvilinear (2DSMesh)
- * with their point coordinates written once, inline, and referenced from
- * every grid: the fields are stored with J (y) fastest, the transpose of
- * XDMF's rectilinear ordering, and explicit points put x and y where they
- * belong without copying a field.
+ * Written for both of ParaView's readers (Xdmf3, which File > Open picks,
+ * and the legacy XDMF reader): a whole dataset is "FILE.h5:/path"; row k
+ * of a [rows x n] series is one item both read (item_row); points are
+ * interleaved XY or XYZ written inline, since Xdmf3 crashes on X_Y
+ * geometry, on functions (JOIN) and on references shared by grids.  The
+ * MAC meshes are curvilinear (2DSMesh): the fields are stored with J (y)
+ * fastest, the transpose of XDMF's rectilinear ordering.
  */
 #include "io/xdmf.h"
 #include "io/xdmf_file.h"
@@ -64,6 +64,9 @@ typedef struct xw {
 } xw;
 
 static dset dset_read(const xw *x, const char *path);
+/* 1 (and the sidecar fails) once what was written, and extra bytes more,
+ * exceed the budget. */
+static int over_budget(const xw *x, double extra);
 static char *whole_line(const xw *x, const char *path, const dset *d);
 
 static dset dset_of(const xw *x, const char *path)
@@ -134,8 +137,11 @@ static dset dset_read(const xw *x, const char *path)
     return d;
 }
 
-/* A 1-D dataset (or its first n values) as doubles; NULL on failure. */
-static double *read_vec(const xw *x, const char *path, size_t n)
+/* The first n values of a 1-D dataset (rank 1), or row k of a [rows x n]
+ * series (rank 2), as doubles; NULL on failure.  The dataset was checked
+ * by dset_read: the rows read fit the file. */
+static double *read_part(const xw *x, const char *path, int rank, size_t k,
+                         size_t n)
 {
     double *v = malloc((n ? n : 1) * sizeof *v);
     hid_t id = v ? H5Dopen2(x->h5, path, H5P_DEFAULT) : -1;
@@ -144,9 +150,11 @@ static double *read_vec(const xw *x, const char *path, size_t n)
         return NULL;
     }
     hid_t fsp = H5Dget_space(id);
-    hsize_t start = 0, count = n;
-    H5Sselect_hyperslab(fsp, H5S_SELECT_SET, &start, NULL, &count, NULL);
-    hid_t msp = H5Screate_simple(1, &count, NULL);
+    hsize_t start[2] = {rank == 2 ? k : 0, 0}, count[2] = {1, n};
+    if (rank == 1)
+        count[0] = n;
+    H5Sselect_hyperslab(fsp, H5S_SELECT_SET, start, NULL, count, NULL);
+    hid_t msp = H5Screate_simple(rank, count, NULL);
     herr_t rc = n ? H5Dread(id, H5T_NATIVE_DOUBLE, msp, fsp, H5P_DEFAULT, v)
                   : 0;
     H5Sclose(msp);
@@ -158,6 +166,8 @@ static double *read_vec(const xw *x, const char *path, size_t n)
     }
     return v;
 }
+#define read_vec(x, path, n) read_part(x, path, 1, 0, n)
+#define read_row(x, path, k, n) read_part(x, path, 2, k, n)
 
 /* The sidecar of a long ball run has ~2000 grids of ~40 lines each:
  * constant text goes out with fputs/fwrite, not through printf's format
@@ -232,12 +242,17 @@ typedef struct shape {
     size_t d[3];
 } shape;
 
-/* Row k of a [rows x n] series, as 1 x n or shaped sh. */
+/* Row k of a [rows x n] series, as 1 x n or shaped sh.  One item that
+ * both of ParaView's readers read: the Xdmf3 reader (File > Open) takes
+ * its text, the dataset with its selection after '|' (start:stride:
+ * count:dimensions); the legacy XDMF reader takes Type="HyperSlab" and its
+ * two children (start, stride, count; the whole dataset).  An ItemType of
+ * HyperSlab would make Xdmf3 build an array of no type, which it skips. */
 static void item_row(const xw *x, const char *path, const dset *d, size_t k,
                      const shape *sh, int depth)
 {
     indent(x, depth);
-    fputs("<DataItem ItemType=\"HyperSlab\" Dimensions=\"", x->f);
+    fputs("<DataItem Type=\"HyperSlab\" Dimensions=\"", x->f);
     if (sh) {
         for (int r = 0; r < sh->rank; r++) {
             if (r)
@@ -248,9 +263,20 @@ static void item_row(const xw *x, const char *path, const dset *d, size_t k,
         fputs("1 ", x->f);
         put_size(x, d->n1);
     }
-    fputs("\" Type=\"HyperSlab\">\n", x->f);
+    fputs("\" ", x->f);
+    numtype(x, d->is_int);
+    fprintf(x->f, " Format=\"HDF\">%s:%s|", x->href, path);
+    put_size(x, k);
+    fputs(" 0:1 1:1 ", x->f);
+    put_size(x, d->n1);
+    fputc(':', x->f);
+    put_size(x, d->n0);
+    fputc(' ', x->f);
+    put_size(x, d->n1);
+    fputc('\n', x->f);
     indent(x, depth + 1);
-    fputs("<DataItem Dimensions=\"3 2\" Format=\"XML\">", x->f);
+    fputs("<DataItem Dimensions=\"3 2\" NumberType=\"Int\" Format=\"XML\">",
+          x->f);
     put_size(x, k);
     fputs(" 0 1 1 1 ", x->f);
     put_size(x, d->n1);
@@ -283,60 +309,60 @@ static void attribute(const xw *x, const char *name, const char *center,
     fputs("</Attribute>\n", x->f);
 }
 
-/* The 2-D vector (vx, vy, 0) of row k as a function of two series. */
-static void vector_attribute(const xw *x, const char *name, const char *px,
-                             const char *py, size_t k, int depth)
-{
-    dset a = dset_of(x, px), b = dset_of(x, py);
-    if (a.rank != 2 || b.rank != 2 || a.n1 != b.n1)
-        return;
-    indent(x, depth);
-    fprintf(x->f, "<Attribute Name=\"%s\" AttributeType=\"Vector\" "
-                  "Center=\"Node\">\n", name);
-    indent(x, depth + 1);
-    fprintf(x->f, "<DataItem ItemType=\"Function\" Function=\"JOIN($0, $1, "
-                  "0 * $0)\" Dimensions=\"%zu 3\">\n", a.n1);
-    item_row(x, px, &a, k, NULL, depth + 2);
-    item_row(x, py, &b, k, NULL, depth + 2);
-    indent(x, depth + 1);
-    fputs("</DataItem>\n", x->f);
-    indent(x, depth);
-    fputs("</Attribute>\n", x->f);
-}
-
-/* Points (x, y) of row k of two series, or x only (y = z = 0). */
+/* Points (x, y) of row k of two series, or x only (y = z = 0), as vertex
+ * cells.  The coordinates are written inline, interleaved (XY or XYZ):
+ * the Xdmf3 reader crashes on X_Y geometry and on functions, and leaves
+ * a Polyvertex without its connectivity with no cells. */
 static void point_set(const xw *x, const char *px, const char *py, size_t k,
                       int depth)
 {
     dset a = dset_of(x, px);
-    indent(x, depth);
-    fputs("<Topology TopologyType=\"Polyvertex\" NumberOfElements=\"", x->f);
-    put_size(x, a.n1);
-    fputs("\" NodesPerElement=\"1\"/>\n", x->f);
-    indent(x, depth);
-    fputs(py ? "<Geometry GeometryType=\"X_Y\">\n"
-             : "<Geometry GeometryType=\"X_Y_Z\">\n",
-          x->f);
-    item_row(x, px, &a, k, NULL, depth + 1);
-    if (py) {
-        dset b = dset_of(x, py);
-        item_row(x, py, &b, k, NULL, depth + 1);
-    } else {
-        for (int c = 0; c < 2; c++) {
-            indent(x, depth + 1);
-            fputs("<DataItem Dimensions=\"", x->f);
-            put_size(x, a.n1);
-            fputs("\" NumberType=\"Float\" Format=\"XML\">", x->f);
-            for (size_t i = 0; i < a.n1; i++) {
-                if (!(i & 0xffff) && stopped(x))
-                    return;
-                fputs(i ? " 0" : "0", x->f);
-            }
-            fputs("</DataItem>\n", x->f);
-        }
+    const size_t n = a.n1;
+    /* values written inline: checked before, not found after */
+    if (over_budget(x, (double)n * (py ? 8.0 : 6.0)))
+        return;
+    double *vx = read_row(x, px, k, n), *vy = py ? read_row(x, py, k, n)
+                                                  : NULL;
+    if (!vx || (py && !vy)) {
+        failed(x, bf_fail(x->fail->err, BF_EIO, "%s: cannot read row %zu of "
+                          "%s", x->h5name, k, py && vx ? py : px));
+        free(vx);
+        free(vy);
+        return;
     }
     indent(x, depth);
+    fputs("<Topology TopologyType=\"Polyvertex\" NumberOfElements=\"", x->f);
+    put_size(x, n);
+    fputs("\" NodesPerElement=\"1\">\n", x->f);
+    indent(x, depth + 1);
+    fputs("<DataItem Dimensions=\"", x->f);
+    put_size(x, n);
+    fputs("\" NumberType=\"Int\" Format=\"XML\">", x->f);
+    for (size_t i = 0; i < n && !(!(i & 0xffff) && stopped(x)); i++) {
+        if (i)
+            fputc(' ', x->f);
+        put_size(x, i);
+    }
+    fputs("</DataItem>\n", x->f);
+    indent(x, depth);
+    fputs("</Topology>\n", x->f);
+    indent(x, depth);
+    fputs(py ? "<Geometry GeometryType=\"XY\">\n"
+             : "<Geometry GeometryType=\"XYZ\">\n", x->f);
+    indent(x, depth + 1);
+    fprintf(x->f, "<DataItem Dimensions=\"%zu %d\" NumberType=\"Float\" "
+                  "Precision=\"8\" Format=\"XML\">", n, py ? 2 : 3);
+    for (size_t i = 0; i < n && !(!(i & 0xffff) && stopped(x)); i++) {
+        if (py)
+            fprintf(x->f, "%s%.17g %.17g", i ? " " : "", vx[i], vy[i]);
+        else
+            fprintf(x->f, "%s%.17g 0 0", i ? " " : "", vx[i]);
+    }
+    fputs("</DataItem>\n", x->f);
+    indent(x, depth);
     fputs("</Geometry>\n", x->f);
+    free(vx);
+    free(vy);
 }
 
 /* ---------------------------------------------------------- collections */
@@ -346,10 +372,10 @@ static void point_set(const xw *x, const char *px, const char *py, size_t k,
 enum { GRID_BYTES_MIN = 200 };
 
 /* 1 (and the sidecar fails) once what was written exceeds the budget. */
-static int over_budget(const xw *x)
+static int over_budget(const xw *x, double extra)
 {
     off_t at = ftello(x->f); /* -1 on a pipe, which fills no disk */
-    if (at < 0 || (double)at <= x->budget)
+    if (at < 0 || (double)at + extra <= x->budget)
         return 0;
     return failed(x, bf_fail(x->fail->err, BF_EINPUT, "%s: its sidecar "
                              "would be larger than %.0f bytes, the most one "
@@ -390,7 +416,7 @@ static void collection(const xw *x, const char *name, const double *times,
     for (size_t k = 0, g = 0; k < rows; k += s, g++) {
         if (k + s >= rows)
             k = rows - 1;
-        if (stopped(x) || (!(g & 63) && over_budget(x)))
+        if (stopped(x) || (!(g & 63) && over_budget(x, 0)))
             return;
         fprintf(x->f, "      <Grid Name=\"%s\" GridType=\"Uniform\">\n"
                       "        <Time Value=\"%.17g\"/>\n", name, times[k]);
@@ -449,10 +475,21 @@ static bf_status timed(const xw *x, const char *name, const char *tpath,
 
 /* ---------------------------------------------------------------- film */
 
+/* The film's nodes (n, x_0, dx) and, when the film is written at the
+ * times of another series (the coupled model's /time), the profile row
+ * of each of its rows. */
+typedef struct film_ctx {
+    double xs[3];
+    const size_t *row;
+} film_ctx;
+
 static void film_grid(const xw *x, size_t k, const void *ctx, int depth)
 {
     /* a line of n points along x: XDMF orders dimensions Z Y X */
-    const double *xs = ctx; /* n, x_0, dx */
+    const film_ctx *fc = ctx;
+    const double *xs = fc->xs;
+    if (fc->row)
+        k = fc->row[k];
     const shape line = {3, {1, 1, (size_t)xs[0]}};
     indent(x, depth);
     fprintf(x->f, "<Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"1 1 "
@@ -492,7 +529,6 @@ static void particles_grid(const xw *x, size_t k, const void *ctx,
 {
     const char *const *p = ctx; /* x, y, vx, vy */
     point_set(x, p[0], p[1], k, depth);
-    vector_attribute(x, "velocity", p[2], p[3], k, depth);
     attribute(x, "vx", "Node", p[2], k, NULL, depth);
     attribute(x, "vy", "Node", p[3], k, NULL, depth);
     static const char *const f[][2] = {
@@ -523,39 +559,31 @@ typedef struct mac_mesh {
     const char *const *fields; /* name, path pairs, NULL-terminated */
 } mac_mesh;
 
-static void mac_coordinates(const xw *x, const mac_mesh *m)
-{
-    for (int c = 0; c < 2 && !stopped(x) && !over_budget(x); c++) {
-        fprintf(x->f, "    <DataItem Name=\"%s_%c\" Dimensions=\"%zu %zu\" "
-                      "NumberType=\"Float\" Precision=\"8\" Format=\"XML\">\n",
-                m->name, "xy"[c], m->ni1, m->nj1);
-        for (size_t i = 0; i < m->ni1; i++) {
-            if (stopped(x) || over_budget(x))
-                return;
-            fputs("     ", x->f);
-            for (size_t j = 0; j < m->nj1; j++)
-                fprintf(x->f, " %.17g",
-                        c ? ((double)j + m->oy) * m->dy
-                          : ((double)i + m->ox) * m->dx);
-            fputs("\n", x->f);
-        }
-        fputs("    </DataItem>\n", x->f);
-    }
-}
-
 static void mac_grid(const xw *x, size_t k, const void *ctx, int depth)
 {
     const mac_mesh *m = ctx;
+    if (over_budget(x, 4.0 * (double)m->ni1 * (double)m->nj1))
+        return;
     indent(x, depth);
     fprintf(x->f, "<Topology TopologyType=\"2DSMesh\" Dimensions=\"%zu "
                   "%zu\"/>\n", m->ni1, m->nj1);
+    /* the points (x, y) interleaved, in every grid: the Xdmf3 reader
+     * crashes on X_Y geometry and on a reference to one DataItem from
+     * several grids */
     indent(x, depth);
-    fputs("<Geometry GeometryType=\"X_Y\">\n", x->f);
-    for (int c = 0; c < 2; c++) {
+    fputs("<Geometry GeometryType=\"XY\">\n", x->f);
+    indent(x, depth + 1);
+    fprintf(x->f, "<DataItem Dimensions=\"%zu %zu 2\" NumberType=\"Float\" "
+                  "Precision=\"8\" Format=\"XML\">\n", m->ni1, m->nj1);
+    for (size_t i = 0; i < m->ni1 && !stopped(x); i++) {
         indent(x, depth + 1);
-        fprintf(x->f, "<DataItem Reference=\"XML\">/Xdmf/Domain/DataItem"
-                      "[@Name=\"%s_%c\"]</DataItem>\n", m->name, "xy"[c]);
+        const double xi = ((double)i + m->ox) * m->dx;
+        for (size_t j = 0; j < m->nj1; j++)
+            fprintf(x->f, " %.17g %.17g", xi, ((double)j + m->oy) * m->dy);
+        fputc('\n', x->f);
     }
+    indent(x, depth + 1);
+    fputs("</DataItem>\n", x->f);
     indent(x, depth);
     fputs("</Geometry>\n", x->f);
     /* the shape of the values: points, or the cells between them */
@@ -584,9 +612,13 @@ static bf_status write_mac(const xw *x, bf_err *err)
     const double gi = grid[0], gj = grid[1], dx = grid[2], dy = grid[3];
     free(grid);
     /* the cells the fields hold: ni nj of /mac/p, and the points of the
-     * meshes written inline, 2 (ni + 1) (nj + 1) of each of three, at two
-     * bytes at least each */
-    const double cells = gi * gj, points = 6.0 * (gi + 1.0) * (gj + 1.0);
+     * meshes written inline in every grid, 2 (ni + 1) (nj + 1) of each of
+     * three, at two bytes at least each */
+    double grids = (double)dset_of(x, "/time").n0;
+    if (x->max_steps && grids > (double)x->max_steps)
+        grids = (double)x->max_steps;
+    const double cells = gi * gj,
+                 points = 6.0 * (gi + 1.0) * (gj + 1.0) * grids;
     if (!(gi >= 1 && gj >= 1 && gi == floor(gi) && gj == floor(gj) &&
           cells == (double)dset_of(x, "/mac/p").n1 && isfinite(dx) &&
           isfinite(dy) &&
@@ -597,9 +629,10 @@ static bf_status write_mac(const xw *x, bf_err *err)
                        "row)", x->h5name, gi, gj, dx, dy,
                        dset_of(x, "/mac/p").n1);
     if (2.0 * points > x->budget)
-        return bf_fail(err, BF_EINPUT, "%s: /mac/grid's %g x %g cells make a "
-                       "sidecar larger than %.0f bytes, the most one of a "
-                       "file of %.0f bytes may take", x->h5name, gi, gj,
+        return bf_fail(err, BF_EINPUT, "%s: /mac/grid's %g x %g cells in "
+                       "%.0f grids make a sidecar larger than %.0f bytes, the "
+                       "most one of a file of %.0f bytes may take "
+                       "(--max-steps thins it)", x->h5name, gi, gj, grids,
                        x->budget, x->bytes);
     const size_t ni = (size_t)gi, nj = (size_t)gj;
     /* cell (I,J), I, J from 1, covers [(I-2)dx, (I-1)dx) x [(J-2)dy, ...) */
@@ -617,10 +650,6 @@ static bf_status write_mac(const xw *x, bf_err *err)
         {"/mac/p", "/mac/rho", "/mac/T", "/mac/flags", NULL},
         {"/mac/u", NULL},
         {"/mac/v", NULL}};
-    for (int m = 0; m < 3; m++)
-        mac_coordinates(x, &mesh[m]);
-    if (x->fail->st)
-        return x->fail->st;
     for (int m = 0; m < 3; m++) {
         bf_status st = timed(x, mesh[m].name, "/time", NULL, series[m],
                              mac_grid, &mesh[m], err);
@@ -697,6 +726,48 @@ static bf_status film_nodes(const xw *x, const dset *fx, double xs[3],
     return BF_OK;
 }
 
+/* The film of a coupled run at the times of the balls (/time): each grid
+ * holds the last profile row at or before its time, so that both blocks
+ * are there at every time step (profiles are fewer than rows). */
+static bf_status film_at_times(const xw *x, const char *const *film,
+                               film_ctx *fc, bf_err *err)
+{
+    const char *need[7] = {"/film/time"};
+    for (int k = 0; film[k] && k < 5; k++)
+        need[k + 1] = film[k];
+    const char *const balls[] = {"/time", "/balls/position", NULL};
+    const size_t nf = min_rows(x, need), nt = min_rows(x, balls);
+    if (x->fail->st)
+        return x->fail->st;
+    if (dset_of(x, "/time").rank != 1 || dset_of(x, "/film/time").rank != 1)
+        return bf_fail(err, BF_EINPUT, "%s: /time or /film/time is not a "
+                       "list of times (rank 1)", x->h5name);
+    if (!nf || !nt)
+        return BF_OK;
+    double *tf = read_vec(x, "/film/time", nf), *t = read_vec(x, "/time", nt);
+    size_t *row = malloc(nt * sizeof *row);
+    bf_status st = BF_OK;
+    if (!tf || !t || !row) {
+        st = bf_fail(err, BF_EIO, "cannot read the times of the film");
+    } else {
+        /* a profile within a millionth of a step of a row is at its time */
+        const double eps = 1e-6 * fabs(x->dt);
+        for (size_t k = 0, j = 0; k < nt; k++) {
+            while (j + 1 < nf && tf[j + 1] <= t[k] + eps)
+                j++;
+            row[k] = j;
+        }
+        fc->row = row;
+        collection(x, "film", t, nt, film_grid, fc);
+        fc->row = NULL;
+        st = x->fail->st;
+    }
+    free(tf);
+    free(t);
+    free(row);
+    return st;
+}
+
 static bf_status write_all(xw *x, bf_err *err)
 {
     bf_status st = check_datasets(x);
@@ -705,8 +776,8 @@ static bf_status write_all(xw *x, bf_err *err)
     dset fx = dset_of(x, "/film/x");
     const int has_film = dset_of(x, "/film/psi").rank == 2 && fx.rank == 1 &&
                          fx.n0 >= 2;
-    double xs[3] = {0, 0, 0};
-    if (has_film && (st = film_nodes(x, &fx, xs, err)))
+    film_ctx fc = {{0, 0, 0}, NULL};
+    if (has_film && (st = film_nodes(x, &fx, fc.xs, err)))
         return st;
     fprintf(x->f, "<?xml version=\"1.0\" ?>\n"
                   "<!-- written by ballfilm for %s: open it in ParaView or "
@@ -718,9 +789,12 @@ static bf_status write_all(xw *x, bf_err *err)
     static const char *const balls[] = {"/balls/position", "/balls/velocity",
                                         NULL};
     /* the nodes x_i = x_0 + i dx, i = 0..n-1 (/film/x) */
-    if (has_film)
-        st = timed(x, "film", "/film/time", NULL, film, film_grid, xs, err);
-    if (!st && dset_of(x, "/balls/position").rank == 2)
+    const int has_balls = dset_of(x, "/balls/position").rank == 2;
+    if (has_film && has_balls)
+        st = film_at_times(x, film, &fc, err);
+    else if (has_film)
+        st = timed(x, "film", "/film/time", NULL, film, film_grid, &fc, err);
+    if (!st && has_balls)
         st = timed(x, "balls", "/time", NULL, balls, balls_grid, NULL, err);
     if (!st && dset_of(x, "/particles/x").rank == 2) {
         static const char *const p[] = {"/particles/x", "/particles/y",

@@ -1,16 +1,17 @@
-/* xdmf.h: an XDMF sidecar for a ballfilm output file, so that ParaView and
- * VisIt open the run (private to the io layer and its users).
+/* xdmf.h: an XDMF sidecar for a ballfilm output file, so that ParaView
+ * (either of its XDMF readers) and VisIt open the run (private to the io
+ * layer and its users).
  *
  * The sidecar is XML that points at the HDF5 datasets by path (with the
- * HDF5 file named relative to the sidecar, so the two move together); no
- * data is copied.  It holds one temporal collection per thing the file
- * describes, with one grid per output row (a row is selected from a
- * [rows x n] series with a HyperSlab):
- *   film       a 1-D rectilinear grid on /film/x with psi, h, u_d, u_c
- *              (rows of /film/time);
+ * HDF5 file named relative to the sidecar, so the two move together);
+ * only point coordinates are copied into it.  It holds one temporal
+ * collection per thing the file describes, with one grid per output row:
+ *   film       a 1-D grid on /film/x with psi, h, u_d, u_c (rows of
+ *              /film/time; in a run with balls, at the balls' times, each
+ *              grid holding the last profile at or before it);
  *   balls      points on the line with velocity, mass and radius (rows of
  *              /time);
- *   particles  points (x, y) with velocity, fluid tag, mass and the 1973
+ *   particles  points (x, y) with vx, vy, fluid tag, mass and the 1973
  *              wall flags (rows of /particles/step, or of /time);
  *   mac        the staggered MAC grid: p, rho, T and the cell flags on the
  *              cells, u on the vertical faces and v on the horizontal faces
