@@ -5,6 +5,7 @@
  */
 #include "returnmap.h"
 #include "diag/hermite.h"
+#include "io/dataset_paths.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -288,10 +289,10 @@ static const bf_series_spec retmap_series[] = {
      .doc = "time of each lowest point of the trigger ball on the floor (one "
             "per contact, the deepest)",
      .slot = BF_SLOT(bf_retmap, s_t)},
-    {.path = "/return_map/z", .unit = "cm", .kind = BF_SK_EVENTS,
+    {.path = BF_DS_RETURN_MAP_Z, .unit = "cm", .kind = BF_SK_EVENTS,
      .doc = "position of the recorded ball at that time",
      .slot = BF_SLOT(bf_retmap, s_z)},
-    {.path = "/return_map/v", .unit = "cm/s", .kind = BF_SK_EVENTS,
+    {.path = BF_DS_RETURN_MAP_V, .unit = "cm/s", .kind = BF_SK_EVENTS,
      .doc = "velocity of the recorded ball at that time",
      .slot = BF_SLOT(bf_retmap, s_v)},
     {.path = "/return_map/z_trigger", .unit = "cm", .kind = BF_SK_EVENTS,

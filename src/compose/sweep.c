@@ -21,6 +21,7 @@
 #include "ballfilm/sim.h"
 #include "ballfilm/run.h"
 #include "io/outpath.h"
+#include "io/dataset_paths.h"
 
 bf_status bf_sweep_parse_axis(bf_sweep_axis *ax, const char *spec, bf_err *err)
 {
@@ -457,13 +458,13 @@ bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
             if (!bf_h5_reader_attr_real(rd, "/", "return_map_points", &v,
                                         &ignore))
                 row->map_points = v;
-            if (!bf_h5_reader_read(rd, "/return_map/z", &z, &nz, &nz1,
+            if (!bf_h5_reader_read(rd, BF_DS_RETURN_MAP_Z, &z, &nz, &nz1,
                                    &ignore) &&
-                !bf_h5_reader_read(rd, "/return_map/v", &vz, &nv, &nv1,
+                !bf_h5_reader_read(rd, BF_DS_RETURN_MAP_V, &vz, &nv, &nv1,
                                    &ignore) &&
                 nz == nv) {
                 row->map_fill = bf_sweep_map_fill(z, vz, nz);
-            } else if (!bf_h5_reader_read(rd, "/coupled/return_map", &m3,
+            } else if (!bf_h5_reader_read(rd, BF_DS_COUPLED_RETURN_MAP, &m3,
                                           &nz, &nz1, &ignore) &&
                        nz1 == 3) {
                 /* the coupled model's map: rows of (t, x, v) */

@@ -4,6 +4,7 @@
 #include "ballfilm/series.h"
 #include "ballfilm/sim.h"
 #include "core/sim_impl.h"
+#include "io/dataset_paths.h"
 
 enum { ON_ENERGY = 1u << 0 };
 
@@ -11,14 +12,14 @@ static const bf_series_spec sim_series[] = {
     {.path = BF_PATH_TIME, .unit = "s", .role = BF_SR_TIME,
      .doc = "simulated time of each output row (t = step dt)",
      .slot = BF_SLOT(bf_sim, s_time)},
-    {.path = "/step", .unit = "1", .is_int = 1, .role = BF_SR_STEP,
+    {.path = BF_DS_STEP, .unit = "1", .is_int = 1, .role = BF_SR_STEP,
      .doc = "step number of each output row",
      .slot = BF_SLOT(bf_sim, s_step)},
-    {.path = "/energy/kinetic", .unit = "erg", .when = ON_ENERGY,
+    {.path = BF_DS_ENERGY_KINETIC, .unit = "erg", .when = ON_ENERGY,
      .doc = "kinetic energy", .slot = BF_SLOT(bf_sim, s_ek)},
-    {.path = "/energy/potential", .unit = "erg", .when = ON_ENERGY,
+    {.path = BF_DS_ENERGY_POTENTIAL, .unit = "erg", .when = ON_ENERGY,
      .doc = "potential energy of all effects", .slot = BF_SLOT(bf_sim, s_ep)},
-    {.path = "/energy/total", .unit = "erg", .when = ON_ENERGY,
+    {.path = BF_DS_ENERGY_TOTAL, .unit = "erg", .when = ON_ENERGY,
      .doc = "kinetic + potential", .slot = BF_SLOT(bf_sim, s_et)},
 };
 

@@ -3,6 +3,7 @@
 #include "io/export_impl.h"
 #include "io/h5check.h"
 #include "io/outpath.h"
+#include "io/dataset_paths.h"
 
 #include <errno.h>
 #include <stdint.h>
@@ -117,51 +118,51 @@ static bf_status root_number(const bf_xsrc *s, const char *name,
 static bf_status choose(bf_xsrc *s, bf_err *err)
 {
     static const bf_xobs energies[] = {
-        {"kinetic_energy", "/energy/kinetic", -1},
-        {"potential_energy", "/energy/potential", -1},
-        {"total_energy", "/energy/total", -1}};
+        {"kinetic_energy", BF_DS_ENERGY_KINETIC, -1},
+        {"potential_energy", BF_DS_ENERGY_POTENTIAL, -1},
+        {"total_energy", BF_DS_ENERGY_TOTAL, -1}};
     s->unit_len = "cm";
     s->unit_vel = "cm s-1";
     s->unit_time = "s";
     s->unit_mass = "g";
     s->unit_energy = "erg";
-    if (has(s, "/balls/position")) {
+    if (has(s, BF_DS_BALLS_POSITION)) {
         s->group = "balls";
         s->dim = 1;
-        s->pos[0] = "/balls/position";
-        s->vel[0] = "/balls/velocity";
-        s->mass = "/balls/mass";
-    } else if (has(s, "/particles/x")) {
+        s->pos[0] = BF_DS_BALLS_POSITION;
+        s->vel[0] = BF_DS_BALLS_VELOCITY;
+        s->mass = BF_DS_BALLS_MASS;
+    } else if (has(s, BF_DS_PARTICLES_X)) {
         s->group = "greenspan";
         s->dim = 2;
-        s->pos[0] = "/particles/x";
-        s->pos[1] = "/particles/y";
-        s->vel[0] = "/particles/vx";
-        s->vel[1] = "/particles/vy";
-        s->mass = "/particles/mass";
+        s->pos[0] = BF_DS_PARTICLES_X;
+        s->pos[1] = BF_DS_PARTICLES_Y;
+        s->vel[0] = BF_DS_PARTICLES_VX;
+        s->vel[1] = BF_DS_PARTICLES_VY;
+        s->mass = BF_DS_PARTICLES_MASS;
         /* only Greenspan 1972 writes /particles/step: its leapfrog keeps
          * half-step velocities only (docs/models/greenspan72.md) */
-        s->half_step = has(s, "/particles/step");
-        if (has(s, "/particles/tag")) {
-            s->species = "/particles/tag";
-        } else if (has(s, "/particles/fixed")) {
-            s->species = "/particles/fixed";
+        s->half_step = has(s, BF_DS_PARTICLES_STEP);
+        if (has(s, BF_DS_PARTICLES_TAG)) {
+            s->species = BF_DS_PARTICLES_TAG;
+        } else if (has(s, BF_DS_PARTICLES_FIXED)) {
+            s->species = BF_DS_PARTICLES_FIXED;
             s->species_fixed = 1;
         }
         if (s->half_step) {
             static const bf_xobs g72[] = {
-                {"kinetic_energy", "/diag/kinetic", 0}};
+                {"kinetic_energy", BF_DS_DIAG_KINETIC, 0}};
             s->obs[0] = g72[0];
             s->n_obs = 1;
         }
-    } else if (has(s, "/mac/particles/x")) {
+    } else if (has(s, BF_DS_MAC_PARTICLES_X)) {
         s->group = "markers";
         s->dim = 2;
-        s->pos[0] = "/mac/particles/x";
-        s->pos[1] = "/mac/particles/y";
-        s->species = "/mac/particles/flag";
+        s->pos[0] = BF_DS_MAC_PARTICLES_X;
+        s->pos[1] = BF_DS_MAC_PARTICLES_Y;
+        s->species = BF_DS_MAC_PARTICLES_FLAG;
         s->species_rows = 1;
-        s->density = "/mac/particles/density";
+        s->density = BF_DS_MAC_PARTICLES_DENSITY;
         /* the thesis's scaled units: length L, velocity W, density R */
         s->unit_len = "L";
         s->unit_time = "L W-1";
@@ -203,12 +204,12 @@ static bf_status shapes(bf_xsrc *s, bf_err *err)
         if (one[k] && !(st = check(s, one[k], 1, &r, &c, err)) && r != n)
             st = bf_fail(err, BF_EINPUT, "%s: %s has %zu values for %zu "
                          "particles", s->file, one[k], r, n);
-    const char *tpath = s->half_step ? "/particles/step" : "/time";
+    const char *tpath = s->half_step ? BF_DS_PARTICLES_STEP : BF_DS_TIME;
     size_t trows = 0, srows = 0;
     if (!st)
         st = check(s, tpath, 1, &trows, &c, err);
     if (!st && !s->half_step)
-        st = check(s, "/step", 1, &srows, &c, err);
+        st = check(s, BF_DS_STEP, 1, &srows, &c, err);
     if (st)
         return st;
     s->obs_rows = s->half_step ? 0 : (trows < srows ? trows : srows);
@@ -224,13 +225,13 @@ static bf_status shapes(bf_xsrc *s, bf_err *err)
         free(v);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
-    st = bf_xsrc_read(s, s->half_step ? tpath : "/step", 0, rows, v, err);
+    st = bf_xsrc_read(s, s->half_step ? tpath : BF_DS_STEP, 0, rows, v, err);
     for (size_t k = 0; !st && k < rows; k++) {
         s->step[k] = (long long)v[k];
         s->time[k] = v[k] * s->dt;
     }
     if (!st && !s->half_step)
-        st = bf_xsrc_read(s, "/time", 0, rows, s->time, err);
+        st = bf_xsrc_read(s, BF_DS_TIME, 0, rows, s->time, err);
     free(v);
     return st;
 }
@@ -241,9 +242,9 @@ static bf_status observables(bf_xsrc *s, bf_err *err)
     size_t r, c;
     if (s->n_obs && s->half_step) {
         size_t t = 0, p = 0;
-        bf_status st = check(s, "/time", 1, &t, &c, err);
+        bf_status st = check(s, BF_DS_TIME, 1, &t, &c, err);
         if (!st)
-            st = check(s, "/step", 1, &p, &c, err);
+            st = check(s, BF_DS_STEP, 1, &p, &c, err);
         if (st)
             return st;
         s->obs_rows = t < p ? t : p;

@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "ballfilm/version.h"
+#include "io/dataset_paths.h"
 
 typedef struct h5w {
     const bf_xsrc *s;
@@ -171,9 +172,9 @@ static bf_status observables(h5w *w, hid_t file)
                                   : bf_fail(w->err, BF_EINTERNAL,
                                             "out of memory");
     if (!st)
-        st = bf_xsrc_read(s, "/time", 0, r, t, w->err);
+        st = bf_xsrc_read(s, BF_DS_TIME, 0, r, t, w->err);
     if (!st)
-        st = bf_xsrc_read(s, "/step", 0, r, v, w->err);
+        st = bf_xsrc_read(s, BF_DS_STEP, 0, r, v, w->err);
     for (size_t k = 0; !st && k < r; k++)
         step[k] = (long long)v[k];
     hid_t obs = st ? -1 : group(w, file, "observables");

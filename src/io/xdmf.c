@@ -12,6 +12,7 @@
 #include "io/xdmf_file.h"
 #include "io/h5check.h"
 #include "io/h5part.h"
+#include "io/dataset_paths.h"
 
 #include <hdf5.h>
 #include <limits.h>
@@ -505,8 +506,8 @@ static void film_grid(const xw *x, size_t k, const void *ctx, int depth)
     indent(x, depth);
     fputs("</Geometry>\n", x->f);
     static const char *const f[][2] = {
-        {"psi", "/film/psi"}, {"h", "/film/h"},
-        {"u_d", "/film/u_d"}, {"u_c", "/film/u_c"}};
+        {"psi", BF_DS_FILM_PSI}, {"h", BF_DS_FILM_H},
+        {"u_d", BF_DS_FILM_U_D}, {"u_c", BF_DS_FILM_U_C}};
     for (size_t a = 0; a < sizeof f / sizeof f[0]; a++)
         attribute(x, f[a][0], "Node", f[a][1], k, &line, depth);
 }
@@ -516,10 +517,10 @@ static void film_grid(const xw *x, size_t k, const void *ctx, int depth)
 static void balls_grid(const xw *x, size_t k, const void *ctx, int depth)
 {
     (void)ctx;
-    point_set(x, "/balls/position", NULL, k, depth);
-    attribute(x, "velocity", "Node", "/balls/velocity", k, NULL, depth);
-    attribute(x, "mass", "Node", "/balls/mass", k, NULL, depth);
-    attribute(x, "radius", "Node", "/balls/radius", k, NULL, depth);
+    point_set(x, BF_DS_BALLS_POSITION, NULL, k, depth);
+    attribute(x, "velocity", "Node", BF_DS_BALLS_VELOCITY, k, NULL, depth);
+    attribute(x, "mass", "Node", BF_DS_BALLS_MASS, k, NULL, depth);
+    attribute(x, "radius", "Node", BF_DS_BALLS_RADIUS, k, NULL, depth);
 }
 
 /* ----------------------------------------------------------- particles */
@@ -532,9 +533,9 @@ static void particles_grid(const xw *x, size_t k, const void *ctx,
     attribute(x, "vx", "Node", p[2], k, NULL, depth);
     attribute(x, "vy", "Node", p[3], k, NULL, depth);
     static const char *const f[][2] = {
-        {"fluid", "/particles/tag"},     {"mass", "/particles/mass"},
-        {"inertia", "/particles/inertia"}, {"fixed", "/particles/fixed"},
-        {"gravity", "/particles/gravity"}};
+        {"fluid", BF_DS_PARTICLES_TAG},     {"mass", BF_DS_PARTICLES_MASS},
+        {"inertia", BF_DS_PARTICLES_INERTIA}, {"fixed", BF_DS_PARTICLES_FIXED},
+        {"gravity", BF_DS_PARTICLES_GRAVITY}};
     for (size_t a = 0; a < sizeof f / sizeof f[0]; a++)
         attribute(x, f[a][0], "Node", f[a][1], k, NULL, depth);
 }
@@ -543,8 +544,8 @@ static void marker_grid(const xw *x, size_t k, const void *ctx, int depth)
 {
     const char *const *p = ctx; /* x, y */
     point_set(x, p[0], p[1], k, depth);
-    attribute(x, "density", "Node", "/mac/particles/density", k, NULL, depth);
-    attribute(x, "flag", "Node", "/mac/particles/flag", k, NULL, depth);
+    attribute(x, "density", "Node", BF_DS_MAC_PARTICLES_DENSITY, k, NULL, depth);
+    attribute(x, "flag", "Node", BF_DS_MAC_PARTICLES_FLAG, k, NULL, depth);
 }
 
 /* ----------------------------------------------------------------- MAC */
@@ -602,8 +603,8 @@ static int fits_row(const xw *x, const char *path, double values)
 
 static bf_status write_mac(const xw *x, bf_err *err)
 {
-    dset g = dset_of(x, "/mac/grid");
-    double *grid = g.rank == 1 && g.n0 >= 4 ? read_vec(x, "/mac/grid", 4)
+    dset g = dset_of(x, BF_DS_MAC_GRID);
+    double *grid = g.rank == 1 && g.n0 >= 4 ? read_vec(x, BF_DS_MAC_GRID, 4)
                                              : NULL;
     if (x->fail->st)
         return x->fail->st;
@@ -614,20 +615,20 @@ static bf_status write_mac(const xw *x, bf_err *err)
     /* the cells the fields hold: ni nj of /mac/p, and the points of the
      * meshes written inline in every grid, 2 (ni + 1) (nj + 1) of each of
      * three, at two bytes at least each */
-    double grids = (double)dset_of(x, "/time").n0;
+    double grids = (double)dset_of(x, BF_DS_TIME).n0;
     if (x->max_steps && grids > (double)x->max_steps)
         grids = (double)x->max_steps;
     const double cells = gi * gj,
                  points = 6.0 * (gi + 1.0) * (gj + 1.0) * grids;
     if (!(gi >= 1 && gj >= 1 && gi == floor(gi) && gj == floor(gj) &&
-          cells == (double)dset_of(x, "/mac/p").n1 && isfinite(dx) &&
+          cells == (double)dset_of(x, BF_DS_MAC_P).n1 && isfinite(dx) &&
           isfinite(dy) &&
-          fits_row(x, "/mac/u", (gi + 1.0) * gj) &&
-          fits_row(x, "/mac/v", gi * (gj + 1.0))))
+          fits_row(x, BF_DS_MAC_U, (gi + 1.0) * gj) &&
+          fits_row(x, BF_DS_MAC_V, gi * (gj + 1.0))))
         return bf_fail(err, BF_EINPUT, "%s: /mac/grid (%g, %g, %g, %g) is "
                        "not a grid of the cells of /mac/p (%zu values a "
                        "row)", x->h5name, gi, gj, dx, dy,
-                       dset_of(x, "/mac/p").n1);
+                       dset_of(x, BF_DS_MAC_P).n1);
     if (2.0 * points > x->budget)
         return bf_fail(err, BF_EINPUT, "%s: /mac/grid's %g x %g cells in "
                        "%.0f grids make a sidecar larger than %.0f bytes, the "
@@ -636,31 +637,31 @@ static bf_status write_mac(const xw *x, bf_err *err)
                        x->budget, x->bytes);
     const size_t ni = (size_t)gi, nj = (size_t)gj;
     /* cell (I,J), I, J from 1, covers [(I-2)dx, (I-1)dx) x [(J-2)dy, ...) */
-    static const char *const cell_f[] = {"p", "/mac/p", "rho", "/mac/rho",
-                                         "T", "/mac/T", "flags", "/mac/flags",
+    static const char *const cell_f[] = {"p", BF_DS_MAC_P, "rho", BF_DS_MAC_RHO,
+                                         "T", BF_DS_MAC_T, "flags", BF_DS_MAC_FLAGS,
                                          NULL};
-    static const char *const u_f[] = {"u", "/mac/u", NULL};
-    static const char *const v_f[] = {"v", "/mac/v", NULL};
+    static const char *const u_f[] = {"u", BF_DS_MAC_U, NULL};
+    static const char *const v_f[] = {"v", BF_DS_MAC_V, NULL};
     const mac_mesh mesh[3] = {
         {"mac_cells", ni + 1, nj + 1, -1.0, -1.0, dx, dy, "Cell", cell_f},
         {"mac_u", ni + 1, nj, -1.0, -0.5, dx, dy, "Node", u_f},
         {"mac_v", ni, nj + 1, -0.5, -1.0, dx, dy, "Node", v_f},
     };
     static const char *const series[3][5] = {
-        {"/mac/p", "/mac/rho", "/mac/T", "/mac/flags", NULL},
-        {"/mac/u", NULL},
-        {"/mac/v", NULL}};
+        {BF_DS_MAC_P, BF_DS_MAC_RHO, BF_DS_MAC_T, BF_DS_MAC_FLAGS, NULL},
+        {BF_DS_MAC_U, NULL},
+        {BF_DS_MAC_V, NULL}};
     for (int m = 0; m < 3; m++) {
-        bf_status st = timed(x, mesh[m].name, "/time", NULL, series[m],
+        bf_status st = timed(x, mesh[m].name, BF_DS_TIME, NULL, series[m],
                              mac_grid, &mesh[m], err);
         if (st)
             return st;
     }
-    static const char *const mk[] = {"/mac/particles/x", "/mac/particles/y",
-                                     "/mac/particles/density",
-                                     "/mac/particles/flag", NULL};
+    static const char *const mk[] = {BF_DS_MAC_PARTICLES_X, BF_DS_MAC_PARTICLES_Y,
+                                     BF_DS_MAC_PARTICLES_DENSITY,
+                                     BF_DS_MAC_PARTICLES_FLAG, NULL};
     if (dset_of(x, mk[0]).rank == 2)
-        return timed(x, "mac_markers", "/time", NULL, mk, marker_grid, mk,
+        return timed(x, "mac_markers", BF_DS_TIME, NULL, mk, marker_grid, mk,
                      err);
     return BF_OK;
 }
@@ -687,15 +688,15 @@ static bf_status root_real(const xw *x, const char *name, double fallback,
 static bf_status check_datasets(const xw *x)
 {
     static const char *const all[] = {
-        "/time", "/film/x", "/film/time", "/film/psi", "/film/h",
-        "/film/u_d", "/film/u_c", "/balls/position", "/balls/velocity",
-        "/balls/mass", "/balls/radius", "/particles/x", "/particles/y",
-        "/particles/vx", "/particles/vy", "/particles/tag",
-        "/particles/mass", "/particles/inertia", "/particles/fixed",
-        "/particles/gravity", "/particles/step", "/mac/grid", "/mac/p",
-        "/mac/rho", "/mac/T", "/mac/flags", "/mac/u", "/mac/v",
-        "/mac/particles/x", "/mac/particles/y", "/mac/particles/density",
-        "/mac/particles/flag", NULL};
+        BF_DS_TIME, BF_DS_FILM_X, BF_DS_FILM_TIME, BF_DS_FILM_PSI, BF_DS_FILM_H,
+        BF_DS_FILM_U_D, BF_DS_FILM_U_C, BF_DS_BALLS_POSITION, BF_DS_BALLS_VELOCITY,
+        BF_DS_BALLS_MASS, BF_DS_BALLS_RADIUS, BF_DS_PARTICLES_X, BF_DS_PARTICLES_Y,
+        BF_DS_PARTICLES_VX, BF_DS_PARTICLES_VY, BF_DS_PARTICLES_TAG,
+        BF_DS_PARTICLES_MASS, BF_DS_PARTICLES_INERTIA, BF_DS_PARTICLES_FIXED,
+        BF_DS_PARTICLES_GRAVITY, BF_DS_PARTICLES_STEP, BF_DS_MAC_GRID, BF_DS_MAC_P,
+        BF_DS_MAC_RHO, BF_DS_MAC_T, BF_DS_MAC_FLAGS, BF_DS_MAC_U, BF_DS_MAC_V,
+        BF_DS_MAC_PARTICLES_X, BF_DS_MAC_PARTICLES_Y, BF_DS_MAC_PARTICLES_DENSITY,
+        BF_DS_MAC_PARTICLES_FLAG, NULL};
     for (const char *const *p = all; *p && !x->fail->st; p++)
         dset_of(x, *p);
     return x->fail->st;
@@ -706,15 +707,15 @@ static bf_status check_datasets(const xw *x)
 static bf_status film_nodes(const xw *x, const dset *fx, double xs[3],
                             bf_err *err)
 {
-    double *xv = read_vec(x, "/film/x", fx->n0);
+    double *xv = read_vec(x, BF_DS_FILM_X, fx->n0);
     if (!xv)
         return bf_fail(err, BF_EIO, "cannot read /film/x");
     xs[0] = (double)fx->n0;
     xs[1] = xv[0];
     xs[2] = (xv[fx->n0 - 1] - xv[0]) / (double)(fx->n0 - 1);
     free(xv);
-    static const char *const f[] = {"/film/psi", "/film/h", "/film/u_d",
-                                    "/film/u_c"};
+    static const char *const f[] = {BF_DS_FILM_PSI, BF_DS_FILM_H, BF_DS_FILM_U_D,
+                                    BF_DS_FILM_U_C};
     for (int k = 0; k < 4; k++)
         if (!fits_row(x, f[k], xs[0]))
             return bf_fail(err, BF_EINPUT, "%s: %s has %zu values a row, "
@@ -732,19 +733,19 @@ static bf_status film_nodes(const xw *x, const dset *fx, double xs[3],
 static bf_status film_at_times(const xw *x, const char *const *film,
                                film_ctx *fc, bf_err *err)
 {
-    const char *need[7] = {"/film/time"};
+    const char *need[7] = {BF_DS_FILM_TIME};
     for (int k = 0; film[k] && k < 5; k++)
         need[k + 1] = film[k];
-    const char *const balls[] = {"/time", "/balls/position", NULL};
+    const char *const balls[] = {BF_DS_TIME, BF_DS_BALLS_POSITION, NULL};
     const size_t nf = min_rows(x, need), nt = min_rows(x, balls);
     if (x->fail->st)
         return x->fail->st;
-    if (dset_of(x, "/time").rank != 1 || dset_of(x, "/film/time").rank != 1)
+    if (dset_of(x, BF_DS_TIME).rank != 1 || dset_of(x, BF_DS_FILM_TIME).rank != 1)
         return bf_fail(err, BF_EINPUT, "%s: /time or /film/time is not a "
                        "list of times (rank 1)", x->h5name);
     if (!nf || !nt)
         return BF_OK;
-    double *tf = read_vec(x, "/film/time", nf), *t = read_vec(x, "/time", nt);
+    double *tf = read_vec(x, BF_DS_FILM_TIME, nf), *t = read_vec(x, BF_DS_TIME, nt);
     size_t *row = malloc(nt * sizeof *row);
     bf_status st = BF_OK;
     if (!tf || !t || !row) {
@@ -773,8 +774,8 @@ static bf_status write_all(xw *x, bf_err *err)
     bf_status st = check_datasets(x);
     if (st)
         return st;
-    dset fx = dset_of(x, "/film/x");
-    const int has_film = dset_of(x, "/film/psi").rank == 2 && fx.rank == 1 &&
+    dset fx = dset_of(x, BF_DS_FILM_X);
+    const int has_film = dset_of(x, BF_DS_FILM_PSI).rank == 2 && fx.rank == 1 &&
                          fx.n0 >= 2;
     film_ctx fc = {{0, 0, 0}, NULL};
     if (has_film && (st = film_nodes(x, &fx, fc.xs, err)))
@@ -784,28 +785,28 @@ static bf_status write_all(xw *x, bf_err *err)
                   "VisIt; it names the datasets of the HDF5 file, which must "
                   "stay beside it -->\n"
                   "<Xdmf Version=\"2.0\">\n  <Domain>\n", x->href);
-    static const char *const film[] = {"/film/psi", "/film/h", "/film/u_d",
-                                       "/film/u_c", NULL};
-    static const char *const balls[] = {"/balls/position", "/balls/velocity",
+    static const char *const film[] = {BF_DS_FILM_PSI, BF_DS_FILM_H, BF_DS_FILM_U_D,
+                                       BF_DS_FILM_U_C, NULL};
+    static const char *const balls[] = {BF_DS_BALLS_POSITION, BF_DS_BALLS_VELOCITY,
                                         NULL};
     /* the nodes x_i = x_0 + i dx, i = 0..n-1 (/film/x) */
-    const int has_balls = dset_of(x, "/balls/position").rank == 2;
+    const int has_balls = dset_of(x, BF_DS_BALLS_POSITION).rank == 2;
     if (has_film && has_balls)
         st = film_at_times(x, film, &fc, err);
     else if (has_film)
-        st = timed(x, "film", "/film/time", NULL, film, film_grid, &fc, err);
+        st = timed(x, "film", BF_DS_FILM_TIME, NULL, film, film_grid, &fc, err);
     if (!st && has_balls)
-        st = timed(x, "balls", "/time", NULL, balls, balls_grid, NULL, err);
-    if (!st && dset_of(x, "/particles/x").rank == 2) {
-        static const char *const p[] = {"/particles/x", "/particles/y",
-                                        "/particles/vx", "/particles/vy",
+        st = timed(x, "balls", BF_DS_TIME, NULL, balls, balls_grid, NULL, err);
+    if (!st && dset_of(x, BF_DS_PARTICLES_X).rank == 2) {
+        static const char *const p[] = {BF_DS_PARTICLES_X, BF_DS_PARTICLES_Y,
+                                        BF_DS_PARTICLES_VX, BF_DS_PARTICLES_VY,
                                         NULL};
-        int by_step = dset_of(x, "/particles/step").rank == 1;
-        st = timed(x, "particles", by_step ? NULL : "/time",
-                   by_step ? "/particles/step" : NULL, p, particles_grid, p,
+        int by_step = dset_of(x, BF_DS_PARTICLES_STEP).rank == 1;
+        st = timed(x, "particles", by_step ? NULL : BF_DS_TIME,
+                   by_step ? BF_DS_PARTICLES_STEP : NULL, p, particles_grid, p,
                    err);
     }
-    if (!st && dset_of(x, "/mac/p").rank == 2)
+    if (!st && dset_of(x, BF_DS_MAC_P).rank == 2)
         st = write_mac(x, err);
     fputs("  </Domain>\n</Xdmf>\n", x->f);
     return st;

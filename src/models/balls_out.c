@@ -1,5 +1,6 @@
 /* balls_out.c: the datasets of balls on a line (balls_out.h). */
 #include "models/balls_out.h"
+#include "io/dataset_paths.h"
 
 static const bf_series_spec balls_series[] = {
     {.path = BF_PATH_BALLS_POSITION, .unit = "cm", .role = BF_SR_POSITION,
@@ -8,9 +9,9 @@ static const bf_series_spec balls_series[] = {
     {.path = BF_PATH_BALLS_VELOCITY, .unit = "cm/s", .role = BF_SR_VELOCITY,
      .per = "ball", .doc = "ball velocities, one column per ball",
      .slot = BF_SLOT(bf_balls_out, vel)},
-    {.path = "/balls/mass", .unit = "g", .kind = BF_SK_STATIC,
+    {.path = BF_DS_BALLS_MASS, .unit = "g", .kind = BF_SK_STATIC,
      .role = BF_SR_PROPERTY, .per = "ball", .doc = "ball masses"},
-    {.path = "/balls/radius", .unit = "cm", .kind = BF_SK_STATIC,
+    {.path = BF_DS_BALLS_RADIUS, .unit = "cm", .kind = BF_SK_STATIC,
      .role = BF_SR_PROPERTY, .per = "ball", .doc = "ball radii"},
 };
 enum { BALLS_MASS = 2, BALLS_RADIUS };

@@ -61,6 +61,7 @@
 #include "models/coupled.h"
 #include "models/coupled_impl.h"
 #include "models/filmsys.h"
+#include "io/dataset_paths.h"
 
 /* The keys of [coupled]. */
 typedef struct coupled_keys {
@@ -500,7 +501,7 @@ static const bf_series_spec coupled_series[] = {
      .doc = "left/right symmetry error of the film max_i |psi_i + "
             "psi_(N-i)|",
      .slot = BF_SLOT(coupled_model, symf)},
-    {.path = "/coupled/return_map", .unit = "1", .kind = BF_SK_EVENTS,
+    {.path = BF_DS_COUPLED_RETURN_MAP, .unit = "1", .kind = BF_SK_EVENTS,
      .ncols = 3, .columns = "t, x, v", .column_units = "s; cm; cm/s",
      .doc = "t, x, v of map_ball when map_pivot is closest to the origin "
             "while touching its inner neighbour (Fig. 8A)",

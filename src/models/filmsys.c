@@ -30,14 +30,15 @@
 #include "integrators/arkode.h"
 #include "models/filmsys.h"
 #include "models/state_names.h"
+#include "io/dataset_paths.h"
 
 /* The film's profiles: datasets (series.h), the state's names (without
  * the slash) and what initial = file reads. */
-#define FILM_H "/film/h"
-#define FILM_PSI "/film/psi"
-#define FILM_UD "/film/u_d"
-#define FILM_UC "/film/u_c"
-#define FILM_X "/film/x"
+#define FILM_H BF_DS_FILM_H
+#define FILM_PSI BF_DS_FILM_PSI
+#define FILM_UD BF_DS_FILM_U_D
+#define FILM_UC BF_DS_FILM_U_C
+#define FILM_X BF_DS_FILM_X
 
 enum { INIT_KINK, INIT_UNIFORM, INIT_FILE };
 enum { PERT_POSITIVE, PERT_SIGNED };
@@ -632,7 +633,7 @@ enum { ON_KINK = 1u << 0 };
 static const bf_series_spec film_series[] = {
     {.path = FILM_X, .unit = "cm", .kind = BF_SK_STATIC, .role = BF_SR_GRID,
      .per = "node", .doc = "node positions x_i = -L/2 + i dx"},
-    {.path = "/film/time", .unit = "s", .kind = BF_SK_SNAPSHOT,
+    {.path = BF_DS_FILM_TIME, .unit = "s", .kind = BF_SK_SNAPSHOT,
      .role = BF_SR_TIME, .doc = "time of each profile row",
      .slot = BF_SLOT(bf_filmsys, s_time)},
     PROFILE(s_h, FILM_H, "cm", "film height h on the nodes"),

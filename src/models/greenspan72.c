@@ -51,6 +51,7 @@
 #include "particles/repulsion.h"
 #include "particles/support.h"
 #include "particles/walls.h"
+#include "io/dataset_paths.h"
 
 enum { TAG_HEAVY = 1, TAG_LIGHT = 2 };
 enum { OUT_ALL = 0, OUT_POSITIONS = 1, OUT_DIAG = 2 };
@@ -578,7 +579,7 @@ static bf_status g72_step(void *self, long n, double t, double dt, bf_err *err)
 }
 
 static const bf_series_spec g72_series[] = {
-    {.path = "/diag/kinetic", .unit = "erg", .ncols = 3,
+    {.path = BF_DS_DIAG_KINETIC, .unit = "erg", .ncols = 3,
      .columns = "all, heavy (L1), light (L2)",
      .doc = "kinetic energy sum m|v|^2/2 with the half-step velocities: all, "
             "heavy (L1), light (L2)",
@@ -605,7 +606,7 @@ static const bf_series_spec g72_series[] = {
             "'bottom'; (d) 1 if the mean height of the heavy is below that of "
             "the light",
      .slot = BF_SLOT(g72, s_settle)},
-    {.path = "/particles/tag", .unit = "1", .kind = BF_SK_STATIC,
+    {.path = BF_DS_PARTICLES_TAG, .unit = "1", .kind = BF_SK_STATIC,
      .role = BF_SR_PROPERTY, .per = "particle",
      .doc = "1: heavy fluid L1 (started above the interface), 2: light fluid "
             "L2"},

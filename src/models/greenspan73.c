@@ -45,6 +45,7 @@
 #include "ballfilm/model.h"
 #include "ballfilm/particles.h"
 #include "particles/pdiag.h"
+#include "io/dataset_paths.h"
 
 /* The keys of [greenspan73]. */
 typedef struct g73_keys {
@@ -611,12 +612,12 @@ static const bf_series_spec g73_series[] = {
     {.path = "/diag/substeps", .unit = "1", .is_int = 1,
      .doc = "substeps of the step ending at the row (> 1 after halvings)",
      .slot = BF_SLOT(g73, s_sub)},
-    {.path = "/particles/inertia", .unit = "g", .kind = BF_SK_STATIC,
+    {.path = BF_DS_PARTICLES_INERTIA, .unit = "g", .kind = BF_SK_STATIC,
      .role = BF_SR_PROPERTY, .per = "particle",
      .doc = "inertia of the update (mass, or 1 for mass = fortran)"},
-    {.path = "/particles/fixed", .unit = "1", .kind = BF_SK_STATIC,
+    {.path = BF_DS_PARTICLES_FIXED, .unit = "1", .kind = BF_SK_STATIC,
      .role = BF_SR_PROPERTY, .per = "particle", .doc = "1: held fixed"},
-    {.path = "/particles/gravity", .unit = "1", .kind = BF_SK_STATIC,
+    {.path = BF_DS_PARTICLES_GRAVITY, .unit = "1", .kind = BF_SK_STATIC,
      .role = BF_SR_PROPERTY, .per = "particle", .doc = "1: feels gravity"},
 };
 enum { G73_INERTIA = 4, G73_FIXED, G73_GRAVITY };

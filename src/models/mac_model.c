@@ -30,6 +30,7 @@
 #include "mac/mac.h"
 #include "ballfilm/model.h"
 #include "models/mac_model.h"
+#include "io/dataset_paths.h"
 
 typedef struct mac_model {
     bf_mac *mac;
@@ -248,26 +249,26 @@ static bf_status mac_model_step(void *self, long n, double t, double dt,
     {.path = path_, .unit = "1", .scaled_unit = scaled_, .doc = doc_,         \
      .role = role_, .per = "marker slot", .slot = BF_SLOT(mac_model, m)}
 static const bf_series_spec mac_series[] = {
-    FIELD(u, "/mac/u", "W", "u face",
+    FIELD(u, BF_DS_MAC_U, "W", "u face",
           "horizontal velocity U(I,J), I = 1..ni+1 (left faces), J = 1..nj; "
           "row-major, J fastest"),
-    FIELD(v, "/mac/v", "W", "v face",
+    FIELD(v, BF_DS_MAC_V, "W", "v face",
           "vertical velocity V(I,J), I = 1..ni, J = 1..nj+1 (bottom faces)"),
-    FIELD(p, "/mac/p", "R W^2", "cell", "pressure P(I,J), cell centres"),
-    FIELD(rho, "/mac/rho", "R", "cell",
+    FIELD(p, BF_DS_MAC_P, "R W^2", "cell", "pressure P(I,J), cell centres"),
+    FIELD(rho, BF_DS_MAC_RHO, "R", "cell",
           "cell density R(I,J) (mean of the markers in the cell)"),
-    FIELD(temp, "/mac/T", "dT", "cell", "temperature T(I,J)"),
-    {.path = "/mac/flags", .unit = "1", .is_int = 1, .role = BF_SR_FIELD,
+    FIELD(temp, BF_DS_MAC_T, "dT", "cell", "temperature T(I,J)"),
+    {.path = BF_DS_MAC_FLAGS, .unit = "1", .is_int = 1, .role = BF_SR_FIELD,
      .per = "cell",
      .doc = "cell flags: 1 NOSLIP, 2 IN, 3 OUT, 4 FREESLIP, 10 FULL, 11 SUR, "
             "12 EMP",
      .slot = BF_SLOT(mac_model, flags)},
-    MARKER(px, "/mac/particles/x", "L", BF_SR_POSITION_X,
+    MARKER(px, BF_DS_MAC_PARTICLES_X, "L", BF_SR_POSITION_X,
            "marker x (0 for free slots); the fluid is 0 <= x < 1.4"),
-    MARKER(py, "/mac/particles/y", "L", BF_SR_POSITION_Y, "marker y"),
-    MARKER(pd, "/mac/particles/density", "R", BF_SR_PROPERTY,
+    MARKER(py, BF_DS_MAC_PARTICLES_Y, "L", BF_SR_POSITION_Y, "marker y"),
+    MARKER(pd, BF_DS_MAC_PARTICLES_DENSITY, "R", BF_SR_PROPERTY,
            "marker density"),
-    {.path = "/mac/particles/flag", .unit = "1", .is_int = 1,
+    {.path = BF_DS_MAC_PARTICLES_FLAG, .unit = "1", .is_int = 1,
      .role = BF_SR_PROPERTY, .per = "marker slot",
      .doc = "marker flag: 1 free slot, 2 IN, 3 OUT, 4 fluid",
      .slot = BF_SLOT(mac_model, pf)},
@@ -291,7 +292,7 @@ static const bf_series_spec mac_series[] = {
             "(W/L), corrector passes and Gauss-Seidel sweeps of the last step, "
             "cumulative forced fine passes (oscillating particle)",
      .slot = BF_SLOT(mac_model, diag)},
-    {.path = "/mac/grid", .unit = "1", .kind = BF_SK_STATIC, .ncols = 4,
+    {.path = BF_DS_MAC_GRID, .unit = "1", .kind = BF_SK_STATIC, .ncols = 4,
      .role = BF_SR_GRID, .columns = "ni, nj, dx, dy",
      .scaled_unit = "1; 1; L; L",
      .doc = "ni, nj (cells incl. the ring), dx, dy; cell (I,J) covers x in "

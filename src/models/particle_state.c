@@ -5,17 +5,18 @@
 
 #include "models/greenspan.h"
 #include "models/state_names.h"
+#include "io/dataset_paths.h"
 
-#define P_X "/particles/x"
-#define P_Y "/particles/y"
-#define P_VX "/particles/vx"
-#define P_VY "/particles/vy"
+#define P_X BF_DS_PARTICLES_X
+#define P_Y BF_DS_PARTICLES_Y
+#define P_VX BF_DS_PARTICLES_VX
+#define P_VY BF_DS_PARTICLES_VY
 #define VDOC_HALF(c)                                                           \
     c " velocity at t - dt/2 (leapfrog half step; the initial velocity in "   \
       "row 0)"
 
 static const bf_series_spec particle_series[] = {
-    {.path = "/particles/step", .unit = "1", .is_int = 1,
+    {.path = BF_DS_PARTICLES_STEP, .unit = "1", .is_int = 1,
      .kind = BF_SK_SNAPSHOT, .role = BF_SR_STEP, .when = BF_PO_STEP,
      .doc = "step of each row of the per-particle datasets",
      .slot = BF_SLOT(bf_particle_out, step)},
@@ -37,7 +38,7 @@ static const bf_series_spec particle_series[] = {
     {.path = P_VY, .unit = "cm/s", .kind = BF_SK_SNAPSHOT,
      .role = BF_SR_VELOCITY_HALF, .per = "particle", .when = BF_PO_VEL_HALF,
      .doc = VDOC_HALF("y"), .slot = BF_SLOT(bf_particle_out, vy)},
-    {.path = "/particles/mass", .unit = "g", .kind = BF_SK_STATIC,
+    {.path = BF_DS_PARTICLES_MASS, .unit = "g", .kind = BF_SK_STATIC,
      .role = BF_SR_PROPERTY, .per = "particle",
      .doc = "particle masses (pair strengths, gravity)"},
 };
