@@ -51,6 +51,11 @@ typedef struct bf_ode {
     unsigned long epoch;    /* bumped when the force field changes */
     bf_daccel_fn daccel;    /* NULL: none (integrators that need it fall
                              * back, see greenspan73.c) */
+    size_t n_check;         /* the fixed-point iterations (verlet for
+                             * velocity-dependent forces, impmid) test the
+                             * convergence of the first n_check components
+                             * only (0: all n); the rest must follow from
+                             * them (the ball system's work components) */
 } bf_ode;
 
 /* Events (optional, see bf_integrator_set_events).  g(ctx, t, x, v) ->

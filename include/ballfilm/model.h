@@ -214,6 +214,11 @@ typedef struct bf_model_type {
      * element; derived state (forces, totals) follows. */
     bf_status (*set_state)(void *self, const char *name, const double *v,
                            size_t n, bf_err *err);
+    /* Optional: the work of the non-conservative forces since t = 0
+     * (erg): dissipated (>= 0) and injected by driving.  Returns 1 when
+     * the model tracks it (then the loop checks, writes and reports the
+     * balance E - E0 + W_diss - W_inj instead of E - E0), else 0. */
+    int (*work)(const void *self, double *diss, double *inj);
 } bf_model_type;
 
 #endif

@@ -102,7 +102,10 @@ class Result:
     r.counters                steps, t_final, force evaluations, rejected
                               steps, iterations
     r.energy_error            the largest relative energy error (None for a
-                              model without an energy)
+                              model without an energy); with non-conservative
+                              forces that of the balance E - E0 + W_dissipated
+                              - W_injected (/energy/dissipated, /injected)
+    r.energy_balance          True when energy_error is that of the balance
     r.attrs                   every root attribute as h5py reads it
     """
 
@@ -158,6 +161,9 @@ class Result:
                     else a[key]
         e = a.get("max_relative_energy_error")
         self.energy_error = float(e) if e is not None else None
+        # with non-conservative forces energy_error is that of the balance
+        # E - E0 + W_dissipated - W_injected (/energy/dissipated, injected)
+        self.energy_balance = "energy_balance" in a
 
     def _describe(self, name, obj):
         """the attributes of series.h: columns, their units, role, kind"""

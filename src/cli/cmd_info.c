@@ -154,6 +154,13 @@ static int header(const char *file, const char *note, bf_err *err)
             line(counts[k][0], buf);
         }
     }
+    /* the energy error of a scene with non-conservative forces is that of
+     * the balance (attribute energy_balance) */
+    char bal[128];
+    if (text_attr(file, "energy_balance", bal, sizeof bal, err))
+        return err->status;
+    if (bal[0])
+        line("energy error of:", bal);
     return bf_cli_stop ? bf_fail(err, BF_INTERRUPTED, "%s: interrupted",
                                  file)
                        : 0;

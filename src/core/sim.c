@@ -233,6 +233,11 @@ bf_status bf_sim_create(bf_sim **out, const bf_sim_keys *k,
     }
     s->last_row = -1;
     s->has_energy = s->mt->energy != NULL;
+    {
+        double wd, wi;
+        s->has_work = s->has_energy && s->mt->work &&
+                      s->mt->work(s->model, &wd, &wi);
+    }
     bf_energy_start(&s->en, 0.0);
     if (s->has_energy) {
         double kk, p;
@@ -360,6 +365,12 @@ static bf_status write_row(bf_sim *s, bf_err *err)
             bf_series_append(s->s_et, &e))
             return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
+    if (s->has_work) {
+        double wd, wi;
+        s->mt->work(s->model, &wd, &wi);
+        if (bf_series_append(s->s_wd, &wd) || bf_series_append(s->s_wi, &wi))
+            return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
     bf_status st = BF_OK;
     if (s->mt->output_row)
         st = bf_sim_hook_status_(s->mt->output_row(s->model, s->n, t, err),
@@ -375,8 +386,8 @@ static bf_status write_row(bf_sim *s, bf_err *err)
 static double check_energy(bf_sim *s)
 {
     double k, p;
-    s->mt->energy(s->model, (double)s->n * s->dt, &k, &p);
-    return bf_energy_check(&s->en, k + p);
+    return bf_energy_check(
+        &s->en, bf_sim_balance_(s, (double)s->n * s->dt, &k, &p));
 }
 
 static void progress(bf_sim *s, double t0, int final)
@@ -619,7 +630,9 @@ static bf_status run_to(bf_sim *s, long target, bf_err *err)
                           !s->opts.step_by_step;
     const int plain_runs = s->mt->advance && every > 1 && !s->obs_steps &&
                            !energy_every_step && !s->opts.step_by_step;
-    const int energy_in_run = watchable && !plain_runs && energy_every_step;
+    /* (a watched run checks E - E0, not a balance with work) */
+    const int energy_in_run = watchable && !plain_runs && energy_every_step &&
+                              !s->has_work;
     due_steps due = due_after(s, s->n);
     while (s->n < target) {
         if ((s->opts.stop_flag && *s->opts.stop_flag) ||
@@ -813,6 +826,9 @@ static bf_status close_output(bf_sim *s, bf_status run_status,
     if (!st && s->has_energy)
         st = bf_out_attr_real(o, "/", "max_relative_energy_error",
                               s->en.max_rel, err);
+    if (!st && s->has_work) /* what max_relative_energy_error measures */
+        st = bf_out_attr_str(o, "/", "energy_balance",
+                             "E - E0 + W_dissipated - W_injected", err);
     /* an interrupted run is continued in OUT.part; every other run's
      * file becomes the result */
     bf_status cst = run_status == BF_INTERRUPTED || st

@@ -49,6 +49,9 @@ struct bf_sim {
     bf_series *s_time, *s_step, *s_ek, *s_ep, *s_et;
     long last_row; /* step of the last output row, -1 if none */
     int has_energy;
+    int has_work; /* the model tracks the work of non-conservative forces
+                     (model.h, work): the energy is a balance */
+    bf_series *s_wd, *s_wi;
     bf_energy_diag en;
     double wall;
     double prog_last;
@@ -128,5 +131,10 @@ bf_status bf_sim_may_close_(const bf_sim *s, bf_status run_status,
         bf_h5_unlock();                                                        \
         return st_;                                                            \
     } while (0)
+
+/* k + p (erg) at t, plus W_dissipated - W_injected when the model tracks
+ * the work of non-conservative forces (has_work): what the energy check
+ * compares with its start (sim_state.c). */
+double bf_sim_balance_(const bf_sim *s, double t, double *k, double *p);
 
 #endif

@@ -6,7 +6,7 @@
 #include "core/sim_impl.h"
 #include "io/dataset_paths.h"
 
-enum { ON_ENERGY = 1u << 0 };
+enum { ON_ENERGY = 1u << 0, ON_WORK = 1u << 1 };
 
 static const bf_series_spec sim_series[] = {
     {.path = BF_PATH_TIME, .unit = "s", .role = BF_SR_TIME,
@@ -21,6 +21,14 @@ static const bf_series_spec sim_series[] = {
      .doc = "potential energy of all effects", .slot = BF_SLOT(bf_sim, s_ep)},
     {.path = BF_DS_ENERGY_TOTAL, .unit = "erg", .when = ON_ENERGY,
      .doc = "kinetic + potential", .slot = BF_SLOT(bf_sim, s_et)},
+    /* the work of non-conservative forces (model.h, work): the energy
+     * balance E - E0 + W_dissipated - W_injected */
+    {.path = "/energy/dissipated", .unit = "erg", .when = ON_WORK,
+     .role = BF_SR_DIAGNOSTIC, .doc = "work dissipated since t = 0",
+     .slot = BF_SLOT(bf_sim, s_wd)},
+    {.path = "/energy/injected", .unit = "erg", .when = ON_WORK,
+     .role = BF_SR_DIAGNOSTIC, .doc = "work done by driving since t = 0",
+     .slot = BF_SLOT(bf_sim, s_wi)},
 };
 
 const bf_series_table bf_sim_series = {"run", sim_series,
@@ -32,7 +40,9 @@ bf_status bf_sim_open_series_(bf_sim *s, bf_err *err)
 {
     bf_out *o = s->out;
     bf_status st = bf_out_open_table(o, sim_series, BF_NSERIES(sim_series), s,
-                                     NULL, 0, s->has_energy ? ON_ENERGY : 0,
+                                     NULL, 0,
+                                     (s->has_energy ? ON_ENERGY : 0) |
+                                         (s->has_work ? ON_WORK : 0),
                                      err);
     if (st)
         return st;

@@ -151,6 +151,16 @@ double bf_sim_initial_energy(const bf_sim *s)
     return s->has_energy ? s->en.e0 : NAN;
 }
 
+double bf_sim_balance_(const bf_sim *s, double t, double *k, double *p)
+{
+    double wd, wi;
+    s->mt->energy(s->model, t, k, p);
+    if (!s->has_work)
+        return *k + *p;
+    s->mt->work(s->model, &wd, &wi);
+    return *k + *p + wd - wi;
+}
+
 /* The state of step s->n against finiteness and the energy bound, the
  * diagnostics left as they are: what the output records
  * (max_relative_energy_error) stays that of the scheduled checks. */
@@ -159,9 +169,9 @@ bf_status bf_sim_check_state_(bf_sim *s, bf_err *err)
     const double t = (double)s->n * s->dt;
     if (s->has_energy) {
         double k, p;
-        s->mt->energy(s->model, t, &k, &p);
+        const double e = bf_sim_balance_(s, t, &k, &p);
         bf_energy_diag d = s->en;
-        double rel = bf_energy_check(&d, k + p);
+        double rel = bf_energy_check(&d, e);
         if (!isfinite(k + p))
             return bf_fail(err, BF_EUNSTABLE,
                            "step %ld (t = %.9g s): the state has no finite "

@@ -25,9 +25,13 @@ void bf_sim_summary(const bf_sim *s, FILE *f)
         fprintf(f, " (%.3g steps/s)", (double)s->n / s->wall);
     fprintf(f, "\n");
     if (s->has_energy)
-        fprintf(f, "max relative energy error: %.6e (checked every %ld steps)\n",
+        fprintf(f, "max relative energy error: %.6e (checked every %ld steps)"
+                   "%s\n",
                 s->en.max_rel,
-                s->energy_every ? s->energy_every : s->out_every);
+                s->energy_every ? s->energy_every : s->out_every,
+                s->has_work ? "; of the balance E - E0 + W_dissipated - "
+                              "W_injected"
+                            : "");
     if (s->run_status == BF_EUNSTABLE) {
         /* the model's and the analyses' lines describe the final state,
          * which is not a result ("relative change 0" next to "max |u|

@@ -15,8 +15,10 @@
  * A built-in effect is recognised by the address of its descriptor
  * (bf_effect_kernel_of): the public descriptor names no kernel, and an
  * effect defined outside the library, or a built-in one without a kernel
- * here (drag), is called through its `accel`.  The kernels below are forces
- * of the positions only (a = a(x)); they ignore t and v.
+ * here (drag), is called through its `accel`.  The inline kernels below are
+ * forces of the positions only (a = a(x)); they ignore t and v.  A damped
+ * or driven floor or contact (`general` set) goes to its general kernel in
+ * damped.c instead, which reads t and v.
  */
 #ifndef BALLFILM_EFFECT_KERNELS_H
 #define BALLFILM_EFFECT_KERNELS_H
@@ -77,13 +79,50 @@ typedef struct bf_gravity {
     double g; /* cm/s^2, pulls towards x = -inf ([gravity] g) */
 } bf_gravity;
 
+/* The damped, driven contacts (src/effects/damped.c, docs/forces.md):
+ * restitution e and viscosity A of a Hertz contact, and the floor's
+ * driving.  `general` is set at creation when any of them is active (e <
+ * 1, A > 0, amplitude > 0); the kernels below are then bypassed for
+ * bf_floor_accel_general / bf_contact_accel_general, so that elastic
+ * scenes take exactly the elastic path. */
 typedef struct bf_floor {
-    double k; /* Hertz constant, g cm^-1/2 s^-2 */
+    double k;         /* Hertz constant, g cm^-1/2 s^-2 */
+    double e;         /* coefficient of restitution, 1 */
+    double A;         /* Kuwabara-Kono viscosity, s */
+    double amplitude; /* floor height A_f sin(2 pi f t), cm */
+    double frequency; /* f, Hz */
+    double alpha;     /* damping of e, 1: c = alpha sqrt(m k) (derived) */
+    int general;      /* damped or driven (derived) */
 } bf_floor;
 
 typedef struct bf_contact {
-    double k; /* Hertz constant, g cm^-1/2 s^-2 */
+    double k;     /* Hertz constant, g cm^-1/2 s^-2 */
+    double e;     /* coefficient of restitution, 1 */
+    double A;     /* Kuwabara-Kono viscosity, s */
+    double alpha; /* derived, as bf_floor's */
+    int general;  /* damped (derived) */
 } bf_contact;
+
+/* the general kernels (damped.c); t in s, v in cm/s */
+void bf_floor_accel_general(const bf_floor *p, const bf_balls *b, double t,
+                            const double *x, const double *v, double *acc);
+void bf_contact_accel_general(const bf_contact *p, const bf_balls *b,
+                              const double *x, const double *v, double *acc);
+/* The floor's height (cm) and its rate (cm/s) at t (s). */
+void bf_floor_height(const bf_floor *p, double t, double *h, double *hdot);
+/* Power (erg/s) the damped contacts dissipate (>= 0) and, for the floor,
+ * the power its driving injects, at (t, x, v) (added to *diss, *inj). */
+void bf_floor_power(const bf_floor *p, const bf_balls *b, double t,
+                    const double *x, const double *v, double *diss,
+                    double *inj);
+void bf_contact_power(const bf_contact *p, const bf_balls *b, const double *x,
+                      const double *v, double *diss);
+/* alpha of restitution e (0 < e <= 1; 0 at e = 1) */
+double bf_damping_alpha(double e);
+/* An effect's flags for its parameters (a damped contact is velocity-
+ * dependent and not conservative, a driven floor time-dependent): the
+ * descriptor's flags otherwise. */
+unsigned bf_effect_flags(const bf_effect *e);
 
 typedef struct bf_spring {
     double s;    /* stiffness, g/s^2 */
@@ -152,6 +191,11 @@ BF_EFFECT_INLINE double bf_floor_potential(const bf_floor *p, const bf_balls *b,
             u += bf_hertz_floor_energy(p->k, b->R[i], x[i]);
     return u;
 }
+
+/* the floor's potential with its height h(t): (2/5) k delta^{5/2},
+ * delta = h(t) + R - x (damping has none) */
+double bf_floor_potential_general(const bf_floor *p, const bf_balls *b,
+                                  double t, const double *x);
 
 BF_EFFECT_INLINE double bf_contact_potential(const bf_contact *p,
                                              const bf_balls *b,
@@ -253,7 +297,12 @@ BF_EFFECT_INLINE int bf_effects_daccel_inline(const bf_effect *e, size_t ne,
             bf_gravity_daccel(e[k].self, b, abar);
             break;
         case BF_KERNEL_FLOOR:
-            bf_floor_daccel(e[k].self, b, x, xn, abar);
+            if (((const bf_floor *)e[k].self)->general) {
+                if (bf_effect_daccel_generic(&e[k], b, t, x, xn, abar))
+                    return 1;
+            } else {
+                bf_floor_daccel(e[k].self, b, x, xn, abar);
+            }
             break;
         case BF_KERNEL_CONTACT:
             bf_contact_daccel(e[k].self, b, x, xn, abar);
@@ -306,7 +355,10 @@ BF_EFFECT_INLINE double bf_effects_potential_inline(const bf_effect *e,
             u += bf_gravity_potential(e[k].self, b, x);
             break;
         case BF_KERNEL_FLOOR:
-            u += bf_floor_potential(e[k].self, b, x);
+            if (((const bf_floor *)e[k].self)->general)
+                u += bf_floor_potential_general(e[k].self, b, t, x);
+            else
+                u += bf_floor_potential(e[k].self, b, x);
             break;
         case BF_KERNEL_CONTACT:
             u += bf_contact_potential(e[k].self, b, x);
@@ -338,10 +390,16 @@ BF_EFFECT_INLINE int bf_effects_accel_inline(const bf_effect *e, size_t ne,
             bf_gravity_accel(e[k].self, b, x, acc);
             break;
         case BF_KERNEL_FLOOR:
-            bf_floor_accel(e[k].self, b, x, acc);
+            if (((const bf_floor *)e[k].self)->general)
+                bf_floor_accel_general(e[k].self, b, t, x, v, acc);
+            else
+                bf_floor_accel(e[k].self, b, x, acc);
             break;
         case BF_KERNEL_CONTACT:
-            bf_contact_accel(e[k].self, b, x, acc);
+            if (((const bf_contact *)e[k].self)->general)
+                bf_contact_accel_general(e[k].self, b, x, v, acc);
+            else
+                bf_contact_accel(e[k].self, b, x, acc);
             break;
         case BF_KERNEL_SPRING:
             bf_spring_accel(e[k].self, b, x, acc);

@@ -1,6 +1,7 @@
 /* floor.c: Hertz contact with a rigid floor at x = 0, Yasuda eq. 2.5:
  * f = k x^{3/2}, x = max(R - z, 0), potential (2/5) k x^{5/2} (eq. 2.8,
- * exact for the floor).  Only the lowest ball can reach the floor while the
+ * exact for the floor).  Optionally damped (restitution, viscosity) and
+ * driven (the floor at height amplitude sin(2 pi frequency t)): damped.c.  Only the lowest ball can reach the floor while the
  * balls keep their order, but every ball is checked: it costs nothing and
  * stays right if a scene starts with balls out of order. */
 #include "effect_kernels.h"
@@ -8,6 +9,17 @@
 static const bf_param floor_params[] = {
     {"k", BF_AT(bf_floor, k, BF_REAL), "g cm^-1/2 s^-2", "1e7",
      "Hertz constant of the ball-floor contact", BF_POS, 0, 0, NULL},
+    {"restitution", BF_AT(bf_floor, e, BF_REAL), "1", "1",
+     "coefficient of restitution at any impact speed (damping c delta^1/4 "
+     "ddelta; 1: elastic)", BF_POS | BF_MAX, 0, 1, NULL},
+    {"viscosity", BF_AT(bf_floor, A, BF_REAL), "s", "0",
+     "Kuwabara-Kono damping (3/2) A k delta^1/2 ddelta", BF_NONNEG, 0, 0,
+     NULL},
+    {"amplitude", BF_AT(bf_floor, amplitude, BF_REAL), "cm", "0",
+     "the floor moves to height amplitude sin(2 pi frequency t)", BF_NONNEG,
+     0, 0, NULL},
+    {"frequency", BF_AT(bf_floor, frequency, BF_REAL), "Hz", "0",
+     "frequency of the floor's motion", BF_NONNEG, 0, 0, NULL},
     {0},
 };
 
@@ -29,10 +41,33 @@ static bf_status floor_create(void **self, const void *params,
                                i + 1, b->x[i], b->R[i]);
         }
     }
-    return bf_effect_copy_params(self, params, sizeof(bf_floor), err);
+    bf_status st = bf_effect_copy_params(self, params, sizeof(bf_floor), err);
+    if (!st) {
+        bf_floor *p = *self;
+        p->alpha = bf_damping_alpha(p->e);
+        p->general = p->e < 1 || p->A > 0 || p->amplitude > 0;
+    }
+    return st;
 }
 
-BF_EFFECT_KERNEL_WRAPPERS(floor)
+static int floor_accel(const void *self, const bf_balls *b, double t,
+                       const double *x, const double *v, double *acc)
+{
+    const bf_floor *p = self;
+    if (p->general)
+        bf_floor_accel_general(p, b, t, x, v, acc);
+    else
+        bf_floor_accel(p, b, x, acc);
+    return 0;
+}
+
+static double floor_potential(const void *self, const bf_balls *b, double t,
+                              const double *x)
+{
+    const bf_floor *p = self;
+    return p->general ? bf_floor_potential_general(p, b, t, x)
+                      : bf_floor_potential(p, b, x);
+}
 
 const bf_effect_type bf_effect_floor = {
     .name = "floor",

@@ -65,7 +65,7 @@ static bf_status impmid_step(bf_integrator *it, const bf_ode *ode, double t,
                              double dt, double *x, double *v, bf_err *err)
 {
     const impmid_priv *p = it->priv;
-    const size_t n = ode->n;
+    const size_t n = ode->n, nc = ode->n_check ? ode->n_check : n;
     double *a = it->work + A * n, *xm = it->work + XM * n,
            *vm = it->work + VM * n, *vn = it->work + VN * n;
     const double hdt = 0.5 * dt, tm = t + hdt;
@@ -85,6 +85,8 @@ static bf_status impmid_step(bf_integrator *it, const bf_ode *ode, double t,
         scale = 0.0;
         for (size_t i = 0; i < n; i++) {
             vn[i] = v[i] + hdt * a[i];
+            if (i >= nc) /* follows from the others (bf_ode.n_check) */
+                continue;
             double d = fabs(vn[i] - vm[i]);
             if (!(d <= change)) /* also catches NaN */
                 change = d;

@@ -68,6 +68,13 @@ static void balls_energy(const void *self, double t, double *kin, double *pot)
     bf_ballsys_energy(m->sys, t, kin, pot);
 }
 
+static int balls_work(const void *self, double *diss, double *inj)
+{
+    const bf_ballsys *sys = ((const balls_model *)self)->sys;
+    bf_ballsys_work(sys, diss, inj);
+    return sys->nw > 0;
+}
+
 static double balls_energy_bound(const void *self)
 {
     return bf_ballsys_energy_bound(((const balls_model *)self)->sys);
@@ -142,6 +149,7 @@ const bf_model_type bf_model_balls = {
     .step = balls_step,
     .energy = balls_energy,
     .energy_bound = balls_energy_bound,
+    .work = balls_work,
     .output_open = balls_output_open,
     .output_row = balls_output_row,
     .counters = balls_counters,

@@ -56,7 +56,62 @@ int bf_ballsys_accel(void *ctx, double t, const double *x, const double *v,
                      double *acc)
 {
     const bf_ballsys *s = ctx;
+    if (s->nw)
+        return bf_ballsys_accel_work(ctx, t, x, v, acc);
     return bf_effects_accel_inline(s->eff, s->neff, &s->b, t, x, v, acc);
+}
+
+/* Work of the non-conservative forces (erg) as two more ODE components:
+ * W_diss' = D(t, x, v), W_inj' = J(t, x, v) (the powers of damped.c; an
+ * effect without a potential and not built in, such as drag, dissipates
+ * D = -sum_i m_i a_i v_i), the "velocities" of components n and n + 1,
+ * so every integrator integrates the work with its own stages, at its
+ * own order, and E(t) - E(0) + W_diss - W_inj closes to that order
+ * (docs/forces.md).  The ball components keep their bits. */
+int bf_ballsys_accel_work(void *ctx, double t, const double *x,
+                          const double *v, double *acc)
+{
+    bf_ballsys *s = ctx;
+    const bf_balls *b = &s->b;
+    const size_t n = b->n;
+    if (bf_effects_accel_inline(s->eff, s->neff, b, t, x, v, acc))
+        return 1;
+    double diss = 0.0, inj = 0.0;
+    for (size_t k = 0; k < s->neff; k++) {
+        const bf_effect *e = &s->eff[k];
+        switch (bf_effect_kernel_of(e->type)) {
+        case BF_KERNEL_FLOOR:
+            if (((const bf_floor *)e->self)->general)
+                bf_floor_power(e->self, b, t, x, v, &diss, &inj);
+            break;
+        case BF_KERNEL_CONTACT:
+            if (((const bf_contact *)e->self)->general)
+                bf_contact_power(e->self, b, x, v, &diss);
+            break;
+        case BF_KERNEL_NONE:
+            if (e->type->potential ||
+                (e->type->flags & BF_EFFECT_CONSERVATIVE))
+                break;
+            for (size_t i = 0; i < n; i++)
+                s->w_acc[i] = 0.0;
+            if (e->type->accel(e->self, b, t, x, v, s->w_acc))
+                return 1;
+            for (size_t i = 0; i < n; i++)
+                diss -= b->m[i] * s->w_acc[i] * v[i];
+            break;
+        default:
+            break;
+        }
+    }
+    acc[n] = diss;
+    acc[n + 1] = inj;
+    return 0;
+}
+
+void bf_ballsys_work(const bf_ballsys *s, double *diss, double *inj)
+{
+    *diss = s->nw ? s->b.v[s->b.n] : 0.0;
+    *inj = s->nw ? s->b.v[s->b.n + 1] : 0.0;
 }
 
 int bf_ballsys_daccel(void *ctx, double t, const double *x, const double *xn,
@@ -69,6 +124,10 @@ int bf_ballsys_daccel(void *ctx, double t, const double *x, const double *xn,
 bf_status bf_ballsys_step_generic(bf_ballsys *s, double t, double dt,
                                   bf_err *err)
 {
+    /* a force of t: the first-same-as-last cache (keyed by x) must not
+     * hand a force of another time to this step */
+    if (s->time_dependent)
+        s->ode.epoch++;
     bf_status st = bf_integrator_step(s->it, &s->ode, t, dt, s->b.x, s->b.v,
                                       err);
     if (st)
@@ -127,6 +186,7 @@ void bf_ballsys_free(bf_ballsys *s)
     free(s->it_params);
     bf_integrator_free(s->it);
     free(s->x_start);
+    free(s->w_acc);
     free(s->b.x);
     free(s->b.v);
     free(s->b.m);
@@ -230,13 +290,28 @@ static void gaps_setup(bf_ballsys *s)
         const bf_effect_kernel kk = bf_effect_kernel_of(s->eff[k].type);
         s->gap_floor |= kk == BF_KERNEL_FLOOR;
         s->gap_pair |= kk == BF_KERNEL_CONTACT && n > 1;
+        if (kk == BF_KERNEL_FLOOR)
+            s->floor = s->eff[k].self;
+        /* the force's exponent at an onset (graded_h): delta^{3/2}
+         * elastic, delta^{1/2} viscous, delta^{1/4} with restitution */
+        if (kk == BF_KERNEL_FLOOR || kk == BF_KERNEL_CONTACT) {
+            const double e = kk == BF_KERNEL_FLOOR
+                                 ? ((const bf_floor *)s->eff[k].self)->e
+                                 : ((const bf_contact *)s->eff[k].self)->e;
+            const double A = kk == BF_KERNEL_FLOOR
+                                 ? ((const bf_floor *)s->eff[k].self)->A
+                                 : ((const bf_contact *)s->eff[k].self)->A;
+            const double kink = e < 1 ? 0.25 : A > 0 ? 0.5 : 1.5;
+            if (!(s->kink_power > 0) || kink < s->kink_power)
+                s->kink_power = kink;
+        }
     }
     s->ngaps = (s->gap_floor ? (int)n : 0) + (s->gap_pair ? (int)n - 1 : 0);
 }
 
 static bf_status events_setup(bf_ballsys *s, bf_err *err)
 {
-    const size_t n = s->b.n;
+    const size_t n = s->ode.n; /* the balls, and the work (nw) */
     const size_t m = (size_t)s->ngaps;
     s->ev_work = calloc(6 * n + 4 * m + 1, sizeof *s->ev_work);
     s->ev_side = calloc(m + 1, sizeof *s->ev_side);
@@ -254,17 +329,22 @@ static bf_status events_setup(bf_ballsys *s, bf_err *err)
     return BF_OK;
 }
 
-/* the gaps at x (cm) and, with v, their rates (cm/s) */
-static void gaps(const bf_ballsys *s, const double *x, const double *v,
-                 double *g, double *rate)
+/* the gaps at (t, x) (cm) and, with v, their rates (cm/s); a driven
+ * floor's gap is x - R - h(t) */
+static void gaps(const bf_ballsys *s, double t, const double *x,
+                 const double *v, double *g, double *rate)
 {
     const double *R = s->b.R;
     int m = 0;
+    double h = 0, hd = 0;
+    const int driven = s->floor && s->floor->amplitude > 0;
+    if (driven)
+        bf_floor_height(s->floor, t, &h, &hd);
     if (s->gap_floor)
         for (size_t i = 0; i < s->b.n; i++, m++) {
-            g[m] = x[i] - R[i];
+            g[m] = driven ? x[i] - R[i] - h : x[i] - R[i];
             if (rate)
-                rate[m] = v[i];
+                rate[m] = driven ? v[i] - hd : v[i];
         }
     if (s->gap_pair)
         for (size_t i = 0; i + 1 < s->b.n; i++, m++) {
@@ -291,8 +371,7 @@ static double gap_tol(const bf_ballsys *s, const double *x, int j)
 int bf_ballsys_gaps_fn(void *ctx, double t, const double *x, const double *v,
                        double *g)
 {
-    (void)t;
-    gaps(ctx, x, v, g, NULL);
+    gaps(ctx, t, x, v, g, NULL);
     return 0;
 }
 
@@ -310,8 +389,8 @@ static bf_status plain_step(bf_ballsys *s, double t, double dt, bf_err *err)
 static bf_status substep(bf_ballsys *s, const double *xa, const double *va,
                          double ta, double h, bf_err *err)
 {
-    memcpy(s->b.x, xa, s->b.n * sizeof *xa);
-    memcpy(s->b.v, va, s->b.n * sizeof *va);
+    memcpy(s->b.x, xa, s->ode.n * sizeof *xa);
+    memcpy(s->b.v, va, s->ode.n * sizeof *va);
     return plain_step(s, ta, h, err);
 }
 
@@ -345,7 +424,7 @@ static bf_status locate(bf_ballsys *s, piece_ws *w, int j, double thhi,
                         double ghi, double glo, double guess, double *theta,
                         bf_err *err)
 {
-    const size_t n = s->b.n;
+    const size_t n = s->ode.n;
     const int far = side(ghi);
     double lo = 0, hi = thhi, flo = glo, fhi = ghi, th = guess * thhi;
     int kept = 0; /* last end kept: -1 lo, +1 hi */
@@ -357,7 +436,7 @@ static bf_status locate(bf_ballsys *s, piece_ws *w, int j, double thhi,
         w->trials++;
         if (st)
             return st;
-        gaps(s, s->b.x, NULL, g, NULL);
+        gaps(s, w->ta + th * w->h, s->b.x, NULL, g, NULL);
         const double f = g[j];
         if (f == 0 || side(f) == far) {
             hi = th;
@@ -404,7 +483,7 @@ static double graded_h(const bf_ballsys *s, const double *g,
                        const double *rate, const int *side_of, double dt)
 {
     const double S = s->it->split_zone,
-                 gam = (bf_integrator_order(s->it) + 1) / 2.5;
+                 gam = (bf_integrator_order(s->it) + 1) / (1 + s->kink_power);
     if (!(gam > 1) || !(dt < S))
         return dt;
     double dist = INFINITY;
@@ -421,7 +500,7 @@ static double graded_h(const bf_ballsys *s, const double *g,
 bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
                                 bf_err *err)
 {
-    const size_t n = s->b.n, m = (size_t)s->ngaps;
+    const size_t n = s->ode.n, m = (size_t)s->ngaps;
     double *x0 = s->ev_work, *v0 = x0 + n;
     piece_ws w = {.xa = x0 + 2 * n, .va = x0 + 3 * n, .xh = x0 + 4 * n,
                   .vh = x0 + 5 * n, .ga = x0 + 6 * n, .gb = x0 + 6 * n + m,
@@ -433,7 +512,7 @@ bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
     memcpy(v0, s->b.v, n * sizeof *v0);
     memcpy(w.xa, x0, n * sizeof *x0);
     memcpy(w.va, v0, n * sizeof *v0);
-    gaps(s, w.xa, w.va, w.ga, w.ra);
+    gaps(s, w.ta, w.xa, w.va, w.ga, w.ra);
     for (size_t j = 0; j < m; j++)
         sa[j] = side(w.ga[j]);
     unsigned pieces = 0;
@@ -447,7 +526,7 @@ bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
         if (st)
             break;
         pieces++;
-        gaps(s, s->b.x, s->b.v, w.gb, w.rb);
+        gaps(s, w.ta + w.h, s->b.x, s->b.v, w.gb, w.rb);
         /* the crossing that the Hermite interpolants put first */
         int j = -1;
         double first = 2, th = 1;
@@ -472,7 +551,7 @@ bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
                                  err)))
                     break;
                 /* did another gap cross before? (its zero comes first) */
-                gaps(s, w.xh, NULL, w.gb, NULL);
+                gaps(s, w.ta + th * w.h, w.xh, NULL, w.gb, NULL);
                 int k2 = -1;
                 for (size_t k = 0; k < m; k++)
                     if ((int)k != j && sa[k] * side(w.gb[k]) < 0)
@@ -497,7 +576,7 @@ bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
         memcpy(w.va, s->b.v, n * sizeof *w.va);
         w.ta += th * w.h;
         rest -= th * w.h;
-        gaps(s, w.xa, w.va, w.ga, w.ra);
+        gaps(s, w.ta, w.xa, w.va, w.ga, w.ra);
         for (size_t k = 0; k < m; k++)
             sa[k] = side(w.ga[k]);
         if (j >= 0)
@@ -526,7 +605,7 @@ static bf_status check_velocity_forces(const bf_ballsys *s, bf_err *err)
         return BF_OK;
     const char *name = "";
     for (size_t k = 0; k < s->neff; k++)
-        if (s->eff[k].type->flags & BF_EFFECT_VELOCITY) {
+        if (bf_effect_flags(&s->eff[k]) & BF_EFFECT_VELOCITY) {
             name = s->eff[k].type->name;
             break;
         }
@@ -590,15 +669,35 @@ bf_status bf_ballsys_create(bf_ballsys **out, const bf_model_setup *setup,
         if (!s->lent[k])
             st = s->eff[k].type->create(&s->eff[k].self,
                                         setup->effect_params[k], &s->b, err);
-        if (s->eff[k].type->flags & BF_EFFECT_VELOCITY)
+        const unsigned fl = st ? 0 : bf_effect_flags(&s->eff[k]);
+        if (fl & BF_EFFECT_VELOCITY)
             s->ode.velocity_dependent = 1;
-        if (s->eff[k].type->flags & (BF_EFFECT_VELOCITY | BF_EFFECT_TIME))
+        if (fl & BF_EFFECT_TIME)
+            s->time_dependent = 1;
+        if (fl & (BF_EFFECT_VELOCITY | BF_EFFECT_TIME))
             s->no_fast = 1;
     }
     if (!st)
         st = check_initial_energy(s, err);
+    /* the work of non-conservative forces, tracked for the balls' own
+     * scenes (not for a caller's lent effects: the coupled model) */
+    if (!st && !ngiven && (s->ode.velocity_dependent || s->time_dependent)) {
+        double *x = realloc(s->b.x, (nb + 2) * sizeof *x);
+        if (x)
+            s->b.x = x;
+        double *v = x ? realloc(s->b.v, (nb + 2) * sizeof *v) : NULL;
+        if (v)
+            s->b.v = v;
+        s->w_acc = calloc(nb, sizeof *s->w_acc);
+        if (!x || !v || !s->w_acc)
+            st = bf_fail(err, BF_EINTERNAL, "out of memory");
+        else {
+            s->nw = 2;
+            s->b.x[nb] = s->b.x[nb + 1] = s->b.v[nb] = s->b.v[nb + 1] = 0.0;
+        }
+    }
     if (!st)
-        st = bf_integrator_create(&s->it, setup->integrator, nb,
+        st = bf_integrator_create(&s->it, setup->integrator, nb + s->nw,
                                   setup->integrator_params, err);
     if (!st)
         st = check_velocity_forces(s, err);
@@ -632,7 +731,8 @@ bf_status bf_ballsys_create(bf_ballsys **out, const bf_model_setup *setup,
     }
     if (s->it_params)
         memcpy(s->it_params, setup->integrator_params, isp->size);
-    s->ode.n = nb;
+    s->ode.n = nb + s->nw;
+    s->ode.n_check = nb; /* the work follows from the balls' state */
     s->ode.accel = bf_ballsys_accel;
     s->ode.ctx = s;
     s->ode.epoch = 0;
@@ -716,11 +816,14 @@ bf_status bf_ballsys_set(bf_ballsys *s, const char *name, const double *v,
 /* 0.5: balls whose computed energy changed by half are no result of a
  * conservative system (shot up, or come to rest: docs/integrators.md),
  * while the methods of Yasuda's Fig. 3, inaccurate on contacts, stay
- * below it on the scenes of runs/ (their own max_energy_error is 0.5). */
+ * below it on the scenes of runs/ (their own max_energy_error is 0.5).
+ * With a non-conservative effect: 0 (the balance E - E0 + W_diss - W_inj
+ * is checked and reported, and bounded by [scene] max_energy_error; its
+ * relative error is absolute, in erg, when E0 = 0). */
 double bf_ballsys_energy_bound(const bf_ballsys *s)
 {
     for (size_t k = 0; k < s->neff; k++)
-        if (!(s->eff[k].type->flags & BF_EFFECT_CONSERVATIVE))
+        if (!(bf_effect_flags(&s->eff[k]) & BF_EFFECT_CONSERVATIVE))
             return 0.0;
     return 0.5;
 }
@@ -750,6 +853,13 @@ bf_status bf_ballsys_save(const bf_ballsys *s, bf_ckpt *ck, const char *prefix,
     snprintf(name, sizeof name, "%s.v", prefix);
     if ((st = bf_ckpt_put(ck, name, s->b.v, s->b.n, err)))
         return st;
+    if (s->nw) {
+        const double w[4] = {s->b.x[s->b.n], s->b.x[s->b.n + 1],
+                             s->b.v[s->b.n], s->b.v[s->b.n + 1]};
+        snprintf(name, sizeof name, "%s.work", prefix);
+        if ((st = bf_ckpt_put(ck, name, w, 4, err)))
+            return st;
+    }
     snprintf(name, sizeof name, "%s.integrator", prefix);
     return bf_integrator_save(s->it, ck, name, err);
 }
@@ -765,6 +875,16 @@ bf_status bf_ballsys_load(bf_ballsys *s, const bf_ckpt *ck, const char *prefix,
     snprintf(name, sizeof name, "%s.v", prefix);
     if ((st = bf_ckpt_get(ck, name, s->b.v, s->b.n, err)))
         return st;
+    if (s->nw) {
+        double w[4];
+        snprintf(name, sizeof name, "%s.work", prefix);
+        if ((st = bf_ckpt_get(ck, name, w, 4, err)))
+            return st;
+        s->b.x[s->b.n] = w[0];
+        s->b.x[s->b.n + 1] = w[1];
+        s->b.v[s->b.n] = w[2];
+        s->b.v[s->b.n + 1] = w[3];
+    }
     /* as the initial state (non-finite refused before any row): a state
      * that is not finite is nothing to continue from (an edited file, or
      * one written between a blow-up and the energy check that stops it) */

@@ -37,6 +37,9 @@ typedef struct bf_ballsys {
                              created or destroyed here */
     int no_fast; /* an effect depends on velocity or explicitly on time:
                     no specialised steps (ball_steps.h) */
+    int time_dependent; /* an effect depends explicitly on t: ode.epoch is
+                           bumped every step (the force cache is keyed by
+                           x, integrator.h) */
     bf_ode ode;
     /* what the integrator's specialised steps see (b, eff, neff) */
     bf_ball_forces forces;
@@ -51,9 +54,18 @@ typedef struct bf_ballsys {
     int split;      /* fixed-step integrator: split each step at them */
     int gap_floor, gap_pair;
     int ngaps;
+    const struct bf_floor *floor; /* the floor effect's state, or NULL */
+    double kink_power; /* the force grows as delta^kink_power after an
+                          onset (graded substeps, ballsys.c) */
     double *ev_work; /* scratch of the splitting */
     int *ev_side;
     bf_events kinks; /* adaptive integrator with roots: its kinks */
+    /* The work of the non-conservative forces (ballsys.c,
+     * bf_ballsys_accel_work): nw = 2 when tracked, then b.x and b.v hold
+     * n + 2 values, the last two of b.v being W_diss and W_inj (erg), and
+     * the integrator advances ode.n = n + 2 components. */
+    size_t nw;
+    double *w_acc; /* scratch, n */
     /* the state at the start of the last step of a watched run that fired
      * (bf_ball_watch.x_start; n each) */
     double *x_start, *v_start;
@@ -82,6 +94,14 @@ int bf_ballsys_accel(void *ctx, double t, const double *x, const double *v,
 int bf_ballsys_daccel(void *ctx, double t, const double *x, const double *xn,
                       double *abar);
 
+/* The same with the powers of the non-conservative forces as the
+ * accelerations of components n, n + 1 (what bf_ballsys_accel does when
+ * the work is tracked, s->nw = 2). */
+int bf_ballsys_accel_work(void *ctx, double t, const double *x,
+                          const double *v, double *acc);
+/* The work the non-conservative forces did since t = 0 (erg): dissipated
+ * (>= 0) and injected by driving; both 0 when not tracked (s->nw = 0). */
+void bf_ballsys_work(const bf_ballsys *s, double *diss, double *inj);
 /* The s->ngaps gaps of the event splitting at x (bf_root_fn; ctx: the
  * bf_ballsys; v is not read). */
 int bf_ballsys_gaps_fn(void *ctx, double t, const double *x, const double *v,
