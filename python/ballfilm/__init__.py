@@ -12,12 +12,14 @@ process (see _lib.py for where the library is looked for: $BALLFILM_LIB,
 the one inside the package, the repository's build/, the installed one,
 the system's).  Only Debian's python3-numpy and python3-h5py are needed.
 scene("bouncing_ball") is the path of a scene the package ships (runs/),
-plot_script("animate") that of a plot script (plots/); __version__ is
+plot_script("animate") that of a plot script (plots/); animate(result)
+makes a movie of a run with it and returns its path; __version__ is
 BF_VERSION of include/ballfilm/version.h.  docs/library.md has the tour.
 """
 from ._share import plot_script, scene, scenes, share_dir
 from ._share import version as _version
 from .errors import BallfilmError, Interrupted
+from .movie import animate
 from .result import Result, load
 from .runner import Catalog, State, restart, run, scene_text
 from .tables import converge, sweep
@@ -40,4 +42,4 @@ def version():
 __all__ = ["load", "run", "restart", "converge", "sweep", "Result", "State",
            "Catalog", "BallfilmError", "Interrupted", "scene_text",
            "library_path", "version", "scene", "scenes", "plot_script",
-           "share_dir", "__version__"]
+           "share_dir", "animate", "__version__"]

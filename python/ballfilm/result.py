@@ -107,6 +107,10 @@ class Result:
                               - W_injected (/energy/dissipated, /injected)
     r.energy_balance          True when energy_error is that of the balance
     r.attrs                   every root attribute as h5py reads it
+    r.summary()               what `ballfilm info` prints (Jupyter shows
+                              the same as HTML, _repr_html_); repr(r) is
+                              one line: model, status, steps, t, energy
+                              error
     """
 
     def __init__(self, path, eager=False):
@@ -239,10 +243,84 @@ class Result:
     def steps(self):
         return self.counters.get("steps_done")
 
+    def _info(self):
+        """[(label, value)] of the run, as `ballfilm info` prints them."""
+        p, c = self.params, self.counters
+        rows = [("file", self.path or "in memory (its temporary file is "
+                 "gone)")]
+        for label, key in (("title", "scene.title"), ("model", "scene.model"),
+                           ("integrator", "scene.integrator"),
+                           ("effects", "scene.effects")):
+            if p.get(key, "") != "":
+                rows.append((label, str(p[key])))
+        if self.version:
+            rows.append(("written by", self.version))
+        if self.scene_file:
+            rows.append(("scene file", self.scene_file))
+        status = self.status or "?"
+        if self.message and self.message != self.status:
+            status += f" ({self.message})"
+        rows.append(("status", status))
+        if "steps_done" in c:
+            t = f" (t = {c['t_final']:g} s)" if "t_final" in c else ""
+            rows.append(("steps", f"{c['steps_done']}{t}"))
+        for label, key in (("force evaluations", "force_evaluations"),
+                           ("rejected steps", "rejected_steps"),
+                           ("iterations", "iterations")):
+            if key in c:
+                rows.append((label, str(c[key])))
+        rows.append(("max relative energy error",
+                     "none (no energy)" if self.energy_error is None
+                     else f"{self.energy_error:.6e}"))
+        return rows
+
+    def _datasets(self):
+        """[(name, shape text, unit, description)] of every dataset."""
+        return [("/" + n, "[" + " x ".join(str(d) for d in self.shapes[n])
+                 + "]" if self.shapes[n] else "[]", self.units.get(n, ""),
+                 self.descriptions.get(n, "")) for n in self.keys()]
+
+    def summary(self):
+        """What `ballfilm info` prints of the file: the scene (title,
+        model, integrator, effects), the version that wrote it, the status
+        and message, the steps and counters, the energy error, and every
+        dataset with its shape, unit and description."""
+        info = self._info()
+        w = max(len(k) for k, _ in info) + 2
+        lines = [f"{k + ':':<{w}}{v}" for k, v in info]
+        ds = self._datasets()
+        lines.append(f"datasets: {len(ds)}")
+        if ds:
+            wn = max(len(d[0]) for d in ds) + 2
+            ws = max(len(d[1]) for d in ds) + 2
+            wu = max(len(d[2]) for d in ds) + 2
+            for name, shape, unit, desc in ds:
+                lines.append(f"  {name:<{wn}}{shape:<{ws}}{unit:<{wu}}"
+                             f"{desc}".rstrip())
+        return "\n".join(lines)
+
+    def _repr_html_(self):
+        """summary() as HTML tables (Jupyter shows it for a Result)."""
+        from html import escape
+        head = "".join(f"<tr><th style='text-align:left'>{escape(k)}</th>"
+                       f"<td style='text-align:left'>{escape(v)}</td></tr>"
+                       for k, v in self._info())
+        body = "".join("<tr>" + "".join(
+            f"<td style='text-align:left'>{escape(x)}</td>" for x in d) +
+            "</tr>" for d in self._datasets())
+        return (f"<div><b>ballfilm.Result</b><table>{head}</table>"
+                f"<table><tr><th>dataset</th><th>shape</th><th>unit</th>"
+                f"<th>description</th></tr>{body}</table></div>")
+
     def __repr__(self):
+        c = self.counters
+        e = "n/a" if self.energy_error is None else f"{self.energy_error:.3g}"
+        t = f"{c['t_final']:g}" if "t_final" in c else "?"
         return (f"<ballfilm.Result {self.path or 'in memory'}: "
                 f"{self.params.get('scene.model', '?')}, "
-                f"status {self.status or '?'}, {len(self.shapes)} datasets>")
+                f"status {self.status or '?'}, {c.get('steps_done', '?')} "
+                f"steps, t={t} s, energy error {e}, "
+                f"{len(self.shapes)} datasets>")
 
 
 def load(path):

@@ -25,7 +25,7 @@ import threading
 
 import numpy as np
 
-from . import _lib
+from . import _lib, _progress
 from .errors import BallfilmError, Interrupted, from_err
 from .result import Result
 
@@ -160,6 +160,47 @@ def _sets(set_, t_end):
     return out
 
 
+def _set_words(e, set_, t_end=None):
+    """A BallfilmError about an override, worded for Python: the library
+    says "--set: error: [ball.1] mass: ..." (the command line's option);
+    this says "set={'ball.1.mass': -1}: [ball.1] mass: ..."."""
+    msg = e.message
+    for opt in ("--set (stored): error: ", "--set: error: "):
+        if msg.startswith(opt):
+            items = dict(set_ or {})
+            named = f"{e.section}.{e.key}"
+            shown = {named: items[named]} if named in items else items
+            arg = f"set={shown!r}"
+            if named == "scene.t_end" and named not in items and \
+                    t_end is not None:
+                arg = f"t_end={t_end!r}"
+            e.message = f"{arg}: {msg[len(opt):]}"
+            e.args = (e.message,)
+            break
+    return e
+
+
+def _scene_file(scene, what="scene"):
+    """The path of a scene file as C bytes; BallfilmError (input) when
+    there is no such file, naming the shipped scene of that name if
+    there is one."""
+    b = _lib.cpath(scene, what)
+    if not os.path.exists(b):
+        p = os.fspath(scene)
+        hint = ""
+        name = os.path.splitext(os.path.basename(p))[0]
+        try:
+            from ._share import scenes
+            if name in scenes():
+                hint = f" (a shipped scene: ballfilm.scene({name!r}))"
+        except (OSError, FileNotFoundError):
+            pass
+        e = BallfilmError(f"{what} {p!r}: no such file{hint}", 2)
+        e.file = p
+        raise e
+    return b
+
+
 def scene_text(sections):
     """INI text of a dict {section: {key: value}}."""
     lines = []
@@ -236,9 +277,10 @@ class _StopOnSigint:
         return False
 
 
-def _in_thread(fn, flag):
+def _in_thread(fn, flag, tick=None):
     """fn() in a worker thread; Ctrl-C here sets flag (the run's stop
-    flag) and waits for the run to stop.  Returns (fn's value, whether
+    flag) and waits for the run to stop; tick(), if given, is called
+    between the waits (the progress line).  Returns (fn's value, whether
     Ctrl-C came).  The wait is on an Event of our own: a Thread.join that
     KeyboardInterrupt interrupts can leave the thread marked as stopped
     while it still runs (CPython before 3.13)."""
@@ -261,15 +303,19 @@ def _in_thread(fn, flag):
                 started = True
                 t.start()
             done.wait(0.05)
+            if tick is not None:
+                tick()
         except KeyboardInterrupt:
             ctrl_c = True
             flag.value = 1
     return box.get("v"), ctrl_c
 
 
-def _drive(run, lib, flag, output, temp, observers, initial, opened=False):
+def _drive(run, lib, flag, output, temp, observers, initial, opened=False,
+           progress=False):
     """Set up, run and close one bf_run (its output opened here unless
-    `opened`: a restart); returns the Result (or raises)."""
+    `opened`: a restart), with a progress line when `progress`; returns
+    the Result (or raises)."""
     sim = lib.bf_run_sim(run)
     err = _lib.Err()
     for name, values in (initial or {}).items():
@@ -285,19 +331,26 @@ def _drive(run, lib, flag, output, temp, observers, initial, opened=False):
         if lib.bf_sim_heartbeat(sim, int(every), ob.c, None,
                                 ctypes.byref(err)):
             raise from_err(err)
+    bar = None
+    if progress:
+        bar = _progress.Progress()
+        if bar.attach(lib, sim, err):
+            raise from_err(err)
     if output is not None and not opened and lib.bf_run_open_output(
             run, _lib.cpath(output, "output"), ctypes.byref(err)):
         raise from_err(err)
     with _StopOnSigint(flag) as stop:
-        return _run_and_close(lib, sim, flag, stop, output, temp, keep)
+        return _run_and_close(lib, sim, flag, stop, output, temp, keep, bar)
 
 
-def _run_and_close(lib, sim, flag, stop, output, temp, keep):
+def _run_and_close(lib, sim, flag, stop, output, temp, keep, bar=None):
     """Run the sim to its end or stop, close its output and return its
     Result, or raise what ended it (Ctrl-C: ballfilm.Interrupted)."""
     err = _lib.Err()
     status, ctrl_c = _in_thread(lambda: lib.bf_sim_run(sim, ctypes.byref(err)),
-                                flag)
+                                flag, bar.tick if bar is not None else None)
+    if bar is not None:
+        bar.finish(lib, sim)
     ctrl_c = ctrl_c or stop.seen
     cerr = _lib.Err()
     cstatus = lib.bf_sim_close_output(sim, status, ctypes.byref(err),
@@ -370,6 +423,7 @@ class _Call:
 
     def __init__(self, set_, t_end, observer, every, catalog):
         self.lib = lib = _lib.lib()
+        self.set_, self.t_end = set_, t_end
         self.obs = _observers(observer, every)
         self.cat = catalog._ptr if catalog is not None \
             else lib.bf_catalog_builtin()
@@ -387,11 +441,11 @@ class _Call:
 
     def built(self, status):
         if status:
-            raise from_err(self.err)
+            raise _set_words(from_err(self.err), self.set_, self.t_end)
 
 
 def run(scene, set=None, t_end=None, output=None, observer=None, every=0,
-        initial=None, catalog=None, name="scene"):
+        initial=None, catalog=None, name="scene", progress=False):
     """Run a scene in this process and return its Result (ballfilm.load).
 
     scene     the path of a scene file, INI text, or a dict
@@ -407,6 +461,9 @@ def run(scene, set=None, t_end=None, output=None, observer=None, every=0,
               set before the first step (bf_sim_set)
     catalog   a ballfilm.Catalog with effects or integrators of one's own
     name      the name of INI text or a dict in messages
+    progress  True: a progress line (bar, simulated time of t_end,
+              steps/s, time left) on stderr, or in a Jupyter notebook
+              one line of output updated in place
 
     Bad scenes, keys and values raise BallfilmError with the library's
     message (FILE:LINE, section and key); a run that goes unstable raises
@@ -424,7 +481,7 @@ def run(scene, set=None, t_end=None, output=None, observer=None, every=0,
         c.built(c.lib.bf_run_from_text(*pre, _lib.cbytes(name, "name"),
                                        scene.encode(), *post))
     elif isinstance(scene, (str, os.PathLike)):
-        c.built(c.lib.bf_run_load(*pre, _lib.cpath(scene, "scene"), *post))
+        c.built(c.lib.bf_run_load(*pre, _scene_file(scene), *post))
     else:
         raise TypeError("scene must be a path, INI text or a dict of sections")
     tmpdir = None
@@ -433,7 +490,8 @@ def run(scene, set=None, t_end=None, output=None, observer=None, every=0,
         if temp:
             tmpdir = tempfile.mkdtemp(prefix="ballfilm-")
             output = os.path.join(tmpdir, "run.h5")
-        result = _drive(c.handle, c.lib, c.flag, output, temp, c.obs, initial)
+        result = _drive(c.handle, c.lib, c.flag, output, temp, c.obs, initial,
+                        progress=progress)
         if temp and result.path is not None:
             result.forget_file()
         return result
@@ -451,7 +509,7 @@ def run(scene, set=None, t_end=None, output=None, observer=None, every=0,
 
 
 def restart(output, set=None, t_end=None, observer=None, every=0,
-            catalog=None):
+            catalog=None, progress=False):
     """Continue the run of `output` from its checkpoint (output.ckpt) and
     return its Result; only keys that change when and how often a run
     writes may be set (t_end, output_every, ...)."""
@@ -460,6 +518,6 @@ def restart(output, set=None, t_end=None, observer=None, every=0,
     c.built(c.lib.bf_run_restart(*pre, _lib.cpath(output, "output"), *post))
     try:
         return _drive(c.handle, c.lib, c.flag, output, False, c.obs, None,
-                      opened=True)
+                      opened=True, progress=progress)
     finally:
         c.lib.bf_run_free(c.handle)

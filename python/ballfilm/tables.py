@@ -1,6 +1,7 @@
 """tables.py: the convergence study and parameter sweeps of the library
 (converge.h, sweep.h) from Python, their results as tables: numpy
-structured arrays with one row per run or case.
+structured arrays with one row per run or case (Table: an ndarray that
+also carries each column's unit in .units).
 """
 import ctypes
 import os
@@ -9,7 +10,50 @@ import numpy as np
 
 from . import _lib
 from .errors import Interrupted, from_err
-from .runner import _in_thread, _sets, _StopOnSigint
+from .runner import _in_thread, _scene_file, _set_words, _sets, _StopOnSigint
+
+
+class Table(np.ndarray):
+    """A structured array (one row per run or case) whose .units maps
+    every column to its unit (UDUNITS-2: "cm", "s", "1" for a number
+    without one, "" for text).  Indexing, slicing and masks work as on
+    any structured array and keep .units (a column, t["err_x"], is a
+    plain ndarray); np.asarray(table) is the plain array."""
+
+    def __new__(cls, rows, dtype, units):
+        t = np.array(rows, dtype=dtype).view(cls)
+        t.units = dict(units)
+        return t
+
+    def __array_finalize__(self, obj):
+        self.units = dict(getattr(obj, "units", {}) or {})
+
+    def __getitem__(self, index):
+        """Rows (a mask, a slice) stay a Table; a column or a field of
+        one row is a plain array or scalar, as numpy would give."""
+        v = super().__getitem__(index)
+        if isinstance(v, Table) and v.dtype.names is None:
+            return v.view(np.ndarray)
+        return v
+
+
+def _python_words(e, what, value):
+    """A BallfilmError whose message names the command line's option
+    (--set, --methods, --vary) reworded for the Python argument."""
+    msg = e.message
+    for opt in ("--methods: error: ", "--set: error: ", "--vary "):
+        if opt in msg:
+            m = msg
+            if opt == "--vary ":
+                m = msg.split(": ", 1)[1] if ": " in msg else msg
+            elif msg.startswith("method "):
+                m = msg.split(opt, 1)[1]
+            else:
+                m = msg.replace(opt, "", 1)
+            e.args = (f"{what}={value!r}: {m}",)
+            e.message = e.args[0]
+            break
+    return e
 
 
 def _doubles(values):
@@ -58,7 +102,7 @@ def converge(scene, methods, dts=None, tols=None, t_end=None, set=None,
     err = _lib.Err()
     flag = ctypes.c_int(0)  # set by Ctrl-C (_in_thread): the study stops
     o.stop_flag = ctypes.cast(ctypes.pointer(flag), ctypes.c_void_p)
-    scene_c = _lib.cpath(scene, "scene")
+    scene_c = _scene_file(scene)
     st, ctrl_c = _in_thread(lambda: lib.bf_converge_file(
         scene_c, sarr, ns, ctypes.byref(o),
         ctypes.byref(out), ctypes.byref(err)), flag)
@@ -70,7 +114,11 @@ def converge(scene, methods, dts=None, tols=None, t_end=None, set=None,
     if st == 6:
         raise Interrupted(err.msg.decode(errors="replace"))
     if st:
-        raise from_err(err)
+        e = from_err(err)
+        if e.message.startswith("--set"):
+            raise _set_words(e, set)
+        bad = [m for m in methods if f"method '{m}':" in e.message]
+        raise _python_words(e, "methods", bad or list(methods))
     try:
         return _converge_table(lib, out.contents)
     finally:
@@ -86,6 +134,14 @@ def _converge_table(lib, r):
     for g in names:
         dtype += [(f"err_{g}", float), (f"err_max_{g}", float),
                   (f"err_rms_{g}", float), (f"order_{g}", float)]
+    units = {"method": "", "label": "", "adaptive": "", "order": "1",
+             "dt": "s", "tol": "1"}
+    for g, u in groups:
+        units.update({f"err_{g}": u, f"err_max_{g}": u, f"err_rms_{g}": u,
+                      f"order_{g}": "1"})
+    units.update({"invariant_err": "1", "steps": "1", "evals": "1",
+                  "rejected": "1", "iterations": "1", "wall": "s",
+                  "status": "", "message": ""})
     dtype += [("invariant_err", float), ("steps", np.int64),
               ("evals", np.int64), ("rejected", np.int64),
               ("iterations", np.int64), ("wall", float), ("status", "U16"),
@@ -114,7 +170,7 @@ def _converge_table(lib, r):
         n = r.groups[g].n
         ref[f"{name}_ref"] = np.array(r.ref_state[off:off + n])
         off += n
-    return np.array(rows, dtype=dtype), ref
+    return Table(rows, dtype, units), ref
 
 
 def _vary_specs(vary):
@@ -150,10 +206,13 @@ def sweep(scene, vary, dir, set=None, retry_failed=False):
     sarr, ns, skeep = _lib.cstrings(_sets(set, None))
     sw = _lib.Sweep()
     err = _lib.Err()
-    if lib.bf_sweep_init(ctypes.byref(sw), _lib.cpath(scene, "scene"), sarr,
+    if lib.bf_sweep_init(ctypes.byref(sw), _scene_file(scene), sarr,
                          ns, varr, nv, _lib.cpath(dir, "dir"),
                          ctypes.byref(err)):
-        raise from_err(err)
+        e = from_err(err)
+        if "--set: error: " in e.message:
+            raise _set_words(e, set)
+        raise _python_words(e, "vary", _vary_arg(vary, e.message))
     flag = ctypes.c_int(0)
     sw.stop_flag = ctypes.pointer(flag)
     rows = (_lib.SweepRow * max(sw.ncases, 1))()
@@ -194,9 +253,36 @@ def sweep(scene, vary, dir, set=None, retry_failed=False):
                           w.lyapunov, w.map_points, w.map_fill,
                           w.energy_error, w.steps,
                           w.message.decode(errors="replace")))
-        return np.array(table, dtype=dtype)
+        return Table(table, dtype, _sweep_units(dir, keys))
     finally:
         lib.bf_sweep_free(ctypes.byref(sw))
         del vkeep, skeep
 
 
+
+
+def _vary_arg(vary, message):
+    """The part of `vary` a message of the library names (the whole of
+    it when none)."""
+    if hasattr(vary, "items"):
+        for k, v in vary.items():
+            if f"{k}=" in message or f"--vary {k}:" in message:
+                return {k: v}
+    return vary
+
+
+def _sweep_units(dir, keys):
+    """The sweep table's units: the varied keys' from summary.h5's
+    /params (column_units), the others fixed."""
+    units = {"index": "", "status": "", "wall": "s", "lyapunov": "s-1",
+             "map_points": "1", "map_fill": "1", "energy_error": "1",
+             "steps": "1", "message": ""}
+    try:
+        from .result import load
+        cu = load(os.path.join(os.fspath(dir), "summary.h5")) \
+            .column_units.get("params", [])
+    except (OSError, KeyError):
+        cu = []
+    for i, k in enumerate(keys):
+        units[k] = cu[i] if i < len(cu) else ""
+    return units

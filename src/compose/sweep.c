@@ -84,9 +84,12 @@ bf_status bf_sweep_parse_axis(bf_sweep_axis *ax, const char *spec, bf_err *err)
             ax->values = nv;
         }
         if (!bf_parse_real(tok, &ax->values[ax->n])) {
+            /* the message before the free: tok points into buf */
+            bf_status st = bf_fail(err, BF_EINPUT,
+                                   "--vary '%s': '%s' is not a number", spec,
+                                   tok);
             free(buf);
-            return bf_fail(err, BF_EINPUT, "--vary '%s': '%s' is not a number",
-                           spec, tok);
+            return st;
         }
         ax->n++;
     }

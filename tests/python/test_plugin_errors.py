@@ -53,7 +53,7 @@ BAD_SCENE = "[scene]\ndt = 1e-3\nt_end = 1\n[ball.1]\nposition = 1\nmass = -2\n"
 
 
 @pytest.mark.parametrize("kwargs, message, where", [
-    (dict(scene="runs/nope.ini"), "cannot open scene file", ("runs/nope.ini",
+    (dict(scene="runs/nope.ini"), "no such file", ("runs/nope.ini",
                                                             None)),
     (dict(scene=BAD_SCENE, name="bad.ini"), "must be > 0", ("bad.ini", 6)),
     (dict(scene="runs/bouncing_ball.ini", set={"ball.1.mas": 1}),
