@@ -12,8 +12,9 @@ reading files needs only h5py, not the C library.
 Every script that imports this module draws with style(): text sized for
 the figure (tick labels of 11 pt, about 20 px at the 130 dpi of save()),
 and no offset on any tick axis (a '1e-6+1' above an axis is never
-shown; the full values are).  animate.py uses fonts(scale) for its
-frames, scaled with the frame's height (--talk: twice the 540-px sizes).
+shown; the full values are).  animate.py draws its frames with fonts()
+at a dpi that follows the frame's height, so that text scales with the
+frame (--talk, 1920x1080: twice the 960x540 sizes).
 Symbols are mathtext: PSI, ALPHA, GAMMA."""
 import os
 import sys
@@ -28,7 +29,19 @@ except ImportError:
                     os.path.join(_here, "..", "..", "..", "lib",
                                  "python%d.%d" % sys.version_info[:2],
                                  "dist-packages")]
-    import ballfilm
+    try:
+        import ballfilm
+    except ImportError as _e:  # animate.py needs only fonts() and h5py
+
+        class _Missing:
+            """Stands for the package: any use ends with why it is not
+            there (the drawing helpers work without it)."""
+
+            def __getattr__(self, name, why=str(_e)):
+                sys.exit("bfplot: the ballfilm package is not found (%s): "
+                         "run from the repository or install it" % why)
+
+        ballfilm = _Missing()
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
