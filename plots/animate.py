@@ -6,12 +6,17 @@ to --frames rows spread evenly over --t0..--t1).
                phase point (x, v) of every ball with its recent trail;
   film,        psi(x) and h(x) with the balls drawn on the film and the
   coupled      coupling kernel exp(-|x - X_i|/r0) under each ball; time
-               and the relative energy change in the corner (Yasuda 2010,
+               and the relative energy change above the axes (Yasuda 2010,
                Fig. 8 in motion);
   greenspan72  the particles coloured by fluid inside the box's walls;
   greenspan73  fluid particles and wall particles (fixed ones outlined);
   mac          the markers coloured by density over the speed (or
                pressure) field, walls, inflow and the sink marked.
+
+Legends stand beside or under the axes and the time stamp above them,
+never over the data; the title is the run's own (its scene title, with
+the steps the file holds and its perturbation).  Text is sized with the
+frame's height (bfplot.fonts); --talk makes 1920x1080 frames for a talk.
 
 Rows are read one at a time (h5py slices), so memory does not grow with
 the run's length or particle count.  MP4 needs Debian's ffmpeg; without
@@ -19,13 +24,15 @@ it the movie is a GIF written through Pillow (and the script says so).
 
 usage: animate.py OUT.h5 [-o MOVIE.mp4] [--fps N] [--frames N]
                   [--t0 T] [--t1 T] [--size WxH] [--field speed|p]
-                  [--xlim A B] [--quiet]
+                  [--xlim A B] [--talk] [--quiet]
 (`ballfilm animate OUT.h5 ...` runs this script.)"""
 import argparse
 import os
+import re
 import shutil
 import sys
 import tempfile
+import textwrap
 
 try:
     import h5py
@@ -36,6 +43,7 @@ try:
     import matplotlib.pyplot as plt
     from matplotlib import animation
     from matplotlib.lines import Line2D
+    from bfplot import PSI, fonts, legend_below, legend_beside
 except ImportError as e:  # pragma: no cover - depends on the machine
     sys.exit("animate: %s; it needs Debian's packages: sudo apt-get install "
              "-y python3-numpy python3-matplotlib python3-h5py (ffmpeg for "
@@ -74,10 +82,28 @@ def strided(ds, i0, i1, most=4000):
     return np.arange(i0, i1 + 1, step), ds[i0:i1 + 1:step]
 
 
-def corner(ax, text):
-    return ax.text(0.01, 0.97, text, transform=ax.transAxes, va="top",
-                   ha="left", fontsize=9, family="monospace",
-                   bbox=dict(facecolor="white", alpha=0.8, lw=0))
+def stamp(ax):
+    """The time stamp: a title on the right above the axes (outside the
+    data), monospaced so that it keeps its width from frame to frame; the
+    axes carry no other title."""
+    return ax.set_title(" ", loc="right", family="monospace",
+                        fontsize="medium")
+
+
+def run_title(f, fallback):
+    """The run's title: its scene title without a step count of its own
+    (the scene's, not necessarily the file's)."""
+    title = str(attr(f, "scene.title", "") or fallback)
+    return re.sub(r"(,\s*)?\b\d+ steps\b", "", title).strip(" ,:")
+
+
+def fit_title(fig, text):
+    """text with each line broken to fit the figure's width."""
+    size = matplotlib.font_manager.FontProperties(
+        size=matplotlib.rcParams["figure.titlesize"]).get_size_in_points()
+    width = max(20, int(fig.get_figwidth() * 72 / (0.55 * size)))
+    return "\n".join(textwrap.fill(line, width)
+                      for line in text.split("\n"))
 
 
 def energy_text(f, t):
@@ -89,7 +115,7 @@ def energy_text(f, t):
     e = f["/energy/total"]
     e0, ek = e[0], e[k]
     rel = (ek - e0) / abs(e0) if e0 != 0 else ek - e0
-    return "\n(E - E0)/|E0| = %+.2e" % rel
+    return "   (E - E0)/|E0| = %+.2e" % rel
 
 
 # --------------------------------------------------------------- balls
@@ -153,8 +179,8 @@ class Balls:
         self.now = axp.plot(np.zeros(n), np.zeros(n), "ko", ms=4)[0]
         axp.set_xlabel("t [s]")
         axp.set_ylabel("position [cm]")
-        axp.set_title("positions and contacts", fontsize=10)
-        axp.legend(fontsize=7, loc="upper right")
+        axp.set_title("positions and contacts", loc="left")
+        legend_below(axp, ncol=n + 1)
         self.trails, self.points = [], []
         for j in range(n):
             axs.plot(self.xs[:, j], self.vs[:, j], ",", color="C%d" % j,
@@ -164,8 +190,7 @@ class Balls:
                                         ms=6, mec="k")[0])
         axs.set_xlabel("position [cm]")
         axs.set_ylabel("velocity [cm/s]")
-        axs.set_title("phase points", fontsize=10)
-        self.text = corner(axs, "")
+        self.text = stamp(axs)
 
     def draw(self, n):
         k = self.frames[n]
@@ -181,7 +206,11 @@ class Balls:
         for j in range(len(x)):
             self.trails[j].set_data(xt[:, j], vt[:, j])
             self.points[j].set_data([x[j]], [v[j]])
-        self.text.set_text("t = %.4f s%s" % (t, energy_text(self.f, t)))
+        self.text.set_text("t = %.4f s%s" % (t, energy_text(self.f, t)
+                                             .replace("   ", "\n")))
+
+    def title(self, f, fallback):
+        return run_title(f, fallback)
 
 
 # ---------------------------------------------------------------- film
@@ -220,15 +249,15 @@ class Film:
 
     def setup(self, fig):
         axp, axh = fig.subplots(2, 1, sharex=True)
-        self.lp = axp.plot([], [], "C0-", lw=1.2, label="psi")[0]
+        self.lp = axp.plot([], [], "C0-", label=PSI)[0]
         axp.set_ylim(-1.15, 1.15)
-        axp.set_ylabel("psi = alpha_d - alpha_c [1]")
+        axp.set_ylabel(r"%s = $\alpha_d - \alpha_c$ [1]" % PSI)
         axp.set_xlim(*self.lim)
-        self.lh = axh.plot([], [], "C2-", lw=1.2)[0]
+        self.lh = axh.plot([], [], "C2-", label="h")[0]
         axh.set_ylim(*self.hlim)
         axh.set_ylabel("h [cm]")
         axh.set_xlabel("x [cm]")
-        self.text = corner(axp, "")
+        self.text = stamp(axp)
         self.kern, self.dots = [], None
         if self.balls:
             nb = self.f["/balls/position"].shape[1]
@@ -245,8 +274,12 @@ class Film:
                                      c=["C%d" % (j + 1) for j in range(nb)],
                                      edgecolors="k", zorder=3, marker="v")
             axp.plot([], [], color="C1", alpha=0.4, lw=6,
-                     label="kernel exp(-|x - X_i|/r0), r0 = %g cm" % self.r0)
-        axp.legend(fontsize=7, loc="upper right")
+                     label="kernel\n$e^{-|x - X_i|/r_0}$\n$r_0$ = %g cm"
+                     % self.r0)
+            axh.scatter([], [], s=60, c="C1", edgecolors="k",
+                        label="balls")
+            legend_beside(axh)
+        legend_beside(axp)
 
     def draw(self, n):
         k = self.frames[n]
@@ -271,6 +304,11 @@ class Film:
             extra = energy_text(self.f, self.t[k])
         self.text.set_text("t = %.4f s%s" % (self.t[k], extra))
 
+    def title(self, f, fallback):
+        p = float(attr(f, "film.perturbation", 0) or 0)
+        return run_title(f, fallback) + (
+            "\nkink perturbed by %g" % p if p else "")
+
 
 # ----------------------------------------------------------- particles
 
@@ -279,8 +317,10 @@ class Particles:
 
     def __init__(self, f, a):
         self.f = f
+        self.step = None
         if "/particles/step" in f:
-            self.t = f["/particles/step"][()] * float(attr(f, "scene.dt"))
+            self.step = f["/particles/step"][()]
+            self.t = self.step * float(attr(f, "scene.dt"))
         else:
             self.t = f["/time"][()]
         self.frames = frames_of(self.t, a.frames, a.t0, a.t1)
@@ -345,9 +385,9 @@ class Particles:
         if big:  # pixel markers do not show in a legend: squares instead
             handles = [Line2D([], [], ls="", marker="s", color=h.get_color())
                        if h.get_marker() == "," else h for h in handles]
-        ax.legend(handles, labels, fontsize=7, loc="upper right")
-        self.text = corner(ax, "")
-        ax.set_title("%s: %d particles" % (self.model, self.n), fontsize=10)
+        ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.04, 1),
+                  borderaxespad=0, markerscale=1.5 if not big else 1)
+        self.text = stamp(ax)
 
     def draw(self, n):
         k = self.frames[n]
@@ -362,9 +402,30 @@ class Particles:
             cx, cy = x.mean(), y.mean()
             self.ax.set_xlim(cx - wx, cx + wx)
             self.ax.set_ylim(cy - wy, cy + wy)
-        self.text.set_text("t = %.4f s (row %d)%s"
-                           % (self.t[k], k, energy_text(self.f, self.t[k])
+        step = ("step %d" % self.step[k] if self.step is not None
+                else "row %d" % k)
+        self.text.set_text("t = %.4f s (%s)%s"
+                           % (self.t[k], step, energy_text(self.f, self.t[k])
                               if self.model == "greenspan73" else ""))
+
+    def title(self, f, fallback):
+        """The scene title with the steps in the file (not the scene's
+        own count) and the perturbation of the initial velocities."""
+        dt = float(attr(f, "scene.dt", 0) or 0)
+        if self.step is not None:
+            steps = int(self.step[-1])
+        else:
+            steps = int(round(self.t[-1] / dt)) if dt else len(self.t) - 1
+        title = run_title(f, fallback)
+        count = ("" if "N = %d" % self.n in title
+                 else "%d particles, " % self.n)
+        text = "%s\n%s%d steps of %g s" % (title, count, steps, dt)
+        if self.model == "greenspan72":
+            p = float(attr(f, "greenspan72.perturb", 0) or 0)
+            text += (", velocities perturbed by \u00b1%g cm/s (seed %d)"
+                     % (p, int(float(attr(f, "greenspan72.perturb_seed", 0))))
+                     if p else ", unperturbed")
+        return text
 
 
 # ----------------------------------------------------------------- MAC
@@ -439,8 +500,8 @@ class Mac:
         ax.set_aspect("equal")
         ax.set_xlabel("x [L]")
         ax.set_ylabel("y [L]")
-        ax.legend(fontsize=7, loc="upper right")
-        self.text = corner(ax, "")
+        legend_below(ax, ncol=2)
+        self.text = stamp(ax)
 
     def draw(self, n):
         k = self.frames[n]
@@ -450,7 +511,10 @@ class Mac:
         y = self.f["/mac/particles/y"][k][fl]
         self.sc.set_offsets(np.column_stack([x, y]))
         self.sc.set_array(self.f["/mac/particles/density"][k][fl])
-        self.text.set_text("t = %.3f L/W\nmarkers %d" % (self.t[k], fl.sum()))
+        self.text.set_text("t = %.3f L/W   markers %d" % (self.t[k], fl.sum()))
+
+    def title(self, f, fallback):
+        return run_title(f, fallback)
 
 
 SCENES = {"balls": Balls, "film": Film, "coupled": Film,
@@ -531,8 +595,12 @@ def main():
                     help="at most this many frames (rows spread evenly)")
     ap.add_argument("--t0", type=float, default=None)
     ap.add_argument("--t1", type=float, default=None)
-    ap.add_argument("--size", default="960x540",
-                    help="frame size WxH in pixels (even numbers)")
+    ap.add_argument("--size", default=None,
+                    help="frame size WxH in pixels (even numbers; "
+                    "default 960x540)")
+    ap.add_argument("--talk", action="store_true",
+                    help="frames for a talk: 1920x1080 (unless --size) "
+                    "with fonts to match")
     ap.add_argument("--field", choices=("speed", "p"), default="speed",
                     help="MAC: the field under the markers")
     ap.add_argument("--xlim", type=float, nargs=2, default=None,
@@ -542,20 +610,23 @@ def main():
     a = ap.parse_args()
     if a.frames < 1 or a.fps <= 0:
         sys.exit("animate: --frames and --fps must be positive")
+    size = a.size or ("1920x1080" if a.talk else "960x540")
     try:
-        w, h = (int(v) for v in a.size.lower().split("x"))
+        w, h = (int(v) for v in size.lower().split("x"))
     except ValueError:
         sys.exit("animate: --size wants WxH, e.g. 960x540")
     w, h = w + w % 2, h + h % 2  # H.264 with yuv420p wants even sizes
     out = a.output or os.path.splitext(a.h5)[0] + ".mp4"
-    dpi = 100
+    # the frame is the 960x540 layout drawn at the frame's height: text,
+    # lines and markers scale with it (1920x1080, --talk: twice the size)
+    dpi = 100.0 * h / 540
+    matplotlib.rcParams.update(fonts())
     with h5py.File(a.h5, "r") as f:
         model, sc = scene_of(f, a)
         fig = plt.figure(figsize=(w / dpi, h / dpi), dpi=dpi,
                          layout="constrained")
         sc.setup(fig)
-        fig.suptitle("%s (%s)" % (attr(f, "scene.title", "") or a.h5, model),
-                     fontsize=10)
+        fig.suptitle(fit_title(fig, sc.title(f, os.path.basename(a.h5))))
         writer, path = writer_for(out, a.fps)
         total = len(sc.frames)
         tmp = new_movie_file(path)

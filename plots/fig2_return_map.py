@@ -35,21 +35,19 @@ for k, path in enumerate(a.files):
     p.plot(z, v, ",", color="C%d" % c)
     p.set_title("(%s) lower %.1f g, upper %.1f g: %s dt = %g s\n"
                 "%d points, Lyapunov %.3g 1/s, max |dE|/E %.1e"
-                % ("AB"[c], m[0], m[1], integ, dt, len(z), lam, emax),
-                fontsize=9)
+                % ("AB"[c], m[0], m[1], integ, dt, len(z), lam, emax))
     p.set_xlabel("z of the upper ball [cm]")
     p.set_ylabel("v of the upper ball [cm/s]")
     ax[r][2].loglog(lt, np.maximum(le, 1e-3), color="C%d" % c,
                     ls="-" if r == 0 else "--",
                     label="lower %.1f g, dt = %g s" % (m[0], dt))
-ax[0][2].set_title("running Lyapunov estimate (sum log(d/d0) / t)",
-                   fontsize=9)
+ax[0][2].set_title("running Lyapunov estimate (sum log(d/d0) / t)")
 for r in range(rows):
     ax[r][2].set_xlabel("t [s]")
     ax[r][2].set_ylabel("estimate [1/s]")
-    ax[r][2].legend(fontsize=8)
+    ax[r][2].legend()
     if r:
         ax[r][2].set_visible(False)
 fig.suptitle("First-return maps of two falling balls (Yasuda 2010, Fig. 2), "
-             "1000 s", fontsize=11)
+             "1000 s")
 save(fig, a.output)

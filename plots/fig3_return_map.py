@@ -35,16 +35,15 @@ for k, path in enumerate(a.files):
                 "1/s, max |dE|/E %.1e%s"
                 % ("ABCDE"[k], integ, dt, extra, len(z), tf,
                    float(attrs["lyapunov_exponent"]), emax,
-                   "" if status == "ok" else " [" + status + "]"),
-                fontsize=9)
+                   "" if status == "ok" else " [" + status + "]"))
     p.set_xlabel("z of the upper ball [cm]")
     p.set_ylabel("v of the upper ball [cm/s]")
     ax[5].loglog(lt, np.maximum(le, 1e-3), color="C%d" % k,
                  label="(%s) %s %g s" % ("ABCDE"[k], integ, dt))
-ax[5].set_title("(F) running Lyapunov estimates", fontsize=9)
+ax[5].set_title("(F) running Lyapunov estimates")
 ax[5].set_xlabel("t [s]")
 ax[5].set_ylabel("estimate [1/s]")
-ax[5].legend(fontsize=8)
+ax[5].legend()
 fig.suptitle("First-return maps, lower ball 0.8 g, upper 1 g, other "
-             "integrators (Yasuda 2010, Fig. 3), 1000 s", fontsize=11)
+             "integrators (Yasuda 2010, Fig. 3), 1000 s")
 save(fig, a.output)

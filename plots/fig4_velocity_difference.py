@@ -37,19 +37,18 @@ ax[0].set_ylabel("v_Verlet - v_T [cm/s]")
 nz = np.mean(np.abs(dv[w, 1]) > 0)
 ax[0].set_title("(a) one Verlet step minus one second-order mid-point step "
                 "(eqs 2.19 - 2.20) from each state of the MV2M run; non-zero "
-                "in %.0f%% of the steps" % (100 * nz), fontsize=9)
+                "in %.0f%% of the steps" % (100 * nz))
 n = min(np.sum(w), np.sum(wv))
 ax[1].plot(t[w][:n], vv[wv][:n, 1] - vm[w][:n, 1], lw=0.8, color="C1")
 ax[1].set_ylabel("v2 (Verlet run) - v2 (MV2M run) [cm/s]")
-ax[1].set_title("(b) difference of two independent runs, dt = 1e-4 s",
-                fontsize=9)
+ax[1].set_title("(b) difference of two independent runs, dt = 1e-4 s")
 ax[2].plot(t[w], zm[w, 0], label="lower ball", lw=0.8)
 ax[2].plot(t[w], zm[w, 1], label="upper ball", lw=0.8)
 ax[2].axhline(0.1, color="grey", ls=":", lw=0.8)
 ax[2].set_ylabel("z (MV2M run) [cm]")
 ax[2].set_xlabel("t [s]")
-ax[2].legend(fontsize=8)
+ax[2].legend()
 fig.suptitle("Velocity difference between the Verlet method and the "
              "second-order mid-point rule, lower ball 0.8 g "
-             "(Yasuda 2010, Fig. 4)", fontsize=11)
+             "(Yasuda 2010, Fig. 4)")
 save(fig, a.output)

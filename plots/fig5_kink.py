@@ -10,7 +10,7 @@ import argparse
 
 import numpy as np
 
-from bfplot import load, plt, save
+from bfplot import ALPHA, PSI, load, plt, save
 
 ap = argparse.ArgumentParser()
 ap.add_argument("run")
@@ -27,15 +27,16 @@ kink = np.sqrt(A / B) * np.tanh((x - x0) / (np.sqrt(2) * np.sqrt(G / A)))
 w = np.abs(x) <= 10
 fig, ax = plt.subplots(2, 2, figsize=(11, 8))
 p = ax[0][0]
-p.plot(x[w], psi[-1][w], "o", ms=3, label="psi, t = %g s" % T[-1])
-p.plot(x[w], kink[w], "-", lw=1, label="tanh(x/sqrt 2)")
+p.plot(x[w], psi[-1][w], "o", ms=3, label="%s, t = %g s" % (PSI, T[-1]))
+p.plot(x[w], kink[w], "-", lw=1, label=r"$\tanh(x/\sqrt{2})$")
 p.plot(x[w], h[-1][w], "-", label="h [cm]")
 p.set_xlabel("x [cm]")
+p.set_ylabel(r"%s [1],  h [cm]" % PSI)
 p.set_title("(A) steady state (Fig. 5)")
 p.legend()
 p = ax[0][1]
-p.plot(x[w], ud[-1][w], label="u_d")
-p.plot(x[w], uc[-1][w], label="u_c")
+p.plot(x[w], ud[-1][w], label="$u_d$")
+p.plot(x[w], uc[-1][w], label="$u_c$")
 p.set_xlabel("x [cm]")
 p.set_ylabel("u [cm/s]")
 p.set_title("(B) phase velocities at t = %g s" % T[-1])
@@ -43,17 +44,19 @@ p.legend()
 p = ax[1][0]
 p.plot(x, psi[-1] - kink, lw=0.8)
 p.set_xlabel("x [cm]")
-p.set_ylabel("psi - kink [1]")
-p.set_title("(C) psi minus the analytic kink, whole film")
+p.set_ylabel(r"%s $-$ kink [1]" % PSI)
+p.set_title("(C) %s minus the analytic kink, whole film" % PSI)
 p = ax[1][1]
-p.semilogy(t, kerr, label="max |psi - kink|")
-p.semilogy(t, np.maximum(amin, 1e-20), label="min volume fraction")
+p.semilogy(t, kerr, label=r"max |%s $-$ kink| [1]" % PSI)
+p.semilogy(t, np.maximum(amin, 1e-20), label="min volume fraction %s [1]"
+           % ALPHA)
 p.semilogy(t, umax, label="max |u| [cm/s]")
 p.set_xlabel("t [s]")
+p.set_ylabel("[1] or [cm/s]")
 p.set_title("(D) history")
 p.legend()
 fig.suptitle("Kink steady state (Yasuda 2010, Fig. 5): dx = %g cm, dt = %g s, "
-             "perturbation %g, mu_taylor = %s"
+             "perturbation %g, $\\mu$ Taylor = %s"
              % (attrs["film.dx"], attrs["scene.dt"],
                 attrs["film.perturbation"],
                 attrs["film.mu_taylor"].decode()

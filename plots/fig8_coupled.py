@@ -16,7 +16,7 @@ import argparse
 
 import numpy as np
 
-from bfplot import attr_str, load, plt, save
+from bfplot import PSI, attr_str, load, plt, save
 
 ap = argparse.ArgumentParser()
 ap.add_argument("run")
@@ -65,21 +65,24 @@ p = ax[1][0]
 dpsi = probe - probe[0]
 p.plot(t[w], dpsi[w], lw=0.6)
 p.set_xlabel("t [s]")
-p.set_ylabel("psi(%g, t) - psi(%g, 0) [1]" % (attrs["coupled.probe"],
-                                          attrs["coupled.probe"]))
+p.set_ylabel(r"%s(%g, t) $-$ %s(%g, 0) [1]"
+             % (PSI, attrs["coupled.probe"], PSI, attrs["coupled.probe"]))
 p.set_title("(C) order parameter at x = %g cm" % attrs["coupled.probe"])
 p = ax[1][1]
-p.semilogy(t, np.maximum(sb, 1e-18), lw=0.7, label="balls max|x_i + x_(5-i)| [cm]")
-p.semilogy(t, np.maximum(sf, 1e-18), lw=0.7, label="film max|psi_i + psi_(N-i)|")
+p.semilogy(t, np.maximum(sb, 1e-18), lw=0.7,
+           label=r"balls max$|x_i + x_{5-i}|$ [cm]")
+p.semilogy(t, np.maximum(sf, 1e-18), lw=0.7, label=r"film max$|\psi_i + \psi_{N-i}|$ [1]")
 drift = np.maximum(np.abs(md - md[0]) / md[0], np.abs(mc - mc[0]) / mc[0])
 p.semilogy(t, np.maximum(drift, 1e-18), lw=0.7, label="phase totals, relative")
 if sym:
-    for k, lab in enumerate(("film alpha h", "film u", "ball x", "ball v")):
+    for k, lab in enumerate((r"film $\alpha h$", "film u", "ball x",
+                             "ball v")):
         p.semilogy(t, np.maximum(corr[:, k], 1e-18), lw=0.5, alpha=0.7,
                    label="projection change, %s (rel.)" % lab)
 p.set_xlabel("t [s]")
+p.set_ylabel("error [cm] or relative [1]")
 p.set_title("(D) symmetry error, conservation")
-p.legend(fontsize=8)
+p.legend()
 every = attrs["coupled.film_every"]  # a number, or the text "auto"
 if isinstance(every, bytes):
     every = every.decode()

@@ -9,7 +9,7 @@ import argparse
 
 import numpy as np
 
-from bfplot import load, plt, save
+from bfplot import legend_below, load, plt, save
 
 ap = argparse.ArgumentParser()
 ap.add_argument("h5")
@@ -39,8 +39,11 @@ for k in range(9):
     ax.set_aspect("equal")
     ax.set_xticks([0, 50, 100])
     ax.set_yticks([0, 25, 50, 75, 100])
-    ax.set_title("Fig. 3.%d  t_%d" % (k + 1, s), fontsize=10)
-fig.suptitle("Greenspan 1972 Example 1 (A heavy, B light): our run", y=1.0)
+    ax.set_title("Fig. 3.%d: step %d" % (k + 1, s))
+    ax.set_xlabel("x [cm]")
+    ax.set_ylabel("y [cm]")
+fig.suptitle("Greenspan 1972 Example 1: %d particles (A heavy, B light) "
+             "at steps 160 + 240k" % len(tag))
 save(fig, a.output)
 
 if a.heights:
@@ -52,12 +55,13 @@ if a.heights:
     ax.axhline(attrs["diag/bottom"] if "diag/bottom" in attrs else 25,
                color="0.6", lw=0.8)
     ax.axvline(2080, color="C7", ls=":", lw=1)
-    ax.text(2090, 3, "t_2080: the paper's complete interchange",
-            fontsize=8, va="bottom")
-    ax.set_xlabel("step")
-    ax.set_ylabel("y [cm]")
-    ax.legend(fontsize=8, ncol=5, loc="upper center")
-    ax.set_ylim(0, 112)
-    ax.set_title("Example 1: heights of the four heavy particles; "
-                 "grey line: bottom band y < 25")
+    ax.plot([], [], color="C7", ls=":", lw=1,
+            label="step 2080: the paper's complete interchange")
+    ax.plot([], [], color="0.6", lw=0.8, label="bottom band y < 25 cm")
+    ax.set_xlabel("step [1]")
+    ax.set_ylabel("height y [cm]")
+    legend_below(ax, ncol=3)
+    ax.set_ylim(0, 105)
+    ax.set_title("Greenspan 1972 Example 1: heights of the %d heavy particles"
+                 % heavy.sum())
     save(fig, a.heights)

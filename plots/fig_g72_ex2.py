@@ -43,27 +43,28 @@ def figure(path, scale, out, title):
             ax.text(x[r, i], y[r, i], "A" if heavy[i] else "B",
                     ha="center", va="center", fontsize=6,
                     color="C3" if heavy[i] else "C0")
-        ax.set_title("Fig. 3.%d: step %d" % (10 + k, s * scale), fontsize=10)
+        ax.set_title("Fig. 3.%d: step %d" % (10 + k, s * scale))
     ax = axs[1][0]
     rs = [row[10 * k * scale] for k in range(31)]
     ax.plot(x[rs, TRACK], y[rs, TRACK], "-o", ms=3, lw=0.8, color="C2")
     ax.plot(x[rs[0], TRACK], y[rs[0], TRACK], "ks", ms=5)
     ax.set_title("Fig. 3.13: particle at (53.1, 46.9), every %d steps"
-                 % (10 * scale), fontsize=10)
+                 % (10 * scale))
     ax = axs[1][1]
     r = row[92 * scale]
     sp = np.hypot(vx[r], vy[r])
     sp[sp == 0] = 1
     ax.quiver(x[r], y[r], vx[r] / sp, vy[r] / sp,
               color=np.where(heavy, "C3", "C0"), scale=40, width=0.004)
-    ax.set_title("Fig. 3.14: velocity directions, step %d" % (92 * scale),
-                 fontsize=10)
+    ax.set_title("Fig. 3.14: velocity directions, step %d" % (92 * scale))
     ax = axs[1][2]
     ax.axis("off")
     ax.text(0, 0.9, title, fontsize=10, va="top", wrap=True)
     for ax in list(axs[0]) + [axs[1][0], axs[1][1]]:
         ax.set_xlim(0, 100)
         ax.set_ylim(0, 100)
+        ax.set_xlabel("x [cm]")
+        ax.set_ylabel("y [cm]")
         ax.set_aspect("equal")
     save(fig, out)
 
@@ -87,13 +88,14 @@ if a.diag:
     ax.semilogy(step, kin[:, 1], label="heavy L1")
     ax.semilogy(step, kin[:, 2], label="light L2")
     ax.set_ylabel("kinetic energy [erg]")
-    ax.legend(fontsize=8)
-    ax.set_title("Example 2 over 30000 steps (half-step velocities)")
+    ax.legend()
+    ax.set_title("Example 2 over %d steps (half-step velocities)"
+                 % step[-1])
     ax = axs[1]
     ax.plot(step, mean[:, 0], label="heavy L1")
     ax.plot(step, mean[:, 1], label="light L2")
     ax.set_ylabel("mean height [cm]")
-    ax.legend(fontsize=8)
+    ax.legend()
     ax = axs[2]
     tot = quart[:, :4] + quart[:, 4:]
     for q in range(4):
@@ -101,5 +103,5 @@ if a.diag:
                 % (q + 1, 25 * q, 25 * (q + 1)))
     ax.set_ylabel("particles")
     ax.set_xlabel("step")
-    ax.legend(fontsize=8)
+    ax.legend()
     save(fig, a.diag)

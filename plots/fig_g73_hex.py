@@ -56,9 +56,10 @@ for k, tk in enumerate(a.times):
     for i in (0, 10, 11, 22, 23, 33):
         ax.annotate(str(i + 1), (x[r, i] - V * t[r], y[r, i]), fontsize=6,
                     xytext=(2, 2), textcoords="offset points")
-    ax.set_title("t = %.1f" % t[r], fontsize=10)
+    ax.set_title("t = %.1f s" % t[r])
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x - V t [cm]")
+    ax.set_ylabel("y [cm]")
     if a.directions:
         ax = axs[1][k]
         u, w = vx[r] - vx[r].mean(), vy[r] - vy[r].mean()
@@ -67,15 +68,17 @@ for k, tk in enumerate(a.times):
         ax.quiver(x[r] - V * t[r], y[r], u / s, w / s,
                   color=[colors[0]] * 11 + [colors[1]] * 12 + [colors[2]] * 11,
                   scale=25, width=0.008)
-        ax.set_title("directions of v - v_cm, t = %.1f" % t[r], fontsize=9)
+        ax.set_title("directions of v - v_cm, t = %.1f s" % t[r])
+        ax.set_xlabel("x - V t [cm]")
+        ax.set_ylabel("y [cm]")
         ax.set_aspect("equal", adjustable="datalim")
 E = e[:, 3]
 I = e[:, 4]
-title = ("V = %g, dt = %g%s: max |E - E0|/|E0| = %.1e, internal energy "
-         "(E - K_cm) %.1e" % (V, dt, a.label,
+title = ("Greenspan 1973 hexagonal flow, V = %g, dt = %g%s\nmax |E - E0|/|E0| "
+         "= %.1e, internal energy (E - K_cm) %.1e" % (V, dt, a.label,
                               np.max(np.abs(E - E[0])) / abs(E[0]),
                               np.max(np.abs(I - I[0])) / abs(I[0])))
 if cmp is not None:
     title += "\nopen circles: dt = %g" % cmp[3]
-fig.suptitle(title, fontsize=10)
+fig.suptitle(title)
 save(fig, a.output)

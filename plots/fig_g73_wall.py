@@ -44,13 +44,13 @@ if a.friction:
     axs[0].set_ylim(-0.06, 0.16)
     axs[0].set_ylabel("y [cm]")
     axs[0].set_title("Fig. 3.7: P1 from t_0 to t_200 (open squares: wall at "
-                     "t_200)", fontsize=10)
-    axs[0].legend(fontsize=7, loc="upper right", ncol=1)
+                     "t_200)")
+    axs[0].legend(loc="upper right", ncol=1)
     axs[1].set_xlabel("step")
     axs[1].set_ylabel("v_x of P1 [cm/s]")
     axs[1].set_title("Fig. 3.8: v_x of P1 (the paper: 8.66 at t_0 is "
-                     "maximal)", fontsize=10)
-    axs[1].legend(fontsize=7)
+                     "maximal)")
+    axs[1].legend()
     save(fig, a.output)
 
 if a.penetration:
@@ -68,12 +68,15 @@ if a.penetration:
             ax.annotate("P%d" % (i + 1), (x[r, i], y[r, i]), fontsize=7,
                         xytext=(3, 3), textcoords="offset points")
         ax.plot([0.40065], [-0.05244], "+", color="C0", ms=12)
-        ax.set_title("t_%d" % s, fontsize=10)
+        ax.set_title("step %d" % s)
+        ax.set_xlabel("x [cm]")
+        if k == 0:
+            ax.set_ylabel("y [cm]")
         ax.set_xlim(0.15, 0.65)
         ax.set_ylim(-0.25, 0.15)
         ax.set_aspect("equal")
     fig.suptitle("Fig. 3.10 (%s); grey: the start; +: the paper's P1 at "
-                 "t_25, (0.40065, -0.05244)" % label(attrs), fontsize=10)
+                 "t_25, (0.40065, -0.05244)" % label(attrs))
     save(fig, a.output)
     lines = ["P1 at step 25 (the paper: (0.40065, -0.05244), at rest)"]
     for f in a.penetration:

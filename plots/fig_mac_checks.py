@@ -40,7 +40,7 @@ for spec in a.rest:
 ax[0].set_title("(a) stratified tank at rest: max |u|, |v| on fluid faces")
 ax[0].set_xlabel("t [L/W]")
 ax[0].set_ylabel("speed [W]")
-ax[0].legend(fontsize=8)
+ax[0].legend()
 
 for spec in a.uniform:
     label, path = spec.split("=", 1)
@@ -68,7 +68,7 @@ for spec in a.uniform:
 ax[1].set_title("(b) uniform stream: max |u - u0|, |v| on fluid faces")
 ax[1].set_xlabel("t [L/W]")
 ax[1].set_ylabel("deviation [W]")
-ax[1].legend(fontsize=8)
+ax[1].legend()
 fig.suptitle("MAC solver, the thesis's two checks (16 x 16 cells, dt = 0.05, "
              "200 steps); solid: exact pressure solve, dashed: listing's "
              "relaxation")

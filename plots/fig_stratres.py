@@ -70,7 +70,7 @@ axc.plot(t, counts[:, 1] - counts[0, 1], "C1--",
          label="fluid particles - initial (%d)" % counts[0, 1])
 axc.set_xlabel("t [L/W]")
 axc.set_ylabel("particles")
-axc.legend(fontsize=8)
+axc.legend()
 axc.set_title("particle counts (cumulative)")
 axm = fig.add_subplot(gs[nrow, 2:])
 axm.plot(t, mass[:, 0], "C0-", label="mass in")
@@ -80,7 +80,7 @@ axm.plot(t, mass[:, 0] - mass[:, 1] - mass[:, 3] - (mass[:, 2] - mass[0, 2]),
          "k:", label="in - out - lost - change")
 axm.set_xlabel("t [L/W]")
 axm.set_ylabel("mass [R L^2]")
-axm.legend(fontsize=8)
+axm.legend()
 axm.set_title("mass balance of the markers")
 extra = ""
 if attr_str(attrs, "mac.void_fix").lower() in ("true", "yes", "on", "1"):

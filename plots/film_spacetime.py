@@ -9,7 +9,7 @@ import argparse
 import numpy as np
 from matplotlib.colors import SymLogNorm
 
-from bfplot import load, plt, save
+from bfplot import PSI, attr_str, load, plt, save
 
 ap = argparse.ArgumentParser()
 ap.add_argument("run")
@@ -28,15 +28,16 @@ ext = [x[0], x[-1], T[0], T[-1]]
 lim = max(np.abs(dpsi).max(), 1e-12)
 im = ax[0].imshow(dpsi, aspect="auto", origin="lower", extent=ext,
                   cmap="RdBu_r", norm=SymLogNorm(1e-6, vmin=-lim, vmax=lim))
-fig.colorbar(im, ax=ax[0], label="psi - kink")
+fig.colorbar(im, ax=ax[0], label=r"%s $-$ kink [1]" % PSI)
 ax[0].set_xlabel("x [cm]")
 ax[0].set_ylabel("t [s]")
-ax[0].set_title("psi(x, t) - tanh(x/sqrt 2)")
+ax[0].set_title(r"%s(x, t) $-$ $\tanh(x/\sqrt{2})$" % PSI)
 lim = max(np.abs(umin).max(), 1e-12)
 im = ax[1].imshow(umin, aspect="auto", origin="lower", extent=ext,
                   cmap="PuOr", vmin=-lim, vmax=lim)
-fig.colorbar(im, ax=ax[1], label="cm/s")
+fig.colorbar(im, ax=ax[1], label="velocity of the minor phase [cm/s]")
 ax[1].set_xlabel("x [cm]")
-ax[1].set_title("velocity of the minor phase (u_d left, u_c right)")
-fig.suptitle("Film space-time: %s" % a.run)
+ax[1].set_title("minor phase velocity ($u_d$ for x < 0, $u_c$ for x > 0)")
+fig.suptitle("Film space-time, %g s to %g s: %s"
+             % (T[0], T[-1], attr_str(attrs, "scene.title") or "film run"))
 save(fig, a.output)

@@ -69,7 +69,7 @@ for n, k in enumerate(pick):
     except (OSError, KeyError):
         sub.text(0.5, 0.5, "no map", ha="center", transform=sub.transAxes)
     sub.set_title("%s = %.4g\nλ = %.3g/s, fill %.2f"
-                  % (label.split()[0], x[k], lyap[k], fill[k]), fontsize=7)
+                  % (label.split()[0], x[k], lyap[k], fill[k]))
     sub.set_xticks([])
     sub.set_yticks([])
 fig.suptitle("Survey of first-return maps: %s (%d cases, %s)"

@@ -72,9 +72,9 @@ for k, xl in enumerate(["wall time of the stepping loop [s] (min of repeats)",
     ax[k].set_xlabel(xl)
     ax[k].set_ylabel("max |%s - ref| %s [%s]" % (gname, where, gunit))
     ax[k].grid(True, which="both", alpha=0.3)
-ax[1].legend(fontsize=8)
+ax[1].legend()
 fig.suptitle("work-precision, %s (model %s) to T = %g s (reference: %s)"
-             % (scene, model, t_end, ref_name), fontsize=10)
+             % (scene, model, t_end, ref_name))
 save(fig, a.output)
 
 if a.cheapest:

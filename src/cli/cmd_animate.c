@@ -95,7 +95,8 @@ static void animate_usage(FILE *f)
             "usage: ballfilm animate OUT.h5 [-o MOVIE.mp4] [--fps N] "
             "[--frames N] [--t0 T]\n"
             "                        [--t1 T] [--size WxH] [--field speed|p] "
-            "[--xlim A B] [-q]\n"
+            "[--xlim A B]\n"
+            "                        [--talk] [-q]\n"
             "\n"
             "A movie of a run, one frame per output row (plots/animate.py "
             "with Debian's\n"
@@ -110,6 +111,8 @@ static void animate_usage(FILE *f)
             "  --t0 T, --t1 T   the time span shown, s (default: the whole "
             "run)\n"
             "  --size WxH       frame size in pixels (default 960x540)\n"
+            "  --talk           frames for a talk: 1920x1080 with fonts to "
+            "match\n"
             "  --field F        mac: the field under the markers, speed or p "
             "(default speed)\n"
             "  --xlim A B       film: the x range shown, cm\n"
@@ -123,7 +126,7 @@ static void animate_usage(FILE *f)
 static int animate_args(int argc, char **argv, const char **args,
                         const char **h5, const char **out)
 {
-    enum { FPS = BF_CLI_LONG, FRAMES, T0, T1, SIZE, FIELD, XLIM };
+    enum { FPS = BF_CLI_LONG, FRAMES, T0, T1, SIZE, FIELD, XLIM, TALK };
     static const struct option longopts[] = {
         {"help", no_argument, NULL, 'h'},
         {"output", required_argument, NULL, 'o'},
@@ -135,12 +138,13 @@ static int animate_args(int argc, char **argv, const char **args,
         {"size", required_argument, NULL, SIZE},
         {"field", required_argument, NULL, FIELD},
         {"xlim", required_argument, NULL, XLIM},
+        {"talk", no_argument, NULL, TALK},
         {NULL, 0, NULL, 0},
     };
     /* how the script spells each option of the table */
     static const char *const spelling[] = {
         "--help", "--output", "--quiet", "--fps", "--frames", "--t0", "--t1",
-        "--size", "--field", "--xlim",
+        "--size", "--field", "--xlim", "--talk",
     };
     const bf_cli_cmd cmd = {"animate", ":ho:q", longopts, animate_usage};
     int n = 2, idx;
@@ -153,7 +157,7 @@ static int animate_args(int argc, char **argv, const char **args,
         args[n++] = spelling[idx];
         if (c == 'o')
             *out = optarg;
-        if (c != 'q')
+        if (c != 'q' && c != TALK)   /* the options with a value */
             args[n++] = optarg;
         if (c == XLIM) { /* two values: A B */
             if (optind >= argc) {
