@@ -374,7 +374,8 @@ stratres: $(PROG) | deps deps-plot
 	$(PY) plots/fig_stratres.py out/stratres_x4.h5 -o out/stratres_x4.png
 
 # The thesis's two checks (tank at rest, uniform stream) for every velocity
-# update, with the exact pressure solve and with the listing's relaxation.
+# update, with the exact pressure solve and with the listing's relaxation;
+# the tank at rest both stratified and homogeneous (mac.rho_amp = 0).
 MAC_VARIANTS := printed consistent original
 mac-checks: $(PROG) | deps deps-plot
 	@mkdir -p out
@@ -386,10 +387,16 @@ mac-checks: $(PROG) | deps deps-plot
 	    --set mac.update=$$u --set mac.pressure_solver=$$s --set mac.u0=0.094 \
 	    --set scene.output_every=1 >/dev/null; \
 	done; done
+	@set -e; for u in $(MAC_VARIANTS); do for s in direct relax; do \
+	  $(PROG) run runs/mac_rest.ini -q -o out/mac_rest_homog_$${u}_$$s.h5 \
+	    --set mac.update=$$u --set mac.pressure_solver=$$s \
+	    --set mac.rho_amp=0 --set scene.output_every=1 >/dev/null; \
+	done; done
 	$(PROG) run runs/mac_uniform.ini -q -o out/mac_uniform_u01.h5 \
 	    --set scene.output_every=1 >/dev/null
 	$(PY) plots/fig_mac_checks.py -o out/mac_checks.png \
 	    --rest $(foreach u,$(MAC_VARIANTS),$(foreach s,direct relax,"$(u), $(s)=out/mac_rest_$(u)_$(s).h5")) \
+	    --homogeneous $(foreach u,$(MAC_VARIANTS),$(foreach s,direct relax,"$(u), $(s)=out/mac_rest_homog_$(u)_$(s).h5")) \
 	    --uniform $(foreach u,$(MAC_VARIANTS),$(foreach s,direct relax,"$(u), $(s), u0 0.094=out/mac_uniform_$(u)_$(s).h5")) \
 	    "consistent, direct, u0 0.1=out/mac_uniform_u01.h5"
 
