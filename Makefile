@@ -436,6 +436,7 @@ fig3: $(PROG) | deps deps-plot
 	    --set scene.integrator=impmid
 	$(PY) plots/fig3_return_map.py out/fig3_A.h5 out/fig3_B.h5 out/fig3_C.h5 \
 	    out/fig3_D.h5 out/fig3_E.h5 -o out/fig3_return_map.png
+	$(PY) plots/fig2_windows.py out/fig3_E.h5 -o out/fig3_E_windows.png
 
 # Yasuda Fig. 4: over 500-501 s, every step.  Each run stops at t = 500 s
 # (--stop-after writes a checkpoint, exit 6) and continues with a row per

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Yasuda (2010) Fig. 2B in 100 s windows: the first-return map of one run
-(runs/two_balls_B.ini, /return_map/time, z, v) split into windows of
+"""Yasuda (2010) Figs 2B and 3 in 100 s windows: the first-return map of one
+run (runs/two_balls_B.ini, /return_map/time, z, v) split into windows of
 `--width` seconds.  Prints, per window, the number of map points and the
 range of z and v of the upper ball, and draws the windows named by
 `--show` side by side with the whole run.  The 1000 s overlay of a run
@@ -22,8 +22,8 @@ ap.add_argument("--show", type=float, nargs="+", default=[0.0, 450.0, 900.0],
 ap.add_argument("-o", "--output", default="fig2_windows.png")
 a = ap.parse_args()
 
-(t, z, v), attrs = load(a.file, "/return_map/time", "/return_map/z",
-                        "/return_map/v")
+(t, z, v, m), attrs = load(a.file, "/return_map/time", "/return_map/z",
+                           "/return_map/v", "/balls/mass")
 dt = float(attrs["scene.dt"])
 integ = attr_str(attrs, "scene.integrator")
 t_end = float(t[-1]) if len(t) else 0.0
@@ -64,6 +64,6 @@ for p in ax:
     p.set_ylabel("v of the upper ball [cm/s]")
     p.set_xlim(ax[0].get_xlim())
     p.set_ylim(ax[0].get_ylim())
-fig.suptitle("Fig. 2B (lower 0.8 g, upper 1 g), %s dt = %g s: the map in "
-             "%g s windows" % (integ, dt, a.width), fontsize=11)
+fig.suptitle("lower ball %.1f g, upper %.1f g, %s dt = %g s: the map in "
+             "%g s windows" % (m[0], m[1], integ, dt, a.width), fontsize=11)
 save(fig, a.output)
