@@ -100,7 +100,7 @@ PROG      := $(BINDIR)/ballfilm
 RUNNER    := $(BUILD)/tests/runner
 
 .PHONY: all run test check figures bench clean deps deps-plot test-run test-static \
-        build-tests fig1 fuzz fuzz-h5 valgrind mpi stratres mac-checks fig2 fig3 \
+        build-tests fig1 fuzz fuzz-h5 valgrind mpi stratres mac-checks fig2 fig3 fig8-offset \
         fig4 converge-figures survey-mass survey-length fig5 kink-dx2 \
         film-orders fig6 fig8 fig9 fig8-sym fig9-sym sym-divergence \
         multirate fig-g72-ex1 \
@@ -374,7 +374,8 @@ stratres: $(PROG) | deps deps-plot
 	$(PY) plots/fig_stratres.py out/stratres_x4.h5 -o out/stratres_x4.png
 
 # The thesis's two checks (tank at rest, uniform stream) for every velocity
-# update, with the exact pressure solve and with the listing's relaxation.
+# update, with the exact pressure solve and with the listing's relaxation;
+# the tank at rest both stratified and homogeneous (mac.rho_amp = 0).
 MAC_VARIANTS := printed consistent original
 mac-checks: $(PROG) | deps deps-plot
 	@mkdir -p out
@@ -386,16 +387,23 @@ mac-checks: $(PROG) | deps deps-plot
 	    --set mac.update=$$u --set mac.pressure_solver=$$s --set mac.u0=0.094 \
 	    --set scene.output_every=1 >/dev/null; \
 	done; done
+	@set -e; for u in $(MAC_VARIANTS); do for s in direct relax; do \
+	  $(PROG) run runs/mac_rest.ini -q -o out/mac_rest_homog_$${u}_$$s.h5 \
+	    --set mac.update=$$u --set mac.pressure_solver=$$s \
+	    --set mac.rho_amp=0 --set scene.output_every=1 >/dev/null; \
+	done; done
 	$(PROG) run runs/mac_uniform.ini -q -o out/mac_uniform_u01.h5 \
 	    --set scene.output_every=1 >/dev/null
 	$(PY) plots/fig_mac_checks.py -o out/mac_checks.png \
 	    --rest $(foreach u,$(MAC_VARIANTS),$(foreach s,direct relax,"$(u), $(s)=out/mac_rest_$(u)_$(s).h5")) \
+	    --homogeneous $(foreach u,$(MAC_VARIANTS),$(foreach s,direct relax,"$(u), $(s)=out/mac_rest_homog_$(u)_$(s).h5")) \
 	    --uniform $(foreach u,$(MAC_VARIANTS),$(foreach s,direct relax,"$(u), $(s), u0 0.094=out/mac_uniform_$(u)_$(s).h5")) \
 	    "consistent, direct, u0 0.1=out/mac_uniform_u01.h5"
 
 # Yasuda Fig. 2: first-return maps, lower ball 1.2 g (A) and 0.8 g (B),
 # MV2M for 1000 s with the Lyapunov estimate; first at the paper's
-# dt = 1e-4 s, then at 1e-5 s (docs/models/balls.md says why both).  About 1 min.
+# dt = 1e-4 s, then at 1e-5 s (docs/models/balls.md says why both); then B at
+# 1e-4 s in 100 s windows (the max z per window printed).  About 1 min.
 FIG2_SET := --set lyapunov.enabled=yes
 fig2: $(PROG) | deps deps-plot
 	@mkdir -p out
@@ -407,6 +415,7 @@ fig2: $(PROG) | deps deps-plot
 	    --set scene.dt=1e-5 --set scene.output_every=1000
 	$(PY) plots/fig2_return_map.py out/fig2_A.h5 out/fig2_B.h5 \
 	    out/fig2_A_dt1e-5.h5 out/fig2_B_dt1e-5.h5 -o out/fig2_return_map.png
+	$(PY) plots/fig2_windows.py out/fig2_B.h5 -o out/fig2_B_windows.png
 
 # Yasuda Fig. 3: lower ball 0.8 g with (A) Verlet 1e-4 s, (B) Verlet 1e-5 s,
 # (C) RK4, (D) RK3, (E) implicit mid-point at 1e-4 s, 1000 s each.  RK3
@@ -427,6 +436,7 @@ fig3: $(PROG) | deps deps-plot
 	    --set scene.integrator=impmid
 	$(PY) plots/fig3_return_map.py out/fig3_A.h5 out/fig3_B.h5 out/fig3_C.h5 \
 	    out/fig3_D.h5 out/fig3_E.h5 -o out/fig3_return_map.png
+	$(PY) plots/fig2_windows.py out/fig3_E.h5 -o out/fig3_E_windows.png
 
 # Yasuda Fig. 4: over 500-501 s, every step.  Each run stops at t = 500 s
 # (--stop-after writes a checkpoint, exit 6) and continues with a row per
@@ -525,6 +535,21 @@ fig9: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) run runs/coupled_fig9.ini -q -o out/coupled_fig9.h5
 	$(PY) plots/fig8_coupled.py out/coupled_fig9.h5 -o out/fig9_coupled.png
+
+# Fig. 8C's offset of psi(0.3 cm), split: the paper's run from the analytic
+# kink; the film alone (V0 = 0), i.e. the analytic kink relaxing on the
+# grid; the balls in the film so relaxed (the discrete kink).  3 x 50 s.
+fig8-offset: $(PROG) | deps deps-plot
+	@mkdir -p out
+	$(PROG) run runs/coupled_fig8.ini -q -o out/fig8_offset_kink.h5 >/dev/null
+	$(PROG) run runs/coupled_fig8.ini -q -o out/fig8_offset_film.h5 \
+	    --set coupling.V0=0 >/dev/null
+	$(PROG) run runs/coupled_fig8.ini -q -o out/fig8_offset_discrete.h5 \
+	    --set film.initial=file --set film.file=out/fig8_offset_film.h5 >/dev/null
+	$(PY) plots/psi_offset.py \
+	    "analytic kink, balls (Fig. 8)=out/fig8_offset_kink.h5" \
+	    "analytic kink, no coupling (V0 0)=out/fig8_offset_film.h5" \
+	    "discrete kink, balls=out/fig8_offset_discrete.h5"
 
 # The same with [coupled] symmetrize = yes (forced mirror symmetry), the
 # test of docs/models/coupled.md's explanation of the scattered maps (~1.6x the cost).

@@ -79,6 +79,26 @@ if a.longout:
            "Reading 2: t_k = step 100 k\n(\"t_300, that is, 30000 time "
            "steps\").\nSame run continued to step 30000;\nthe track is "
            "sampled every 1000 steps.")
+# The report's sentences against the diagnostics, t_k = step k (the short
+# run has a row per step): the heavy particles per quarter (bottom first),
+# all particles per quarter, the kinetic energy and the mean heights.
+(step, kin, mean, quart), attrs = load(
+    a.short, "/step", "/diag/kinetic", "/diag/mean_y", "/diag/quarters")
+print("Example 2, t_k = step k: quarters y in [0,25), [25,50), [50,75), "
+      "[75,100)")
+print("%6s %-18s %-18s %12s %14s" % ("step", "heavy per quarter",
+                                     "all per quarter", "kinetic [erg]",
+                                     "mean y h, l"))
+for k in (0, 2, 69, 250, 300):
+    i = int(np.searchsorted(step, k))
+    if i >= len(step):
+        continue
+    h = quart[i, :4].astype(int)
+    t = (quart[i, :4] + quart[i, 4:]).astype(int)
+    print("%6d %-18s %-18s %12.3g %7.1f %6.1f"
+          % (step[i], " ".join("%3d" % x for x in h),
+             " ".join("%3d" % x for x in t), kin[i, 0], mean[i, 0],
+             mean[i, 1]))
 if a.diag:
     (step, kin, mean, quart), attrs = load(
         a.long, "/step", "/diag/kinetic", "/diag/mean_y", "/diag/quarters")

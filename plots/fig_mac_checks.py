@@ -1,10 +1,12 @@
 #!/usr/bin/python3
 """The thesis's two checks of the MAC solver: (a) the stratified tank at
 rest, largest face speed against time; (b) the uniform stream, largest
-deviation from it.  One curve per velocity update and pressure solver.
+deviation from it; (c) with --homogeneous, the same tank of one density
+(mac.rho_amp = 0).  One curve per velocity update and pressure solver.
+Prints the largest face speed of every tank run.
 
 usage: fig_mac_checks.py --rest LABEL=FILE ... --uniform LABEL=FILE ...
-       [-o mac_checks.png]
+       [--homogeneous LABEL=FILE ...] [-o mac_checks.png]
 (the files come from `make mac-checks`: runs/mac_rest.ini and
 runs/mac_uniform.ini with --set mac.update=... mac.pressure_solver=...)"""
 import argparse
@@ -16,6 +18,7 @@ from bfplot import load, plt, save
 ap = argparse.ArgumentParser()
 ap.add_argument("--rest", nargs="+", default=[])
 ap.add_argument("--uniform", nargs="+", default=[])
+ap.add_argument("--homogeneous", nargs="+", default=[])
 ap.add_argument("-o", "--output", default="mac_checks.png")
 a = ap.parse_args()
 
@@ -29,18 +32,33 @@ def style(label):
     return ls, c
 
 
-fig, ax = plt.subplots(1, 2, figsize=(12, 4.6))
-for spec in a.rest:
-    label, path = spec.split("=", 1)
-    (t, diag), _ = load(path, "/time", "/mac/diag")
-    speed = np.maximum(diag[:, 0], diag[:, 1])
-    ls, c = style(label)
-    ax[0].semilogy(t[1:], np.maximum(speed[1:], FLOOR), ls, color=c,
+npanel = 3 if a.homogeneous else 2
+fig, ax = plt.subplots(1, npanel, figsize=(6 * npanel, 4.6))
+print("%-34s %10s %10s" % ("tank at rest: update, solver", "max |u|",
+                           "max |v|"))
+
+
+def tank(p, specs, kind):
+    for spec in specs:
+        label, path = spec.split("=", 1)
+        (t, diag), _ = load(path, "/time", "/mac/diag")
+        speed = np.maximum(diag[:, 0], diag[:, 1])
+        print("%-34s %10.2e %10.2e" % (kind + ", " + label,
+                                       diag[1:, 0].max(), diag[1:, 1].max()))
+        ls, c = style(label)
+        p.semilogy(t[1:], np.maximum(speed[1:], FLOOR), ls, color=c,
                    label=label)
+    p.set_xlabel("t [L/W]")
+    p.set_ylabel("speed [W]")
+    p.legend()
+
+
+tank(ax[0], a.rest, "stratified")
 ax[0].set_title("(a) stratified tank at rest: max |u|, |v| on fluid faces")
-ax[0].set_xlabel("t [L/W]")
-ax[0].set_ylabel("speed [W]")
-ax[0].legend()
+if a.homogeneous:
+    tank(ax[2], a.homogeneous, "homogeneous")
+    ax[2].set_title("(c) homogeneous tank at rest (rho_amp = 0): max |u|, "
+                    "|v|")
 
 for spec in a.uniform:
     label, path = spec.split("=", 1)
