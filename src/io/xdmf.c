@@ -13,6 +13,7 @@
 #include "io/h5check.h"
 #include "io/h5part.h"
 #include "io/dataset_paths.h"
+#include "io/xdmf_rows.h"
 
 #include <hdf5.h>
 #include <limits.h>
@@ -62,6 +63,7 @@ typedef struct xw {
     double dt;        /* [scene] dt, for rows counted in steps */
     dset_cache *cache;
     bf_h5_flushed *flushed; /* a run's .part: rows of its last flush */
+    bf_xdmf_rows *rows;     /* point sets' rows, a block at a time */
 } xw;
 
 static dset dset_read(const xw *x, const char *path);
@@ -168,7 +170,6 @@ static double *read_part(const xw *x, const char *path, int rank, size_t k,
     return v;
 }
 #define read_vec(x, path, n) read_part(x, path, 1, 0, n)
-#define read_row(x, path, k, n) read_part(x, path, 2, k, n)
 
 /* The sidecar of a long ball run has ~2000 grids of ~40 lines each:
  * constant text goes out with fputs/fwrite, not through printf's format
@@ -322,13 +323,13 @@ static void point_set(const xw *x, const char *px, const char *py, size_t k,
     /* values written inline: checked before, not found after */
     if (over_budget(x, (double)n * (py ? 8.0 : 6.0)))
         return;
-    double *vx = read_row(x, px, k, n), *vy = py ? read_row(x, py, k, n)
-                                                  : NULL;
+    const double *vx = bf_xdmf_row(x->rows, 0, x->h5, px, k, n, a.n0);
+    const double *vy = py ? bf_xdmf_row(x->rows, 1, x->h5, py, k, n,
+                                        dset_of(x, py).n0)
+                          : NULL;
     if (!vx || (py && !vy)) {
         failed(x, bf_fail(x->fail->err, BF_EIO, "%s: cannot read row %zu of "
                           "%s", x->h5name, k, py && vx ? py : px));
-        free(vx);
-        free(vy);
         return;
     }
     indent(x, depth);
@@ -362,8 +363,6 @@ static void point_set(const xw *x, const char *px, const char *py, size_t k,
     fputs("</DataItem>\n", x->f);
     indent(x, depth);
     fputs("</Geometry>\n", x->f);
-    free(vx);
-    free(vy);
 }
 
 /* ---------------------------------------------------------- collections */
@@ -409,6 +408,7 @@ static void collection(const xw *x, const char *name, const double *times,
                           x->bytes));
         return;
     }
+    x->rows->step = s;
     if (s > 1)
         fprintf(x->f, "    <!-- %s: every %zu-th of %zu rows (ballfilm xdmf "
                       "--all for every row) -->\n", name, s, rows);
@@ -820,8 +820,9 @@ bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
     dset_cache cache = {.n = 0};
     xfail fail = {BF_OK, err};
+    bf_xdmf_rows rows = {.step = 1};
     xw x = {NULL, h5_path, 0.0, 0.0, stop_flag, &fail, -1, NULL, max_steps,
-            0.0, &cache, NULL};
+            0.0, &cache, NULL, &rows};
     if (stop_flag && *stop_flag)
         return bf_fail(err, BF_INTERRUPTED, "%s: interrupted", xmf_path);
     x.h5 = bf_h5_open_read(h5_path);
@@ -865,6 +866,7 @@ bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
         free(cache.whole[k]);
     }
     bf_h5_flushed_free(x.flushed);
+    bf_xdmf_rows_free(&rows);
     H5Fclose(x.h5);
     return st;
 }
