@@ -134,6 +134,17 @@ START_TEST(xdmf_does_not_follow_a_link)
     ck_assert(f && fgets(buf, sizeof buf, f));
     fclose(f);
     ck_assert_str_eq(buf, "precious\n");
+    /* a hard link at OUT.xmf: writing it would change its other name */
+    unlink(xmf);
+    ck_assert_int_eq(link(victim, xmf), 0);
+    rc = tu_run(NULL, &err, "xdmf", h5, NULL);
+    ck_assert_msg(rc == 5 && strstr(err, "hard link"), "exit %d: %s", rc,
+                  err);
+    free(err);
+    f = fopen(victim, "r");
+    ck_assert(f && fgets(buf, sizeof buf, f));
+    fclose(f);
+    ck_assert_str_eq(buf, "precious\n");
 }
 END_TEST
 

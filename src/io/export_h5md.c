@@ -185,6 +185,8 @@ static bf_status observables(h5w *w, hid_t file)
         } else { /* a column of a [rows x c] series, row by row */
             for (size_t j = 0; !st && j < r; j++) {
                 double row[8];
+                if (!(j & 1023) && (st = bf_xsrc_stopped(s, w->err)))
+                    break;
                 st = bf_xsrc_read(s, o->path, j, (size_t)o->column + 1, row,
                                   w->err);
                 v[j] = row[o->column];

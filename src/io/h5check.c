@@ -154,9 +154,12 @@ bf_status bf_h5_dataset_fits(hid_t d, const char *file, const char *path,
         H5Pclose(dcpl);
     const double bound = file_bytes * (filtered ? BF_H5_MAX_RATIO : 1.0);
     /* counted in doubles as read into memory, then as stored */
+    /* a row's width is checked even when no row is read: callers size
+     * their row buffers from it */
     if (!elsize || file_bytes < 0 ||
         (width && rows > SIZE_MAX / sizeof(double) / width) ||
-        (double)rows * (double)width * (double)elsize > bound)
+        (double)rows * (double)width * (double)elsize > bound ||
+        (double)width * (double)elsize > bound)
         return bf_fail(err, BF_EINPUT, "%s: dataset %s claims %llu x %llu "
                        "values, more than the file (%.0f bytes) can hold "
                        "(damaged, or not a ballfilm file)", file, path,

@@ -318,14 +318,20 @@ static void attribute(const xw *x, const char *name, const char *center,
 static void point_set(const xw *x, const char *px, const char *py, size_t k,
                       int depth)
 {
-    dset a = dset_of(x, px);
+    dset a = dset_of(x, px), b = py ? dset_of(x, py) : a;
     const size_t n = a.n1;
+    /* x and y of one point set: as many values in each row */
+    if (b.n1 != n) {
+        failed(x, bf_fail(x->fail->err, BF_EINPUT, "%s: %s has %zu columns, "
+                          "%s %zu (damaged, or not a ballfilm file)",
+                          x->h5name, px, n, py, b.n1));
+        return;
+    }
     /* values written inline: checked before, not found after */
     if (over_budget(x, (double)n * (py ? 8.0 : 6.0)))
         return;
     const double *vx = bf_xdmf_row(x->rows, 0, x->h5, px, k, n, a.n0);
-    const double *vy = py ? bf_xdmf_row(x->rows, 1, x->h5, py, k, n,
-                                        dset_of(x, py).n0)
+    const double *vy = py ? bf_xdmf_row(x->rows, 1, x->h5, py, k, n, b.n0)
                           : NULL;
     if (!vx || (py && !vy)) {
         failed(x, bf_fail(x->fail->err, BF_EIO, "%s: cannot read row %zu of "

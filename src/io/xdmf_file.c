@@ -107,6 +107,9 @@ bf_status bf_xdmf_open(const char *xmf_path, int *fd, int *created,
         why = "cannot be examined";
     else if (S_ISREG(sb.st_mode) && sb.st_uid != geteuid())
         why = "belongs to another user; it is not written over";
+    else if (S_ISREG(sb.st_mode) && sb.st_nlink > 1)
+        why = "has other names (a hard link); writing it would change "
+              "them too";
     else if (!S_ISREG(sb.st_mode) && !S_ISCHR(sb.st_mode))
         why = "is not a regular file";
     else if (fcntl(*fd, F_SETFL, fcntl(*fd, F_GETFL) & ~O_NONBLOCK) < 0)

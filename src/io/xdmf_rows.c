@@ -37,11 +37,11 @@ static int load(bf_xdmf_block *b, hid_t h5, const char *path, size_t k,
     }
     hid_t fsp = H5Dget_space(id);
     hsize_t start[2] = {k, 0}, stride[2] = {step, 1}, cnt[2] = {count, n};
-    H5Sselect_hyperslab(fsp, H5S_SELECT_SET, start, stride, cnt, NULL);
+    herr_t rc = H5Sselect_hyperslab(fsp, H5S_SELECT_SET, start, stride, cnt,
+                                    NULL);
     hid_t msp = H5Screate_simple(2, cnt, NULL);
-    herr_t rc = n ? H5Dread(id, H5T_NATIVE_DOUBLE, msp, fsp, H5P_DEFAULT,
-                            b->v)
-                  : 0;
+    if (rc >= 0 && n)
+        rc = H5Dread(id, H5T_NATIVE_DOUBLE, msp, fsp, H5P_DEFAULT, b->v);
     H5Sclose(msp);
     H5Sclose(fsp);
     H5Dclose(id);
