@@ -42,9 +42,6 @@
 #include "ballfilm/error.h"
 #include "ballfilm/h5out.h"
 
-/* The time axis of every run's output rows (the time loop's table). */
-#define BF_PATH_TIME "/time"
-
 /* What a dataset is, over time. */
 typedef enum bf_series_kind {
     BF_SK_ROWS,     /* one row per output row ([scene] output_every) */

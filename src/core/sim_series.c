@@ -9,7 +9,7 @@
 enum { ON_ENERGY = 1u << 0, ON_WORK = 1u << 1 };
 
 static const bf_series_spec sim_series[] = {
-    {.path = BF_PATH_TIME, .unit = "s", .role = BF_SR_TIME,
+    {.path = BF_DS_TIME, .unit = "s", .role = BF_SR_TIME,
      .doc = "simulated time of each output row (t = step dt)",
      .slot = BF_SLOT(bf_sim, s_time)},
     {.path = BF_DS_STEP, .unit = "1", .is_int = 1, .role = BF_SR_STEP,

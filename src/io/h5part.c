@@ -23,18 +23,6 @@ int bf_h5_fapl_past_mark(hid_t fapl)
                : -1;
 }
 
-char *bf_h5_attr_text(hid_t loc, const char *obj, const char *name)
-{
-    hid_t a = H5Aopen_by_name(loc, obj, name, H5P_DEFAULT, H5P_DEFAULT);
-    if (a < 0)
-        return NULL;
-    char *v = NULL;
-    bf_err ignore = {0};
-    bf_h5_attr_string(a, "", obj, name, &v, &ignore);
-    H5Aclose(a);
-    return v;
-}
-
 hid_t bf_h5_open_read(const char *file)
 {
     hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);

@@ -35,11 +35,6 @@
  * read-only one leaves it in the file).  0, or -1 if this HDF5 has none. */
 int bf_h5_fapl_past_mark(hid_t fapl);
 
-/* The string attribute `name` of object `obj` ("/") under loc, as a
- * malloc'd copy, read as h5check.h says; NULL when there is none or it is
- * not one bounded string. */
-char *bf_h5_attr_text(hid_t loc, const char *obj, const char *name);
-
 /* FILE read-only: a plain open; for the file of a writer in SWMR mode, a
  * SWMR reader's open; for a file that HDF5 marks as open for writing by a
  * writer outside SWMR mode (killed at set-up, in its first 50 ms or at its

@@ -140,11 +140,10 @@ static dset dset_read(const xw *x, const char *path)
     return d;
 }
 
-/* The first n values of a 1-D dataset (rank 1), or row k of a [rows x n]
- * series (rank 2), as doubles; NULL on failure.  The dataset was checked
- * by dset_read: the rows read fit the file. */
-static double *read_part(const xw *x, const char *path, int rank, size_t k,
-                         size_t n)
+/* The first n values of a 1-D dataset, as doubles; NULL on failure.  The
+ * dataset was checked by dset_read: the values read fit the file.  (Rows
+ * of a series come a block at a time: xdmf_rows.h.) */
+static double *read_vec(const xw *x, const char *path, size_t n)
 {
     double *v = malloc((n ? n : 1) * sizeof *v);
     hid_t id = v ? H5Dopen2(x->h5, path, H5P_DEFAULT) : -1;
@@ -153,11 +152,9 @@ static double *read_part(const xw *x, const char *path, int rank, size_t k,
         return NULL;
     }
     hid_t fsp = H5Dget_space(id);
-    hsize_t start[2] = {rank == 2 ? k : 0, 0}, count[2] = {1, n};
-    if (rank == 1)
-        count[0] = n;
-    H5Sselect_hyperslab(fsp, H5S_SELECT_SET, start, NULL, count, NULL);
-    hid_t msp = H5Screate_simple(rank, count, NULL);
+    hsize_t start = 0, count = n;
+    H5Sselect_hyperslab(fsp, H5S_SELECT_SET, &start, NULL, &count, NULL);
+    hid_t msp = H5Screate_simple(1, &count, NULL);
     herr_t rc = n ? H5Dread(id, H5T_NATIVE_DOUBLE, msp, fsp, H5P_DEFAULT, v)
                   : 0;
     H5Sclose(msp);
@@ -169,7 +166,6 @@ static double *read_part(const xw *x, const char *path, int rank, size_t k,
     }
     return v;
 }
-#define read_vec(x, path, n) read_part(x, path, 1, 0, n)
 
 /* The sidecar of a long ball run has ~2000 grids of ~40 lines each:
  * constant text goes out with fputs/fwrite, not through printf's format
@@ -875,12 +871,6 @@ bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
     bf_xdmf_rows_free(&rows);
     H5Fclose(x.h5);
     return st;
-}
-
-bf_status bf_xdmf_write(const char *h5_path, const char *xmf_path,
-                        bf_err *err)
-{
-    return bf_xdmf_write_n(h5_path, xmf_path, BF_XDMF_MAX_STEPS, NULL, err);
 }
 
 char *bf_xdmf_default_path(const char *h5_path)

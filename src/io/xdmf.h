@@ -57,9 +57,6 @@ bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
                           size_t max_steps,
                           const volatile sig_atomic_t *stop_flag,
                           bf_err *err);
-/* The same with BF_XDMF_MAX_STEPS. */
-bf_status bf_xdmf_write(const char *h5_path, const char *xmf_path,
-                        bf_err *err);
 /* OUT.h5 -> OUT.xmf (malloc'd; NULL when out of memory). */
 char *bf_xdmf_default_path(const char *h5_path);
 

@@ -3,10 +3,10 @@
 #include "io/dataset_paths.h"
 
 static const bf_series_spec balls_series[] = {
-    {.path = BF_PATH_BALLS_POSITION, .unit = "cm", .role = BF_SR_POSITION,
+    {.path = BF_DS_BALLS_POSITION, .unit = "cm", .role = BF_SR_POSITION,
      .per = "ball", .doc = "ball centre positions, one column per ball",
      .slot = BF_SLOT(bf_balls_out, pos)},
-    {.path = BF_PATH_BALLS_VELOCITY, .unit = "cm/s", .role = BF_SR_VELOCITY,
+    {.path = BF_DS_BALLS_VELOCITY, .unit = "cm/s", .role = BF_SR_VELOCITY,
      .per = "ball", .doc = "ball velocities, one column per ball",
      .slot = BF_SLOT(bf_balls_out, vel)},
     {.path = BF_DS_BALLS_MASS, .unit = "g", .kind = BF_SK_STATIC,

@@ -7,11 +7,6 @@
 #include "ballfilm/series.h"
 #include "io/dataset_paths.h"
 
-/* The state arrays of the ball system are named like these datasets,
- * without the leading slash (ballsys.c). */
-#define BF_PATH_BALLS_POSITION BF_DS_BALLS_POSITION
-#define BF_PATH_BALLS_VELOCITY BF_DS_BALLS_VELOCITY
-
 typedef struct bf_balls_out {
     bf_series *pos, *vel;
 } bf_balls_out;

@@ -761,8 +761,8 @@ void bf_ballsys_energy(const bf_ballsys *s, double t, double *kin, double *pot)
 size_t bf_ballsys_state(bf_ballsys *s, bf_state_var *vars, size_t cap)
 {
     const bf_state_var v[2] = {
-        {BF_PATH_BALLS_POSITION + 1, "cm", s->b.n, s->b.x, 1},
-        {BF_PATH_BALLS_VELOCITY + 1, "cm/s", s->b.n, s->b.v, 1},
+        {BF_DS_BALLS_POSITION + 1, "cm", s->b.n, s->b.x, 1},
+        {BF_DS_BALLS_VELOCITY + 1, "cm/s", s->b.n, s->b.v, 1},
     };
     for (size_t k = 0; k < 2 && k < cap; k++)
         vars[k] = v[k];
