@@ -500,8 +500,7 @@ static bf_status one_step(bf_sim *s, bf_err *err, long *done)
     return st;
 }
 
-/* The run's relative energy error rel exceeds the bound: the failure. */
-static bf_status energy_exceeded(const bf_sim *s, double rel, bf_err *err)
+bf_status bf_sim_energy_exceeded_(const bf_sim *s, double rel, bf_err *err)
 {
     return bf_fail(err, BF_EUNSTABLE,
                    "step %ld (t = %.9g s): relative energy error %.3g "
@@ -587,7 +586,7 @@ static int watched_run(bf_sim *s, long watcher, int energy_in_run, long k,
         return 1;
     }
     if (w.fired & BF_WATCH_ENERGY) {
-        *st = energy_exceeded(s, w.last_rel, err);
+        *st = bf_sim_energy_exceeded_(s, w.last_rel, err);
         *named = 1;
     }
     return 1;
@@ -681,7 +680,7 @@ static bf_status run_to(bf_sim *s, long target, bf_err *err)
             if (on_step && !energy_checked) {
                 double rel = check_energy(s);
                 if (s->energy_bound > 0 && !(rel <= s->energy_bound)) {
-                    st = energy_exceeded(s, rel, err);
+                    st = bf_sim_energy_exceeded_(s, rel, err);
                     break;
                 }
             }
@@ -695,7 +694,7 @@ static bf_status run_to(bf_sim *s, long target, bf_err *err)
              * checked whatever the intervals: no blown-up row is written
              * as a result */
             if (s->energy_bound > 0 && !(rel <= s->energy_bound))
-                st = energy_exceeded(s, rel, err);
+                st = bf_sim_energy_exceeded_(s, rel, err);
             else if (s->n == s->nsteps)
                 st = bf_sim_check_state_(s, err);
             if (st)

@@ -82,6 +82,9 @@ bf_status bf_sim_beat(bf_sim *s, int rows, bf_err *err);
 /* The state now against finiteness and the energy bound (BF_EUNSTABLE
  * naming step, time and cause), before the last output row is written. */
 bf_status bf_sim_check_state_(bf_sim *s, bf_err *err);
+/* The failure of a relative energy error rel beyond the run's bound,
+ * naming step, time, the bound and the key that sets it (sim.c). */
+bf_status bf_sim_energy_exceeded_(const bf_sim *s, double rel, bf_err *err);
 /* sim_ids.c: a new random run_id (16 hex digits), and the hash of the
  * scene's text and its overrides (scene_hash), as written into the output
  * and the checkpoint. */

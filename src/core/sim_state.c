@@ -129,11 +129,13 @@ bf_status bf_sim_beat(bf_sim *s, int rows, bf_err *err)
     for (size_t k = 0; !st && k < s->nhb; k++) {
         const heartbeat *h = &s->hb[k];
         if (rows ? h->every == 0 : h->every > 0 && s->n % h->every == 0) {
-            char at[48];
-            snprintf(at, sizeof at, "at step %ld", s->n);
             err->msg[0] = '\0';
-            st = bf_sim_hook_status_(h->fn(h->ctx, s, err), "heartbeat",
-                                     NULL, at, err);
+            bf_status r = h->fn(h->ctx, s, err);
+            if (r != BF_OK) { /* the step named only when it failed */
+                char at[48];
+                snprintf(at, sizeof at, "at step %ld", s->n);
+                st = bf_sim_hook_status_(r, "heartbeat", NULL, at, err);
+            }
         }
     }
     return st;
@@ -179,17 +181,7 @@ bf_status bf_sim_check_state_(bf_sim *s, bf_err *err)
                            "time step is too large for this integrator",
                            s->n, t, k, p);
         if (s->energy_bound > 0 && !(rel <= s->energy_bound))
-            return bf_fail(err, BF_EUNSTABLE,
-                           "step %ld (t = %.9g s): relative energy error "
-                           "%.3g exceeds %s%g; the time step is too large "
-                           "for this integrator",
-                           s->n, t, rel,
-                           s->bound_is_models
-                               ? "the bound of this model, whose energy is "
-                                 "conserved ([scene] max_energy_error sets "
-                                 "another, energy_bound = no turns it off), "
-                               : "[scene] max_energy_error = ",
-                           s->energy_bound);
+            return bf_sim_energy_exceeded_(s, rel, err);
     }
     bf_state_var v[MAX_VARS];
     size_t nv = bf_sim_state(s, v, MAX_VARS);
