@@ -25,10 +25,10 @@
  * (floor and contact damped): rk4 with events agrees to 1e-6 of the
  * velocity scale.
  *
- * The driven floor with a ball resting on it (always in contact, so the
- * force is smooth): Verlet and RKN6 (whose first-same-as-last force cache
- * must not hand over a force of another time) and rk4 converge at their
- * nominal orders against ARKODE.
+ * The driven floor with a ball dropped onto it: the energy balance of
+ * Verlet, RKN6 (whose first-same-as-last force cache must not hand over a
+ * force of another time) and rk4 closes at the methods' orders as dt
+ * halves (the bands below say why they are wide).
  */
 #include <float.h>
 #include <math.h>
@@ -97,6 +97,7 @@ START_TEST(restitution_does_not_depend_on_the_impact_speed)
     /* with gravity (g = 980 cm/s^2): the departure, measured (at 1 cm/s
      * g t_c is 5 cm/s, more than v0: the ball does not leave) */
     const double vg[3] = {10, 30, 100};
+    double prev = -INFINITY;
     for (int b = 0; b < 3; b++) {
         const double r = bounce(vg[b], "restitution = 0.9", 980, "rk4",
                                 2000);
@@ -104,7 +105,13 @@ START_TEST(restitution_does_not_depend_on_the_impact_speed)
                "v_out/v_in = %.6f (%+.2e relative)\n",
                vg[b], r, r / 0.9 - 1);
         fflush(stdout);
-        ck_assert(fabs(r / 0.9 - 1) < 0.05);
+        /* gravity acts against the rebound during the contact: the ratio
+         * falls below e, by less the faster the impact (O(g t_c / v0)) */
+        ck_assert_msg(r / 0.9 - 1 < 0 && r / 0.9 - 1 > prev &&
+                          fabs(r / 0.9 - 1) < 0.05,
+                      "v0 %g: departure %g after %g", vg[b], r / 0.9 - 1,
+                      prev);
+        prev = r / 0.9 - 1;
     }
 }
 END_TEST
