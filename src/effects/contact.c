@@ -31,7 +31,8 @@ static bf_status contact_create(void **self, const void *params,
     if (!st) {
         bf_contact *p = *self;
         p->alpha = bf_damping_alpha(p->e);
-        p->general = p->e < 1 || p->A > 0;
+        p->law = bf_contact_law(p->e, p->A, 0.0);
+        p->branch = NULL;
     }
     return st;
 }
@@ -41,8 +42,8 @@ static int contact_accel(const void *self, const bf_balls *b, double t,
 {
     (void)t;
     const bf_contact *p = self;
-    if (p->general)
-        bf_contact_accel_general(p, b, x, v, acc);
+    if (p->law)
+        bf_contact_accel_general(p, b, x, v, acc, NULL);
     else
         bf_contact_accel(p, b, x, acc);
     return 0;

@@ -147,9 +147,15 @@ void bf_floor_height(const bf_floor *p, double t, double *h, double *hdot)
     *hdot = p->amplitude * w * cos(w * t);
 }
 
-/* eq. (1): elastic part *fe and the applied force (dyn) */
-static double damped_force(double k, double alpha, double A, double M,
-                           double delta, double ddelta, double *fe)
+unsigned bf_contact_law(double e, double A, double amplitude)
+{
+    return (e < 1 || A > 0 ? BF_LAW_DAMPED : 0u) |
+           (amplitude > 0 ? BF_LAW_DRIVEN : 0u);
+}
+
+/* eq. (1) without the maximum: elastic part *fe and the sum (dyn) */
+static double unclipped_force(double k, double alpha, double A, double M,
+                              double delta, double ddelta, double *fe)
 {
     const double s = sqrt(delta);
     *fe = k * delta * s;
@@ -158,20 +164,39 @@ static double damped_force(double k, double alpha, double A, double M,
         f += alpha * sqrt(M * k) * sqrt(s) * ddelta;
     if (A > 0)
         f += 1.5 * A * k * s * ddelta;
+    return f;
+}
+
+/* eq. (1) as applied on the branch br (bf_floor.branch): the maximum, f
+ * itself, or 0 */
+static double applied_force(double f, signed char br)
+{
+    if (br == BF_BRANCH_PUSH)
+        return f;
+    if (br == BF_BRANCH_FREE)
+        return 0.0;
     return f > 0 ? f : 0.0;
 }
 
 void bf_floor_accel_general(const bf_floor *p, const bf_balls *b, double t,
-                            const double *x, const double *v, double *acc)
+                            const double *x, const double *v, double *acc,
+                            bf_power *pw)
 {
     double h, hd, fe;
     bf_floor_height(p, t, &h, &hd);
     for (size_t i = 0; i < b->n; i++) {
         const double delta = h + b->R[i] - x[i];
-        if (delta > 0)
-            acc[i] += damped_force(p->k, p->alpha, p->A, b->m[i], delta,
-                                   hd - v[i], &fe) *
-                      b->inv_m[i];
+        if (!(delta > 0))
+            continue;
+        const double dd = hd - v[i];
+        const double f = applied_force(
+            unclipped_force(p->k, p->alpha, p->A, b->m[i], delta, dd, &fe),
+            p->branch ? p->branch[i] : BF_BRANCH_CLIP);
+        acc[i] += f * b->inv_m[i];
+        if (pw) {
+            pw->diss += (f - fe) * dd;
+            pw->inj += f * hd;
+        }
     }
 }
 
@@ -181,18 +206,55 @@ static double pair_mass(const bf_balls *b, size_t i)
 }
 
 void bf_contact_accel_general(const bf_contact *p, const bf_balls *b,
-                              const double *x, const double *v, double *acc)
+                              const double *x, const double *v, double *acc,
+                              bf_power *pw)
 {
     double fe;
     for (size_t i = 0; i + 1 < b->n; i++) {
         const double delta = 0.5 * (b->R[i] + b->R[i + 1] - (x[i + 1] - x[i]));
         if (!(delta > 0))
             continue;
-        const double f = damped_force(p->k, p->alpha, p->A, pair_mass(b, i),
-                                      delta, -0.5 * (v[i + 1] - v[i]), &fe);
+        const double dd = -0.5 * (v[i + 1] - v[i]);
+        const double f = applied_force(
+            unclipped_force(p->k, p->alpha, p->A, pair_mass(b, i), delta, dd,
+                            &fe),
+            p->branch ? p->branch[i] : BF_BRANCH_CLIP);
         acc[i] -= f * b->inv_m[i];
         acc[i + 1] += f * b->inv_m[i + 1];
+        if (pw)
+            pw->diss += 2 * (f - fe) * dd;
     }
+}
+
+double bf_floor_unclipped(const bf_floor *p, const bf_balls *b, double h,
+                          double hdot, size_t i, const double *x,
+                          const double *v, double *scale)
+{
+    double fe;
+    const double delta = h + b->R[i] - x[i];
+    if (!(delta > 0)) {
+        *scale = 0.0;
+        return 0.0;
+    }
+    const double f = unclipped_force(p->k, p->alpha, p->A, b->m[i], delta,
+                                     hdot - v[i], &fe);
+    *scale = fe + fabs(f - fe);
+    return f;
+}
+
+double bf_contact_unclipped(const bf_contact *p, const bf_balls *b, size_t i,
+                            const double *x, const double *v, double *scale)
+{
+    double fe;
+    const double delta = 0.5 * (b->R[i] + b->R[i + 1] - (x[i + 1] - x[i]));
+    if (!(delta > 0)) {
+        *scale = 0.0;
+        return 0.0;
+    }
+    const double f = unclipped_force(p->k, p->alpha, p->A, pair_mass(b, i),
+                                     delta, -0.5 * (v[i + 1] - v[i]), &fe);
+    *scale = fe + fabs(f - fe);
+    return f;
 }
 
 double bf_floor_potential_general(const bf_floor *p, const bf_balls *b,
@@ -205,59 +267,22 @@ double bf_floor_potential_general(const bf_floor *p, const bf_balls *b,
     return u;
 }
 
-void bf_floor_power(const bf_floor *p, const bf_balls *b, double t,
-                    const double *x, const double *v, double *diss,
-                    double *inj)
-{
-    double h, hd, fe;
-    bf_floor_height(p, t, &h, &hd);
-    for (size_t i = 0; i < b->n; i++) {
-        const double delta = h + b->R[i] - x[i];
-        if (!(delta > 0))
-            continue;
-        const double dd = hd - v[i];
-        const double f = damped_force(p->k, p->alpha, p->A, b->m[i], delta,
-                                      dd, &fe);
-        *diss += (f - fe) * dd;
-        *inj += f * hd;
-    }
-}
-
-void bf_contact_power(const bf_contact *p, const bf_balls *b, const double *x,
-                      const double *v, double *diss)
-{
-    double fe;
-    for (size_t i = 0; i + 1 < b->n; i++) {
-        const double delta = 0.5 * (b->R[i] + b->R[i + 1] - (x[i + 1] - x[i]));
-        if (!(delta > 0))
-            continue;
-        const double dd = -0.5 * (v[i + 1] - v[i]);
-        const double f = damped_force(p->k, p->alpha, p->A, pair_mass(b, i),
-                                      delta, dd, &fe);
-        *diss += 2 * (f - fe) * dd;
-    }
-}
-
 unsigned bf_effect_flags(const bf_effect *e)
 {
-    unsigned f = e->type->flags;
+    unsigned f = e->type->flags, law = 0;
     switch (bf_effect_kernel_of(e->type)) {
-    case BF_KERNEL_FLOOR: {
-        const bf_floor *p = e->self;
-        if (p->e < 1 || p->A > 0)
-            f = (f | BF_EFFECT_VELOCITY) & ~(unsigned)BF_EFFECT_CONSERVATIVE;
-        if (p->amplitude > 0)
-            f = (f | BF_EFFECT_TIME) & ~(unsigned)BF_EFFECT_CONSERVATIVE;
+    case BF_KERNEL_FLOOR:
+        law = ((const bf_floor *)e->self)->law;
         break;
-    }
-    case BF_KERNEL_CONTACT: {
-        const bf_contact *p = e->self;
-        if (p->e < 1 || p->A > 0)
-            f = (f | BF_EFFECT_VELOCITY) & ~(unsigned)BF_EFFECT_CONSERVATIVE;
+    case BF_KERNEL_CONTACT:
+        law = ((const bf_contact *)e->self)->law;
         break;
-    }
     default:
         break;
     }
+    if (law & BF_LAW_DAMPED)
+        f = (f | BF_EFFECT_VELOCITY) & ~(unsigned)BF_EFFECT_CONSERVATIVE;
+    if (law & BF_LAW_DRIVEN)
+        f = (f | BF_EFFECT_TIME) & ~(unsigned)BF_EFFECT_CONSERVATIVE;
     return f;
 }

@@ -10,33 +10,30 @@
  * and integrators for a = a(x) refuse it (docs/forces.md).  It has no
  * potential and is not conservative: dE/dt = -sum_i m_i (gamma v_i^2 +
  * c |v_i|^3) <= 0, so the energy check of all-conservative scenes does not
- * apply (the ball system's energy bound is 0 with it). */
+ * apply (the ball system's energy bound is 0 with it).  Its kernel,
+ * bf_drag_accel (effect_kernels.h), sums the dissipated power from the
+ * same evaluation when the ball system tracks the work. */
 #include <math.h>
 
 #include "effect_kernels.h"
 
-typedef struct drag_keys {
-    double gamma; /* 1/s */
-    double c;     /* 1/cm */
-} drag_keys;
-
 static const bf_param drag_params[] = {
-    {"gamma", BF_AT(drag_keys, gamma, BF_REAL), "1/s", "0",
+    {"gamma", BF_AT(bf_drag, gamma, BF_REAL), "1/s", "0",
      "linear drag: a = -gamma v", BF_NONNEG, 0, 0, NULL},
-    {"quadratic", BF_AT(drag_keys, c, BF_REAL), "1/cm", "0",
+    {"quadratic", BF_AT(bf_drag, c, BF_REAL), "1/cm", "0",
      "quadratic drag: a = -quadratic |v| v", BF_NONNEG, 0, 0, NULL},
     {0},
 };
 
 static const bf_section_spec drag_spec = BF_SECTION(
     "drag", "air drag a = -gamma v - quadratic |v| v on every ball",
-    drag_params, drag_keys);
+    drag_params, bf_drag);
 
 static bf_status drag_create(void **self, const void *params,
                              const bf_balls *b, bf_err *err)
 {
     (void)b;
-    return bf_effect_copy_params(self, params, sizeof(drag_keys), err);
+    return bf_effect_copy_params(self, params, sizeof(bf_drag), err);
 }
 
 static int drag_accel(const void *self, const bf_balls *b, double t,
@@ -44,9 +41,7 @@ static int drag_accel(const void *self, const bf_balls *b, double t,
 {
     (void)t;
     (void)x;
-    const drag_keys *p = self;
-    for (size_t i = 0; i < b->n; i++)
-        acc[i] -= (p->gamma + p->c * fabs(v[i])) * v[i];
+    bf_drag_accel(self, b, v, acc, NULL);
     return 0;
 }
 

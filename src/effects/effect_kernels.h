@@ -14,15 +14,16 @@
  *
  * A built-in effect is recognised by the address of its descriptor
  * (bf_effect_kernel_of): the public descriptor names no kernel, and an
- * effect defined outside the library, or a built-in one without a kernel
- * here (drag), is called through its `accel`.  The inline kernels below are
- * forces of the positions only (a = a(x)); they ignore t and v.  A damped
- * or driven floor or contact (`general` set) goes to its general kernel in
- * damped.c instead, which reads t and v.
+ * effect defined outside the library is called through its `accel`.  The
+ * inline kernels below are forces of the positions only (a = a(x)); they
+ * ignore t and v, but for drag's (of v).  A damped or driven floor or
+ * contact (`law` not 0) goes to its general kernel in damped.c instead,
+ * which reads t and v.
  */
 #ifndef BALLFILM_EFFECT_KERNELS_H
 #define BALLFILM_EFFECT_KERNELS_H
 
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -53,13 +54,15 @@ typedef enum bf_effect_kernel {
     BF_KERNEL_GRAVITY,
     BF_KERNEL_FLOOR,
     BF_KERNEL_CONTACT,
-    BF_KERNEL_SPRING
+    BF_KERNEL_SPRING,
+    BF_KERNEL_DRAG
 } bf_effect_kernel;
 
 extern const bf_effect_type bf_effect_gravity;
 extern const bf_effect_type bf_effect_floor;
 extern const bf_effect_type bf_effect_contact;
 extern const bf_effect_type bf_effect_spring;
+extern const bf_effect_type bf_effect_drag;
 
 /* the kernel of an effect, by its descriptor's address */
 BF_EFFECT_INLINE bf_effect_kernel bf_effect_kernel_of(const bf_effect_type *t)
@@ -72,6 +75,8 @@ BF_EFFECT_INLINE bf_effect_kernel bf_effect_kernel_of(const bf_effect_type *t)
         return BF_KERNEL_CONTACT;
     if (t == &bf_effect_spring)
         return BF_KERNEL_SPRING;
+    if (t == &bf_effect_drag)
+        return BF_KERNEL_DRAG;
     return BF_KERNEL_NONE;
 }
 
@@ -81,10 +86,27 @@ typedef struct bf_gravity {
 
 /* The damped, driven contacts (src/effects/damped.c, docs/forces.md):
  * restitution e and viscosity A of a Hertz contact, and the floor's
- * driving.  `general` is set at creation when any of them is active (e <
- * 1, A > 0, amplitude > 0); the kernels below are then bypassed for
+ * driving.  `law` (bf_contact_law, set at creation) says which of them is
+ * active; when it is not 0 the kernels below are bypassed for
  * bf_floor_accel_general / bf_contact_accel_general, so that elastic
  * scenes take exactly the elastic path. */
+enum {
+    BF_LAW_DAMPED = 1u << 0, /* restitution < 1 or viscosity > 0 */
+    BF_LAW_DRIVEN = 1u << 1  /* the floor moves */
+};
+/* The law of a contact with restitution e, viscosity A (s) and driving
+ * amplitude (cm): the one place that says when a contact is damped or
+ * driven (the kernels' choice, the effect's flags, the events). */
+unsigned bf_contact_law(double e, double A, double amplitude);
+
+/* Which branch of the clipped force max(0, f) a damped contact takes
+ * (bf_floor.branch, bf_contact.branch: one per ball, one per pair):
+ * BF_BRANCH_CLIP the maximum itself; BF_BRANCH_PUSH f as it is (also
+ * where it has turned negative) and BF_BRANCH_FREE 0 while the bodies
+ * overlap: what the event splitting sets for a whole substep, so that
+ * each substep integrates one smooth force (ballsys.c, "Releases"). */
+enum { BF_BRANCH_FREE = -1, BF_BRANCH_CLIP = 0, BF_BRANCH_PUSH = 1 };
+
 typedef struct bf_floor {
     double k;         /* Hertz constant, g cm^-1/2 s^-2 */
     double e;         /* coefficient of restitution, 1 */
@@ -92,7 +114,9 @@ typedef struct bf_floor {
     double amplitude; /* floor height A_f sin(2 pi f t), cm */
     double frequency; /* f, Hz */
     double alpha;     /* damping of e, 1: c = alpha sqrt(m k) (derived) */
-    int general;      /* damped or driven (derived) */
+    unsigned law;     /* bf_contact_law (derived) */
+    const signed char *branch; /* per ball, or NULL: clip (set by the
+                                  event splitting of the ball system) */
 } bf_floor;
 
 typedef struct bf_contact {
@@ -100,29 +124,51 @@ typedef struct bf_contact {
     double e;     /* coefficient of restitution, 1 */
     double A;     /* Kuwabara-Kono viscosity, s */
     double alpha; /* derived, as bf_floor's */
-    int general;  /* damped (derived) */
+    unsigned law; /* bf_contact_law (derived) */
+    const signed char *branch; /* per pair, or NULL: clip */
 } bf_contact;
 
-/* the general kernels (damped.c); t in s, v in cm/s */
+/* The powers (erg/s) of the non-conservative forces, summed by the
+ * kernels that take one (NULL: not wanted): dissipated (>= 0) and
+ * injected by the driven floor; scratch: n doubles for an effect called
+ * through its accel. */
+typedef struct bf_power {
+    double diss, inj;
+    double *scratch;
+} bf_power;
+
+/* the general kernels (damped.c); t in s, v in cm/s; the powers of the
+ * applied forces added to *pw when not NULL */
 void bf_floor_accel_general(const bf_floor *p, const bf_balls *b, double t,
-                            const double *x, const double *v, double *acc);
+                            const double *x, const double *v, double *acc,
+                            bf_power *pw);
 void bf_contact_accel_general(const bf_contact *p, const bf_balls *b,
-                              const double *x, const double *v, double *acc);
+                              const double *x, const double *v, double *acc,
+                              bf_power *pw);
 /* The floor's height (cm) and its rate (cm/s) at t (s). */
 void bf_floor_height(const bf_floor *p, double t, double *h, double *hdot);
-/* Power (erg/s) the damped contacts dissipate (>= 0) and, for the floor,
- * the power its driving injects, at (t, x, v) (added to *diss, *inj). */
-void bf_floor_power(const bf_floor *p, const bf_balls *b, double t,
-                    const double *x, const double *v, double *diss,
-                    double *inj);
-void bf_contact_power(const bf_contact *p, const bf_balls *b, const double *x,
-                      const double *v, double *diss);
+/* The damped force before the clipping (dyn, eq. 1 of damped.c without
+ * the maximum) of the floor on ball i, with the floor at height h moving
+ * at hdot, and of pair i; 0 where the bodies do not overlap.  *scale: the
+ * sum of the magnitudes of its terms (its round-off is a few ulps of
+ * that).  Its zero inside a contact is the release (ballsys.c). */
+double bf_floor_unclipped(const bf_floor *p, const bf_balls *b, double h,
+                          double hdot, size_t i, const double *x,
+                          const double *v, double *scale);
+double bf_contact_unclipped(const bf_contact *p, const bf_balls *b, size_t i,
+                            const double *x, const double *v, double *scale);
 /* alpha of restitution e (0 < e <= 1; 0 at e = 1) */
 double bf_damping_alpha(double e);
 /* An effect's flags for its parameters (a damped contact is velocity-
  * dependent and not conservative, a driven floor time-dependent): the
  * descriptor's flags otherwise. */
 unsigned bf_effect_flags(const bf_effect *e);
+
+/* the keys of [drag] (drag.c) */
+typedef struct bf_drag {
+    double gamma; /* 1/s */
+    double c;     /* 1/cm */
+} bf_drag;
 
 typedef struct bf_spring {
     double s;    /* stiffness, g/s^2 */
@@ -166,6 +212,19 @@ BF_EFFECT_INLINE void bf_spring_accel(const bf_spring *p, const bf_balls *b,
 {
     for (size_t i = 0; i < b->n; i++)
         acc[i] -= p->s * (x[i] - p->rest) * b->inv_m[i];
+}
+
+/* drag: a_i = -(gamma + c |v_i|) v_i; it dissipates m_i a_i v_i >= 0 */
+BF_EFFECT_INLINE void bf_drag_accel(const bf_drag *p, const bf_balls *b,
+                                    const double *v, double *acc,
+                                    bf_power *pw)
+{
+    for (size_t i = 0; i < b->n; i++) {
+        const double a = (p->gamma + p->c * fabs(v[i])) * v[i];
+        acc[i] -= a;
+        if (pw)
+            pw->diss += b->m[i] * a * v[i];
+    }
 }
 
 /* ---- potential energies (erg), the exact antiderivatives of the forces
@@ -297,7 +356,7 @@ BF_EFFECT_INLINE int bf_effects_daccel_inline(const bf_effect *e, size_t ne,
             bf_gravity_daccel(e[k].self, b, abar);
             break;
         case BF_KERNEL_FLOOR:
-            if (((const bf_floor *)e[k].self)->general) {
+            if (((const bf_floor *)e[k].self)->law) {
                 if (bf_effect_daccel_generic(&e[k], b, t, x, xn, abar))
                     return 1;
             } else {
@@ -355,7 +414,7 @@ BF_EFFECT_INLINE double bf_effects_potential_inline(const bf_effect *e,
             u += bf_gravity_potential(e[k].self, b, x);
             break;
         case BF_KERNEL_FLOOR:
-            if (((const bf_floor *)e[k].self)->general)
+            if (((const bf_floor *)e[k].self)->law)
                 u += bf_floor_potential_general(e[k].self, b, t, x);
             else
                 u += bf_floor_potential(e[k].self, b, x);
@@ -374,12 +433,15 @@ BF_EFFECT_INLINE double bf_effects_potential_inline(const bf_effect *e,
     return u;
 }
 
-/* acc = sum over the effects at (t, x, v); returns non-zero if an effect
- * fails. */
+/* acc = sum over the effects at (t, x, v); with pw (NULL: none), also the
+ * powers of the non-conservative forces, from the same evaluation of each
+ * force (an effect outside the library without a potential that is not
+ * conservative dissipates -sum_i m_i a_i v_i: it adds its acceleration to
+ * pw->scratch, then to acc).  Returns non-zero if an effect fails. */
 BF_EFFECT_INLINE int bf_effects_accel_inline(const bf_effect *e, size_t ne,
                                           const bf_balls *b, double t,
                                           const double *x, const double *v,
-                                          double *acc)
+                                          double *acc, bf_power *pw)
 {
     BF_UNROLL
     for (size_t i = 0; i < b->n; i++)
@@ -390,23 +452,38 @@ BF_EFFECT_INLINE int bf_effects_accel_inline(const bf_effect *e, size_t ne,
             bf_gravity_accel(e[k].self, b, x, acc);
             break;
         case BF_KERNEL_FLOOR:
-            if (((const bf_floor *)e[k].self)->general)
-                bf_floor_accel_general(e[k].self, b, t, x, v, acc);
+            if (((const bf_floor *)e[k].self)->law)
+                bf_floor_accel_general(e[k].self, b, t, x, v, acc, pw);
             else
                 bf_floor_accel(e[k].self, b, x, acc);
             break;
         case BF_KERNEL_CONTACT:
-            if (((const bf_contact *)e[k].self)->general)
-                bf_contact_accel_general(e[k].self, b, x, v, acc);
+            if (((const bf_contact *)e[k].self)->law)
+                bf_contact_accel_general(e[k].self, b, x, v, acc, pw);
             else
                 bf_contact_accel(e[k].self, b, x, acc);
             break;
         case BF_KERNEL_SPRING:
             bf_spring_accel(e[k].self, b, x, acc);
             break;
+        case BF_KERNEL_DRAG:
+            bf_drag_accel(e[k].self, b, v, acc, pw);
+            break;
         default:
-            if (e[k].type->accel(e[k].self, b, t, x, v, acc))
+            if (!pw || e[k].type->potential ||
+                (e[k].type->flags & BF_EFFECT_CONSERVATIVE)) {
+                if (e[k].type->accel(e[k].self, b, t, x, v, acc))
+                    return 1;
+                break;
+            }
+            for (size_t i = 0; i < b->n; i++)
+                pw->scratch[i] = 0.0;
+            if (e[k].type->accel(e[k].self, b, t, x, v, pw->scratch))
                 return 1;
+            for (size_t i = 0; i < b->n; i++) {
+                acc[i] += pw->scratch[i];
+                pw->diss -= b->m[i] * pw->scratch[i] * v[i];
+            }
         }
     }
     return 0;

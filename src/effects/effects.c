@@ -15,7 +15,7 @@ __attribute__((optimize("no-tree-loop-distribute-patterns")))
 int bf_effects_accel(const bf_effect *e, size_t ne, const bf_balls *b, double t,
                      const double *x, const double *v, double *acc)
 {
-    return bf_effects_accel_inline(e, ne, b, t, x, v, acc);
+    return bf_effects_accel_inline(e, ne, b, t, x, v, acc, NULL);
 }
 
 double bf_effects_potential(const bf_effect *e, size_t ne, const bf_balls *b,

@@ -45,7 +45,8 @@ static bf_status floor_create(void **self, const void *params,
     if (!st) {
         bf_floor *p = *self;
         p->alpha = bf_damping_alpha(p->e);
-        p->general = p->e < 1 || p->A > 0 || p->amplitude > 0;
+        p->law = bf_contact_law(p->e, p->A, p->amplitude);
+        p->branch = NULL;
     }
     return st;
 }
@@ -54,8 +55,8 @@ static int floor_accel(const void *self, const bf_balls *b, double t,
                        const double *x, const double *v, double *acc)
 {
     const bf_floor *p = self;
-    if (p->general)
-        bf_floor_accel_general(p, b, t, x, v, acc);
+    if (p->law)
+        bf_floor_accel_general(p, b, t, x, v, acc, NULL);
     else
         bf_floor_accel(p, b, x, acc);
     return 0;
@@ -65,7 +66,7 @@ static double floor_potential(const void *self, const bf_balls *b, double t,
                               const double *x)
 {
     const bf_floor *p = self;
-    return p->general ? bf_floor_potential_general(p, b, t, x)
+    return p->law ? bf_floor_potential_general(p, b, t, x)
                       : bf_floor_potential(p, b, x);
 }
 

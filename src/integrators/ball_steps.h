@@ -58,7 +58,7 @@ BF_ALWAYS_INLINE int bf_ball_accel_any(void *ctx, double t, const double *x,
                                        const double *v, double *acc)
 {
     const bf_ball_forces *f = ctx;
-    return bf_effects_accel_inline(f->eff, f->neff, f->b, t, x, v, acc);
+    return bf_effects_accel_inline(f->eff, f->neff, f->b, t, x, v, acc, NULL);
 }
 
 /* What the forces of a fixed effect list read: the balls with n a

@@ -58,53 +58,26 @@ int bf_ballsys_accel(void *ctx, double t, const double *x, const double *v,
     const bf_ballsys *s = ctx;
     if (s->nw)
         return bf_ballsys_accel_work(ctx, t, x, v, acc);
-    return bf_effects_accel_inline(s->eff, s->neff, &s->b, t, x, v, acc);
+    return bf_effects_accel_inline(s->eff, s->neff, &s->b, t, x, v, acc, NULL);
 }
 
 /* Work of the non-conservative forces (erg) as two more ODE components:
- * W_diss' = D(t, x, v), W_inj' = J(t, x, v) (the powers of damped.c; an
- * effect without a potential and not built in, such as drag, dissipates
+ * W_diss' = D(t, x, v), W_inj' = J(t, x, v) (the powers of damped.c and
+ * drag; an effect without a potential and not built in dissipates
  * D = -sum_i m_i a_i v_i), the "velocities" of components n and n + 1,
  * so every integrator integrates the work with its own stages, at its
  * own order, and E(t) - E(0) + W_diss - W_inj closes to that order
- * (docs/forces.md).  The ball components keep their bits. */
+ * (docs/forces.md).  Each force is evaluated once, for the acceleration
+ * and its power.  The ball components keep their bits. */
 int bf_ballsys_accel_work(void *ctx, double t, const double *x,
                           const double *v, double *acc)
 {
     bf_ballsys *s = ctx;
-    const bf_balls *b = &s->b;
-    const size_t n = b->n;
-    if (bf_effects_accel_inline(s->eff, s->neff, b, t, x, v, acc))
+    bf_power pw = {0.0, 0.0, s->w_acc};
+    if (bf_effects_accel_inline(s->eff, s->neff, &s->b, t, x, v, acc, &pw))
         return 1;
-    double diss = 0.0, inj = 0.0;
-    for (size_t k = 0; k < s->neff; k++) {
-        const bf_effect *e = &s->eff[k];
-        switch (bf_effect_kernel_of(e->type)) {
-        case BF_KERNEL_FLOOR:
-            if (((const bf_floor *)e->self)->general)
-                bf_floor_power(e->self, b, t, x, v, &diss, &inj);
-            break;
-        case BF_KERNEL_CONTACT:
-            if (((const bf_contact *)e->self)->general)
-                bf_contact_power(e->self, b, x, v, &diss);
-            break;
-        case BF_KERNEL_NONE:
-            if (e->type->potential ||
-                (e->type->flags & BF_EFFECT_CONSERVATIVE))
-                break;
-            for (size_t i = 0; i < n; i++)
-                s->w_acc[i] = 0.0;
-            if (e->type->accel(e->self, b, t, x, v, s->w_acc))
-                return 1;
-            for (size_t i = 0; i < n; i++)
-                diss -= b->m[i] * s->w_acc[i] * v[i];
-            break;
-        default:
-            break;
-        }
-    }
-    acc[n] = diss;
-    acc[n + 1] = inj;
+    acc[s->b.n] = pw.diss;
+    acc[s->b.n + 1] = pw.inj;
     return 0;
 }
 
@@ -295,13 +268,13 @@ static void gaps_setup(bf_ballsys *s)
         /* the force's exponent at an onset (graded_h): delta^{3/2}
          * elastic, delta^{1/2} viscous, delta^{1/4} with restitution */
         if (kk == BF_KERNEL_FLOOR || kk == BF_KERNEL_CONTACT) {
-            const double e = kk == BF_KERNEL_FLOOR
-                                 ? ((const bf_floor *)s->eff[k].self)->e
-                                 : ((const bf_contact *)s->eff[k].self)->e;
-            const double A = kk == BF_KERNEL_FLOOR
-                                 ? ((const bf_floor *)s->eff[k].self)->A
-                                 : ((const bf_contact *)s->eff[k].self)->A;
-            const double kink = e < 1 ? 0.25 : A > 0 ? 0.5 : 1.5;
+            const bf_floor *f = s->eff[k].self;
+            const bf_contact *c = s->eff[k].self;
+            const int fl = kk == BF_KERNEL_FLOOR;
+            const double kink = !((fl ? f->law : c->law) & BF_LAW_DAMPED)
+                                    ? 1.5
+                                : (fl ? f->e : c->e) < 1 ? 0.25
+                                                         : 0.5;
             if (!(s->kink_power > 0) || kink < s->kink_power)
                 s->kink_power = kink;
         }
