@@ -261,7 +261,7 @@ END_TEST
  * force: a ball with linear drag dropped on the floor, rk4 with events =
  * yes.  The splitting re-takes steps (rejected > 0) and the result
  * converges at the method's order against a run at dt/8: e(dt)/e(dt/2)
- * >= 2^3.5 (the graded substeps of ballsys.c give order p back). */
+ * >= 2^3.5 (the graded substeps of ballsys_events.c give order p back). */
 START_TEST(event_splitting_keeps_working_with_drag)
 {
     static const char text[] =

@@ -1,7 +1,7 @@
 /* fixed_step.h: the [integrator] keys every fixed-step integrator without
  * keys of its own offers (private to src/integrators): `events`, the
  * event splitting of the ball system (integrator.h, split_events;
- * src/models/ballsys.c). */
+ * src/models/ballsys_events.c). */
 #ifndef BALLFILM_FIXED_STEP_H
 #define BALLFILM_FIXED_STEP_H
 

@@ -47,7 +47,7 @@ typedef struct bf_ballsys {
      * integrator has none; then its generic step) */
     bf_ball_step_fn fast_step;
     bf_ball_advance_fn fast_advance;
-    /* Contact events ([integrator] events = yes; ballsys.c, "Event
+    /* Contact events ([integrator] events = yes; ballsys_events.c, "Event
      * splitting").  The gaps: x_i - R_i per ball with a floor effect,
      * (x_{i+1} - x_i) - (R_i + R_{i+1}) per pair with a contact effect
      * (set for every system: bf_ballsys_gaps_fn serves others too). */
@@ -56,7 +56,7 @@ typedef struct bf_ballsys {
     int ngaps;
     const struct bf_floor *floor; /* the floor effect's state, or NULL */
     double kink_power; /* the force grows as delta^kink_power after an
-                          onset (graded substeps, ballsys.c) */
+                          onset (graded substeps, ballsys_events.c) */
     double *ev_work; /* scratch of the splitting */
     int *ev_side;
     bf_events kinks; /* adaptive integrator with roots: its kinks */
@@ -106,6 +106,13 @@ void bf_ballsys_work(const bf_ballsys *s, double *diss, double *inj);
  * bf_ballsys; v is not read). */
 int bf_ballsys_gaps_fn(void *ctx, double t, const double *x, const double *v,
                        double *g);
+
+/* The event splitting's set-up (ballsys_events.c): which gaps the
+ * effects make (every system), and for [integrator] events = yes its
+ * scratch, the split of fixed steps or the kinks of an adaptive
+ * integrator. */
+void bf_ballsys_gaps_setup(bf_ballsys *s);
+bf_status bf_ballsys_events_setup(bf_ballsys *s, bf_err *err);
 
 /* One step split at the contact onsets and releases inside it (what
  * bf_ballsys_step does with [integrator] events = yes). */
