@@ -154,6 +154,7 @@ void bf_ballsys_free(bf_ballsys *s)
     free(s->eff);
     free(s->ev_work);
     free(s->ev_side);
+    free(s->branch);
     free(s->effect_types);
     free(s->it_params);
     bf_integrator_free(s->it);

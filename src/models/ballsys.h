@@ -55,6 +55,13 @@ typedef struct bf_ballsys {
     int gap_floor, gap_pair;
     int ngaps;
     const struct bf_floor *floor; /* the floor effect's state, or NULL */
+    const struct bf_contact *contact; /* the contact effect's, or NULL */
+    /* the release events of the damped contacts (ballsys_events.c,
+     * "Releases"): the floor's, one per ball, then the pairs', and the
+     * branch of each for the current piece */
+    int rel_floor, rel_pair;
+    int nrel;
+    signed char *branch;
     double kink_power; /* the force grows as delta^kink_power after an
                           onset (graded substeps, ballsys_events.c) */
     double *ev_work; /* scratch of the splitting */

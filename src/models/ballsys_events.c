@@ -39,7 +39,24 @@
  * trial substeps thrown away.  Analyses observe whole steps (their hooks
  * are around the call).  The force cache is keyed by positions, so a
  * re-taken substep never reuses a stale force.  Off (the default), no
- * code here runs and every result is as before. */
+ * code here runs and every result is as before.
+ *
+ * Releases.  A damped contact's force f = max(0, u), with u the sum of
+ * the elastic and damping terms (damped.c, eq. 1), is continuous where u
+ * falls to 0 while the bodies still overlap, but its derivative jumps
+ * there: a step across it makes a local velocity error O(dt^2), whatever
+ * the method's order.  Each damped contact (the floor under each ball,
+ * each pair) therefore adds the event u(x, v), located like a gap after
+ * the gaps (its zero first guessed linearly: its rate needs the
+ * acceleration).  And each piece integrates one smooth force: the
+ * contact's branch (bf_floor.branch, bf_contact.branch) is set at the
+ * piece's start from the side of u there, for all its stages and trials:
+ * u itself while it pushes (also a stage beyond the zero, where u < 0:
+ * the smooth continuation the root finder needs), 0 once released (until
+ * the bodies part or u turns positive again, located as well), and the
+ * maximum where u is 0 at the start (outside the contact).  The branches
+ * are the maximum again between steps, so that any evaluation outside a
+ * step sees the clipped force. */
 enum { MAX_PIECES = 100000, MAX_TRIALS = 60 };
 
 /* which gaps the effects make (every ball system: the coupled model's
@@ -53,6 +70,8 @@ void bf_ballsys_gaps_setup(bf_ballsys *s)
         s->gap_pair |= kk == BF_KERNEL_CONTACT && n > 1;
         if (kk == BF_KERNEL_FLOOR)
             s->floor = s->eff[k].self;
+        if (kk == BF_KERNEL_CONTACT)
+            s->contact = s->eff[k].self;
         /* the force's exponent at an onset (graded_h): delta^{3/2}
          * elastic, delta^{1/2} viscous, delta^{1/4} with restitution */
         if (kk == BF_KERNEL_FLOOR || kk == BF_KERNEL_CONTACT) {
@@ -68,15 +87,20 @@ void bf_ballsys_gaps_setup(bf_ballsys *s)
         }
     }
     s->ngaps = (s->gap_floor ? (int)n : 0) + (s->gap_pair ? (int)n - 1 : 0);
+    s->rel_floor = s->floor && (s->floor->law & BF_LAW_DAMPED);
+    s->rel_pair = s->gap_pair && s->contact &&
+                  (s->contact->law & BF_LAW_DAMPED);
+    s->nrel = (s->rel_floor ? (int)n : 0) + (s->rel_pair ? (int)n - 1 : 0);
 }
 
 bf_status bf_ballsys_events_setup(bf_ballsys *s, bf_err *err)
 {
     const size_t n = s->ode.n; /* the balls, and the work (nw) */
-    const size_t m = (size_t)s->ngaps;
+    const size_t m = (size_t)(s->ngaps + s->nrel);
     s->ev_work = calloc(6 * n + 4 * m + 1, sizeof *s->ev_work);
     s->ev_side = calloc(m + 1, sizeof *s->ev_side);
-    if (!s->ev_work || !s->ev_side)
+    s->branch = calloc((size_t)s->nrel + 1, sizeof *s->branch);
+    if (!s->ev_work || !s->ev_side || !s->branch)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     if (s->it->type->flags & BF_INT_ADAPTIVE) {
         /* the integrator stops and restarts at each zero itself */
@@ -87,6 +111,14 @@ bf_status bf_ballsys_events_setup(bf_ballsys *s, bf_err *err)
     s->split = s->ngaps > 0;
     if (s->split)
         s->fast_advance = NULL; /* runs go step by step, through the split */
+    /* the damped contacts take their branches from here (the effects'
+     * states are this system's: a lent effect is never a floor or a
+     * contact) */
+    if (s->split && s->rel_floor)
+        ((bf_floor *)s->floor)->branch = s->branch;
+    if (s->split && s->rel_pair)
+        ((bf_contact *)s->contact)->branch =
+            s->branch + (s->rel_floor ? s->b.n : 0);
     return BF_OK;
 }
 
@@ -136,7 +168,84 @@ int bf_ballsys_gaps_fn(void *ctx, double t, const double *x, const double *v,
     return 0;
 }
 
+/* release event c (dyn): the unclipped force of the floor on ball c, or
+ * of pair c - n (after the floor's), with the floor at h moving at hd;
+ * *scale: the magnitudes it sums */
+static double release(const bf_ballsys *s, double h, double hd, int c,
+                      const double *x, const double *v, double *scale)
+{
+    size_t i = (size_t)c;
+    if (s->rel_floor && i < s->b.n)
+        return bf_floor_unclipped(s->floor, &s->b, h, hd, i, x, v, scale);
+    if (s->rel_floor)
+        i -= s->b.n;
+    return bf_contact_unclipped(s->contact, &s->b, i, x, v, scale);
+}
+
+static void floor_at(const bf_ballsys *s, double t, double *h, double *hd)
+{
+    *h = *hd = 0.0;
+    if (s->floor)
+        bf_floor_height(s->floor, t, h, hd);
+}
+
+/* the events at (t, x, v): the gaps (with rate, their rates), then the
+ * releases */
+static void events(const bf_ballsys *s, double t, const double *x,
+                   const double *v, double *g, double *rate)
+{
+    gaps(s, t, x, v, g, rate);
+    if (!s->nrel)
+        return;
+    double h, hd, scale;
+    floor_at(s, t, &h, &hd);
+    for (int c = 0; c < s->nrel; c++)
+        g[s->ngaps + c] = release(s, h, hd, c, x, v, &scale);
+}
+
+/* round-off of event j at (t, x, v): 4 ulps of what it is formed from */
+static double event_tol(const bf_ballsys *s, double t, const double *x,
+                        const double *v, int j)
+{
+    if (j < s->ngaps)
+        return gap_tol(s, x, j);
+    double h, hd, scale;
+    floor_at(s, t, &h, &hd);
+    release(s, h, hd, j - s->ngaps, x, v, &scale);
+    return 4 * DBL_EPSILON * scale;
+}
+
 static int side(double g) { return (g > 0) - (g < 0); }
+
+/* The sides of the events at a piece's start.  A gap exactly 0 there (a
+ * contact that begins or ends on a step's boundary) takes the side it
+ * moves to, so that the substeps after such an onset are graded too. */
+static void start_sides(const bf_ballsys *s, const double *g,
+                        const double *rate, size_t m, int *sa)
+{
+    for (size_t k = 0; k < m; k++) {
+        sa[k] = side(g[k]);
+        if (!sa[k] && (int)k < s->ngaps)
+            sa[k] = side(rate[k]);
+    }
+}
+
+/* each damped contact's branch for the piece whose events start on the
+ * sides sa: free where its gap starts open (a stage past the onset of
+ * that piece must not feel the force: delta^{1/4} is far from smooth
+ * there), else the side of its release event (BF_BRANCH_PUSH, _FREE,
+ * _CLIP are +1, -1, 0); NULL: the maximum (between steps) */
+static void set_branches(bf_ballsys *s, const int *sa)
+{
+    const int n = (int)s->b.n;
+    for (int c = 0; c < s->nrel; c++) {
+        const int gap = s->rel_floor && c < n ? c
+                        : (s->gap_floor ? n : 0) + c - (s->rel_floor ? n : 0);
+        s->branch[c] = (signed char)(!sa ? BF_BRANCH_CLIP
+                                     : sa[gap] > 0 ? BF_BRANCH_FREE
+                                                   : sa[s->ngaps + c]);
+    }
+}
 
 /* the integrator's step (specialised or generic), without splitting */
 static bf_status plain_step(bf_ballsys *s, double t, double dt, bf_err *err)
@@ -177,10 +286,11 @@ typedef struct piece_ws {
     unsigned trials;
 } piece_ws;
 
-/* Locate the zero of gap j in the piece: on return (xh, vh) is the state
- * after the substep theta h (*theta), on the far side of the zero or on
- * it; on entry (xh, vh) is that after theta_hi h with gap value ghi
- * (far side) and glo the gap at the piece's start (near side). */
+/* Locate the zero of event j (a gap or a release) in the piece: on
+ * return (xh, vh) is the state after the substep theta h (*theta), on the
+ * far side of the zero or on it; on entry (xh, vh) is that after
+ * theta_hi h with event value ghi (far side) and glo its value at the
+ * piece's start (near side). */
 static bf_status locate(bf_ballsys *s, piece_ws *w, int j, double thhi,
                         double ghi, double glo, double guess, double *theta,
                         bf_err *err)
@@ -197,7 +307,7 @@ static bf_status locate(bf_ballsys *s, piece_ws *w, int j, double thhi,
         w->trials++;
         if (st)
             return st;
-        gaps(s, w->ta + th * w->h, s->b.x, NULL, g, NULL);
+        events(s, w->ta + th * w->h, s->b.x, s->b.v, g, NULL);
         const double f = g[j];
         if (f == 0 || side(f) == far) {
             hi = th;
@@ -214,7 +324,8 @@ static bf_status locate(bf_ballsys *s, piece_ws *w, int j, double thhi,
                 fhi *= 0.5;
             kept = -1;
         }
-        if (fhi == 0 || fabs(fhi) <= gap_tol(s, w->xh, j) ||
+        if (fhi == 0 ||
+            fabs(fhi) <= event_tol(s, w->ta + hi * w->h, w->xh, w->vh, j) ||
             hi - lo <= 4 * DBL_EPSILON * hi)
             break;
         th = (lo * fhi - hi * flo) / (fhi - flo);
@@ -261,7 +372,7 @@ static double graded_h(const bf_ballsys *s, const double *g,
 bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
                                 bf_err *err)
 {
-    const size_t n = s->ode.n, m = (size_t)s->ngaps;
+    const size_t n = s->ode.n, m = (size_t)(s->ngaps + s->nrel);
     double *x0 = s->ev_work, *v0 = x0 + n;
     piece_ws w = {.xa = x0 + 2 * n, .va = x0 + 3 * n, .xh = x0 + 4 * n,
                   .vh = x0 + 5 * n, .ga = x0 + 6 * n, .gb = x0 + 6 * n + m,
@@ -273,9 +384,9 @@ bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
     memcpy(v0, s->b.v, n * sizeof *v0);
     memcpy(w.xa, x0, n * sizeof *x0);
     memcpy(w.va, v0, n * sizeof *v0);
-    gaps(s, w.ta, w.xa, w.va, w.ga, w.ra);
-    for (size_t j = 0; j < m; j++)
-        sa[j] = side(w.ga[j]);
+    events(s, w.ta, w.xa, w.va, w.ga, w.ra);
+    start_sides(s, w.ga, w.ra, m, sa);
+    set_branches(s, sa);
     unsigned pieces = 0;
     double rest = dt; /* of the step, from w.ta */
     bf_status st = BF_OK;
@@ -287,15 +398,18 @@ bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
         if (st)
             break;
         pieces++;
-        gaps(s, w.ta + w.h, s->b.x, s->b.v, w.gb, w.rb);
-        /* the crossing that the Hermite interpolants put first */
+        events(s, w.ta + w.h, s->b.x, s->b.v, w.gb, w.rb);
+        /* the crossing that the Hermite interpolants (linear ones for
+         * the releases) put first */
         int j = -1;
         double first = 2, th = 1;
         for (size_t k = 0; k < m; k++) {
             if (sa[k] * side(w.gb[k]) >= 0)
                 continue;
-            double r = hermite_root(w.ga[k], w.gb[k], w.h * w.ra[k],
-                                    w.h * w.rb[k]);
+            double r = (int)k >= s->ngaps
+                           ? w.ga[k] / (w.ga[k] - w.gb[k])
+                           : hermite_root(w.ga[k], w.gb[k], w.h * w.ra[k],
+                                          w.h * w.rb[k]);
             if (r < first) {
                 first = r;
                 j = (int)k;
@@ -311,8 +425,9 @@ bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
                 if ((st = locate(s, &w, j, th, ghi, w.ga[j], guess, &th,
                                  err)))
                     break;
-                /* did another gap cross before? (its zero comes first) */
-                gaps(s, w.ta + th * w.h, w.xh, NULL, w.gb, NULL);
+                /* did another event cross before? (its zero comes
+                 * first) */
+                events(s, w.ta + th * w.h, w.xh, w.vh, w.gb, NULL);
                 int k2 = -1;
                 for (size_t k = 0; k < m; k++)
                     if ((int)k != j && sa[k] * side(w.gb[k]) < 0)
@@ -337,14 +452,15 @@ bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
         memcpy(w.va, s->b.v, n * sizeof *w.va);
         w.ta += th * w.h;
         rest -= th * w.h;
-        gaps(s, w.ta, w.xa, w.va, w.ga, w.ra);
-        for (size_t k = 0; k < m; k++)
-            sa[k] = side(w.ga[k]);
+        events(s, w.ta, w.xa, w.va, w.ga, w.ra);
+        start_sides(s, w.ga, w.ra, m, sa);
         if (j >= 0)
             sa[j] = far;
+        set_branches(s, sa);
         if (!(rest > 0))
             break;
     }
+    set_branches(s, NULL);
     if (st) {
         memcpy(s->b.x, x0, n * sizeof *x0);
         memcpy(s->b.v, v0, n * sizeof *v0);
