@@ -96,14 +96,18 @@ int bf_ballsys_daccel(void *ctx, double t, const double *x, const double *xn,
 bf_status bf_ballsys_step_generic(bf_ballsys *s, double t, double dt,
                                   bf_err *err)
 {
-    /* a force of t: the first-same-as-last cache (keyed by x) must not
-     * hand a force of another time to this step */
-    if (s->time_dependent)
+    /* A force of t: the first-same-as-last cache (keyed by x and the
+     * epoch) holds the force of the last step's end, t' + dt', and is
+     * valid for this step exactly when it starts at that time (to the
+     * bit: (n + 1) dt and n dt + dt differ now and then). */
+    if (s->time_dependent && !(t == s->t_cached))
         s->ode.epoch++;
+    s->t_cached = NAN;
     bf_status st = bf_integrator_step(s->it, &s->ode, t, dt, s->b.x, s->b.v,
                                       err);
     if (st)
         return st;
+    s->t_cached = t + dt; /* as the integrators form the end's time */
     for (size_t i = 0; i < s->b.n; i++)
         if (!isfinite(s->b.x[i]) || !isfinite(s->b.v[i]))
             return bf_balls_not_finite(&s->b, err);
@@ -365,6 +369,7 @@ bf_status bf_ballsys_create(bf_ballsys **out, const bf_model_setup *setup,
     s->ode.accel = bf_ballsys_accel;
     s->ode.ctx = s;
     s->ode.epoch = 0;
+    s->t_cached = NAN;
     s->ode.daccel = bf_ballsys_daccel;
     s->forces = (bf_ball_forces){&s->b, s->eff, s->neff};
     if (s->it->type->balls && !s->no_fast)
@@ -489,6 +494,11 @@ bf_status bf_ballsys_save(const bf_ballsys *s, bf_ckpt *ck, const char *prefix,
         if ((st = bf_ckpt_put(ck, name, w, 4, err)))
             return st;
     }
+    /* the time of the cached force, to continue with the same reuses */
+    snprintf(name, sizeof name, "%s.t_cached", prefix);
+    if (s->time_dependent && isfinite(s->t_cached) &&
+        (st = bf_ckpt_put(ck, name, &s->t_cached, 1, err)))
+        return st;
     snprintf(name, sizeof name, "%s.integrator", prefix);
     return bf_integrator_save(s->it, ck, name, err);
 }
@@ -522,6 +532,17 @@ bf_status bf_ballsys_load(bf_ballsys *s, const bf_ckpt *ck, const char *prefix,
             return bf_fail(err, BF_EINPUT, "checkpoint: %s: ball %zu at x = "
                            "%g cm with v = %g cm/s: not finite", prefix,
                            k + 1, s->b.x[k], s->b.v[k]);
+    snprintf(name, sizeof name, "%s.t_cached", prefix);
+    s->t_cached = NAN;
+    if (s->time_dependent && bf_ckpt_has(ck, name) &&
+        (st = bf_ckpt_get(ck, name, &s->t_cached, 1, err)))
+        return st;
     snprintf(name, sizeof name, "%s.integrator", prefix);
-    return bf_integrator_load(s->it, ck, name, err);
+    if ((st = bf_integrator_load(s->it, ck, name, err)))
+        return st;
+    /* with a force of t the loaded cache is valid where the time of its
+     * force is known (and the step starts then), else never */
+    if (s->time_dependent)
+        s->ode.epoch = s->it->cache_epoch + !isfinite(s->t_cached);
+    return BF_OK;
 }

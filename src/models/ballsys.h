@@ -38,8 +38,11 @@ typedef struct bf_ballsys {
     int no_fast; /* an effect depends on velocity or explicitly on time:
                     no specialised steps (ball_steps.h) */
     int time_dependent; /* an effect depends explicitly on t: ode.epoch is
-                           bumped every step (the force cache is keyed by
-                           x, integrator.h) */
+                           bumped before a step that does not start at
+                           t_cached (the force cache is keyed by x,
+                           integrator.h) */
+    double t_cached; /* the end time of the last generic step, whose
+                        force the integrator's cache may hold (NaN: none) */
     bf_ode ode;
     /* what the integrator's specialised steps see (b, eff, neff) */
     bf_ball_forces forces;
