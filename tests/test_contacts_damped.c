@@ -170,6 +170,30 @@ START_TEST(position_only_integrators_refuse_damped_contacts)
 }
 END_TEST
 
+/* Greenspan's discrete gradient with a driven floor: the step uses the
+ * potential at one time and had no stage at which to integrate the
+ * driving's work (the balance closed at first order: 3.2e-3, 1.6e-3,
+ * 8.1e-4 as dt halved from 4e-5 s); refused at set-up, which leaves the
+ * elastic fixed floor the only one a discrete gradient meets. */
+START_TEST(greenspan73_refuses_a_driven_floor)
+{
+    bf_scene *sc = tu_scene(
+        "[scene]\nmodel = balls\nintegrator = greenspan73\ndt = 1e-5\n"
+        "t_end = 0.01\neffects = gravity floor\n[floor]\namplitude = 0.01\n"
+        "frequency = 20\n[ball.1]\nposition = 0.3\n");
+    bf_sim *sim;
+    bf_err err = {0};
+    bf_status st =
+        bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, NULL, &err);
+    ck_assert_int_eq(st, BF_EINPUT);
+    ck_assert_msg(strstr(err.msg, "[scene] integrator") &&
+                      strstr(err.msg, "'floor'") && strstr(err.msg, "time"),
+                  "%s", err.msg);
+    printf("contacts_damped: refused: %s\n", err.msg);
+    bf_scene_free(sc);
+}
+END_TEST
+
 /* two balls, floor and contact damped: rk4 (events) against ARKODE */
 static void two_balls(const char *it, const char *dt, double *x, double *v,
                       double *balance)
@@ -363,6 +387,7 @@ Suite *suite_contacts_damped(void)
     tcase_add_test(tc, restitution_does_not_depend_on_the_impact_speed);
     tcase_add_test(tc, viscosity_dissipates_as_v_to_the_one_fifth);
     tcase_add_test(tc, position_only_integrators_refuse_damped_contacts);
+    tcase_add_test(tc, greenspan73_refuses_a_driven_floor);
     tcase_add_test(tc, arkode_is_the_reference_of_a_dissipative_run);
     tcase_add_test(tc, a_damped_release_keeps_the_orders);
     tcase_add_test(tc, the_energy_balance_closes_at_the_method_order);

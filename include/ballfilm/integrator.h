@@ -97,7 +97,10 @@ enum {
     BF_INT_POSITION_ONLY = 1u << 1, /* needs a(x) independent of v */
     BF_INT_ADAPTIVE = 1u << 2,      /* takes its own internal steps */
     BF_INT_IMPLICIT = 1u << 3,
-    BF_INT_ROOTS = 1u << 4 /* locates the events of bf_ode inside its steps */
+    BF_INT_ROOTS = 1u << 4, /* locates the events of bf_ode inside its steps */
+    BF_INT_POTENTIAL = 1u << 5 /* steps with the discrete gradient of a
+                                  potential of x (bf_ode.daccel): refuses
+                                  forces of t as well as of v */
 };
 
 /* Balls under effects as a specialised ball step sees them: the balls

@@ -356,12 +356,11 @@ BF_EFFECT_INLINE int bf_effects_daccel_inline(const bf_effect *e, size_t ne,
             bf_gravity_daccel(e[k].self, b, abar);
             break;
         case BF_KERNEL_FLOOR:
-            if (((const bf_floor *)e[k].self)->law) {
-                if (bf_effect_daccel_generic(&e[k], b, t, x, xn, abar))
-                    return 1;
-            } else {
-                bf_floor_daccel(e[k].self, b, x, xn, abar);
-            }
+            /* elastic and fixed: the only integrator that steps with
+             * these, greenspan73 (BF_INT_POTENTIAL), refuses a damped
+             * floor (a force of v) and a driven one (of t) at set-up
+             * (ballsys.c, check_velocity_forces) */
+            bf_floor_daccel(e[k].self, b, x, xn, abar);
             break;
         case BF_KERNEL_CONTACT:
             bf_contact_daccel(e[k].self, b, x, xn, abar);

@@ -170,7 +170,8 @@ const bf_integrator_type bf_integrator_greenspan73 = {
            "symmetric; conserves K + V of the balls to round-off",
     .order = 2,
     .evals_per_step = 0,
-    .flags = BF_INT_SYMMETRIC | BF_INT_IMPLICIT | BF_INT_POSITION_ONLY,
+    .flags = BF_INT_SYMMETRIC | BF_INT_IMPLICIT | BF_INT_POSITION_ONLY |
+             BF_INT_POTENTIAL,
     .spec = &g73_spec,
     .init = g73_init,
     .step = g73_step,
