@@ -769,7 +769,7 @@ survey-length: $(PROG) | deps deps-plot
 # bifurcation diagram of the impact phase over Gamma = 1.0-3.2, 221 cases of
 # runs/vibrating_table.ini (5 s each) over [floor] amplitude on both cores
 # (rerunning skips finished cases), the scene once, the exact hard-impact
-# map and the theory's thresholds: the sweep takes 3.2 min of CPU (`time`).
+# map and the theory's thresholds: 3.0 min of CPU (`time make fig-vibrating-table`).
 fig-vibrating-table: $(PROG) | deps deps-plot
 	@mkdir -p out
 	$(PROG) sweep runs/vibrating_table.ini --vary floor.amplitude=0.062:0.1986:221 \
