@@ -101,7 +101,7 @@ RUNNER    := $(BUILD)/tests/runner
 
 .PHONY: all run test check figures bench clean deps deps-plot test-run test-static \
         build-tests fig1 fuzz fuzz-h5 valgrind mpi stratres mac-checks fig2 fig3 fig8-offset \
-        fig4 converge-figures survey-mass survey-length fig5 kink-dx2 \
+        fig4 converge-figures survey-mass survey-length fig-vibrating-table fig5 kink-dx2 \
         film-orders fig6 fig8 fig9 fig8-sym fig9-sym sym-divergence \
         multirate fig-g72-ex1 \
         fig-g72-ex1-ensemble fig-g72-ex2 fig-g72-large fig-g73-hex \
@@ -720,6 +720,7 @@ figures:
 	@$(MAKE) --no-print-directory converge-figures
 	@$(MAKE) --no-print-directory survey-mass
 	@$(MAKE) --no-print-directory survey-length
+	@$(MAKE) --no-print-directory fig-vibrating-table
 	@$(MAKE) --no-print-directory stratres
 	@$(MAKE) --no-print-directory mac-checks
 	@$(MAKE) --no-print-directory fig5
@@ -763,6 +764,19 @@ survey-length: $(PROG) | deps deps-plot
 	    --jobs 2 -q -o out/survey_length_$(SURVEY_T)s
 	$(PY) plots/survey.py out/survey_length_$(SURVEY_T)s -o out/survey_length.png \
 	    --label "film length [cm]" --maps 11
+
+# The ball on a vibrating table (docs/models/vibrating_table.md): the
+# bifurcation diagram of the impact phase over Gamma = 1.0-3.2, 221 cases of
+# runs/vibrating_table.ini (5 s each) over [floor] amplitude on both cores
+# (rerunning skips finished cases), the scene once, the exact hard-impact
+# map and the theory's thresholds: 3.0 min of CPU (`time make fig-vibrating-table`).
+fig-vibrating-table: $(PROG) | deps deps-plot
+	@mkdir -p out
+	$(PROG) sweep runs/vibrating_table.ini --vary floor.amplitude=0.062:0.1986:221 \
+	    --set "scene.output_every=0.1 s" --jobs 2 -q -o out/vibrating_table_sweep
+	$(PROG) run runs/vibrating_table.ini -q -o out/vibrating_table.h5
+	$(PY) plots/vibrating_table.py out/vibrating_table_sweep \
+	    out/vibrating_table.h5 -o out/vibrating_table.png
 
 # ---------------------------------------------------------------- tests
 # A kill at a chosen write of HDF5 (tests/killwrite.c), preloaded into the

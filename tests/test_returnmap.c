@@ -288,6 +288,47 @@ START_TEST(compare_zero_in_free_fall)
 }
 END_TEST
 
+/* With a damped, driven floor the ball system integrates the work of the
+ * non-conservative forces as two more ODE components after the balls
+ * (bf_ode.n = balls + 2, docs/forces.md).  The return map's forces, the
+ * Lyapunov shadow and the compared steps go through the same callback and
+ * integrators, so their buffers must hold every component: a buffer of
+ * the balls only was overrun at the first contact (heap corruption, or
+ * an AddressSanitizer report).  The run must end normally with its map
+ * points, a finite exponent and the compared velocities. */
+START_TEST(analyses_hold_the_work_components)
+{
+    const char *scene = tu_write(
+        "work.ini",
+        "[scene]\nmodel = balls\nintegrator = rk4\neffects = gravity floor\n"
+        "dt = 2e-5\nt_end = 0.5\noutput_every = 100\n"
+        "[integrator]\nevents = yes\n"
+        "[return_map]\nenabled = yes\ntrigger = 1\nrecord = 1\n"
+        "[lyapunov]\nenabled = yes\n"
+        "[compare]\na = rk4\nb = rk3\n"
+        "[gravity]\ng = 980\n"
+        "[floor]\nk = 1e8\nrestitution = 0.5\namplitude = 0.08\n"
+        "frequency = 20\n"
+        "[ball.1]\nposition = 1\nmass = 1\nradius = 0.1\n");
+    const char *out = tu_tmp("work.h5");
+    char *e = NULL;
+    int rc = tu_run(NULL, &e, "run", scene, "-o", out, "-q", NULL);
+    ck_assert_msg(rc == 0, "status %d: %s", rc, e);
+    free(e);
+    bf_err err = {0};
+    double *t, *dv;
+    size_t n, c, nr, cr;
+    ck_assert(bf_h5_read(out, "/return_map/time", &t, &n, &c, &err) == BF_OK);
+    ck_assert(bf_h5_read(out, "/compare/dv", &dv, &nr, &cr, &err) == BF_OK);
+    /* dropped from 1 cm: the first impact after 0.043 s */
+    ck_assert_msg(n >= 1 && t[0] > 0.04, "%zu points, first at %g s", n,
+                  n ? t[0] : 0.0);
+    ck_assert(cr == 1 && nr > 200 && isfinite(tu_absmax(dv, nr)));
+    free(t);
+    free(dv);
+}
+END_TEST
+
 /* An adaptive integrator cannot feed the two-trajectory estimate. */
 START_TEST(lyapunov_refuses_adaptive)
 {
@@ -405,6 +446,7 @@ Suite *suite_returnmap(void)
     tcase_add_test(tc, fig2_exponents_differ);
     tcase_add_test(tc, lyapunov_refuses_adaptive);
     tcase_add_test(tc, compare_zero_in_free_fall);
+    tcase_add_test(tc, analyses_hold_the_work_components);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -54,23 +54,25 @@ static bf_status compare_create(void **out, const void *keys,
                                "methods", names[q]);
     }
     bf_compare *c = calloc(1, sizeof *c);
-    const size_t n = env->view->n;
-    if (!c || !(c->xa = calloc(5 * n, sizeof *c->xa))) {
+    /* the steps advance every component of the ODE: the balls and, with
+     * non-conservative effects, the work after them (bf_ode.n) */
+    const size_t n = env->view->n, no = env->view->ode->n;
+    if (!c || !(c->xa = calloc(4 * no + n, sizeof *c->xa))) {
         free(c);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
     c->n = n;
     c->dt = env->run->dt;
     c->view = *env->view;
-    c->va = c->xa + n;
-    c->xb = c->xa + 2 * n;
-    c->vb = c->xa + 3 * n;
-    c->dv = c->xa + 4 * n;
+    c->va = c->xa + no;
+    c->xb = c->xa + 2 * no;
+    c->vb = c->xa + 3 * no;
+    c->dv = c->xa + 4 * no;
     /* default parameters: their [integrator] keys belong to the run's
      * own integrator */
-    bf_status st = bf_integrator_create(&c->a, types[0], n, NULL, err);
+    bf_status st = bf_integrator_create(&c->a, types[0], no, NULL, err);
     if (!st)
-        st = bf_integrator_create(&c->b, types[1], n, NULL, err);
+        st = bf_integrator_create(&c->b, types[1], no, NULL, err);
     if (st) {
         compare_free(c);
         return st;

@@ -10,7 +10,7 @@
 struct bf_lyap {
     bf_lyap_sum sum;
     double *x, *v; /* shadow state */
-    size_t n2;     /* 2 n: the length of x followed by v */
+    size_t n2;     /* 2 bf_ode.n: the length of x followed by v */
     bf_integrator *it;
     bf_ball_view view;
 };
@@ -43,7 +43,10 @@ static bf_status lyap_create(void **out, const void *keys,
     bf_lyap *ly = calloc(1, sizeof *ly);
     if (!ly)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    const size_t n = view->n;
+    /* the shadow steps every component of the ODE: the balls and, with
+     * non-conservative effects, the work after them (bf_ode.n); the
+     * distance is measured on the balls only */
+    const size_t n = view->ode->n;
     ly->sum = sum;
     ly->view = *view;
     ly->n2 = 2 * n;

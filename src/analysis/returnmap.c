@@ -182,14 +182,17 @@ static bf_status retmap_create(void **out, const void *keys,
     rm->rec = (size_t)k->record - 1;
     rm->n = n;
     rm->R = view->R[rm->trig];
-    rm->x0 = calloc(4 * n, sizeof *rm->x0);
+    /* the force callback fills every component of the ODE: the balls and,
+     * with non-conservative effects, the work after them (bf_ode.n) */
+    const size_t no = view->ode->n;
+    rm->x0 = calloc(4 * no, sizeof *rm->x0);
     if (!rm->x0) {
         free(rm);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
-    rm->v0 = rm->x0 + n;
-    rm->a0 = rm->x0 + 2 * n;
-    rm->a1 = rm->x0 + 3 * n;
+    rm->v0 = rm->x0 + no;
+    rm->a0 = rm->x0 + 2 * no;
+    rm->a1 = rm->x0 + 3 * no;
     rm->view = *view;
     if (view->it->type->flags & BF_INT_ROOTS) {
         rm->dir = 1;
