@@ -219,6 +219,9 @@ typedef struct bf_model_type {
      * the model tracks it (then the loop checks, writes and reports the
      * balance E - E0 + W_diss - W_inj instead of E - E0), else 0. */
     int (*work)(const void *self, double *diss, double *inj);
+    /* Optional: the model's convergence study (study.h), for `ballfilm
+     * converge` (NULL: the model has none). */
+    const struct bf_study_type *study;
 } bf_model_type;
 
 #endif

@@ -37,6 +37,19 @@ typedef struct bf_coupled_whole_keys {
 
 typedef struct bf_coupled_whole bf_coupled_whole;
 
+/* The keys of [coupled]. */
+typedef struct coupled_keys {
+    int film;        /* 0 dynamic, 1 static */
+    const char *film_every; /* steps, or "auto" */
+    double multirate_tol;   /* cm/s^2 */
+    long film_every_max;    /* steps */
+    double probe;    /* cm */
+    long map_ball, map_pivot, peak_ball; /* 1-based; 0: the default */
+    int symmetrize, timing;
+    bf_coupled_whole_keys whole; /* scheme and its ARKODE keys */
+} coupled_keys;
+extern const bf_section_spec bf_coupled_spec;
+
 /* One coupled system (the run, or its Lyapunov shadow). */
 typedef struct coupled_model {
     bf_filmsys *fs;
