@@ -177,7 +177,7 @@ static void study_answers(const char *text, int *adaptive, double *hmax)
 {
     bf_scene *sc = tu_scene(text);
     bf_setup *setup;
-    bf_run_ctx run = {0.001, 0.01, 10, 1};
+    bf_run_ctx run = {0.001, 0.01, 10, 1, 0};
     bf_err err = {0};
     ck_assert_msg(bf_setup_create(&setup, bf_catalog_builtin(), sc, &run,
                                   &err) == BF_OK,

@@ -265,7 +265,7 @@ bf_status bf_ballsys_from_scene(bf_ballsys **out, const bf_catalog *c,
     *out = NULL;
     bf_setup *setup;
     bf_run_ctx run = {bf_scene_real(sc, "scene", "dt"),
-                      bf_scene_real(sc, "scene", "t_end"), 0, 1};
+                      bf_scene_real(sc, "scene", "t_end"), 0, 1, 0};
     bf_status st = bf_setup_create(&setup, c, sc, &run, err);
     if (st)
         return st;
@@ -284,7 +284,8 @@ bf_status bf_compose_setup(bf_setup **setup, const bf_catalog *c,
     bf_run_ctx run = {dt, t_end, (long)ceil(t_end / dt * (1.0 - 1e-12)),
                       bf_interval_steps(bf_scene_interval(sc, "scene",
                                                           "output_every"),
-                                        dt)};
+                                        dt),
+                      0};
     return bf_setup_create(setup, c, sc, &run, err);
 }
 

@@ -167,6 +167,8 @@ static void coupled_destroy(void *self)
     free(m->acc_old);
     free(m->x0);
     free(m->v0);
+    free(m->map_x);
+    free(m->map_v);
     free(m);
 }
 
@@ -261,6 +263,7 @@ static bf_status coupled_build(coupled_model **self,
     if (!m)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     m->dynamic = k->film == 0;
+    m->keep_map = with_shadow && setup->run.keep_map; /* not a shadow */
     bf_status st = film_every_key(k->film_every, &m->every, err);
     if (st) {
         free(m);
@@ -792,13 +795,18 @@ const bf_model_type bf_model_coupled = {
 
 /* ------------------------------------------------------------ drivers */
 
-/* The return map is /coupled/return_map (no multi-minimum count, the
- * points are not kept in memory). */
+/* The return map is /coupled/return_map (no multi-minimum count); its
+ * points are there when the run holds all of them (not continued from a
+ * checkpoint). */
 static void coupled_results(const void *self, bf_results *r)
 {
     const coupled_model *m = self;
     r->has_return_map = 1;
     r->map_points = (size_t)m->nmap;
+    if (m->map_kept && m->map_kept == (size_t)m->nmap) {
+        r->map_z = m->map_x;
+        r->map_v = m->map_v;
+    }
     r->has_lyapunov = m->ly != NULL;
     if (m->ly)
         r->lyapunov_exponent = bf_lyap_sum_estimate(m->ly, &r->lyapunov_time);

@@ -90,6 +90,12 @@ typedef struct coupled_model {
      * ball v) since the last row [0..3] and over the run [4..7] */
     double sym_correction[8];
     long nmap, npeak;
+    /* with bf_run_ctx keep_map (not in a shadow): the return map's x, v
+     * of every point found, for bf_results (a sweep's
+     * statistics of the map without reading the file back; 16 B a point) */
+    int keep_map;
+    double *map_x, *map_v;
+    size_t map_kept, map_cap;
     bf_balls_out bo;
     bf_series *probe_s, *symb, *symf, *map, *peaks, *symc_s;
 } coupled_model;
