@@ -28,17 +28,11 @@ static bf_status check(const bf_xsrc *s, const char *path, int rank,
                        path);
     int r = 0;
     hsize_t dims[2];
-    size_t count;
-    bf_status st = bf_h5_dataset_shape(d, s->file, path, &r, dims, err);
+    bf_status st = bf_h5_dataset_rows(d, s->file, path, s->fl, s->bytes, &r,
+                                      dims, NULL, err);
     if (!st && r != rank)
         st = bf_fail(err, BF_EINPUT, "%s: %s has rank %d, not %d", s->file,
                      path, r, rank);
-    if (!st) {
-        dims[0] = bf_h5_flushed_rows(s->fl, path, dims[0]);
-        st = bf_h5_dataset_fits(d, s->file, path, dims[0],
-                                rank == 2 ? dims[1] : 1, s->bytes, &count,
-                                err);
-    }
     H5Dclose(d);
     if (!st) {
         *rows = (size_t)dims[0];
@@ -96,22 +90,6 @@ bf_status bf_xsrc_stopped(const bf_xsrc *s, bf_err *err)
 {
     return s->stop && *s->stop ? bf_fail(err, BF_INTERRUPTED, "interrupted")
                                : BF_OK;
-}
-
-/* The numeric root attribute name, or fallback. */
-static bf_status root_number(const bf_xsrc *s, const char *name,
-                             double fallback, double *v, bf_err *err)
-{
-    *v = fallback;
-    if (H5Aexists(s->h5, name) <= 0)
-        return BF_OK;
-    hid_t a = H5Aopen(s->h5, name, H5P_DEFAULT);
-    if (a < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot open attribute %s", s->file,
-                       name);
-    bf_status st = bf_h5_attr_number(a, s->file, "/", name, v, err);
-    H5Aclose(a);
-    return st;
 }
 
 /* Which particles the file holds, their series and units. */
@@ -277,7 +255,7 @@ bf_status bf_xsrc_open(bf_xsrc *s, const char *in_path, bf_err *err)
     s->bytes = bf_h5_file_bytes(in_path);
     bf_status st = bf_h5_flushed_load(s->h5, in_path, &s->fl, err);
     if (!st)
-        st = root_number(s, "scene.dt", 1.0, &s->dt, err);
+        st = bf_h5_root_number(s->h5, s->file, "scene.dt", 1.0, &s->dt, err);
     if (!st)
         st = choose(s, err);
     if (!st)

@@ -70,14 +70,9 @@ bf_status bf_h5_reader_read(bf_h5_reader *r, const char *path, double **data,
     int rank = 0;
     hsize_t dims[2];
     size_t total = 0;
-    bf_status st = bf_h5_dataset_shape(d, file, path, &rank, dims, err);
     /* the rows of the last complete flush (h5part.h) */
-    if (!st)
-        dims[0] = bf_h5_flushed_rows(r->flushed, path, dims[0]);
-    if (!st)
-        st = bf_h5_dataset_fits(d, file, path, dims[0],
-                                rank == 2 ? dims[1] : 1, r->bytes, &total,
-                                err);
+    bf_status st = bf_h5_dataset_rows(d, file, path, r->flushed, r->bytes,
+                                      &rank, dims, &total, err);
     double *buf = NULL;
     if (!st && !(buf = malloc((total ? total : 1) * sizeof *buf)))
         st = bf_fail(err, BF_EINTERNAL, "out of memory");
