@@ -19,7 +19,9 @@ and include/ballfilm/*.h, and fails (exit 1, one line per problem) when
     repository's fixed layout; README.md's "Where things are");
   - more than MAX_SHARED_PATHS dataset paths are written as string
     literals in two or more files of src/ (dataset_path_literals below
-    states the rule; src/io/xdmf*.c is counted and reported apart).
+    states the rule; src/io/xdmf*.c is counted and reported apart);
+  - the convergence driver (src/compose/converge*, study*) knows a model
+    by more than its descriptor's study (study_driver_problems below).
 Run from the repository root: /usr/bin/python3 tests/check_architecture.py
 """
 import os
@@ -92,6 +94,67 @@ def shared_path_problems():
             f"({', '.join(sorted(without[p]))}); more than "
             f"{MAX_SHARED_PATHS} such paths: take it from its table or a "
             "header" for p in shared_wo]
+
+
+STUDY_DRIVER = re.compile(r"src/compose/(converge|study)[^/]*\.[ch]$")
+SCENE_SECTION = re.compile(r"\bbf_scene_\w+\s*\(\s*[^,()]+,\s*\"(\w+)\"")
+STUDY_TABLE = re.compile(r"\bbf_study_type\s*\*\s*const\s+\w+\s*\[")
+STRCMP = re.compile(r"\bstr(?:n|case)?cmp\s*\(")
+
+
+def call_args(code, start):
+    """The text of a call's arguments, from just after its "(" at start to
+    the matching ")"."""
+    depth, i = 1, start
+    while i < len(code) and depth:
+        depth += {"(": 1, ")": -1}.get(code[i], 0)
+        i += 1
+    return code[start:i - 1]
+
+
+def name_registry(code):
+    """Offsets of string comparisons whose arguments name a model (model,
+    ->model, "scene", "model") and of tables of studies."""
+    hits = [m.start() for m in STUDY_TABLE.finditer(code)]
+    for m in STRCMP.finditer(code):
+        if re.search(r"\bmodel\b", call_args(code, m.end())):
+            hits.append(m.start())
+    return hits
+
+
+def study_driver_problems(files):
+    """The driver of `ballfilm converge` asks a model's descriptor for its
+    study (ballfilm/study.h, model.h's .study) and nothing else: in
+    src/compose/converge*.[ch] and study*.[ch] (outside comments) it fails
+    on a scene read of a section other than [scene] (a model's key read
+    by string: bf_scene_str(sc, "film", "scheme")), on a comparison with a
+    model's name (strcmp(..., model ...)) or a table of studies (a registry
+    by name), and on an include of a model's private header (models/*.h,
+    what a cast of the model's void * to its type needs)."""
+    out = []
+    for f in files:
+        if not STUDY_DRIVER.match(f):
+            continue
+        with open(os.path.join(ROOT, f), errors="replace") as fh:
+            # comments blanked, their line breaks kept (line numbers)
+            code = COMMENT.sub(lambda c: " " + "\n" * c.group(0).count("\n"),
+                               fh.read())
+        for m in SCENE_SECTION.finditer(code):
+            if m.group(1) != "scene":
+                line = code.count("\n", 0, m.start()) + 1
+                out.append(f"{f}:{line}: reads [{m.group(1)}] from the "
+                           "scene: a model's keys reach its study as filled "
+                           "structs (study.h)")
+        for at in name_registry(code):
+            line = code.count("\n", 0, at) + 1
+            out.append(f"{f}:{line}: a study looked up by model name: the "
+                       "model's descriptor points to its study (.study)")
+        for m in INCLUDE.finditer(code):
+            if m.group(1).startswith("models/"):
+                line = code.count("\n", 0, m.start()) + 1
+                out.append(f"{f}:{line}: includes {m.group(1)}: the driver "
+                           "sees a model through its descriptor only")
+    return out
 
 
 def top_level_problems():
@@ -208,6 +271,7 @@ def main():
     files = sources()
     folder_graph, unit_graph = {}, {}
     nedges = 0
+    problems += study_driver_problems(files)
     public = [f for f in files if f.startswith("include/ballfilm/")]
     for h in public:
         if h not in header_folder:

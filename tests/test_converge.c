@@ -7,6 +7,8 @@
  *  - The reference is independent of the compared methods and its own
  *    error estimate is far below the errors it judges.
  *  - Failed runs are reported as failed, not dropped or averaged in.
+ *  - Every model declares its study in its descriptor, answering from
+ *    its filled structs (no scene, no list of models in the driver).
  *  (Every model of the catalog has a study; the coupled one is in
  *  test_converge_coupled.c.)
  */
@@ -16,6 +18,8 @@
 
 #include "ballfilm/converge.h"
 #include "ballfilm/h5out.h"
+#include "ballfilm/run.h"
+#include "ballfilm/study.h"
 #include "testutil.h"
 
 START_TEST(harmonic_orders_through_the_program)
@@ -167,6 +171,79 @@ START_TEST(mac_self_convergence_first_order)
 }
 END_TEST
 
+/* What the study of the model of scene `text` says of it: adaptive, and
+ * its default largest internal step (s). */
+static void study_answers(const char *text, int *adaptive, double *hmax)
+{
+    bf_scene *sc = tu_scene(text);
+    bf_setup *setup;
+    bf_run_ctx run = {0.001, 0.01, 10, 1, 0};
+    bf_err err = {0};
+    ck_assert_msg(bf_setup_create(&setup, bf_catalog_builtin(), sc, &run,
+                                  &err) == BF_OK,
+                  "%s", err.msg);
+    const bf_study_type *S = bf_setup_model_type(setup)->study;
+    ck_assert_ptr_nonnull(S);
+    *adaptive = S->adaptive(bf_setup_model(setup));
+    *hmax = S->max_step ? S->max_step(bf_setup_model(setup)) : 0.0;
+    bf_setup_free(setup);
+    bf_scene_free(sc);
+}
+
+/* A model's study is its descriptor's (model.h .study, study.h): every
+ * model of the catalog declares one with the hooks the driver calls, and
+ * it answers from the model's filled structs: the film's invariant
+ * scheme steps at a fixed dt, its ARKODE schemes adapt; balls get a
+ * largest internal step of 10 x dt with Hertz contacts only.  A refused
+ * reference tolerance names the model. */
+START_TEST(models_declare_their_studies)
+{
+    size_t n;
+    const bf_model_type *const *mt =
+        bf_catalog_models(bf_catalog_builtin(), &n);
+    ck_assert_uint_ge(n, 6);
+    for (size_t k = 0; k < n; k++) {
+        const bf_study_type *S = mt[k]->study;
+        ck_assert_msg(S && S->adaptive && S->reference && S->view &&
+                          S->describe && S->invariant && S->param_section,
+                      "model %s: no study, or one without a required hook",
+                      mt[k]->name);
+    }
+    static const char *const film[3] = {"invariant", "arkode", "arkode-imex"};
+    for (int k = 0; k < 3; k++) {
+        char text[160];
+        snprintf(text, sizeof text, "[scene]\nmodel = film\ndt = 0.001\n"
+                 "t_end = 0.01\n[film]\nscheme = %s\n", film[k]);
+        int adaptive;
+        double hmax;
+        study_answers(text, &adaptive, &hmax);
+        ck_assert_msg(adaptive == (k > 0), "film scheme %s", film[k]);
+        ck_assert(hmax == 0.0);
+    }
+    int adaptive;
+    double hmax;
+    study_answers("[scene]\neffects = gravity floor\nintegrator = arkode\n"
+                  "dt = 0.001\nt_end = 0.01\n"
+                  "[ball.1]\nposition = 1\n", &adaptive, &hmax);
+    ck_assert(adaptive && hmax == 10 * 0.001);
+    study_answers("[scene]\neffects = spring\nintegrator = mv2m\n"
+                  "dt = 0.001\nt_end = 0.01\n"
+                  "[ball.1]\nposition = 1\n", &adaptive, &hmax);
+    ck_assert(!adaptive && hmax == 0.0);
+    bf_scene *sc = tu_scene("[scene]\neffects = spring\ndt = 0.01\n"
+                            "t_end = 1\n[ball.1]\nposition = 1\n");
+    const char *methods[] = {"rk4"};
+    bf_converge_opts o = {.methods = methods, .nmethods = 1,
+                          .ref_rtol = 1e-9};
+    bf_converge_result *r;
+    bf_err err = {0};
+    ck_assert_int_eq(bf_converge_run(sc, &o, &r, &err), BF_EINPUT);
+    ck_assert_msg(strstr(err.msg, "model balls needs 0 < rtol"), "%s",
+                  err.msg);
+    bf_scene_free(sc);
+}
+END_TEST
+
 Suite *suite_converge(void)
 {
     Suite *s = suite_create("converge");
@@ -175,6 +252,7 @@ Suite *suite_converge(void)
     tcase_add_test(tc, reference_is_independent_and_accurate);
     tcase_add_test(tc, failed_runs_are_reported);
     tcase_add_test(tc, mac_self_convergence_first_order);
+    tcase_add_test(tc, models_declare_their_studies);
     suite_add_tcase(s, tc);
     return s;
 }

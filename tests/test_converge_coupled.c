@@ -1,5 +1,5 @@
 /* test_converge_coupled.c: `ballfilm converge` on balls in the dynamic
- * film (src/compose/study_coupled.c) against ARKODE on the whole system,
+ * film (src/models/study_coupled.c) against ARKODE on the whole system,
  * the balls and the film in method-of-lines form as one ODE
  * (src/models/coupled_whole.c, [coupled] scheme = arkode).
  *

@@ -1,5 +1,5 @@
 /* test_converge_particles.c: `ballfilm converge` on Greenspan's 1973
- * particles (src/compose/study_particles.c) against the ARKODE reference
+ * particles (src/models/study_g73.c) against the ARKODE reference
  * on the particles' ODE (src/models/g73_ode.c), and on the 1972 ones
  * (study_g72.c, g72_ode.c).
  *
@@ -83,7 +83,7 @@ END_TEST
 
 /* Greenspan 1972, Example 1 (runs/greenspan72_ex1.ini, 16 particles,
  * V = 100 cm/s) over the window T = 0.01 s: the leapfrog against ARKODE
- * on the same forces (src/compose/study_g72.c).  The window is chosen
+ * on the same forces (src/models/study_g72.c).  The window is chosen
  * free of events: a run at dt = 1e-5 s to 0.02 s has no wall hit, no
  * change of any particle's support kind, and its accelerations (from the
  * velocity differences) have no jump and no kink before t = 0.0126 s

@@ -383,7 +383,7 @@ START_TEST(film_step_limit_of_the_models)
     bf_film_keys k;
     bf_err err = {0};
     ck_assert(bf_params_defaults(&bf_filmsys_spec, &k, &err) == BF_OK);
-    const bf_run_ctx run = {1e-3, 1.0, 1000, 1};
+    const bf_run_ctx run = {1e-3, 1.0, 1000, 1, 0};
     const long every[] = {1, 3, 7, 0};
     for (int q = 0; q < 5; q++) {
         k.force_dt = q == 4;

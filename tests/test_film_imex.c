@@ -1,7 +1,7 @@
 /* test_film_imex.c: the film's ARKODE schemes ([film] scheme = arkode,
  * arkode-imex: ARKODE on the film's equations in method-of-lines form on
  * the grid of the invariant scheme, src/film/film_mol.c) and the film's
- * convergence study (src/compose/study_film.c).
+ * convergence study (src/models/study_film.c).
  *
  *   imex_kink   IMEX (ARKStep, the phase-separation and gravity-wave
  *               terms implicit) on the kink at dx = 0.025 cm relaxes to

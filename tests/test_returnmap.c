@@ -185,7 +185,7 @@ static double lyapunov_of(bf_accel_fn f, double T)
     bf_scene_fill(sc, "lyapunov", &bf_lyap_spec, &keys);
     bf_ball_view view;
     bf_ballsys_view(sys, &view);
-    bf_run_ctx run = {0.01, T, lround(T / 0.01), 1};
+    bf_run_ctx run = {0.01, T, lround(T / 0.01), 1, 0};
     bf_analysis_env env = {&view, &run, NULL, NULL};
     void *ly;
     ck_assert(bf_lyap_analysis.create(&ly, &keys, &env, &err) == BF_OK && ly);

@@ -2,13 +2,19 @@
  * run one after another, on a pool of two processes, and on two MPI ranks;
  * a failing case is recorded without stopping the sweep; a sweep run again
  * runs only the cases that did not finish; a sweep of 10^4 values along
- * one axis is defined (its manifest is not cut at a fixed size). */
+ * one axis is defined (its manifest is not cut at a fixed size); the
+ * results of a run with an output file and keep_map_points (bf_results,
+ * the sweep's result columns) hold the file's return map and Lyapunov
+ * exponent. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "ballfilm/h5out.h"
+#include "ballfilm/run.h"
+#include "ballfilm/sim.h"
 #include "ballfilm/sweep.h"
 #include "testutil.h"
 
@@ -161,6 +167,73 @@ START_TEST(long_axis_defined_and_checked)
 }
 END_TEST
 
+/* Run scene (with sets) to an output file and check that the run's
+ * results (bf_results, what a sweep's result columns come from) hold what
+ * the file does: with keep_map_points every return-map point, the same
+ * bits as the file's (z, v) (zcol, vcol: columns of the datasets zpath,
+ * vpath), without it none (the run's memory does not grow), and the
+ * Lyapunov exponent of its root attribute. */
+static void results_as_file(const char *scene, const char *const *sets,
+                            size_t nsets, int keep, const char *out,
+                            const char *zpath, const char *vpath,
+                            size_t zcol, size_t vcol)
+{
+    bf_run *r = NULL;
+    bf_err err = {0};
+    bf_sim_opts opts = {.keep_map_points = keep};
+    ck_assert_msg(bf_run_load(&r, bf_catalog_builtin(), tu_repo(scene), sets,
+                              nsets, &opts, &err) == BF_OK, "%s", err.msg);
+    ck_assert_msg(bf_run_open_output(r, tu_tmp(out), &err) == BF_OK, "%s",
+                  err.msg);
+    bf_sim *sim = bf_run_sim(r);
+    bf_status st = bf_sim_run(sim, &err);
+    ck_assert_msg(st == BF_OK, "%s", err.msg);
+    ck_assert_msg(bf_sim_close_output(sim, st, NULL, &err) == BF_OK, "%s",
+                  err.msg);
+    bf_results res;
+    bf_sim_results(sim, &res);
+    bf_h5_reader *rd;
+    ck_assert(bf_h5_reader_open(&rd, tu_tmp(out), &err) == BF_OK);
+    double *z, *v, ly;
+    size_t nz, nz1, nv, nv1;
+    ck_assert(bf_h5_reader_read(rd, zpath, &z, &nz, &nz1, &err) == BF_OK);
+    ck_assert(bf_h5_reader_read(rd, vpath, &v, &nv, &nv1, &err) == BF_OK);
+    ck_assert(bf_h5_reader_attr_real(rd, "/", "lyapunov_exponent", &ly,
+                                     &err) == BF_OK);
+    bf_h5_reader_close(rd);
+    ck_assert_uint_ge(nz, 2);
+    ck_assert(res.has_return_map && res.map_points == nz && nv == nz);
+    ck_assert_msg(keep ? res.map_z && res.map_v : !res.map_z && !res.map_v,
+                  "%s: with an output file and keep_map_points = %d the "
+                  "results hold %s map points", scene, keep,
+                  res.map_z ? "the" : "no");
+    const size_t sz = nz1 ? nz1 : 1, sv = nv1 ? nv1 : 1; /* 1-D: n1 0 */
+    for (size_t k = 0; keep && k < nz; k++)
+        ck_assert_msg(res.map_z[k] == z[k * sz + zcol] &&
+                          res.map_v[k] == v[k * sv + vcol],
+                      "%s: point %zu differs from the file's", scene, k);
+    ck_assert(res.has_lyapunov && !memcmp(&ly, &res.lyapunov_exponent,
+                                          sizeof ly));
+    free(z);
+    free(v);
+    bf_run_free(r);
+}
+
+START_TEST(results_hold_what_the_file_does)
+{
+    const char *balls[] = {"scene.t_end=5", "lyapunov.enabled=yes"};
+    const char *coupled[] = {"scene.t_end=0.2", "lyapunov.enabled=yes"};
+    for (int keep = 0; keep < 2; keep++) {
+        results_as_file("runs/two_balls_B.ini", balls, 2, keep,
+                        "res_balls.h5", "/return_map/z", "/return_map/v", 0,
+                        0);
+        results_as_file("runs/coupled_fig8.ini", coupled, 2, keep,
+                        "res_coupled.h5", "/coupled/return_map",
+                        "/coupled/return_map", 1, 2);
+    }
+}
+END_TEST
+
 Suite *suite_sweep(void)
 {
     Suite *s = suite_create("sweep");
@@ -168,6 +241,7 @@ Suite *suite_sweep(void)
     tcase_add_test(tc, serial_pool_and_mpi_identical);
     tcase_add_test(tc, failed_case_recorded_and_rerun_completes_missing);
     tcase_add_test(tc, long_axis_defined_and_checked);
+    tcase_add_test(tc, results_hold_what_the_file_does);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -404,7 +404,7 @@ bf_integrator *tu_integrator(const char *name, const char *keys, size_t n)
     bf_integrator *it;
     bf_err err = {0};
     bf_setup *setup;
-    bf_run_ctx run = {1, 1, 1, 1};
+    bf_run_ctx run = {1, 1, 1, 1, 0};
     ck_assert(bf_setup_create(&setup, bf_catalog_builtin(), sc, &run, &err) ==
               BF_OK);
     const bf_model_setup *ms = bf_setup_model(setup);

@@ -33,7 +33,8 @@
  * reference, and the difference of the two is reported as its estimated
  * error (an over-estimate when the error scales with the tolerance).
  * What each model's reference is, and why, is written in the study of the
- * model (src/compose/study_*.c) and in docs/accuracy.md.
+ * model (study.h; the built-in models' in src/models/study_*.c) and in
+ * docs/accuracy.md.
  *
  * Balls (models balls): the reference uses VERNER_8_5_6 with the issue-311
  * padding, else DORMAND_PRINCE_7_4_5, else CASH_KARP_6_4_5 (not
@@ -60,8 +61,10 @@
 
 #include "ballfilm/integrator.h"
 #include "ballfilm/scene.h"
+#include "ballfilm/study.h"
 
-enum { BF_CONVERGE_MAX_GROUPS = 6 };
+/* groups of compared state values (a model's study, study.h) */
+enum { BF_CONVERGE_MAX_GROUPS = BF_STUDY_MAX_GROUPS };
 
 typedef struct bf_converge_opts {
     const char *const *methods;

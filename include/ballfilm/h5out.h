@@ -167,6 +167,13 @@ bf_status bf_h5_reader_read(bf_h5_reader *r, const char *path, double **data,
 bf_status bf_h5_reader_attr_real(bf_h5_reader *r, const char *obj,
                                  const char *name, double *value,
                                  bf_err *err);
+bf_status bf_h5_reader_attr_str(bf_h5_reader *r, const char *obj,
+                                const char *name, char **value, bf_err *err);
+/* Whether object obj has attribute name: 1, 0, or -1 when that cannot be
+ * told (no object obj, a damaged file; err set, BF_EIO), so that a caller
+ * can show an absent attribute as absent and fail on one it cannot read. */
+int bf_h5_reader_has_attr(bf_h5_reader *r, const char *obj, const char *name,
+                          bf_err *err);
 void bf_h5_reader_close(bf_h5_reader *r); /* NULL is fine */
 
 /* What a file holds (`ballfilm info`): every dataset, ordered by path. */
@@ -177,10 +184,17 @@ typedef struct bf_h5_dataset {
     char kind;         /* 'f' float, 'i' integer, 's' string, '?' other */
     char unit[64];     /* its "unit" attribute ("" if none) */
     char description[256];
+    /* what it is over time and what a reader may do with it, its "kind"
+     * and "role" attributes, written from its series spec (series.h:
+     * rows, snapshot, events, static; time, position, field, ...; "" if
+     * none) */
+    char series_kind[16];
+    char role[24];
 } bf_h5_dataset;
-/* *list is malloc'd (free it), *n datasets.  A unit or description that
- * is not one bounded string is refused (BF_EINPUT, naming the file and the
- * dataset). */
+/* *list is malloc'd (free it), *n datasets.  A unit, description, kind or
+ * role that is not one bounded string, or that cannot be read, is refused
+ * (BF_EINPUT or BF_EIO, naming the file, the dataset and the
+ * attribute). */
 bf_status bf_h5_list(const char *file, bf_h5_dataset **list, size_t *n,
                      bf_err *err);
 /* The same, stopping with BF_INTERRUPTED once *stop_flag is set (checked

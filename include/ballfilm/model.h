@@ -38,6 +38,11 @@ typedef struct bf_run_ctx {
     double t_end;      /* [scene] t_end, s */
     long nsteps;       /* steps of the run, ceil(t_end/dt) */
     long output_every; /* steps between output rows ([scene] output_every) */
+    /* 1: hold every return-map point's position and velocity in memory
+     * also when they go to an output file (16 B a point), for the results
+     * (bf_results: a sweep's statistics of the map); 0: a run with an
+     * output file keeps none (its memory does not grow with its length) */
+    int keep_map;
 } bf_run_ctx;
 
 /* One of the model's sections, filled: `values` points to `count` structs
@@ -92,7 +97,11 @@ typedef struct bf_results {
     int has_return_map;
     size_t map_points;
     size_t map_multi_minima;  /* contacts with more than one minimum */
-    const double *map_z, *map_v; /* the map's points (NULL: not kept) */
+    /* the map's points, all map_points of them, with an output file or
+     * without: position (cm) and velocity (cm/s) of the recorded ball;
+     * NULL when the run does not hold all of them (continued from a
+     * checkpoint: the earlier ones are in the file) */
+    const double *map_z, *map_v;
 } bf_results;
 
 /* A model's largest stable time step (model type's stable_dt). */
@@ -219,6 +228,9 @@ typedef struct bf_model_type {
      * the model tracks it (then the loop checks, writes and reports the
      * balance E - E0 + W_diss - W_inj instead of E - E0), else 0. */
     int (*work)(const void *self, double *diss, double *inj);
+    /* Optional: the model's convergence study (study.h), for `ballfilm
+     * converge` (NULL: the model has none). */
+    const struct bf_study_type *study;
 } bf_model_type;
 
 #endif

@@ -92,6 +92,10 @@ typedef struct bf_sim_opts {
     /* Take every step one at a time, never runs of steps (model.h,
      * advance): the same results, slower; for the tests that show it. */
     int step_by_step;
+    /* Hold the return map's points in memory although they go to the
+     * output file, so that bf_sim_results has them (model.h, bf_run_ctx
+     * keep_map; 16 B a point): what a sweep's result columns need. */
+    int keep_map_points;
 } bf_sim_opts;
 
 /* Where the run comes from, for the output's provenance and for

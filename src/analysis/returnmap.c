@@ -8,6 +8,7 @@
 #include "io/dataset_paths.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -44,7 +45,10 @@ struct bf_retmap {
     /* recorded points, one array per column */
     double *col[NCOL];
     size_t npts, cap;
-    size_t nmem; /* points held in col[] (all without an output file, else 0) */
+    size_t nmem; /* points held in col[]: every column without an output
+                    file, else z and v alone if keep_map, else none
+                    (kept_col) */
+    int keep_map; /* bf_run_ctx keep_map */
     size_t multi;
     bf_events ev;
     int dir;
@@ -67,6 +71,15 @@ static void candidate(bf_retmap *rm, double t, double zt, double z, double v)
     rm->pending = 1;
 }
 
+/* Column c is held in memory: every column without an output (the
+ * caller's bf_retmap_points), z and v also with one when the run keeps
+ * the map (bf_run_ctx keep_map: bf_results, a sweep's statistics of the
+ * map without reading the file back). */
+static int kept_col(const bf_retmap *rm, int c)
+{
+    return !rm->s_t || (rm->keep_map && (c == P_Z || c == P_V));
+}
+
 static bf_status reserve(bf_retmap *rm, size_t need, bf_err *err)
 {
     if (need <= rm->cap)
@@ -74,7 +87,11 @@ static bf_status reserve(bf_retmap *rm, size_t need, bf_err *err)
     size_t cap = rm->cap ? 2 * rm->cap : 256;
     while (cap < need)
         cap *= 2;
+    if (cap > SIZE_MAX / sizeof(double))
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
     for (int c = 0; c < NCOL; c++) {
+        if (!kept_col(rm, c))
+            continue;
         double *p = realloc(rm->col[c], cap * sizeof *p);
         if (!p)
             return bf_fail(err, BF_EINTERNAL, "out of memory");
@@ -85,8 +102,8 @@ static bf_status reserve(bf_retmap *rm, size_t need, bf_err *err)
 }
 
 /* A point goes to the output's series when there is an output (streamed:
- * memory does not grow with the run), else into col[] for the caller
- * (bf_retmap_points). */
+ * only its z and v stay in memory, and only with keep_map), else into
+ * col[] for the caller (bf_retmap_points). */
 static bf_status emit(bf_retmap *rm, bf_err *err)
 {
     /* a blown-up state's contact is no point of the map */
@@ -96,12 +113,13 @@ static bf_status emit(bf_retmap *rm, bf_err *err)
                            "return map: the contact at t = %g s has z = %g "
                            "cm, v = %g cm/s: the state is not finite",
                            rm->cand[P_T], rm->cand[P_Z], rm->cand[P_V]);
-    if (!rm->s_t) {
+    if (kept_col(rm, P_Z)) {
         bf_status st = reserve(rm, rm->nmem + 1, err);
         if (st)
             return st;
         for (int c = 0; c < NCOL; c++)
-            rm->col[c][rm->nmem] = rm->cand[c];
+            if (kept_col(rm, c))
+                rm->col[c][rm->nmem] = rm->cand[c];
         rm->nmem++;
     }
     rm->npts++;
@@ -181,6 +199,7 @@ static bf_status retmap_create(void **out, const void *keys,
     rm->trig = (size_t)k->trigger - 1;
     rm->rec = (size_t)k->record - 1;
     rm->n = n;
+    rm->keep_map = env->run && env->run->keep_map;
     rm->R = view->R[rm->trig];
     /* the force callback fills every component of the ODE: the balls and,
      * with non-conservative effects, the work after them (bf_ode.n) */
@@ -376,7 +395,7 @@ size_t bf_retmap_points(const bf_retmap *rm, const double **t,
         *v = rm->col[P_V];
     if (z_trigger)
         *z_trigger = rm->col[P_ZT];
-    return rm->nmem;
+    return rm->s_t ? 0 : rm->nmem;
 }
 
 size_t bf_retmap_multi_minima(const bf_retmap *rm) { return rm->multi; }
@@ -395,8 +414,11 @@ static void retmap_results(const void *self, bf_results *r)
     r->has_return_map = 1;
     r->map_points = rm->npts;
     r->map_multi_minima = rm->multi;
-    r->map_z = rm->nmem ? rm->col[P_Z] : NULL;
-    r->map_v = rm->nmem ? rm->col[P_V] : NULL;
+    /* every point of the run, or none (a run continued from a checkpoint
+     * holds only the points found since) */
+    const int all = rm->nmem && rm->nmem == rm->npts;
+    r->map_z = all ? rm->col[P_Z] : NULL;
+    r->map_v = all ? rm->col[P_V] : NULL;
 }
 
 const bf_observer_type bf_retmap_observer = {

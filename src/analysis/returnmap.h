@@ -61,8 +61,9 @@ extern const bf_observer_type bf_retmap_observer;
 /* The points held in memory (arrays of length return value; any pointer
  * may be NULL): every point of a run without an output file.  With an
  * output file the points are streamed to /return_map/... as they are found
- * and none is kept (the run's memory does not grow with its length): read
- * them from the file. */
+ * and none is kept (the run's memory does not grow with its length; with
+ * bf_run_ctx keep_map their z and v alone, for bf_results): this returns
+ * 0, read them from the file. */
 size_t bf_retmap_points(const bf_retmap *rm, const double **t,
                         const double **z, const double **v,
                         const double **z_trigger);

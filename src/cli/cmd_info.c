@@ -1,8 +1,12 @@
 /* cmd_info.c: `ballfilm info OUT.h5`: what a run's file holds, without
  * h5dump: its scene's title, model and integrator, the program's version,
  * the run's status and counters, the energy error, and every dataset with
- * its shape and unit.  A run still being written (or interrupted) is in
- * OUT.h5.part; given OUT.h5, that file is shown when OUT.h5 is absent. */
+ * its shape, its kind and role (series.h, from the attributes its series
+ * spec wrote), unit and description.  A run still being written (or
+ * interrupted) is in OUT.h5.part; given OUT.h5, that file is shown when
+ * OUT.h5 is absent.  The file is opened once for the listing and once for
+ * the root attributes; an attribute that is there but cannot be read is
+ * an error naming it, never shown as absent. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,7 +23,9 @@ static void info_usage(FILE *f)
                "and integrator,\n"
                "the version that wrote it, the run's status and counters, "
                "the relative\n"
-               "energy error, and every dataset with its shape, unit and "
+               "energy error, and every dataset with its shape, kind/role "
+               "(rows, snapshot,\n"
+               "events or static; time, position, field, ...), unit and "
                "description.\n"
                "Works on a running or interrupted run's OUT.h5.part too, and "
                "on the files\n"
@@ -27,26 +33,32 @@ static void info_usage(FILE *f)
 }
 
 /* A root attribute as text into buf ("" if absent).  One that is there
- * but is not one bounded string is an error (BF_EINPUT, in err). */
-static bf_status text_attr(const char *file, const char *name, char *buf,
+ * but is not one bounded string, or cannot be read, is an error (in
+ * err). */
+static bf_status text_attr(bf_h5_reader *r, const char *name, char *buf,
                            size_t cap, bf_err *err)
 {
-    char *v = NULL;
     buf[0] = '\0';
-    bf_status st = bf_h5_read_attr_str(file, "/", name, &v, err);
+    int has = bf_h5_reader_has_attr(r, "/", name, err);
+    if (has <= 0)
+        return has < 0 ? err->status : BF_OK; /* absent: nothing to show */
+    char *v = NULL;
+    bf_status st = bf_h5_reader_attr_str(r, "/", name, &v, err);
     if (!st)
         snprintf(buf, cap, "%s", v);
     free(v);
-    return st == BF_EIO ? BF_OK : st; /* absent: nothing to show */
+    return st;
 }
 
 /* A numeric root attribute: 1 if there, 0 if absent, -1 (err set) if it
- * is not one number. */
-static int real_attr(const char *file, const char *name, double *v,
+ * is not one number or cannot be read. */
+static int real_attr(bf_h5_reader *r, const char *name, double *v,
                      bf_err *err)
 {
-    bf_status st = bf_h5_read_attr_real(file, "/", name, v, err);
-    return !st ? 1 : st == BF_EIO ? 0 : -1;
+    int has = bf_h5_reader_has_attr(r, "/", name, err);
+    if (has <= 0)
+        return has;
+    return bf_h5_reader_attr_real(r, "/", name, v, err) ? -1 : 1;
 }
 
 /* One character of text from a file, shown so that it cannot drive the
@@ -109,9 +121,10 @@ static void shape(const bf_h5_dataset *d, char *buf, size_t cap)
         snprintf(buf, cap, "[%zu x %zu]", d->dims[0], d->dims[1]);
 }
 
-/* Everything about the file but its datasets' list; 0, or a status with
- * err set. */
-static int header(const char *file, const char *note, bf_err *err)
+/* Everything about the file but its datasets' list, from its root
+ * attributes (r); 0, or a status with err set. */
+static int header(bf_h5_reader *r, const char *file, const char *note,
+                  bf_err *err)
 {
     char buf[1024];
     printf("%-26s ", "file:");
@@ -126,13 +139,13 @@ static int header(const char *file, const char *note, bf_err *err)
     for (size_t k = 0; k < sizeof texts / sizeof *texts; k++) {
         if (bf_cli_stop)
             return bf_fail(err, BF_INTERRUPTED, "%s: interrupted", file);
-        if (text_attr(file, texts[k][1], buf, sizeof buf, err))
+        if (text_attr(r, texts[k][1], buf, sizeof buf, err))
             return err->status;
         line(texts[k][0], buf);
     }
     double steps, t, v;
-    int hs = real_attr(file, "steps_done", &steps, err);
-    int ht = hs < 0 ? 0 : real_attr(file, "t_final", &t, err);
+    int hs = real_attr(r, "steps_done", &steps, err);
+    int ht = hs < 0 ? 0 : real_attr(r, "t_final", &t, err);
     if (hs < 0 || ht < 0)
         return err->status;
     if (hs && ht) {
@@ -146,7 +159,7 @@ static int header(const char *file, const char *note, bf_err *err)
         {"max relative energy error:", "max_relative_energy_error", "%.6e"},
     };
     for (size_t k = 0; k < sizeof counts / sizeof *counts; k++) {
-        int h = real_attr(file, counts[k][1], &v, err);
+        int h = real_attr(r, counts[k][1], &v, err);
         if (h < 0)
             return err->status;
         if (h) {
@@ -157,7 +170,7 @@ static int header(const char *file, const char *note, bf_err *err)
     /* the energy error of a scene with non-conservative forces is that of
      * the balance (attribute energy_balance) */
     char bal[128];
-    if (text_attr(file, "energy_balance", bal, sizeof bal, err))
+    if (text_attr(r, "energy_balance", bal, sizeof bal, err))
         return err->status;
     if (bal[0])
         line("energy error of:", bal);
@@ -166,24 +179,43 @@ static int header(const char *file, const char *note, bf_err *err)
                        : 0;
 }
 
-static int show(const char *file, const char *note,
+/* A dataset's kind and role ("rows/time"; "-" without them). */
+static void kind_role(const bf_h5_dataset *d, char *buf, size_t cap)
+{
+    if (!d->series_kind[0] && !d->role[0])
+        snprintf(buf, cap, "-");
+    else
+        snprintf(buf, cap, "%s/%s", d->series_kind[0] ? d->series_kind : "-",
+                 d->role[0] ? d->role : "-");
+}
+
+static int show(bf_h5_reader *r, const char *file, const char *note,
                 const bf_h5_dataset *list, size_t n, bf_err *err)
 {
-    int st = header(file, note, err);
+    int st = header(r, file, note, err);
     if (st)
         return st;
-    size_t wpath = 8;
-    for (size_t k = 0; k < n; k++)
+    size_t wpath = 8, wkr = 9;
+    char kr[64];
+    for (size_t k = 0; k < n; k++) {
+        kind_role(&list[k], kr, sizeof kr);
         if (strlen(list[k].path) > wpath)
             wpath = strlen(list[k].path);
+        if (strlen(kr) > wkr)
+            wkr = strlen(kr);
+    }
     printf("datasets: %zu\n", n);
     for (size_t k = 0; k < n; k++) {
         char sh[64];
         shape(&list[k], sh, sizeof sh);
+        kind_role(&list[k], kr, sizeof kr);
         size_t w = strlen(list[k].path), wu = strlen(list[k].unit);
         fputs("  ", stdout);
         put_text(list[k].path, "\\n");
         printf("%*s  %-16s ", (int)(wpath - w), "", sh);
+        /* kind and role are shown as text from the file: escaped */
+        put_text(kr, "\\n");
+        printf("%*s ", (int)(wkr - strlen(kr)), "");
         put_text(list[k].unit[0] ? list[k].unit : "-", "\\n");
         printf("%*s ", wu < 7 ? (int)(7 - (wu ? wu : 1)) : 0, "");
         put_text(list[k].description, "\\n");
@@ -226,7 +258,12 @@ int bf_cmd_info(int argc, char **argv)
         fprintf(stderr, "ballfilm: error: %s\n", err.msg);
         return err.status;
     }
-    int st = show(file, note, list, n, &err);
+    /* one open for every root attribute */
+    bf_h5_reader *rd = NULL;
+    int st = bf_h5_reader_open(&rd, file, &err);
+    if (!st)
+        st = show(rd, file, note, list, n, &err);
+    bf_h5_reader_close(rd);
     free(list);
     if (st) {
         fflush(stdout);

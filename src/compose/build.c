@@ -103,6 +103,8 @@ static bf_status sim_from_scene(bf_sim **out, const bf_catalog *c,
     bf_setup *setup = NULL;
     void *model = NULL;
     bf_status st = bf_sim_run_ctx(&k, &run, err);
+    if (!st && opts)
+        run.keep_map = opts->keep_map_points;
     if (!st)
         st = bf_setup_create(&setup, c, sc, &run, err);
     if (!st)

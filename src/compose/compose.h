@@ -26,6 +26,11 @@ bf_status bf_compose_args_(const char *fn, const void *out,
                            const char *const *sets, size_t nsets,
                            bf_err *err);
 
+/* The setup of resolved scene sc's model, with the run its [scene] keys
+ * describe (dt, t_end, the steps and the output interval). */
+bf_status bf_compose_setup(bf_setup **setup, const bf_catalog *c,
+                           const bf_scene *sc, bf_err *err);
+
 /* The analyses of balls a model takes (none unless it has
  * BF_MODEL_BALL_ANALYSES). */
 size_t bf_catalog_analyses_of(const bf_catalog *c, const bf_model_type *mt,

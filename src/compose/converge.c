@@ -1,7 +1,9 @@
 /* converge.c: the convergence and work-precision study (converge.h), the
  * driver common to every model.  What a model's study compares, which of
- * its methods adapt and what its reference is come from its study type
- * (study.h); printing and writing the table are in converge_out.c. */
+ * its methods adapt and what its reference is come from the study its
+ * descriptor points to (model.h, study.h), asked with the model's filled
+ * structs (its setup) or the model built from them; printing and writing
+ * the table are in converge_out.c. */
 #include "ballfilm/converge.h"
 
 #include <math.h>
@@ -10,7 +12,9 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "compose/compose.h"
 #include "compose/converge_impl.h"
+#include "diag/energy.h"
 #include "integrators/stop.h"
 
 /* A resolved clone of the scene with the method string
@@ -177,6 +181,12 @@ bf_status bf_converge_run_once(const bf_converge_priv *P, const bf_scene *sc,
     return st;
 }
 
+/* the study's watch (study.h): the energy after an internal step */
+static void check_energy(void *ctx, double energy)
+{
+    bf_energy_check(ctx, energy);
+}
+
 static bf_status run_steps(const bf_converge_priv *P, const bf_scene *sc,
                            long nper, double h, unsigned flags,
                            bf_converge_runout *o, bf_err *err)
@@ -227,8 +237,9 @@ static bf_status run_steps(const bf_converge_priv *P, const bf_scene *sc,
         snprintf(o->msg, sizeof o->msg, "dt = %g s exceeds %s", hh, lim.why);
         goto done;
     }
-    void *watch = measure && iv.energy && S->watch ? S->watch(model, &iv.d[0])
-                                                   : NULL;
+    void *watch = measure && iv.energy && S->watch
+                      ? S->watch(model, check_energy, &iv.d[0])
+                      : NULL;
     /* the scene's energy bound stops a run beyond the method's stable
      * step, as in `ballfilm run`, instead of reporting garbage */
     const double bound = bf_scene_real(sc, "scene", "max_energy_error");
@@ -420,7 +431,10 @@ static bf_status reference(bf_converge_result *r, const bf_converge_opts *o,
 {
     bf_converge_priv *P = r->priv;
     char method[256];
-    bf_status st = P->S->reference(P->base, o, method, sizeof method, err);
+    const bf_study_methods ms = {o->methods, o->nmethods, o->ref_table,
+                                 o->ref_may_be_compared};
+    bf_status st = P->S->reference(bf_setup_model(P->setup), &ms, method,
+                                   sizeof method, err);
     const double rtols[2] = {r->ref_rtol, r->ref_rtol / 10};
     const int K = P->S->self_reference;
     const double dt0 = bf_scene_real(P->base, "scene", "dt");
@@ -486,6 +500,7 @@ void bf_converge_free(bf_converge_result *r)
     free(r->ref_state);
     bf_converge_priv *P = r->priv;
     if (P) {
+        bf_setup_free(P->setup);
         bf_scene_free(P->base);
         free(P->ref_rows);
         free(P->ref_final);
@@ -500,6 +515,23 @@ void bf_converge_free(bf_converge_result *r)
 int bf_converge_adaptive(const bf_converge_result *r, size_t m)
 {
     return m < r->nmethods && r->priv->adaptive[m];
+}
+
+/* Whether the method of scene sc (made by method_scene) is adaptive:
+ * its study's answer on the filled structs of its setup. */
+static bf_status method_adaptive(const bf_converge_priv *P,
+                                 const char *method, const bf_scene *sc,
+                                 int *adaptive, bf_err *err)
+{
+    bf_setup *s;
+    bf_status st = bf_compose_setup(&s, bf_catalog_builtin(), sc, err);
+    if (st) {
+        bf_err_prefix(err, "method '%s'", method);
+        return st;
+    }
+    *adaptive = P->S->adaptive(bf_setup_model(s));
+    bf_setup_free(s);
+    return BF_OK;
 }
 
 bf_status bf_converge_begin(const bf_scene *base_in,
@@ -520,32 +552,31 @@ bf_status bf_converge_begin(const bf_scene *base_in,
         return st;
     }
     const char *model = bf_scene_str(base, "scene", "model");
-    const bf_study_type *S = bf_study_of(model);
-    if (!S) {
-        /* the message before the scene that holds the model's name goes */
-        const char *why = bf_study_why_not(model);
-        bf_fail(err, BF_EINPUT, "converge has no study of model '%s'%s%s",
-                model, why ? ": " : "", why ? why : "");
-        bf_scene_free(base);
-        return BF_EINPUT;
-    }
-    if (o.ref_rtol == 0)
+    bf_setup *setup = NULL;
+    const bf_study_type *S = NULL;
+    if (!(st = bf_compose_setup(&setup, bf_catalog_builtin(), base, err)) &&
+        !(S = bf_setup_model_type(setup)->study))
+        st = bf_fail(err, BF_EINPUT, "converge has no study of model '%s'",
+                     model);
+    if (!st && o.ref_rtol == 0)
         o.ref_rtol = S->default_ref_rtol;
-    if (!(o.ref_rtol > 0 && o.ref_rtol <= S->max_ref_rtol)) {
-        bf_scene_free(base);
-        return bf_fail(err, BF_EINPUT, "the reference of model %s needs "
-                       "0 < rtol <= %g", model, S->max_ref_rtol);
-    }
-    bf_converge_result *r = calloc(1, sizeof *r);
-    bf_converge_priv *P = calloc(1, sizeof *P);
-    if (!r || !P) {
+    if (!st && !(o.ref_rtol > 0 && o.ref_rtol <= S->max_ref_rtol))
+        st = bf_fail(err, BF_EINPUT, "the reference of model %s needs "
+                     "0 < rtol <= %g", model, S->max_ref_rtol);
+    bf_converge_result *r = st ? NULL : calloc(1, sizeof *r);
+    bf_converge_priv *P = st ? NULL : calloc(1, sizeof *P);
+    if (!st && (!r || !P))
+        st = bf_fail(err, BF_EINTERNAL, "out of memory");
+    if (st) {
         free(r);
         free(P);
+        bf_setup_free(setup);
         bf_scene_free(base);
-        return bf_fail(err, BF_EINTERNAL, "out of memory");
+        return st;
     }
     r->priv = P;
     P->base = base;
+    P->setup = setup;
     P->S = S;
     P->R = o.rows > 0 ? o.rows : 10;
     P->T = o.t_end > 0 ? o.t_end : bf_scene_real(base, "scene", "t_end");
@@ -553,7 +584,8 @@ bf_status bf_converge_begin(const bf_scene *base_in,
     P->skip_checks = o.skip_checks;
     P->progress = o.progress;
     P->stop_flag = o.stop_flag;
-    const double hdef = S->max_step ? S->max_step(base) : 0.0;
+    const bf_model_setup *ms = bf_setup_model(setup);
+    const double hdef = S->max_step ? S->max_step(ms) : 0.0;
     P->hmax = o.max_step < 0 ? 0 : o.max_step > 0 ? o.max_step : hdef;
     snprintf(r->scene, sizeof r->scene, "%s", bf_scene_path(base));
     snprintf(r->model, sizeof r->model, "%s", model);
@@ -563,7 +595,7 @@ bf_status bf_converge_begin(const bf_scene *base_in,
     r->out_rows = P->R;
     r->ref_rtol = o.ref_rtol;
     if (S->notes)
-        S->notes(base, r->notes, sizeof r->notes);
+        S->notes(ms, r->notes, sizeof r->notes);
     r->methods = calloc(o.nmethods, sizeof *r->methods);
     P->adaptive = calloc(o.nmethods, sizeof *P->adaptive);
     P->last = calloc(o.nmethods, sizeof *P->last);
@@ -580,7 +612,7 @@ bf_status bf_converge_begin(const bf_scene *base_in,
     for (size_t m = 0; m < o.nmethods && !st; m++) {
         bf_scene *sc;
         if (!(st = method_scene(P, o.methods[m], NULL, &sc, err))) {
-            P->adaptive[m] = S->adaptive(sc);
+            st = method_adaptive(P, o.methods[m], sc, &P->adaptive[m], err);
             bf_scene_free(sc);
         }
     }

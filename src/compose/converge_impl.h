@@ -1,15 +1,18 @@
 /* converge_impl.h: what the files of the convergence study share
- * (converge.c: the driver; converge_out.c: the table printed and written;
- * study.c: the shared helpers of the model studies).  Private. */
+ * (converge.c: the driver; converge_out.c: the table printed and
+ * written).  What a model's study is comes from its descriptor
+ * (ballfilm/study.h).  Private. */
 #ifndef BALLFILM_COMPOSE_CONVERGE_IMPL_H
 #define BALLFILM_COMPOSE_CONVERGE_IMPL_H
 
 #include "ballfilm/converge.h"
-#include "compose/study.h"
+#include "ballfilm/run.h"
+#include "ballfilm/study.h"
 
 struct bf_converge_priv {
     bf_scene *base; /* the scene as given, resolved */
-    const bf_study_type *S;
+    bf_setup *setup; /* its model's setup (the study's filled structs) */
+    const bf_study_type *S; /* the model's study (its descriptor's) */
     double T;    /* final time, s */
     double hmax; /* largest internal step of adaptive runs, s (0: none) */
     long R;      /* output rows compared */

@@ -265,7 +265,7 @@ bf_status bf_ballsys_from_scene(bf_ballsys **out, const bf_catalog *c,
     *out = NULL;
     bf_setup *setup;
     bf_run_ctx run = {bf_scene_real(sc, "scene", "dt"),
-                      bf_scene_real(sc, "scene", "t_end"), 0, 1};
+                      bf_scene_real(sc, "scene", "t_end"), 0, 1, 0};
     bf_status st = bf_setup_create(&setup, c, sc, &run, err);
     if (st)
         return st;
@@ -274,6 +274,19 @@ bf_status bf_ballsys_from_scene(bf_ballsys **out, const bf_catalog *c,
         bf_scene_locate(sc, err);
     bf_setup_free(setup);
     return st;
+}
+
+bf_status bf_compose_setup(bf_setup **setup, const bf_catalog *c,
+                           const bf_scene *sc, bf_err *err)
+{
+    double dt = bf_scene_real(sc, "scene", "dt"),
+           t_end = bf_scene_real(sc, "scene", "t_end");
+    bf_run_ctx run = {dt, t_end, (long)ceil(t_end / dt * (1.0 - 1e-12)),
+                      bf_interval_steps(bf_scene_interval(sc, "scene",
+                                                          "output_every"),
+                                        dt),
+                      0};
+    return bf_setup_create(setup, c, sc, &run, err);
 }
 
 bf_status bf_model_from_scene(const bf_catalog *c, const bf_scene *sc,
@@ -289,13 +302,7 @@ bf_status bf_model_from_scene(const bf_catalog *c, const bf_scene *sc,
     if (ast)
         return ast;
     *model = NULL;
-    double dt = bf_scene_real(sc, "scene", "dt"),
-           t_end = bf_scene_real(sc, "scene", "t_end");
-    bf_run_ctx run = {dt, t_end, (long)ceil(t_end / dt * (1.0 - 1e-12)),
-                      bf_interval_steps(bf_scene_interval(sc, "scene",
-                                                          "output_every"),
-                                        dt)};
-    bf_status st = bf_setup_create(setup, c, sc, &run, err);
+    bf_status st = bf_compose_setup(setup, c, sc, err);
     if (!st && (st = bf_setup_build_model(*setup, sc, model, err))) {
         bf_setup_free(*setup);
         *setup = NULL;

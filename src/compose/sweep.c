@@ -21,7 +21,6 @@
 #include "ballfilm/sim.h"
 #include "ballfilm/run.h"
 #include "io/outpath.h"
-#include "io/dataset_paths.h"
 
 bf_status bf_sweep_parse_axis(bf_sweep_axis *ax, const char *spec, bf_err *err)
 {
@@ -410,6 +409,22 @@ static bf_status write_done(const bf_sweep *sw, const bf_sweep_row *row,
     return BF_OK;
 }
 
+/* The result columns of a case from its run's analyses (bf_results):
+ * the Lyapunov exponent, the number of return-map points and the
+ * fraction of the map's box they visit (NaN: not measured). */
+static void take_results(const bf_sim *sim, bf_sweep_row *row)
+{
+    bf_results r;
+    bf_sim_results(sim, &r);
+    if (r.has_lyapunov)
+        row->lyapunov = r.lyapunov_exponent;
+    if (r.has_return_map) {
+        row->map_points = (double)r.map_points;
+        if (r.map_z && r.map_v)
+            row->map_fill = bf_sweep_map_fill(r.map_z, r.map_v, r.map_points);
+    }
+}
+
 bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
                             bf_err *err)
 {
@@ -431,7 +446,8 @@ bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
     }
     if (!st)
         st = bf_catalog_resolve(bf_catalog_builtin(), sc, &cerr);
-    bf_sim_opts opts = {.stop_flag = sw->stop_flag};
+    /* the map's points in the results (take_results) */
+    bf_sim_opts opts = {.stop_flag = sw->stop_flag, .keep_map_points = 1};
     if (!st)
         st = bf_sim_from_scene(&sim, bf_catalog_builtin(), sc, &opts, &cerr);
     if (!st)
@@ -447,49 +463,10 @@ bf_status bf_sweep_run_case(const bf_sweep *sw, long k, bf_sweep_row *row,
         }
         row->energy_error = bf_sim_max_energy_error(sim);
         row->steps = bf_sim_steps_done(sim);
-        /* what the model measured, from the case's own file (opened
-         * once for all of it) */
-        double v;
-        bf_err ignore = {0};
-        bf_h5_reader *rd = NULL;
-        double *z = NULL, *vz = NULL, *m3 = NULL;
-        size_t nz, nz1, nv, nv1;
-        if (!bf_h5_reader_open(&rd, out, &ignore)) {
-            if (!bf_h5_reader_attr_real(rd, "/", "lyapunov_exponent", &v,
-                                        &ignore))
-                row->lyapunov = v;
-            if (!bf_h5_reader_attr_real(rd, "/", "return_map_points", &v,
-                                        &ignore))
-                row->map_points = v;
-            if (!bf_h5_reader_read(rd, BF_DS_RETURN_MAP_Z, &z, &nz, &nz1,
-                                   &ignore) &&
-                !bf_h5_reader_read(rd, BF_DS_RETURN_MAP_V, &vz, &nv, &nv1,
-                                   &ignore) &&
-                nz == nv) {
-                row->map_fill = bf_sweep_map_fill(z, vz, nz);
-            } else if (!bf_h5_reader_read(rd, BF_DS_COUPLED_RETURN_MAP, &m3,
-                                          &nz, &nz1, &ignore) &&
-                       nz1 == 3) {
-                /* the coupled model's map: rows of (t, x, v) */
-                free(z);
-                free(vz);
-                z = malloc((nz ? nz : 1) * sizeof *z);
-                vz = malloc((nz ? nz : 1) * sizeof *vz);
-                if (z && vz) {
-                    for (size_t q = 0; q < nz; q++) {
-                        z[q] = m3[3 * q + 1];
-                        vz[q] = m3[3 * q + 2];
-                    }
-                    row->map_fill = bf_sweep_map_fill(z, vz, nz);
-                    if (isnan(row->map_points))
-                        row->map_points = (double)nz;
-                }
-                free(m3);
-            }
-            bf_h5_reader_close(rd);
-        }
-        free(z);
-        free(vz);
+        /* what the analyses measured, as the case's file records them
+         * (a file that did not close holds none) */
+        if (!cst)
+            take_results(sim, row);
     }
     row->status = (int)run_st;
     /* a long message is cut to the row's size on purpose */

@@ -100,6 +100,7 @@ bf_status bf_sim_run_ctx(const bf_sim_keys *k, bf_run_ctx *run, bf_err *err)
     if (!(steps < 9e15))
         return bf_fail_key(err, BF_EINPUT, "scene", "t_end",
                            "t_end/dt = %g steps is too many", steps);
+    run->keep_map = 0; /* bf_sim_opts keep_map_points sets it */
     run->dt = k->dt;
     run->t_end = k->t_end;
     run->nsteps = (long)steps;

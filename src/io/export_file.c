@@ -28,17 +28,11 @@ static bf_status check(const bf_xsrc *s, const char *path, int rank,
                        path);
     int r = 0;
     hsize_t dims[2];
-    size_t count;
-    bf_status st = bf_h5_dataset_shape(d, s->file, path, &r, dims, err);
+    bf_status st = bf_h5_dataset_rows(d, s->file, path, s->fl, s->bytes, &r,
+                                      dims, NULL, err);
     if (!st && r != rank)
         st = bf_fail(err, BF_EINPUT, "%s: %s has rank %d, not %d", s->file,
                      path, r, rank);
-    if (!st) {
-        dims[0] = bf_h5_flushed_rows(s->fl, path, dims[0]);
-        st = bf_h5_dataset_fits(d, s->file, path, dims[0],
-                                rank == 2 ? dims[1] : 1, s->bytes, &count,
-                                err);
-    }
     H5Dclose(d);
     if (!st) {
         *rows = (size_t)dims[0];
@@ -52,10 +46,30 @@ static int has(const bf_xsrc *s, const char *path)
     return path && H5Lexists(s->h5, path, H5P_DEFAULT) > 0;
 }
 
+/* Dataset path of s, opened at its first read and kept open for the
+ * frames after it; *own: the caller closes it (no room to keep it). */
+static hid_t dataset(const bf_xsrc *s, const char *path, int *own)
+{
+    bf_xsrc_dsets *c = s->dsets;
+    for (size_t k = 0; c && k < c->n; k++)
+        if (!strcmp(c->path[k], path)) {
+            *own = 0;
+            return c->id[k];
+        }
+    hid_t d = H5Dopen2(s->h5, path, H5P_DEFAULT);
+    *own = !(d >= 0 && c && c->n < BF_XSRC_DSETS);
+    if (!*own) {
+        c->path[c->n] = path;
+        c->id[c->n++] = d;
+    }
+    return d;
+}
+
 bf_status bf_xsrc_read(const bf_xsrc *s, const char *path, size_t k,
                        size_t n, double *buf, bf_err *err)
 {
-    hid_t d = H5Dopen2(s->h5, path, H5P_DEFAULT);
+    int own;
+    hid_t d = dataset(s, path, &own);
     hid_t fsp = d < 0 ? -1 : H5Dget_space(d);
     const int rank = fsp < 0 ? 0 : H5Sget_simple_extent_ndims(fsp);
     hsize_t start[2] = {rank == 2 ? k : 0, 0}, count[2] = {1, n};
@@ -71,7 +85,7 @@ bf_status bf_xsrc_read(const bf_xsrc *s, const char *path, size_t k,
     H5Sclose(msp);
     if (fsp >= 0)
         H5Sclose(fsp);
-    if (d >= 0)
+    if (d >= 0 && own)
         H5Dclose(d);
     return rc < 0 ? bf_fail(err, BF_EIO, "%s: cannot read row %zu of %s",
                             s->file, k, path)
@@ -96,22 +110,6 @@ bf_status bf_xsrc_stopped(const bf_xsrc *s, bf_err *err)
 {
     return s->stop && *s->stop ? bf_fail(err, BF_INTERRUPTED, "interrupted")
                                : BF_OK;
-}
-
-/* The numeric root attribute name, or fallback. */
-static bf_status root_number(const bf_xsrc *s, const char *name,
-                             double fallback, double *v, bf_err *err)
-{
-    *v = fallback;
-    if (H5Aexists(s->h5, name) <= 0)
-        return BF_OK;
-    hid_t a = H5Aopen(s->h5, name, H5P_DEFAULT);
-    if (a < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot open attribute %s", s->file,
-                       name);
-    bf_status st = bf_h5_attr_number(a, s->file, "/", name, v, err);
-    H5Aclose(a);
-    return st;
 }
 
 /* Which particles the file holds, their series and units. */
@@ -271,13 +269,15 @@ bf_status bf_xsrc_open(bf_xsrc *s, const char *in_path, bf_err *err)
         return bf_fail(err, BF_EINPUT, "%s: %s", in_path, strerror(errno));
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
     s->h5 = bf_h5_open_read(in_path);
+    /* without room for the handles, every read opens its dataset */
+    s->dsets = calloc(1, sizeof *s->dsets);
     if (s->h5 < 0)
         return bf_fail(err, BF_EINPUT, "%s: not an HDF5 file that opens%s",
                        in_path, bf_h5_open_hint(in_path));
     s->bytes = bf_h5_file_bytes(in_path);
     bf_status st = bf_h5_flushed_load(s->h5, in_path, &s->fl, err);
     if (!st)
-        st = root_number(s, "scene.dt", 1.0, &s->dt, err);
+        st = bf_h5_root_number(s->h5, s->file, "scene.dt", 1.0, &s->dt, err);
     if (!st)
         st = choose(s, err);
     if (!st)
@@ -292,6 +292,9 @@ void bf_xsrc_close(bf_xsrc *s)
     free(s->time);
     free(s->step);
     bf_h5_flushed_free(s->fl);
+    for (size_t k = 0; s->dsets && k < s->dsets->n; k++)
+        H5Dclose(s->dsets->id[k]);
+    free(s->dsets);
     if (s->h5 >= 0)
         H5Fclose(s->h5);
 }

@@ -17,8 +17,18 @@ typedef struct bf_xobs {
     int column;              /* -1: a 1-D series */
 } bf_xobs;
 
+/* The datasets read frame by frame, each opened once (bf_xsrc_read):
+ * their paths (the constant strings of bf_xsrc) and handles. */
+enum { BF_XSRC_DSETS = 16 };
+typedef struct bf_xsrc_dsets {
+    const char *path[BF_XSRC_DSETS];
+    hid_t id[BF_XSRC_DSETS];
+    size_t n;
+} bf_xsrc_dsets;
+
 typedef struct bf_xsrc {
     hid_t h5;
+    bf_xsrc_dsets *dsets; /* opened datasets (NULL: none kept) */
     const char *file;  /* for messages */
     double bytes;      /* its size on disk */
     bf_h5_flushed *fl; /* a killed run's rows, or NULL */

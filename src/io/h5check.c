@@ -51,6 +51,22 @@ bf_status bf_h5_attr_number(hid_t a, const char *file, const char *obj,
     return BF_OK;
 }
 
+bf_status bf_h5_root_number(hid_t f, const char *fname, const char *name,
+                            double fallback, double *value, bf_err *err)
+{
+    *value = fallback;
+    htri_t e = H5Aexists(f, name);
+    if (!e)
+        return BF_OK;
+    hid_t a = e > 0 ? H5Aopen(f, name, H5P_DEFAULT) : -1;
+    if (a < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot open attribute %s", fname,
+                       name);
+    bf_status st = bf_h5_attr_number(a, fname, "/", name, value, err);
+    H5Aclose(a);
+    return st;
+}
+
 /* A fixed-length string of len bytes, NUL-terminated. */
 static char *read_fixed(hid_t a, size_t len)
 {

@@ -46,6 +46,12 @@ bf_status bf_h5_attr_number(hid_t a, const char *file, const char *obj,
 bf_status bf_h5_attr_string(hid_t a, const char *file, const char *obj,
                             const char *name, char **value, bf_err *err);
 
+/* The numeric root attribute `name` of the open file f (fname for
+ * messages), or fallback when the file has none; one that is there but is
+ * not one number, or cannot be read or looked up, is an error. */
+bf_status bf_h5_root_number(hid_t f, const char *fname, const char *name,
+                            double fallback, double *value, bf_err *err);
+
 /* The shape of dataset d (path for messages) to be read as numbers: rank 1
  * or 2 of integer or float class; dims[1] is 0 for rank 1. */
 bf_status bf_h5_dataset_shape(hid_t d, const char *file, const char *path,

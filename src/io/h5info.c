@@ -3,6 +3,7 @@
  * program's `ballfilm info`). */
 #include <hdf5.h>
 #include <signal.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,13 +23,18 @@ typedef struct lister {
 } lister;
 
 /* The string attribute `name` of dataset `obj` (fixed or variable length,
- * checked as h5check.h says) into buf; "" when it has none. */
+ * checked as h5check.h says) into buf; "" when it has none.  One that is
+ * there but cannot be read is an error, not an absent attribute. */
 static bf_status attr_text(hid_t obj, const char *file, const char *path,
                            const char *name, char *buf, size_t cap,
                            bf_err *err)
 {
     buf[0] = '\0';
-    if (H5Aexists(obj, name) <= 0)
+    htri_t e = H5Aexists(obj, name);
+    if (e < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot look up attribute %s of %s",
+                       file, name, path);
+    if (!e)
         return BF_OK;
     hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
     if (a < 0)
@@ -84,9 +90,19 @@ static herr_t visit(hid_t root, const char *name, const H5O_info_t *info,
               : c == H5T_STRING ? 's' : '?';
     l->st = attr_text(ds, l->file, d->path, "unit", d->unit, sizeof d->unit,
                       l->err);
-    if (!l->st)
-        l->st = attr_text(ds, l->file, d->path, "description",
-                          d->description, sizeof d->description, l->err);
+    /* the attributes of its series spec (series.h) */
+    static const struct {
+        const char *name;
+        size_t off, cap;
+    } text[] = {
+        {"description", offsetof(bf_h5_dataset, description),
+         sizeof d->description},
+        {"kind", offsetof(bf_h5_dataset, series_kind), sizeof d->series_kind},
+        {"role", offsetof(bf_h5_dataset, role), sizeof d->role},
+    };
+    for (size_t k = 0; k < sizeof text / sizeof *text && !l->st; k++)
+        l->st = attr_text(ds, l->file, d->path, text[k].name,
+                          (char *)d + text[k].off, text[k].cap, l->err);
     H5Tclose(ty);
     H5Sclose(sp);
     H5Dclose(ds);

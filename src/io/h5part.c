@@ -160,6 +160,21 @@ bf_status bf_h5_flushed_load(hid_t f, const char *file, bf_h5_flushed **out,
     return st;
 }
 
+bf_status bf_h5_dataset_rows(hid_t d, const char *file, const char *path,
+                             const bf_h5_flushed *fl, double file_bytes,
+                             int *rank, hsize_t dims[2], size_t *count,
+                             bf_err *err)
+{
+    size_t own;
+    bf_status st = bf_h5_dataset_shape(d, file, path, rank, dims, err);
+    if (st)
+        return st;
+    dims[0] = bf_h5_flushed_rows(fl, path, dims[0]);
+    return bf_h5_dataset_fits(d, file, path, dims[0],
+                              *rank == 2 ? dims[1] : 1, file_bytes,
+                              count ? count : &own, err);
+}
+
 hsize_t bf_h5_flushed_rows(const bf_h5_flushed *fl, const char *path,
                            hsize_t extent)
 {

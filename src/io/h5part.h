@@ -65,4 +65,14 @@ hsize_t bf_h5_flushed_rows(const bf_h5_flushed *fl, const char *path,
                            hsize_t extent);
 void bf_h5_flushed_free(bf_h5_flushed *fl);
 
+/* The one check of a dataset before its rows are read (every reader of
+ * src/io): bf_h5_dataset_shape (rank 1 or 2, numbers), its rows cut to
+ * those of the last flush (fl; NULL: all), then bf_h5_dataset_fits
+ * against a file of file_bytes bytes.  dims[1] is 0 for rank 1; *count
+ * the doubles of the rows (count may be NULL). */
+bf_status bf_h5_dataset_rows(hid_t d, const char *file, const char *path,
+                             const bf_h5_flushed *fl, double file_bytes,
+                             int *rank, hsize_t dims[2], size_t *count,
+                             bf_err *err);
+
 #endif

@@ -70,14 +70,9 @@ bf_status bf_h5_reader_read(bf_h5_reader *r, const char *path, double **data,
     int rank = 0;
     hsize_t dims[2];
     size_t total = 0;
-    bf_status st = bf_h5_dataset_shape(d, file, path, &rank, dims, err);
     /* the rows of the last complete flush (h5part.h) */
-    if (!st)
-        dims[0] = bf_h5_flushed_rows(r->flushed, path, dims[0]);
-    if (!st)
-        st = bf_h5_dataset_fits(d, file, path, dims[0],
-                                rank == 2 ? dims[1] : 1, r->bytes, &total,
-                                err);
+    bf_status st = bf_h5_dataset_rows(d, file, path, r->flushed, r->bytes,
+                                      &rank, dims, &total, err);
     double *buf = NULL;
     if (!st && !(buf = malloc((total ? total : 1) * sizeof *buf)))
         st = bf_fail(err, BF_EINTERNAL, "out of memory");
@@ -121,6 +116,32 @@ bf_status bf_h5_reader_attr_real(bf_h5_reader *r, const char *obj,
     return st;
 }
 
+int bf_h5_reader_has_attr(bf_h5_reader *r, const char *obj, const char *name,
+                          bf_err *err)
+{
+    htri_t e = H5Aexists_by_name(r->file, obj, name, H5P_DEFAULT);
+    if (e < 0)
+        bf_fail(err, BF_EIO, "%s: cannot look up attribute %s of %s",
+                r->name, name, obj);
+    return e < 0 ? -1 : e > 0;
+}
+
+bf_status bf_h5_reader_attr_str(bf_h5_reader *r, const char *obj,
+                                const char *name, char **value, bf_err *err)
+{
+    *value = NULL;
+    hid_t a = H5Aexists_by_name(r->file, obj, name, H5P_DEFAULT) > 0
+                  ? H5Aopen_by_name(r->file, obj, name, H5P_DEFAULT,
+                                    H5P_DEFAULT)
+                  : -1;
+    if (a < 0)
+        return bf_fail(err, BF_EIO, "%s: no attribute %s on %s", r->name,
+                       name, obj);
+    bf_status st = bf_h5_attr_string(a, r->name, obj, name, value, err);
+    H5Aclose(a);
+    return st;
+}
+
 bf_status bf_h5_read(const char *file, const char *path, double **data,
                      size_t *n0, size_t *n1, bf_err *err)
 {
@@ -154,17 +175,7 @@ bf_status bf_h5_read_attr_str(const char *file, const char *obj,
     bf_status st = bf_h5_reader_open(&r, file, err);
     if (st)
         return st;
-    hid_t a = H5Aexists_by_name(r->file, obj, name, H5P_DEFAULT) > 0
-                  ? H5Aopen_by_name(r->file, obj, name, H5P_DEFAULT,
-                                    H5P_DEFAULT)
-                  : -1;
-    if (a < 0) {
-        st = bf_fail(err, BF_EIO, "%s: no attribute %s on %s", file, name,
-                     obj);
-    } else {
-        st = bf_h5_attr_string(a, file, obj, name, value, err);
-        H5Aclose(a);
-    }
+    st = bf_h5_reader_attr_str(r, obj, name, value, err);
     bf_h5_reader_close(r);
     return st;
 }

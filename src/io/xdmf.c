@@ -119,15 +119,9 @@ static dset dset_read(const xw *x, const char *path)
     }
     hsize_t dims[2];
     int rank = 0;
-    size_t count;
-    bf_status st = bf_h5_dataset_shape(id, x->h5name, path, &rank, dims,
-                                       x->fail->err);
-    if (!st) {
-        dims[0] = bf_h5_flushed_rows(x->flushed, path, dims[0]);
-        st = bf_h5_dataset_fits(id, x->h5name, path, dims[0],
-                                rank == 2 ? dims[1] : 1, x->bytes, &count,
-                                x->fail->err);
-    }
+    bf_status st = bf_h5_dataset_rows(id, x->h5name, path, x->flushed,
+                                      x->bytes, &rank, dims, NULL,
+                                      x->fail->err);
     if (!failed(x, st)) {
         hid_t t = H5Dget_type(id);
         d.rank = rank;
@@ -668,23 +662,6 @@ static bf_status write_mac(const xw *x, bf_err *err)
     return BF_OK;
 }
 
-/* The numeric root attribute `name` (checked, h5check.h), or fallback
- * when the file has none. */
-static bf_status root_real(const xw *x, const char *name, double fallback,
-                           double *v, bf_err *err)
-{
-    *v = fallback;
-    if (H5Aexists(x->h5, name) <= 0)
-        return BF_OK;
-    hid_t a = H5Aopen(x->h5, name, H5P_DEFAULT);
-    if (a < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot open attribute %s",
-                       x->h5name, name);
-    bf_status st = bf_h5_attr_number(a, x->h5name, "/", name, v, err);
-    H5Aclose(a);
-    return st;
-}
-
 /* Every dataset a sidecar may name, checked before anything is written:
  * a file that would fail half way is refused at the start. */
 static bf_status check_datasets(const xw *x)
@@ -835,7 +812,7 @@ bf_status bf_xdmf_write_n(const char *h5_path, const char *xmf_path,
     x.budget = BF_XDMF_BUDGET_BYTES + BF_XDMF_BUDGET_RATIO * x.bytes;
     bf_status st = bf_h5_flushed_load(x.h5, h5_path, &x.flushed, err);
     if (!st)
-        st = root_real(&x, "scene.dt", 1.0, &x.dt, err);
+        st = bf_h5_root_number(x.h5, x.h5name, "scene.dt", 1.0, &x.dt, err);
     if (!st && !(x.href = bf_xdmf_href(h5_path, xmf_path)))
         st = bf_fail(err, BF_EIO, "%s: cannot name %s relative to it (is its "
                      "directory there?)", xmf_path, h5_path);

@@ -13,6 +13,7 @@
 
 #include "models/balls_out.h"
 #include "models/ballsys.h"
+#include "models/studies.h"
 #include "ballfilm/model.h"
 
 typedef struct balls_model {
@@ -159,4 +160,5 @@ const bf_model_type bf_model_balls = {
     .ball_view = balls_view,
     .state = balls_state,
     .set_state = balls_set_state,
+    .study = &bf_study_balls,
 };

@@ -61,19 +61,8 @@
 #include "models/coupled.h"
 #include "models/coupled_impl.h"
 #include "models/filmsys.h"
+#include "models/studies.h"
 #include "io/dataset_paths.h"
-
-/* The keys of [coupled]. */
-typedef struct coupled_keys {
-    int film;        /* 0 dynamic, 1 static */
-    const char *film_every; /* steps, or "auto" */
-    double multirate_tol;   /* cm/s^2 */
-    long film_every_max;    /* steps */
-    double probe;    /* cm */
-    long map_ball, map_pivot, peak_ball; /* 1-based; 0: the default */
-    int symmetrize, timing;
-    bf_coupled_whole_keys whole; /* scheme and its ARKODE keys */
-} coupled_keys;
 
 static const bf_param coupled_params[] = {
     {"film", BF_AT(coupled_keys, film, BF_ENUM), "", "dynamic",
@@ -159,7 +148,7 @@ static const bf_param coupled_params[] = {
     {0},
 };
 
-static const bf_section_spec coupled_spec =
+const bf_section_spec bf_coupled_spec =
     BF_SECTION("coupled", "balls coupled to the film (Yasuda sec. 3.4-3.5)",
                coupled_params, coupled_keys);
 
@@ -178,6 +167,8 @@ static void coupled_destroy(void *self)
     free(m->acc_old);
     free(m->x0);
     free(m->v0);
+    free(m->map_x);
+    free(m->map_v);
     free(m);
 }
 
@@ -266,12 +257,13 @@ static bf_status coupled_build(coupled_model **self,
                                const bf_model_setup *setup, int with_shadow,
                                bf_err *err)
 {
-    const coupled_keys *k = bf_setup_get(setup, &coupled_spec, NULL);
+    const coupled_keys *k = bf_setup_get(setup, &bf_coupled_spec, NULL);
     const bf_film_keys *fk = bf_setup_get(setup, &bf_filmsys_spec, NULL);
     coupled_model *m = calloc(1, sizeof *m);
     if (!m)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     m->dynamic = k->film == 0;
+    m->keep_map = with_shadow && setup->run.keep_map; /* not a shadow */
     bf_status st = film_every_key(k->film_every, &m->every, err);
     if (st) {
         free(m);
@@ -758,7 +750,7 @@ static bf_status coupled_load(void *self, const bf_ckpt *ck, bf_err *err)
 static void coupled_results(const void *self, bf_results *r);
 
 static const bf_section_spec *const coupled_specs[] = {
-    &coupled_spec, &bf_filmsys_spec, &bf_ballsys_ball_spec, &bf_lyap_spec,
+    &bf_coupled_spec, &bf_filmsys_spec, &bf_ballsys_ball_spec, &bf_lyap_spec,
     NULL};
 
 /* The balls' and the film's arrays, to read (the coupling's state
@@ -798,17 +790,23 @@ const bf_model_type bf_model_coupled = {
     .checkpoint_load = coupled_load,
     .results = coupled_results,
     .state = coupled_state,
+    .study = &bf_study_coupled,
 };
 
 /* ------------------------------------------------------------ drivers */
 
-/* The return map is /coupled/return_map (no multi-minimum count, the
- * points are not kept in memory). */
+/* The return map is /coupled/return_map (no multi-minimum count); its
+ * points are there when the run holds all of them (not continued from a
+ * checkpoint). */
 static void coupled_results(const void *self, bf_results *r)
 {
     const coupled_model *m = self;
     r->has_return_map = 1;
     r->map_points = (size_t)m->nmap;
+    if (m->map_kept && m->map_kept == (size_t)m->nmap) {
+        r->map_z = m->map_x;
+        r->map_v = m->map_v;
+    }
     r->has_lyapunov = m->ly != NULL;
     if (m->ly)
         r->lyapunov_exponent = bf_lyap_sum_estimate(m->ly, &r->lyapunov_time);

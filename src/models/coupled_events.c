@@ -9,12 +9,36 @@
  * the step's end states (diag/hermite.h; linear for v).
  */
 #include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
 
 #include "diag/hermite.h"
 #include "models/coupled_impl.h"
 
 const double bf_coupled_sym_levels[BF_COUPLED_NSYM] = {1e-12, 1e-9, 1e-6,
                                                        1e-3};
+
+/* Keep the return map's point (x, v) of the run (coupled_impl.h). */
+static bf_status keep_map_point(coupled_model *m, double x, double v,
+                                bf_err *err)
+{
+    if (m->map_kept == m->map_cap) {
+        size_t cap = m->map_cap ? 2 * m->map_cap : 256;
+        double *nx = cap <= SIZE_MAX / sizeof *nx
+                         ? realloc(m->map_x, cap * sizeof *nx)
+                         : NULL;
+        if (nx)
+            m->map_x = nx;
+        double *nv = nx ? realloc(m->map_v, cap * sizeof *nv) : NULL;
+        if (!nv)
+            return bf_fail(err, BF_EINTERNAL, "out of memory");
+        m->map_v = nv;
+        m->map_cap = cap;
+    }
+    m->map_x[m->map_kept] = x;
+    m->map_v[m->map_kept++] = v;
+    return BF_OK;
+}
 
 /* After the step t -> t + dt (the state at its start in m->x0, m->v0). */
 bf_status bf_coupled_events(coupled_model *m, double t, double dt, bf_err *err)
@@ -50,6 +74,11 @@ bf_status bf_coupled_events(coupled_model *m, double t, double dt, bf_err *err)
                                  v0[r] + s * (v1[r] - v0[r])};
                 if (m->map && bf_series_append(m->map, row))
                     return bf_fail(err, BF_EINTERNAL, "out of memory");
+                bf_status st = m->keep_map
+                                   ? keep_map_point(m, row[1], row[2], err)
+                                   : BF_OK;
+                if (st)
+                    return st;
                 m->nmap++;
             }
         }

@@ -37,6 +37,19 @@ typedef struct bf_coupled_whole_keys {
 
 typedef struct bf_coupled_whole bf_coupled_whole;
 
+/* The keys of [coupled]. */
+typedef struct coupled_keys {
+    int film;        /* 0 dynamic, 1 static */
+    const char *film_every; /* steps, or "auto" */
+    double multirate_tol;   /* cm/s^2 */
+    long film_every_max;    /* steps */
+    double probe;    /* cm */
+    long map_ball, map_pivot, peak_ball; /* 1-based; 0: the default */
+    int symmetrize, timing;
+    bf_coupled_whole_keys whole; /* scheme and its ARKODE keys */
+} coupled_keys;
+extern const bf_section_spec bf_coupled_spec;
+
 /* One coupled system (the run, or its Lyapunov shadow). */
 typedef struct coupled_model {
     bf_filmsys *fs;
@@ -77,6 +90,12 @@ typedef struct coupled_model {
      * ball v) since the last row [0..3] and over the run [4..7] */
     double sym_correction[8];
     long nmap, npeak;
+    /* with bf_run_ctx keep_map (not in a shadow): the return map's x, v
+     * of every point found, for bf_results (a sweep's
+     * statistics of the map without reading the file back; 16 B a point) */
+    int keep_map;
+    double *map_x, *map_v;
+    size_t map_kept, map_cap;
     bf_balls_out bo;
     bf_series *probe_s, *symb, *symf, *map, *peaks, *symc_s;
 } coupled_model;

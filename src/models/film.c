@@ -6,6 +6,7 @@
 
 #include "ballfilm/model.h"
 #include "models/filmsys.h"
+#include "models/studies.h"
 
 static bf_status film_create(void **self, const bf_model_setup *setup,
                              bf_err *err)
@@ -108,4 +109,5 @@ const bf_model_type bf_model_film = {
     .checkpoint_load = film_load,
     .state = film_state,
     .set_state = film_set_state,
+    .study = &bf_study_film,
 };

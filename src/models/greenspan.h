@@ -17,11 +17,15 @@
 bf_particles *bf_greenspan72_particles(void *model);
 /* Its time integrator ([greenspan72] integrator) and nominal order. */
 void bf_greenspan72_describe(void *model, char *buf, size_t cap, int *order);
+/* Whether the setup's [greenspan72] integrator is adaptive (arkode). */
+int bf_greenspan72_adaptive(const bf_model_setup *s);
 /* Its support-set gravity workspace. */
 bf_support *bf_greenspan72_support(void *model);
 
 /* The particles of a greenspan73 model (time t_k). */
 bf_particles *bf_greenspan73_particles(void *model);
+/* Whether the setup's [greenspan73] integrator is adaptive (arkode). */
+int bf_greenspan73_adaptive(const bf_model_setup *s);
 /* Its time integrator ([greenspan73] integrator) with its parameters, and
  * its nominal order. */
 void bf_greenspan73_describe(void *model, char *buf, size_t cap, int *order);

@@ -44,6 +44,7 @@
 #include "integrators/arkode.h"
 #include "models/g72_ode.h"
 #include "models/greenspan.h"
+#include "models/studies.h"
 #include "particles/hertz_pairs.h"
 #include "ballfilm/model.h"
 #include "ballfilm/particles.h"
@@ -192,6 +193,12 @@ typedef struct g72 {
 bf_particles *bf_greenspan72_particles(void *model)
 {
     return &((g72 *)model)->p;
+}
+
+int bf_greenspan72_adaptive(const bf_model_setup *s)
+{
+    const g72_keys *k = bf_setup_get(s, &g72_spec, NULL);
+    return k && k->integrator == INT_ARKODE;
 }
 
 bf_support *bf_greenspan72_support(void *model)
@@ -870,4 +877,5 @@ const bf_model_type bf_model_greenspan72 = {
     .checkpoint_load = g72_load,
     .state = g72_state_vars,
     .set_state = g72_set_state,
+    .study = &bf_study_greenspan72,
 };

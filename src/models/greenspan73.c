@@ -41,6 +41,7 @@
 #include "models/g73_ode.h"
 #include "particles/dforce.h"
 #include "models/greenspan.h"
+#include "models/studies.h"
 #include "particles/implicit.h"
 #include "ballfilm/model.h"
 #include "ballfilm/particles.h"
@@ -220,6 +221,12 @@ static void g73_destroy(void *self)
 bf_particles *bf_greenspan73_particles(void *model)
 {
     return &((g73 *)model)->p;
+}
+
+int bf_greenspan73_adaptive(const bf_model_setup *s)
+{
+    const g73_keys *k = bf_setup_get(s, &g73_spec, NULL);
+    return k && k->integrator == BF_G73_ARKODE;
 }
 
 /* A particle-number list (key `key` of [greenspan73]) into flags (1-based
@@ -792,4 +799,5 @@ const bf_model_type bf_model_greenspan73 = {
     .checkpoint_load = g73_load,
     .state = g73_state_vars,
     .set_state = g73_set_state,
+    .study = &bf_study_greenspan73,
 };

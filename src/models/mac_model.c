@@ -30,6 +30,7 @@
 #include "mac/mac.h"
 #include "ballfilm/model.h"
 #include "models/mac_model.h"
+#include "models/studies.h"
 #include "io/dataset_paths.h"
 
 typedef struct mac_model {
@@ -542,4 +543,5 @@ const bf_model_type bf_model_mac = {
     .report = mac_model_report,
     .checkpoint_save = mac_model_save,
     .checkpoint_load = mac_model_load,
+    .study = &bf_study_mac,
 };

@@ -1,5 +1,5 @@
 /* mac_model.h: read access to the "mac" model (mac_model.c) for the
- * convergence study (src/compose/study_mac.c).  `model` is the model of
+ * convergence study (src/models/study_mac.c).  `model` is the model of
  * a sim or of bf_model_from_scene.  Private to the library. */
 #ifndef BALLFILM_MODELS_MAC_MODEL_H
 #define BALLFILM_MODELS_MAC_MODEL_H

@@ -29,12 +29,19 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "compose/study.h"
 #include "models/filmsys.h"
+#include "models/studies.h"
 
-static int film_adaptive(const bf_scene *sc)
+static int film_adaptive(const bf_model_setup *s)
 {
-    return strcmp(bf_scene_str(sc, "film", "scheme"), "invariant") != 0;
+    const bf_film_keys *k = bf_setup_get(s, &bf_filmsys_spec, NULL);
+    return k && k->scheme != BF_FILM_SCHEME_INVARIANT;
+}
+
+double bf_study_film_dx(const bf_model_setup *s)
+{
+    const bf_film_keys *k = bf_setup_get(s, &bf_filmsys_spec, NULL);
+    return k ? k->dx : 0.0;
 }
 
 void bf_study_film_groups(bf_filmsys *fs, bf_study_view *v)
@@ -58,31 +65,33 @@ void bf_study_film_groups(bf_filmsys *fs, bf_study_view *v)
     bf_film_totals(f, &v->inv[0], &v->inv[1]);
 }
 
-static void film_view(void *model, bf_study_view *v)
+static void film_view(void *self, bf_study_view *v)
 {
     memset(v, 0, sizeof *v);
-    bf_study_film_groups(model, v);
+    bf_study_film_groups(self, v);
 }
 
-static void film_describe(void *model, char *buf, size_t cap, int *order)
+static void film_describe(void *self, char *buf, size_t cap, int *order)
 {
-    bf_filmsys_describe(model, buf, cap, order);
+    bf_filmsys_describe(self, buf, cap, order);
 }
 
-static void film_notes(const bf_scene *sc, char *buf, size_t cap)
+static void film_notes(const bf_model_setup *s, char *buf, size_t cap)
 {
     size_t l = strlen(buf);
     snprintf(buf + l, cap - l,
              "note: the reference is the film's equations on the same grid "
              "(dx = %g cm) in method-of-lines form, so the errors are time "
              "errors only (the space error needs runs at several dx).\n",
-             bf_scene_real(sc, "film", "dx"));
-    bf_study_perturbation_note(sc, buf, cap);
+             bf_study_film_dx(s));
+    bf_study_perturbation_note(s, buf, cap);
 }
 
-void bf_study_perturbation_note(const bf_scene *sc, char *buf, size_t cap)
+void bf_study_perturbation_note(const bf_model_setup *s, char *buf,
+                                size_t cap)
 {
-    if (!(bf_scene_real(sc, "film", "perturbation") > 0))
+    const bf_film_keys *k = bf_setup_get(s, &bf_filmsys_spec, NULL);
+    if (!k || !(k->perturbation > 0))
         return;
     size_t l = strlen(buf);
     snprintf(buf + l, cap - l,
@@ -90,11 +99,10 @@ void bf_study_perturbation_note(const bf_scene *sc, char *buf, size_t cap)
              "fractions ([film] perturbation = %g): grid-scale noise has no "
              "smooth limit in dt, so the observed orders are not the "
              "methods' orders; --set film.perturbation=0 switches it off.\n",
-             bf_scene_real(sc, "film", "perturbation"));
+             k->perturbation);
 }
 
 const bf_study_type bf_study_film = {
-    .model = "film",
     .method_key = "film.scheme",
     .param_section = "film",
     .invariant = "phase totals",

@@ -22,27 +22,31 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "compose/study.h"
+#include "effects/effect_kernels.h"
 #include "models/ballsys.h"
+#include "models/studies.h"
 
-static int balls_adaptive(const bf_scene *sc)
+static int balls_adaptive(const bf_model_setup *s)
 {
-    const bf_integrator_type *t = bf_catalog_integrator(
-        bf_catalog_builtin(), bf_scene_str(sc, "scene", "integrator"));
-    return t && (t->flags & BF_INT_ADAPTIVE);
+    return s->integrator && (s->integrator->flags & BF_INT_ADAPTIVE);
 }
 
-static int hertz(const bf_scene *sc)
+/* floor and contact are the effects with Hertz contacts (recognised by
+ * their descriptors, like the ball system's kernels) */
+int bf_study_hertz(const bf_model_setup *s)
 {
-    return bf_scene_has_name(sc, "scene", "effects", "floor") ||
-           bf_scene_has_name(sc, "scene", "effects", "contact");
+    for (size_t k = 0; k < s->neffects; k++)
+        if (s->effects[k] == &bf_effect_floor ||
+            s->effects[k] == &bf_effect_contact)
+            return 1;
+    return 0;
 }
 
-static bf_status balls_reference(const bf_scene *sc,
-                                 const bf_converge_opts *o, char *method,
+static bf_status balls_reference(const bf_model_setup *s,
+                                 const bf_study_methods *o, char *method,
                                  size_t cap, bf_err *err)
 {
-    (void)sc;
+    (void)s;
     static const char *const names[] = {"arkode", "arkode-fixed", NULL};
     static const char *const defaults[] = {"ARKODE_DORMAND_PRINCE_7_4_5",
                                            "ARKODE_ZONNEVELD_5_3_4"};
@@ -52,9 +56,9 @@ static bf_status balls_reference(const bf_scene *sc,
                                      method, cap, err);
 }
 
-double bf_study_hertz_max_step(const bf_scene *sc)
+double bf_study_hertz_max_step(const bf_model_setup *s)
 {
-    return hertz(sc) ? 10 * bf_scene_real(sc, "scene", "dt") : 0.0;
+    return bf_study_hertz(s) ? 10 * s->run.dt : 0.0;
 }
 
 void bf_study_balls_groups(const bf_balls *b, bf_study_view *v)
@@ -71,15 +75,15 @@ void bf_study_balls_groups(const bf_balls *b, bf_study_view *v)
     }
 }
 
-static void balls_view(void *model, bf_study_view *v)
+static void balls_view(void *self, bf_study_view *v)
 {
     memset(v, 0, sizeof *v);
-    bf_study_balls_groups(&bf_balls_model_system(model)->b, v);
+    bf_study_balls_groups(&bf_balls_model_system(self)->b, v);
 }
 
-static void balls_describe(void *model, char *buf, size_t cap, int *order)
+static void balls_describe(void *self, char *buf, size_t cap, int *order)
 {
-    const bf_ballsys *s = bf_balls_model_system(model);
+    const bf_ballsys *s = bf_balls_model_system(self);
     bf_integrator_describe(s->it, buf, cap);
     *order = bf_integrator_order(s->it);
 }
@@ -87,7 +91,8 @@ static void balls_describe(void *model, char *buf, size_t cap, int *order)
 /* the energy after every internal step of adaptive integrators */
 typedef struct energy_watch {
     const bf_ballsys *sys;
-    bf_energy_diag *d;
+    bf_study_energy_fn check;
+    void *ctx;
 } energy_watch;
 
 static void monitor_energy(void *ctx, double t, const double *x,
@@ -98,25 +103,25 @@ static void monitor_energy(void *ctx, double t, const double *x,
     double k = 0.0;
     for (size_t i = 0; i < s->b.n; i++)
         k += 0.5 * s->b.m[i] * v[i] * v[i];
-    bf_energy_check(w->d,
-                    k + bf_effects_potential(s->eff, s->neff, &s->b, t, x));
+    w->check(w->ctx, k + bf_effects_potential(s->eff, s->neff, &s->b, t, x));
 }
 
-static void *balls_watch(void *model, bf_energy_diag *d)
+static void *balls_watch(void *self, bf_study_energy_fn check, void *ctx)
 {
-    bf_ballsys *s = bf_balls_model_system(model);
+    bf_ballsys *s = bf_balls_model_system(self);
     energy_watch *w = malloc(sizeof *w);
     if (!w)
         return NULL;
     w->sys = s;
-    w->d = d;
+    w->check = check;
+    w->ctx = ctx;
     bf_integrator_set_monitor(s->it, monitor_energy, w);
     return w;
 }
 
-static void balls_notes(const bf_scene *sc, char *buf, size_t cap)
+static void balls_notes(const bf_model_setup *s, char *buf, size_t cap)
 {
-    if (!hertz(sc))
+    if (!bf_study_hertz(s))
         return;
     snprintf(buf + strlen(buf), cap - strlen(buf),
              "note: the scene has Hertz contacts.  The contact force "
@@ -129,7 +134,6 @@ static void balls_notes(const bf_scene *sc, char *buf, size_t cap)
 }
 
 const bf_study_type bf_study_balls = {
-    .model = "balls",
     .method_key = "scene.integrator",
     .param_section = "integrator",
     .invariant = "energy",

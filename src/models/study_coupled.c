@@ -28,9 +28,10 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "compose/study.h"
 #include "models/coupled.h"
+#include "models/coupled_impl.h"
 #include "models/filmsys.h"
+#include "models/studies.h"
 
 static int coupled_scheme_name(const char *name)
 {
@@ -49,22 +50,24 @@ static size_t coupled_method_sets(const char *name, char sets[2][96])
     return 2;
 }
 
-static int coupled_adaptive(const bf_scene *sc)
+static int coupled_adaptive(const bf_model_setup *s)
 {
-    return strcmp(bf_scene_str(sc, "coupled", "scheme"), "arkode") == 0;
+    const coupled_keys *k = bf_setup_get(s, &bf_coupled_spec, NULL);
+    return k && k->whole.scheme == BF_COUPLED_ARKODE;
 }
 
-static void coupled_view(void *model, bf_study_view *v)
+static void coupled_view(void *self, bf_study_view *v)
 {
     bf_coupled_parts p;
-    bf_coupled_model_parts(model, &p);
+    bf_coupled_model_parts(self, &p);
     memset(v, 0, sizeof *v);
     bf_study_balls_groups(&p.sys->b, v);
-    bf_study_film_groups(bf_coupled_model_filmsys(model), v);
+    bf_study_film_groups(bf_coupled_model_filmsys(self), v);
 }
 
-static void coupled_notes(const bf_scene *sc, char *buf, size_t cap)
+static void coupled_notes(const bf_model_setup *s, char *buf, size_t cap)
 {
+    const coupled_keys *k = bf_setup_get(s, &bf_coupled_spec, NULL);
     size_t l = strlen(buf);
     snprintf(buf + l, cap - l,
              "note: the reference is ARKODE on the whole system, the balls "
@@ -72,19 +75,18 @@ static void coupled_notes(const bf_scene *sc, char *buf, size_t cap)
              "so the errors are time errors only.  The split scheme's "
              "coupling lag and its film scheme are first order in dt: "
              "observed orders near 1 whatever the ball integrator.\n",
-             bf_scene_real(sc, "film", "dx"));
-    if (strcmp(bf_scene_str(sc, "coupled", "film"), "dynamic")) {
+             bf_study_film_dx(s));
+    if (k && k->film != 0) { /* film = static */
         l = strlen(buf);
         snprintf(buf + l, cap - l,
                  "note: the film is static: every method is the ball "
                  "integrator alone (the arkode and mri schemes refuse a "
                  "static film).\n");
     }
-    bf_study_perturbation_note(sc, buf, cap);
+    bf_study_perturbation_note(s, buf, cap);
 }
 
 const bf_study_type bf_study_coupled = {
-    .model = "coupled",
     .method_key = "coupled.scheme",
     .param_section = "coupled",
     .invariant = "phase totals",

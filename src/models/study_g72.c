@@ -25,22 +25,17 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "compose/study.h"
 #include "models/greenspan.h"
+#include "models/studies.h"
 
-static int g72_adaptive(const bf_scene *sc)
+static void g72_view(void *self, bf_study_view *v)
 {
-    return !strcmp(bf_scene_str(sc, "greenspan72", "integrator"), "arkode");
+    bf_study_particles_view(bf_greenspan72_particles(self), 0, v);
 }
 
-static void g72_view(void *model, bf_study_view *v)
+static void g72_notes(const bf_model_setup *s, char *buf, size_t cap)
 {
-    bf_study_particles_view(bf_greenspan72_particles(model), 0, v);
-}
-
-static void g72_notes(const bf_scene *sc, char *buf, size_t cap)
-{
-    (void)sc;
+    (void)s;
     size_t l = strlen(buf);
     snprintf(buf + l, cap - l,
              "note: the reference is ARKODE on the particles' ODE (the "
@@ -54,13 +49,12 @@ static void g72_notes(const bf_scene *sc, char *buf, size_t cap)
 }
 
 const bf_study_type bf_study_greenspan72 = {
-    .model = "greenspan72",
     .method_key = "greenspan72.integrator",
     .param_section = "greenspan72",
     .invariant = "none",
     .default_ref_rtol = 1e-12,
     .max_ref_rtol = 1e-10,
-    .adaptive = g72_adaptive,
+    .adaptive = bf_greenspan72_adaptive,
     .reference = bf_study_arkode_erk,
     .view = g72_view,
     .describe = bf_greenspan72_describe,

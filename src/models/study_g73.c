@@ -1,4 +1,4 @@
-/* study_particles.c: the convergence study of Greenspan's 1973 particles
+/* study_g73.c: the convergence study of Greenspan's 1973 particles
  * (model greenspan73): methods are [greenspan73] integrators (greenspan73,
  * the paper's implicit scheme; leapfrog, the 1972 leapfrog; arkode) with
  * their [greenspan73] keys; compared are the positions (x, y; cm) and the
@@ -15,22 +15,17 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "compose/study.h"
 #include "models/greenspan.h"
+#include "models/studies.h"
 
-static int g73_adaptive(const bf_scene *sc)
+static void g73_view(void *self, bf_study_view *v)
 {
-    return !strcmp(bf_scene_str(sc, "greenspan73", "integrator"), "arkode");
+    bf_study_particles_view(bf_greenspan73_particles(self), 1, v);
 }
 
-static void g73_view(void *model, bf_study_view *v)
+static void g73_notes(const bf_model_setup *s, char *buf, size_t cap)
 {
-    bf_study_particles_view(bf_greenspan73_particles(model), 1, v);
-}
-
-static void g73_notes(const bf_scene *sc, char *buf, size_t cap)
-{
-    (void)sc;
+    (void)s;
     size_t l = strlen(buf);
     snprintf(buf + l, cap - l,
              "note: the reference is ARKODE on the particles' ODE (the "
@@ -41,13 +36,12 @@ static void g73_notes(const bf_scene *sc, char *buf, size_t cap)
 }
 
 const bf_study_type bf_study_greenspan73 = {
-    .model = "greenspan73",
     .method_key = "greenspan73.integrator",
     .param_section = "greenspan73",
     .invariant = "energy",
     .default_ref_rtol = 1e-12,
     .max_ref_rtol = 1e-10,
-    .adaptive = g73_adaptive,
+    .adaptive = bf_greenspan73_adaptive,
     .reference = bf_study_arkode_erk,
     .view = g73_view,
     .describe = bf_greenspan73_describe,

@@ -23,30 +23,32 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "compose/study.h"
+#include "mac/mac.h"
 #include "models/mac_model.h"
+#include "models/studies.h"
 
-static int mac_adaptive(const bf_scene *sc)
+static int mac_adaptive(const bf_model_setup *s)
 {
-    (void)sc;
+    (void)s;
     return 0;
 }
 
-static bf_status mac_reference(const bf_scene *sc, const bf_converge_opts *o,
-                               char *method, size_t cap, bf_err *err)
+static bf_status mac_reference(const bf_model_setup *s,
+                               const bf_study_methods *o, char *method,
+                               size_t cap, bf_err *err)
 {
-    (void)sc;
-    if (o->nmethods != 1)
+    (void)s;
+    if (o->n != 1)
         return bf_fail(err, BF_EINPUT, "the mac study is a self-convergence "
                        "study (its reference is the compared method at a "
-                       "small dt): give one method, not %zu", o->nmethods);
+                       "small dt): give one method, not %zu", o->n);
     snprintf(method, cap, "%s", o->methods[0]);
     return BF_OK;
 }
 
-static void mac_view(void *model, bf_study_view *v)
+static void mac_view(void *self, bf_study_view *v)
 {
-    const bf_mac *m = bf_mac_model_solver(model);
+    const bf_mac *m = bf_mac_model_solver(self);
     int ni, nj;
     bf_mac_dims(m, &ni, &nj, NULL, NULL);
     memset(v, 0, sizeof *v);
@@ -61,8 +63,9 @@ static void mac_view(void *model, bf_study_view *v)
     v->g[1].n = (size_t)ni * (size_t)(nj + 1);
 }
 
-static void mac_notes(const bf_scene *sc, char *buf, size_t cap)
+static void mac_notes(const bf_model_setup *s, char *buf, size_t cap)
 {
+    const bf_mac_params *k = bf_setup_get(s, &bf_mac_spec, NULL);
     size_t l = strlen(buf);
     snprintf(buf + l, cap - l,
              "note: SELF-CONVERGENCE: the MAC scheme's pressure solve is a "
@@ -71,8 +74,7 @@ static void mac_notes(const bf_scene *sc, char *buf, size_t cap)
              "error: the difference to dt / 128).  The errors are distances "
              "from the scheme's own limit dt -> 0, not errors against the "
              "equations.\n");
-    if (!strcmp(bf_scene_str(sc, "mac", "problem"), "reservoir") &&
-        !strcmp(bf_scene_str(sc, "mac", "inflow"), "copy")) {
+    if (k && k->problem == BF_MAC_RESERVOIR && !k->inflow_prescribed) {
         l = strlen(buf);
         snprintf(buf + l, cap - l,
                  "note: the reservoir with [mac] inflow = copy has no limit "
@@ -82,7 +84,6 @@ static void mac_notes(const bf_scene *sc, char *buf, size_t cap)
 }
 
 const bf_study_type bf_study_mac = {
-    .model = "mac",
     .method_key = "mac.update",
     .param_section = "mac",
     .invariant = "none",

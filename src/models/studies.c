@@ -1,34 +1,10 @@
-/* study.c: the studies of the models for `ballfilm converge` (study.h),
- * one line per model, and what they share. */
+/* studies.c: what the convergence studies of the models share
+ * (studies.h). */
 #include <stdio.h>
 #include <string.h>
 
-#include "compose/study.h"
 #include "integrators/arkode.h"
-
-extern const bf_study_type bf_study_balls;
-extern const bf_study_type bf_study_coupled;
-extern const bf_study_type bf_study_film;
-extern const bf_study_type bf_study_greenspan72;
-extern const bf_study_type bf_study_greenspan73;
-extern const bf_study_type bf_study_mac;
-
-static const bf_study_type *const studies[] = {
-    &bf_study_balls,
-    &bf_study_coupled,
-    &bf_study_film,
-    &bf_study_greenspan72,
-    &bf_study_greenspan73,
-    &bf_study_mac,
-};
-
-const bf_study_type *bf_study_of(const char *model)
-{
-    for (size_t k = 0; k < sizeof studies / sizeof studies[0]; k++)
-        if (!strcmp(studies[k]->model, model))
-            return studies[k];
-    return NULL;
-}
+#include "models/studies.h"
 
 void bf_study_particles_view(const bf_particles *p, int velocities,
                              bf_study_view *v)
@@ -49,14 +25,6 @@ void bf_study_particles_view(const bf_particles *p, int velocities,
     }
 }
 
-/* The models of the catalog without a study, and why (docs/accuracy.md):
- * none now; a model added without one is refused by name. */
-const char *bf_study_why_not(const char *model)
-{
-    (void)model;
-    return NULL;
-}
-
 /* Does method string m use the table? */
 static int uses_table(const char *m, const char *const *names,
                       const char *const *defaults, const char *table)
@@ -75,7 +43,7 @@ static int uses_table(const char *m, const char *const *names,
     return 0;
 }
 
-bf_status bf_study_pick_table(const bf_converge_opts *o,
+bf_status bf_study_pick_table(const bf_study_methods *o,
                               const char *const *names,
                               const char *const *defaults,
                               const char *const *candidates, size_t ncand,
@@ -84,7 +52,7 @@ bf_status bf_study_pick_table(const bf_converge_opts *o,
     const char *t = o->ref_table;
     for (size_t k = 0; !t && k < ncand; k++) {
         int used = 0;
-        for (size_t m = 0; m < o->nmethods && !o->ref_may_be_compared; m++)
+        for (size_t m = 0; m < o->n && !o->ref_may_be_compared; m++)
             used |= uses_table(o->methods[m], names, defaults, candidates[k]);
         if (!used)
             t = candidates[k];
@@ -94,7 +62,7 @@ bf_status bf_study_pick_table(const bf_converge_opts *o,
                        "compared; give --ref-table");
     if (bf_arkode_table_index(t) < 0)
         return bf_fail(err, BF_EINPUT, "unknown ARKODE table '%s'", t);
-    for (size_t m = 0; m < o->nmethods && !o->ref_may_be_compared; m++)
+    for (size_t m = 0; m < o->n && !o->ref_may_be_compared; m++)
         if (uses_table(o->methods[m], names, defaults, t))
             return bf_fail(err, BF_EINPUT, "the reference table %s is also "
                            "compared (method '%s'); the reference must use "
@@ -103,7 +71,7 @@ bf_status bf_study_pick_table(const bf_converge_opts *o,
     return BF_OK;
 }
 
-bf_status bf_study_arkode_reference(const bf_converge_opts *o,
+bf_status bf_study_arkode_reference(const bf_study_methods *o,
                                     const char *const *names,
                                     const char *const *defaults,
                                     const char *extra, char *method,
@@ -121,10 +89,11 @@ bf_status bf_study_arkode_reference(const bf_converge_opts *o,
     return st;
 }
 
-bf_status bf_study_arkode_erk(const bf_scene *sc, const bf_converge_opts *o,
-                              char *method, size_t cap, bf_err *err)
+bf_status bf_study_arkode_erk(const bf_model_setup *s,
+                              const bf_study_methods *o, char *method,
+                              size_t cap, bf_err *err)
 {
-    (void)sc;
+    (void)s;
     static const char *const names[] = {"arkode", NULL};
     static const char *const defaults[] = {"ARKODE_DORMAND_PRINCE_7_4_5"};
     return bf_study_arkode_reference(o, names, defaults, "", method, cap,
