@@ -284,6 +284,30 @@ START_TEST(same_bits_on_1_to_4_ranks)
 }
 END_TEST
 
+/* Stopped on 2 ranks, continued on 3 from the checkpoint rank 0 wrote:
+ * the datasets of an uninterrupted run of one process. */
+START_TEST(stop_on_2_ranks_continue_on_3)
+{
+    const char *mpi = mpi_bin();
+    if (!mpi)
+        return;
+    char scene[600], full[600], part[600], err[600], args[1400];
+    snprintf(scene, sizeof scene, "%s", tu_write("g72r_rs.ini", fast_scene));
+    snprintf(full, sizeof full, "%s", tu_tmp("g72r_rs_full.h5"));
+    snprintf(part, sizeof part, "%s", tu_tmp("g72r_rs_part.h5"));
+    snprintf(err, sizeof err, "%s", tu_tmp("g72r_rs.err"));
+    ck_assert_int_eq(tu_run(NULL, NULL, "run", scene, "-o", full, "-q",
+                            NULL),
+                     0);
+    snprintf(args, sizeof args, "'%s' -o '%s' --stop-after 73", scene, part);
+    ck_assert_int_eq(mpi_run(mpi, 2, args, err), 6);
+    snprintf(args, sizeof args, "--restart '%s'", part);
+    ck_assert_int_eq(mpi_run(mpi, 3, args, err), 0);
+    tu_same_datasets(full, part);
+    tu_same_counters(full, part);
+}
+END_TEST
+
 /* Run ARGS on 2 ranks: status 2 and a message holding `want`. */
 static void refused(const char *mpi, const char *args, const char *want)
 {
@@ -325,6 +349,7 @@ Suite *suite_g72_ranks(void)
     tcase_add_test(tc, library_refuses_naming_the_key);
     tcase_add_test(tc, same_bits_on_1_to_4_ranks);
     tcase_add_test(tc, refusals_name_the_model_or_key);
+    tcase_add_test(tc, stop_on_2_ranks_continue_on_3);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -74,10 +74,23 @@ static bf_status ranks_attach(bf_sim *sim, int rank, int size, ranks_ctx *c,
     return bf_greenspan72_over_ranks(bf_sim_model(sim), &r, err);
 }
 
-/* The worst set-up status of all ranks (a rank that failed alone must
- * not leave the others waiting in the run's exchanges). */
-static bf_status ranks_agree(bf_status st)
+static void print_setup_error(bf_status st, const char *msg);
+
+/* After the set-up (status st) of a run over ranks: split it, and the
+ * worst status of all ranks (a rank that failed alone must not leave the
+ * others waiting in the run's exchanges).  Every rank reads the scene (or
+ * checkpoint) and builds the whole model: the same failures everywhere,
+ * said once by rank 0 (an allocation may fail alone, and says so). */
+static bf_status ranks_split(bf_status st, bf_run *run, const char *what,
+                             int rank, int nranks, ranks_ctx *c, bf_err *err)
 {
+    if (st && (!rank || st == BF_EINTERNAL))
+        print_setup_error(st, err->msg);
+    else if (!st && (st = ranks_attach(bf_run_sim(run), rank, nranks, c,
+                                       err)) &&
+             (!rank || st == BF_EINTERNAL))
+        fprintf(stderr, "ballfilm: error: %s: [%s] %s: %s\n", what,
+                err->section, err->key, err->msg);
     int mine = (int)st, worst = 0;
     MPI_Allreduce(&mine, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
     return (bf_status)worst;
@@ -324,15 +337,6 @@ int bf_cmd_run(int argc, char **argv)
     MPI_Init(NULL, NULL);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &nranks);
-    if (nranks > 1 && restart) {
-        if (!rank)
-            fprintf(stderr, "ballfilm: error: --restart: a run over ranks "
-                            "does not continue a checkpoint; continue it "
-                            "with one rank\n");
-        MPI_Finalize();
-        free(sets);
-        return BF_EINPUT;
-    }
     if (nranks > 1)
         stop_flag = &ranks_stop;
 #endif
@@ -352,8 +356,18 @@ int bf_cmd_run(int argc, char **argv)
     };
     bf_status st;
     if (restart) {
-        st = bf_run_restart(&run, bf_catalog_builtin(), restart, sets,
-                            (size_t)nset, &opts, &err);
+        /* the checkpoint holds the whole state (rank 0 wrote it): any
+         * number of ranks continues it, only rank 0 reopens the output */
+        st = writer ? bf_run_restart(&run, bf_catalog_builtin(), restart,
+                                     sets, (size_t)nset, &opts, &err)
+                    : bf_run_restart_state(&run, bf_catalog_builtin(),
+                                           restart, sets, (size_t)nset,
+                                           &opts, &err);
+#ifdef BF_MPI
+        if (nranks > 1 && (st = ranks_split(st, run, restart, rank, nranks,
+                                            &rctx, &err)))
+            goto done;
+#endif
         if (st) {
             print_setup_error(st, err.msg);
             goto done;
@@ -365,19 +379,9 @@ int bf_cmd_run(int argc, char **argv)
     st = bf_run_load(&run, bf_catalog_builtin(), scene_path, sets,
                      (size_t)nset, &opts, &err);
 #ifdef BF_MPI
-    if (nranks > 1) {
-        /* every rank reads the scene and builds the whole model: the same
-         * failures everywhere, said once (an allocation may fail alone) */
-        if (st && (writer || st == BF_EINTERNAL))
-            print_setup_error(st, err.msg);
-        else if (!st && (st = ranks_attach(bf_run_sim(run), rank, nranks,
-                                           &rctx, &err)) &&
-                 (writer || st == BF_EINTERNAL))
-            fprintf(stderr, "ballfilm: error: %s: [%s] %s: %s\n", scene_path,
-                    err.section, err.key, err.msg);
-        if ((st = ranks_agree(st)))
-            goto done;
-    }
+    if (nranks > 1 && (st = ranks_split(st, run, scene_path, rank, nranks,
+                                        &rctx, &err)))
+        goto done;
 #endif
     if (st) {
         print_setup_error(st, err.msg);
