@@ -16,10 +16,13 @@
  *
  * Refusals: another model, and the options the split does not support,
  * named by their key (in the library and through the MPI program). */
+#include <fcntl.h>
 #include <pthread.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -308,6 +311,52 @@ START_TEST(stop_on_2_ranks_continue_on_3)
 }
 END_TEST
 
+/* SIGUSR1 to mpirun, which forwards it to every rank at its own moment:
+ * the ranks agree on it at an exchange, all stop after the same step with
+ * status 6, rank 0 writes the checkpoint, and one rank continues it to
+ * the serial bits. */
+START_TEST(usr1_stops_every_rank_at_one_step)
+{
+    const char *mpi = mpi_bin();
+    if (!mpi)
+        return;
+    char scene[600], full[600], part[600], err[600];
+    snprintf(scene, sizeof scene, "%s", tu_write("g72r_u.ini", fast_scene));
+    snprintf(full, sizeof full, "%s", tu_tmp("g72r_u_full.h5"));
+    snprintf(part, sizeof part, "%s", tu_tmp("g72r_u_part.h5"));
+    snprintf(err, sizeof err, "%s", tu_tmp("g72r_u.err"));
+    ck_assert_int_eq(tu_run(NULL, NULL, "run", scene, "-o", full, "-q",
+                            "--set", "scene.t_end=40", NULL),
+                     0);
+    pid_t pid = fork();
+    ck_assert(pid >= 0);
+    if (pid == 0) {
+        int fe = open(err, O_WRONLY | O_CREAT | O_TRUNC, 0644),
+            fo = open("/dev/null", O_WRONLY);
+        dup2(fo, 1);
+        dup2(fe, 2);
+        execlp("mpirun", "mpirun", "-n", "2", "--oversubscribe", mpi, "run",
+               scene, "-o", part, "-q", "--set", "scene.t_end=40",
+               (char *)NULL);
+        _exit(127);
+    }
+    char pp[700];
+    snprintf(pp, sizeof pp, "%s.part", part);
+    tu_wait_for_file(pp, 0);
+    struct timespec pause = {0, 300000000};
+    nanosleep(&pause, NULL);
+    ck_assert(kill(pid, SIGUSR1) == 0);
+    int ws;
+    ck_assert(waitpid(pid, &ws, 0) == pid);
+    ck_assert_msg(WIFEXITED(ws) && WEXITSTATUS(ws) == 6,
+                  "mpirun status %d (the run ended before the signal?)", ws);
+    ck_assert_int_eq(tu_run(NULL, NULL, "run", "--restart", part, "-q", NULL),
+                     0);
+    tu_same_datasets(full, part);
+    tu_same_counters(full, part);
+}
+END_TEST
+
 /* Run ARGS on 2 ranks: status 2 and a message holding `want`. */
 static void refused(const char *mpi, const char *args, const char *want)
 {
@@ -350,6 +399,7 @@ Suite *suite_g72_ranks(void)
     tcase_add_test(tc, same_bits_on_1_to_4_ranks);
     tcase_add_test(tc, refusals_name_the_model_or_key);
     tcase_add_test(tc, stop_on_2_ranks_continue_on_3);
+    tcase_add_test(tc, usr1_stops_every_rank_at_one_step);
     suite_add_tcase(s, tc);
     return s;
 }

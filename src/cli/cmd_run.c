@@ -420,7 +420,7 @@ run:;
     bf_err cerr = {0};
     bf_status close_st = bf_sim_close_output(sim, run_st, &err, &cerr);
     if (!writer) {
-        /* the run's failures are every rank's, and rank 0 says them */
+        /* the model's failures are every rank's, and rank 0 says them */
         st = run_st;
         goto done;
     }
@@ -434,12 +434,6 @@ run:;
         fprintf(stderr, "ballfilm: %s may be incomplete; free space (or thin "
                         "the output) and run again\n", out_path);
         st = run_st;
-#ifdef BF_MPI
-        /* only the writer failed: the other ranks wait in the next
-         * exchange */
-        if (nranks > 1)
-            MPI_Abort(MPI_COMM_WORLD, BF_EIO);
-#endif
     } else if (run_st == BF_EINTERNAL && strstr(err.msg, "out of memory")) {
         fprintf(stderr, "ballfilm: out of memory: %s; the run needed more "
                         "memory than this process may allocate (free memory, "
@@ -455,6 +449,12 @@ run:;
     } else {
         st = close_st;
     }
+#ifdef BF_MPI
+    /* a failure of the output (I/O, or memory for its buffers) is rank
+     * 0's alone: the other ranks wait in the next exchange */
+    if (nranks > 1 && (run_st == BF_EIO || run_st == BF_EINTERNAL))
+        MPI_Abort(MPI_COMM_WORLD, (int)run_st);
+#endif
     if (close_st && run_st != BF_EIO)
         fprintf(stderr, "ballfilm: error: %s\n", cerr.msg);
     else if (!run_st)
