@@ -150,6 +150,13 @@ bf_status bf_run_restart(bf_run **run, const bf_catalog *c,
                          const char *out_path, const char *const *sets,
                          size_t nsets, const struct bf_sim_opts *opts,
                          bf_err *err);
+/* The same without reopening OUT (bf_sim_resume_state): for a process
+ * that computes and does not write, the ranks other than 0 of a run over
+ * ranks. */
+bf_status bf_run_restart_state(bf_run **run, const bf_catalog *c,
+                               const char *out_path, const char *const *sets,
+                               size_t nsets, const struct bf_sim_opts *opts,
+                               bf_err *err);
 struct bf_sim *bf_run_sim(bf_run *run);
 /* The run's scene (resolved: its keys can be read; the output's
  * provenance). */

@@ -268,6 +268,12 @@ bf_status bf_sim_checkpoint_write(bf_sim *sim, const char *path, bf_err *err);
  * the checkpoint dropped. */
 bf_status bf_sim_resume(bf_sim *sim, const bf_ckpt *ck, const char *out_path,
                         bf_err *err);
+/* The same without the output: the loop's, the model's and the observers'
+ * state only (OUT is not read nor touched; its name is for messages), for
+ * a process that computes and does not write (the ranks other than 0 of a
+ * run over ranks). */
+bf_status bf_sim_resume_state(bf_sim *sim, const bf_ckpt *ck,
+                              const char *out_path, bf_err *err);
 
 /* ---- read-only views for drivers and tests ---- */
 void *bf_sim_model(bf_sim *sim);

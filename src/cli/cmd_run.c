@@ -16,6 +16,87 @@
 #include "ballfilm/sim.h"
 #include "cli.h"
 
+#ifdef BF_MPI
+#include <mpi.h>
+
+#include "models/greenspan.h"
+
+/* The stop flag of a run over ranks: the OR of every rank's bf_cli_stop,
+ * agreed at each exchange, so that every rank stops after the same step
+ * (a signal reaches the ranks at different moments). */
+static volatile sig_atomic_t ranks_stop;
+
+typedef struct ranks_ctx {
+    int *cnt, *dsp; /* MPI_Allgatherv's counts and displacements */
+} ranks_ctx;
+
+/* bf_ranks.allgather over MPI_COMM_WORLD (models/greenspan.h) */
+static int ranks_allgather(void *ctx, const double *send, size_t n,
+                           double *recv, const size_t *counts)
+{
+    ranks_ctx *c = ctx;
+    int size, stop = bf_cli_stop != 0, any = 0;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    size_t off = 0;
+    for (int q = 0; q < size; q++) {
+        /* bf_greenspan72_over_ranks keeps 4 N + 3 below INT_MAX */
+        c->cnt[q] = (int)counts[q];
+        c->dsp[q] = (int)off;
+        off += counts[q];
+    }
+    if (MPI_Allreduce(&stop, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD) ||
+        MPI_Allgatherv(send, (int)n, MPI_DOUBLE, recv, c->cnt, c->dsp,
+                       MPI_DOUBLE, MPI_COMM_WORLD))
+        return 1;
+    if (any)
+        ranks_stop = 1;
+    return 0;
+}
+
+/* Split the run over the ranks when there are several: only greenspan72
+ * runs so (the other models' state is not split); refusals are
+ * BF_EINPUT naming the key. */
+static bf_status ranks_attach(bf_sim *sim, int rank, int size, ranks_ctx *c,
+                              bf_err *err)
+{
+    const char *name = bf_sim_model_type(sim)->name;
+    if (strcmp(name, "greenspan72"))
+        return bf_fail_key(err, BF_EINPUT, "scene", "model",
+                           "model %s does not run over ranks (%d ranks "
+                           "given); the models that do: greenspan72.  Run "
+                           "it with one rank",
+                           name, size);
+    c->cnt = calloc((size_t)size, sizeof *c->cnt);
+    c->dsp = calloc((size_t)size, sizeof *c->dsp);
+    if (!c->cnt || !c->dsp)
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    bf_ranks r = {rank, size, c, ranks_allgather};
+    return bf_greenspan72_over_ranks(bf_sim_model(sim), &r, err);
+}
+
+static void print_setup_error(bf_status st, const char *msg);
+
+/* After the set-up (status st) of a run over ranks: split it, and the
+ * worst status of all ranks (a rank that failed alone must not leave the
+ * others waiting in the run's exchanges).  Every rank reads the scene (or
+ * checkpoint) and builds the whole model: the same failures everywhere,
+ * said once by rank 0 (an allocation may fail alone, and says so). */
+static bf_status ranks_split(bf_status st, bf_run *run, const char *what,
+                             int rank, int nranks, ranks_ctx *c, bf_err *err)
+{
+    if (st && (!rank || st == BF_EINTERNAL))
+        print_setup_error(st, err->msg);
+    else if (!st && (st = ranks_attach(bf_run_sim(run), rank, nranks, c,
+                                       err)) &&
+             (!rank || st == BF_EINTERNAL))
+        fprintf(stderr, "ballfilm: error: %s: [%s] %s: %s\n", what,
+                err->section, err->key, err->msg);
+    int mine = (int)st, worst = 0;
+    MPI_Allreduce(&mine, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    return (bf_status)worst;
+}
+#endif
+
 void bf_cli_print_keys(FILE *f)
 {
     bf_catalog_print_help(bf_catalog_builtin(), f);
@@ -247,20 +328,46 @@ int bf_cmd_run(int argc, char **argv)
         return BF_EINPUT;
     }
 
+    /* rank 0 writes (the output, the messages); over several ranks the
+     * others compute only */
+    int rank = 0, nranks = 1;
+    const volatile sig_atomic_t *stop_flag = &bf_cli_stop;
+#ifdef BF_MPI
+    ranks_ctx rctx = {0};
+    MPI_Init(NULL, NULL);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &nranks);
+    if (nranks > 1)
+        stop_flag = &ranks_stop;
+#endif
+    const int writer = rank == 0;
+    (void)nranks; /* (one process without MPI) */
+    if (!writer)
+        quiet = 1;
     bf_err err = {0};
     bf_run *run = NULL;
     bf_sim *sim = NULL;
     char *defout = NULL;
     bf_sim_opts opts = {
         .progress = !quiet && (force_progress || isatty(STDERR_FILENO)),
-        .stop_flag = &bf_cli_stop,
+        .stop_flag = stop_flag,
         .stop_after = stop_after,
         .keep_checkpoint = keep_ckpt,
     };
     bf_status st;
     if (restart) {
-        st = bf_run_restart(&run, bf_catalog_builtin(), restart, sets,
-                            (size_t)nset, &opts, &err);
+        /* the checkpoint holds the whole state (rank 0 wrote it): any
+         * number of ranks continues it, only rank 0 reopens the output */
+        st = writer ? bf_run_restart(&run, bf_catalog_builtin(), restart,
+                                     sets, (size_t)nset, &opts, &err)
+                    : bf_run_restart_state(&run, bf_catalog_builtin(),
+                                           restart, sets, (size_t)nset,
+                                           &opts, &err);
+#ifdef BF_MPI
+        if (nranks > 1 && (st = ranks_split(st, run, restart, rank, nranks,
+                                            &rctx, &err)))
+            goto done;
+#endif
         if (st) {
             print_setup_error(st, err.msg);
             goto done;
@@ -271,6 +378,11 @@ int bf_cmd_run(int argc, char **argv)
     }
     st = bf_run_load(&run, bf_catalog_builtin(), scene_path, sets,
                      (size_t)nset, &opts, &err);
+#ifdef BF_MPI
+    if (nranks > 1 && (st = ranks_split(st, run, scene_path, rank, nranks,
+                                        &rctx, &err)))
+        goto done;
+#endif
     if (st) {
         print_setup_error(st, err.msg);
         goto done;
@@ -278,12 +390,15 @@ int bf_cmd_run(int argc, char **argv)
     sim = bf_run_sim(run);
     /* interrupted while the scene was read and the model built: nothing
      * has been written yet, and nothing will be */
-    if (bf_cli_stop) {
-        fprintf(stderr, "ballfilm: interrupted during set-up; nothing was "
-                        "written\n");
+    if (*stop_flag || bf_cli_stop) {
+        if (writer)
+            fprintf(stderr, "ballfilm: interrupted during set-up; nothing "
+                            "was written\n");
         st = BF_INTERRUPTED;
         goto done;
     }
+    if (!writer)
+        goto run;
     if (!out_path) {
         out_path = defout = default_output(scene_path);
         if (!defout) {
@@ -298,11 +413,17 @@ int bf_cmd_run(int argc, char **argv)
         goto done;
     }
 run:;
-    warn_disk_space(sim, out_path);
+    if (writer)
+        warn_disk_space(sim, out_path);
 
     bf_status run_st = bf_sim_run(sim, &err);
     bf_err cerr = {0};
     bf_status close_st = bf_sim_close_output(sim, run_st, &err, &cerr);
+    if (!writer) {
+        /* the model's failures are every rank's, and rank 0 says them */
+        st = run_st;
+        goto done;
+    }
     bf_sim_summary(sim, stdout);
     print_peak_memory(stdout);
     if (run_st == BF_INTERRUPTED) {
@@ -328,6 +449,12 @@ run:;
     } else {
         st = close_st;
     }
+#ifdef BF_MPI
+    /* a failure of the output (I/O, or memory for its buffers) is rank
+     * 0's alone: the other ranks wait in the next exchange */
+    if (nranks > 1 && (run_st == BF_EIO || run_st == BF_EINTERNAL))
+        MPI_Abort(MPI_COMM_WORLD, (int)run_st);
+#endif
     if (close_st && run_st != BF_EIO)
         fprintf(stderr, "ballfilm: error: %s\n", cerr.msg);
     else if (!run_st)
@@ -339,5 +466,10 @@ done:
     bf_run_free(run);
     free(defout);
     free(sets);
+#ifdef BF_MPI
+    free(rctx.cnt);
+    free(rctx.dsp);
+    MPI_Finalize();
+#endif
     return (int)st;
 }

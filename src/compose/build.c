@@ -214,7 +214,7 @@ static bf_status apply_sets(bf_scene *sc, const char *stored,
 static bf_status sim_restart(bf_sim **out, bf_scene **scene,
                              const bf_catalog *c, const char *out_path,
                              const char *const *sets, size_t nsets,
-                             const bf_sim_opts *opts, bf_err *err)
+                             const bf_sim_opts *opts, int output, bf_err *err)
 {
     *out = NULL;
     *scene = NULL;
@@ -246,7 +246,8 @@ static bf_status sim_restart(bf_sim **out, bf_scene **scene,
     if (!st)
         st = bf_sim_from_scene(&s, c, sc, opts, err);
     if (!st)
-        st = bf_sim_resume(s, ck, out_path, err);
+        st = output ? bf_sim_resume(s, ck, out_path, err)
+                    : bf_sim_resume_state(s, ck, out_path, err);
     bf_ckpt_free(ck);
     free(cpath);
     if (st) {
@@ -273,7 +274,7 @@ bf_status bf_sim_restart(bf_sim **out, bf_scene **scene, const bf_catalog *c,
     if (st)
         return st;
     bf_h5_lock();
-    st = sim_restart(out, scene, c, out_path, sets, nsets, opts, err);
+    st = sim_restart(out, scene, c, out_path, sets, nsets, opts, 1, err);
     bf_h5_unlock();
     return st;
 }
@@ -360,28 +361,49 @@ bf_status bf_run_from_scene(bf_run **out, const bf_catalog *c, bf_scene *sc,
     return run_of(out, c, sc, BF_OK, NULL, 0, opts, err);
 }
 
-bf_status bf_run_restart(bf_run **out, const bf_catalog *c,
-                         const char *out_path, const char *const *sets,
-                         size_t nsets, const bf_sim_opts *opts, bf_err *err)
+/* bf_run_restart (output 1) and bf_run_restart_state (0) */
+static bf_status run_restart(const char *fn, bf_run **out,
+                             const bf_catalog *c, const char *out_path,
+                             const char *const *sets, size_t nsets,
+                             const bf_sim_opts *opts, int output, bf_err *err)
 {
     bf_err own;
     if (!err)
         err = &own;
-    bf_status st = bf_compose_args_("bf_run_restart", out, c, out_path, sets,
-                                    nsets, err);
+    bf_status st = bf_compose_args_(fn, out, c, out_path, sets, nsets, err);
     if (st)
         return st;
     *out = NULL;
     bf_run *r = calloc(1, sizeof *r);
     if (!r)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    st = bf_sim_restart(&r->sim, &r->sc, c, out_path, sets, nsets, opts, err);
+    bf_h5_lock();
+    st = sim_restart(&r->sim, &r->sc, c, out_path, sets, nsets, opts, output,
+                     err);
+    bf_h5_unlock();
     if (st) {
         bf_run_free(r);
         return st;
     }
     *out = r;
     return BF_OK;
+}
+
+bf_status bf_run_restart(bf_run **out, const bf_catalog *c,
+                         const char *out_path, const char *const *sets,
+                         size_t nsets, const bf_sim_opts *opts, bf_err *err)
+{
+    return run_restart("bf_run_restart", out, c, out_path, sets, nsets, opts,
+                       1, err);
+}
+
+bf_status bf_run_restart_state(bf_run **out, const bf_catalog *c,
+                               const char *out_path, const char *const *sets,
+                               size_t nsets, const bf_sim_opts *opts,
+                               bf_err *err)
+{
+    return run_restart("bf_run_restart_state", out, c, out_path, sets, nsets,
+                       opts, 0, err);
 }
 
 bf_sim *bf_run_sim(bf_run *r) { return r ? r->sim : NULL; }

@@ -190,17 +190,15 @@ static bf_status same_run(bf_sim *s, const bf_ckpt *ck, const char *out_path,
     return st;
 }
 
-static bf_status resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
-                        bf_err *err)
+/* The loop's, the model's and the observers' state from ck. */
+static bf_status resume_state(bf_sim *s, const bf_ckpt *ck,
+                              const char *out_path, bf_err *err)
 {
     if (!bf_sim_can_checkpoint(s))
         return bf_fail(err, BF_EINPUT, "model '%s' cannot restart",
                        s->mt->name);
-    bf_status st = same_run(s, ck, out_path, err);
-    if (st)
-        return st;
-    st = bf_ckpt_get_fields(ck, "sim", loop_state, BF_NFIELDS(loop_state), s,
-                            err);
+    bf_status st = bf_ckpt_get_fields(ck, "sim", loop_state,
+                                      BF_NFIELDS(loop_state), s, err);
     if (!st)
         st = s->mt->checkpoint_load(s->model, ck, err);
     EACH_OBSERVER(s, st, load, ck, err);
@@ -215,6 +213,19 @@ static bf_status resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
         return bf_fail(err, BF_EINPUT, "%s.ckpt: the loop's state is out of "
                        "range (step %ld, last row %ld)", out_path, s->n,
                        s->last_row);
+    return BF_OK;
+}
+
+static bf_status resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
+                        bf_err *err)
+{
+    bf_status st;
+    if (!bf_sim_can_checkpoint(s))
+        return bf_fail(err, BF_EINPUT, "model '%s' cannot restart",
+                       s->mt->name);
+    if ((st = same_run(s, ck, out_path, err)) ||
+        (st = resume_state(s, ck, out_path, err)))
+        return st;
     /* reopen the output and drop rows written after the checkpoint */
     if ((st = bf_sim_set_ckpt_path_(s, out_path, err)) ||
         (st = bf_out_open_append(&s->out, out_path, err)) ||
@@ -246,4 +257,10 @@ bf_status bf_sim_resume(bf_sim *s, const bf_ckpt *ck, const char *out_path,
                         bf_err *err)
 {
     H5_LOCKED(resume(s, ck, out_path, err));
+}
+
+bf_status bf_sim_resume_state(bf_sim *s, const bf_ckpt *ck,
+                              const char *out_path, bf_err *err)
+{
+    H5_LOCKED(resume_state(s, ck, out_path, err));
 }

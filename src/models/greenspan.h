@@ -22,6 +22,25 @@ int bf_greenspan72_adaptive(const bf_model_setup *s);
 /* Its support-set gravity workspace. */
 bf_support *bf_greenspan72_support(void *model);
 
+/* A greenspan72 run split over ranks (g72_ranks.c).  Every rank holds
+ * the whole state and computes a(x) of the particles of its x-slab (with
+ * a halo), then all ranks exchange their results; the library does not
+ * link MPI: the program gives the exchange.  allgather: this rank's n
+ * doubles `send`, every rank's into `recv` one after the other in rank
+ * order (counts[r] from rank r); 0 on success. */
+typedef struct bf_ranks {
+    int rank, size;
+    void *ctx;
+    int (*allgather)(void *ctx, const double *send, size_t n, double *recv,
+                     const size_t *counts);
+} bf_ranks;
+/* Split the run of `model` (a greenspan72 model) over the ranks of r
+ * (kept).  Refuses (BF_EINPUT, naming the key) what the split does not
+ * support: integrator arkode, [hertz], a repulsion without a cell list,
+ * the naive support method. */
+bf_status bf_greenspan72_over_ranks(void *model, const bf_ranks *r,
+                                    bf_err *err);
+
 /* The particles of a greenspan73 model (time t_k). */
 bf_particles *bf_greenspan73_particles(void *model);
 /* Whether the setup's [greenspan73] integrator is adaptive (arkode). */

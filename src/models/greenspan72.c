@@ -53,10 +53,10 @@
 #include "particles/support.h"
 #include "particles/walls.h"
 #include "io/dataset_paths.h"
+#include "models/g72_impl.h"
 
 enum { TAG_HEAVY = 1, TAG_LIGHT = 2 };
 enum { OUT_ALL = 0, OUT_POSITIONS = 1, OUT_DIAG = 2 };
-enum { NSETTLE = 4 };
 
 /* The keys of [greenspan72]. */
 typedef struct g72_keys {
@@ -159,36 +159,6 @@ static const bf_section_spec g72_spec = BF_SECTION(
     "two fluids mixing, Greenspan 1972: box, particles, initial data",
     g72_params, g72_keys);
 
-typedef struct g72 {
-    bf_particles p;
-    size_t n_heavy;
-    double width, height, interface, bottom;
-    bf_walls walls;
-    bf_repulsion rep;
-    int hertz_on; /* [hertz] enabled */
-    bf_hertz_pairs hertz;
-    bf_support *sup;
-    bf_g72_ode *ode; /* integrator = arkode (NULL: the leapfrog) */
-    int need_cells;
-    bf_cells cells;
-    bf_repulsion_work rw;
-    double *ax, *ay, *g, *x0, *y0;
-    uint8_t *kind;
-    int acc_valid; /* ax, ay, g, kind are those of the current positions */
-    /* after a restart: the next a(x) recomputes one the interrupted run
-     * had computed (and counted) already */
-    int acc_replay;
-    unsigned long long steps, evals, wall_hits;
-    unsigned long long kind_total[4]; /* particle-steps of each BF_SUP_ kind */
-    int out_mode, threads, nthr; /* requested threads, threads used */
-    long particles_every, rows; /* output rows written */
-    bf_particle_out po;
-    bf_series *s_kin, *s_mean, *s_layers, *s_kinds,
-        *s_settle;
-    /* settling criteria at output rows: first step it held, last step it
-     * failed (-1: never) */
-    long settle_first[NSETTLE], settle_lastfail[NSETTLE], settle_last_row;
-} g72;
 
 bf_particles *bf_greenspan72_particles(void *model)
 {
@@ -214,6 +184,7 @@ static void g72_destroy(void *self)
     bf_particles_free(&m->p);
     bf_support_free(m->sup);
     bf_g72_ode_free(m->ode);
+    bf_g72_ranks_free(m->ranks);
     bf_cells_free(&m->cells);
     free(m->ax);
     free(m->ay);
@@ -485,7 +456,7 @@ static int g72_repulsion(g72 *m, const bf_cells *c, size_t *bi, size_t *bj)
 /* a(x): repulsion into ax, ay; support-set gravity into g (and kind).
  * With two or more threads and few particles the two run side by side (they
  * are independent); with many particles each is parallel inside. */
-static bf_status g72_accel(g72 *m, bf_err *err)
+static bf_status g72_forces(g72 *m, bf_err *err)
 {
     bf_particles *p = &m->p;
     size_t bi = 0, bj = 0;
@@ -523,6 +494,16 @@ static bf_status g72_accel(g72 *m, bf_err *err)
                        "particles %zu and %zu coincide at (%.9g, %.9g): the "
                        "Hertz force has no direction",
                        bi + 1, bj + 1, p->x[bi], p->y[bi]);
+    return BF_OK;
+}
+
+/* a(x) of every particle, here or split over ranks (g72_ranks.c: the same
+ * bits) */
+static bf_status g72_accel(g72 *m, bf_err *err)
+{
+    bf_status st = m->ranks ? bf_g72_accel_ranks(m, err) : g72_forces(m, err);
+    if (st)
+        return st;
     if (m->acc_replay)
         m->acc_replay = 0;
     else

@@ -123,6 +123,15 @@ void bf_support_eval(bf_support *s, const double *x, const double *y,
                      size_t n, const bf_cells *cells, double *g,
                      uint8_t *kind);
 
+/* How far from a particle at x the squares lie on which its g depends
+ * (cm): x - *left < x_i < x + *right for the centre x_i of every
+ * square that the evaluation reads for it (a run split over ranks needs
+ * them as a halo; slabs.h).  The strip with the squares that overlap it
+ * is dx/2 + d/2 each way; the fast method's sweep starts at the left end
+ * of the chunk of the strip, up to SUP_CHUNK_BANDS dx further left
+ * (support_impl.h); the naive method reads every particle (INFINITY). */
+void bf_support_reach(const bf_support *s, double *left, double *right);
+
 /* The parameters the workspace was created with. */
 const bf_support_params *bf_support_params_of(const bf_support *s);
 

@@ -707,7 +707,7 @@ void bf_sup_eval_fast(bf_support *s, size_t n, const bf_cells *c, double *g,
     if (nq > 0) {
         /* the chunks are independent (each has its own tree), so they run
          * in parallel with results independent of the thread count */
-        const double w = p->box.bx - p->box.ax, chunk = 8.0 * p->dx;
+        const double w = p->box.bx - p->box.ax, chunk = SUP_CHUNK_BANDS * p->dx;
         long nch = (long)ceil(w / chunk);
         if (nch < 1)
             nch = 1;

@@ -90,6 +90,11 @@ struct bf_support {
     uint32_t *cnt;
 };
 
+/* The fast method's sweep runs in independent chunks of this many band
+ * heights dx in x, from the left wall (support_fast.c); a query reads the
+ * squares from the start of its chunk on (bf_support_reach). */
+#define SUP_CHUNK_BANDS 8.0
+
 /* ---------------------------------------------------------- geometry */
 
 static inline double dmax(double a, double b) { return a > b ? a : b; }

@@ -178,6 +178,14 @@ void bf_support_set_exhaustive(bf_support *s, int on)
     s->exhaustive = on != 0;
 }
 
+void bf_support_reach(const bf_support *s, double *left, double *right)
+{
+    const double w = s->hdx + s->hd;
+    *right = *left = s->p.method == BF_SUPPORT_NAIVE ? INFINITY : w;
+    if (s->p.method == BF_SUPPORT_FAST)
+        *left = SUP_CHUNK_BANDS * s->p.dx + w;
+}
+
 const bf_support_params *bf_support_params_of(const bf_support *s)
 {
     return &s->p;
