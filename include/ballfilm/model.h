@@ -74,6 +74,18 @@ typedef struct bf_model_setup {
 const void *bf_setup_get(const bf_model_setup *s, const bf_section_spec *spec,
                          size_t *count);
 
+/* A second trajectory of a model's balls that an analysis keeps (the
+ * shadow of a Lyapunov estimate), stepped by the model as it steps its
+ * own balls (bf_ball_view, step_twin).  The analysis owns it. */
+typedef struct bf_ball_twin {
+    bf_integrator *it; /* an instance of the view's integrator type with
+                          the view's [integrator] parameters */
+    double *x, *v;     /* bf_ode.n values each (the balls, then any work
+                          the model tracks) */
+    double t_cached;   /* s, the model's bookkeeping of the force cache:
+                          NAN at the start and after the twin is moved */
+} bf_ball_twin;
+
 /* What analyses of balls on a line see of a model (returnmap.h,
  * lyapunov.h, compare.h): the state, read-only, the forces and the
  * integrator that advances it. */
@@ -86,6 +98,14 @@ typedef struct bf_ball_view {
     const void *it_params;      /* that integrator's [integrator] struct */
     const bf_effect_type *const *effects;
     size_t neffects;
+    /* One step of a twin from t to t + dt, taken exactly as the model
+     * takes its own (with its event splitting: the twin's own contact
+     * onsets and releases located); on failure the twin is left at t.
+     * ctx: the model's (step_ctx).  NULL (a model without event
+     * splitting): the twin takes bf_integrator_step through ode. */
+    bf_status (*step_twin)(void *step_ctx, bf_ball_twin *tw, double t,
+                           double dt, bf_err *err);
+    void *step_ctx;
 } bf_ball_view;
 
 /* Results of the analyses of a run, for sweeps and drivers (NAN / 0 when

@@ -12,6 +12,7 @@ struct bf_lyap {
     double *x, *v; /* shadow state */
     size_t n2;     /* 2 bf_ode.n: the length of x followed by v */
     bf_integrator *it;
+    bf_ball_twin twin; /* x, v and it, as the model steps them */
     bf_ball_view view;
 };
 
@@ -61,20 +62,25 @@ static bf_status lyap_create(void **out, const void *keys,
         lyap_free(ly);
         return st;
     }
+    ly->twin = (bf_ball_twin){ly->it, ly->x, ly->v, NAN};
     bf_lyap_displace(&ly->sum, view->x, view->v, ly->x, ly->v);
     *out = ly;
     return BF_OK;
 }
 
 /* The shadow's step over the step t -> t + dt that the balls have just
- * taken (n_done steps done), and the renormalisation when due. */
+ * taken (n_done steps done), and the renormalisation when due.  The model
+ * steps it as it steps the balls (with event splitting, at the shadow's
+ * own contact onsets and releases). */
 static bf_status lyap_after_step(void *self, long n_done, double t, double dt,
                                  bf_err *err)
 {
     bf_lyap *ly = self;
     const bf_ball_view *b = &ly->view;
-    bf_status st = bf_integrator_step(ly->it, b->ode, t, dt, ly->x, ly->v,
-                                      err);
+    bf_status st =
+        b->step_twin
+            ? b->step_twin(b->step_ctx, &ly->twin, t, dt, err)
+            : bf_integrator_step(ly->it, b->ode, t, dt, ly->x, ly->v, err);
     if (st) {
         bf_err_prefix(err, "Lyapunov shadow trajectory");
         return st;
@@ -160,6 +166,7 @@ static bf_status lyap_state_set(void *self, bf_err *err)
     bf_lyap *ly = self;
     bf_lyap_displace(&ly->sum, ly->view.x, ly->view.v, ly->x, ly->v);
     bf_integrator_reset(ly->it);
+    ly->twin.t_cached = NAN;
     return BF_OK;
 }
 

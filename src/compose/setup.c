@@ -181,7 +181,7 @@ static const bf_integrator_type *find_integrator(const void *ctx,
 bf_status bf_setup_observe(const bf_setup *s, const bf_catalog *c,
                            bf_sim *sim, bf_err *err)
 {
-    bf_ball_view view;
+    bf_ball_view view = {0}; /* a model's ball_view may leave step_twin */
     if (!s->nanalyses || !s->mt->ball_view ||
         !s->mt->ball_view(bf_sim_model(sim), &view))
         return BF_OK;

@@ -490,6 +490,8 @@ void bf_ballsys_view(bf_ballsys *s, bf_ball_view *v)
     v->it_params = s->it_params;
     v->effects = s->effect_types;
     v->neffects = s->neff;
+    v->step_twin = bf_ballsys_step_twin;
+    v->step_ctx = s;
 }
 
 bf_status bf_ballsys_save(const bf_ballsys *s, bf_ckpt *ck, const char *prefix,

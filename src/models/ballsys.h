@@ -129,6 +129,12 @@ bf_status bf_ballsys_events_setup(bf_ballsys *s, bf_err *err);
 bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
                                 bf_err *err);
 
+/* One step of a twin of the balls (model.h, bf_ball_view's step_twin;
+ * ctx: the bf_ballsys) taken as bf_ballsys_step takes the system's own:
+ * with events, split at the twin's own onsets and releases. */
+bf_status bf_ballsys_step_twin(void *ctx, bf_ball_twin *tw, double t,
+                               double dt, bf_err *err);
+
 /* Through the integrator's generic step (what bf_ballsys_step does when
  * there is no specialised one). */
 bf_status bf_ballsys_step_generic(bf_ballsys *s, double t, double dt,

@@ -470,3 +470,38 @@ bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
     s->it->count.rejected = c0.rejected + (w.trials - pieces);
     return BF_OK;
 }
+
+/* A twin (the shadow of a Lyapunov estimate) without splitting takes the
+ * integrator's step through the ode, the same bits as the system's own
+ * step (specialised or generic, ball_steps.h).  With splitting it must
+ * find its own events: split at the system's, or not at all, each of its
+ * impacts would be integrated across the kink of the force and the
+ * separation of the two trajectories would jump by the step's O(1)
+ * local error there instead of growing with the dynamics.  So the
+ * system's trajectory is swapped for the twin's (state, integrator, the
+ * time of the integrator's cached force) for one split step.  The
+ * scratch and the contacts' branches are the step's own (both are set
+ * up afresh by each step), and the force epoch is shared: a bump by
+ * either only makes the other's cache miss (a re-evaluation, same
+ * bits). */
+bf_status bf_ballsys_step_twin(void *ctx, bf_ball_twin *tw, double t,
+                               double dt, bf_err *err)
+{
+    bf_ballsys *s = ctx;
+    if (!s->split)
+        return bf_integrator_step(tw->it, &s->ode, t, dt, tw->x, tw->v, err);
+    double *const x = s->b.x, *const v = s->b.v;
+    bf_integrator *const it = s->it;
+    const double t_cached = s->t_cached;
+    s->b.x = tw->x;
+    s->b.v = tw->v;
+    s->it = tw->it;
+    s->t_cached = tw->t_cached;
+    bf_status st = bf_ballsys_step_split(s, t, dt, err);
+    tw->t_cached = s->t_cached;
+    s->b.x = x;
+    s->b.v = v;
+    s->it = it;
+    s->t_cached = t_cached;
+    return st;
+}
