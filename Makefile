@@ -541,9 +541,9 @@ fig9: $(PROG) | deps deps-plot
 # "Start scan").  The outer balls at -X, +X for X = 0.40 .. 0.60 cm in
 # steps of 0.0025 (81 starts, runs/start_scan.sh), at L = 50 and 50.1 cm,
 # with the spline and the nodes quadrature, in the static kink for
-# FIG9_SCAN_T s each with the Lyapunov estimate; fig9-confirm re-runs the
-# starts found regular, and X = 0.5 cm, with the dynamic film for
-# FIG9_CONFIRM_T s;
+# FIG9_SCAN_T s each with the Lyapunov estimate; fig9-confirm re-runs
+# every second start found regular (the first, third, ... in X) and
+# X = 0.5 cm with the dynamic film for FIG9_CONFIRM_T s;
 # fig9-islands draws a few of their maps.  Reruns skip finished runs.
 FIG9_SCAN_T ?= 20
 FIG9_CONFIRM_T ?= 20
@@ -569,8 +569,8 @@ fig9-confirm: $(PROG) | deps deps-plot
 	  $(MAKE) --no-print-directory fig9-scan
 	@for c in $(FIG9_CASES); do q=$${c%,*}; L=$${c#*,}; \
 	  l=out/fig9_scan/confirm_$${q}_L$$L.txt; \
-	  { cat out/fig9_scan/static_$${q}_L$$L/regular.txt; echo 0.5000; } | \
-	    sort -u > $$l; \
+	  { awk 'NR % 2 == 1' out/fig9_scan/static_$${q}_L$$L/regular.txt; \
+	    echo 0.5000; } | sort -u > $$l; \
 	  runs/start_scan.sh $(PROG) $(FIG9_SCENE) out/fig9_scan/dynamic_$${q}_L$$L @$$l \
 	    --set coupling.quadrature=$$q --set scene.t_end=$(FIG9_CONFIRM_T) \
 	    $(FIG9_SET) || exit 1; done

@@ -88,7 +88,7 @@ def main():
     ax1.set_ylim(0, 1)
     ax1.legend(fontsize=8)
     ax2.set_ylabel("largest Lyapunov exponent [1/s]")
-    ax2.set_yscale("log")
+    ax2.set_yscale("symlog", linthresh=0.01)
     ax2.set_xlabel("outer balls at -X, +X: X [cm]")
     for ax in (ax1, ax2):
         ax.grid(True, alpha=0.3)
