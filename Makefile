@@ -543,10 +543,13 @@ fig9: $(PROG) | deps deps-plot
 # with the spline and the nodes quadrature, in the static kink for
 # FIG9_SCAN_T s each with the Lyapunov estimate; fig9-confirm re-runs
 # every second start found regular (the first, third, ... in X) and
-# X = 0.5 cm with the dynamic film for FIG9_CONFIRM_T s;
-# fig9-islands draws a few of their maps.  Reruns skip finished runs.
+# X = 0.5 cm with the dynamic film for FIG9_CONFIRM_T s; fig9-islands runs
+# two confirmed starts, X = 0.48 and 0.5025 cm, with the dynamic film for
+# FIG9_ISLANDS_T s at both lengths and draws their maps.  Reruns skip
+# finished runs.
 FIG9_SCAN_T ?= 20
 FIG9_CONFIRM_T ?= 20
+FIG9_ISLANDS_T ?= 100
 FIG9_SET = --set lyapunov.enabled=yes --set scene.output_every=10000 \
 	--set "film.profile_every=10 s"
 FIG9_CASES = spline,50 spline,50.1 nodes,50 nodes,50.1
@@ -576,10 +579,16 @@ fig9-confirm: $(PROG) | deps deps-plot
 	    $(FIG9_SET) || exit 1; done
 	$(PY) plots/fig9_scan.py $(call FIG9_LABELS,dynamic) -o out/fig9_confirm.png
 
-fig9-islands: | deps deps-plot
-	@test -d out/fig9_scan/dynamic_spline_L50.1 || \
-	  $(MAKE) --no-print-directory fig9-confirm
-	$(PY) plots/fig9_islands.py $(call FIG9_LABELS,dynamic) --per-scan 2 \
+fig9-islands: $(PROG) | deps deps-plot
+	@mkdir -p out/fig9_scan
+	@printf '0.4800\n0.5025\n' > out/fig9_scan/islands.txt
+	@for L in 50 50.1; do \
+	  runs/start_scan.sh $(PROG) $(FIG9_SCENE) out/fig9_scan/islands_L$$L \
+	    @out/fig9_scan/islands.txt --set scene.t_end=$(FIG9_ISLANDS_T) \
+	    --set scene.output_every=10000 --set "film.profile_every=10 s" \
+	    || exit 1; done
+	$(PY) plots/fig9_islands.py \
+	    $(foreach L,50 50.1,$(foreach X,0.4800 0.5025,"L = $(L) cm, X = $(X) cm=out/fig9_scan/islands_L$(L)/x_$(X).h5")) \
 	    -o out/fig9_islands.png
 
 # Fig. 8C's offset of psi(0.3 cm), split: the paper's run from the analytic

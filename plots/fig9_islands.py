@@ -2,7 +2,8 @@
 """Island chains of the four-ball coupled scene: the first-return maps
 (x4, v4) of chosen start-scan runs (runs/start_scan.sh), drawn as the kind
 of map of Yasuda 2010, Fig. 9; fill fraction and Lyapunov exponent in
-each title (fill as `ballfilm sweep`'s return_map_fill).
+each title (fill as `ballfilm sweep`'s return_map_fill; the exponent if
+the run estimated it).
 
 usage: fig9_islands.py LABEL=PATH [LABEL=PATH ...] [--per-scan N]
                        [--lyap-max L] -o islands.png
@@ -67,8 +68,9 @@ for k, (label, path) in enumerate(chosen):
     lam = final_lyap(f)
     fill = map_fill(m[:, 1], m[:, 2])
     ax.plot(m[:, 1], m[:, 2], ".", ms=1.5)
-    ax.set_title("%s\nfill %.2f, λ = %.2g 1/s, %d points"
-                 % (label, fill, lam, len(m)), fontsize=9)
+    lam_s = ", λ = %.2g 1/s" % lam if math.isfinite(lam) else ""
+    ax.set_title("%s\nfill %.2f%s, %d points"
+                 % (label, fill, lam_s, len(m)), fontsize=9)
     ax.locator_params(axis="x", nbins=4)
     ax.set_xlabel("x4 [cm]")
     ax.set_ylabel("v4 [cm/s]")

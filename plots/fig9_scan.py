@@ -70,6 +70,10 @@ def main():
             print("  lambda of the regular %.3f .. %.3f, of the others "
                   "%.2f .. %.2f 1/s" % (lam[reg].min(), lam[reg].max(),
                                         lam[~reg].min(), lam[~reg].max()))
+            print("  fill of the regular %.2f .. %.2f, of the others %.2f "
+                  ".. %.2f (median %.2f)"
+                  % (fill[reg].min(), fill[reg].max(), fill[~reg].min(),
+                     fill[~reg].max(), np.median(fill[~reg])))
         print("  fill %.2f .. %.2f (median %.2f), lambda %.2f .. %.2f 1/s "
               "(median %.2f), map points %d .. %d"
               % (np.nanmin(fill), np.nanmax(fill), np.nanmedian(fill),
