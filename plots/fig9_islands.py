@@ -16,8 +16,6 @@ import glob
 import math
 import os
 
-import numpy as np
-
 from bfplot import ballfilm, map_fill, plt, save
 
 
