@@ -103,6 +103,7 @@ RUNNER    := $(BUILD)/tests/runner
         build-tests fig1 fuzz fuzz-h5 valgrind mpi stratres mac-checks fig2 fig3 fig8-offset \
         fig4 converge-figures survey-mass survey-length fig-vibrating-table fig5 kink-dx2 \
         film-orders fig6 fig8 fig9 fig8-sym fig9-sym sym-divergence \
+        fig9-scan fig9-confirm fig9-islands \
         multirate fig-g72-ex1 \
         fig-g72-ex1-ensemble fig-g72-ex2 fig-g72-large fig-g73-hex \
         fig-g73-wall movies deps-movies deps-xdmf test-movies test-xdmf deps-units test-units \
@@ -536,6 +537,60 @@ fig9: $(PROG) | deps deps-plot
 	$(PROG) run runs/coupled_fig9.ini -q -o out/coupled_fig9.h5
 	$(PY) plots/fig8_coupled.py out/coupled_fig9.h5 -o out/fig9_coupled.png
 
+# Yasuda Fig. 9: a start scan for island chains (docs/models/coupled.md,
+# "Start scan").  The outer balls at -X, +X for X = 0.40 .. 0.60 cm in
+# steps of 0.0025 (81 starts, runs/start_scan.sh), at L = 50 and 50.1 cm,
+# with the spline and the nodes quadrature, in the static kink for
+# FIG9_SCAN_T s each with the Lyapunov estimate; fig9-confirm re-runs
+# every second start found regular (the first, third, ... in X) and
+# X = 0.5 cm with the dynamic film for FIG9_CONFIRM_T s; fig9-islands runs
+# two confirmed starts, X = 0.48 and 0.5025 cm, with the dynamic film for
+# FIG9_ISLANDS_T s at both lengths and draws their maps.  Reruns skip
+# finished runs.
+FIG9_SCAN_T ?= 20
+FIG9_CONFIRM_T ?= 20
+FIG9_ISLANDS_T ?= 100
+FIG9_SET = --set lyapunov.enabled=yes --set scene.output_every=10000 \
+	--set "film.profile_every=10 s"
+FIG9_CASES = spline,50 spline,50.1 nodes,50 nodes,50.1
+FIG9_SCENE = $$(if [ $$L = 50 ]; then echo runs/coupled_fig8.ini; \
+	else echo runs/coupled_fig9.ini; fi)
+FIG9_LABELS = $(foreach c,$(FIG9_CASES),"$(word 1,$(subst $(comma), ,$(c))), \
+	L = $(word 2,$(subst $(comma), ,$(c))) cm=out/fig9_scan/$(1)_$(word 1,$(subst \
+	$(comma), ,$(c)))_L$(word 2,$(subst $(comma), ,$(c)))")
+comma := ,
+fig9-scan: $(PROG) | deps deps-plot
+	@mkdir -p out/fig9_scan
+	@for c in $(FIG9_CASES); do q=$${c%,*}; L=$${c#*,}; \
+	  runs/start_scan.sh $(PROG) $(FIG9_SCENE) out/fig9_scan/static_$${q}_L$$L \
+	    0.40:0.0025:81 --set coupled.film=static --set coupling.quadrature=$$q \
+	    --set scene.t_end=$(FIG9_SCAN_T) $(FIG9_SET) || exit 1; done
+	$(PY) plots/fig9_scan.py $(call FIG9_LABELS,static) -o out/fig9_scan.png
+
+fig9-confirm: $(PROG) | deps deps-plot
+	@test -f out/fig9_scan/static_nodes_L50.1/regular.txt || \
+	  $(MAKE) --no-print-directory fig9-scan
+	@for c in $(FIG9_CASES); do q=$${c%,*}; L=$${c#*,}; \
+	  l=out/fig9_scan/confirm_$${q}_L$$L.txt; \
+	  { awk 'NR % 2 == 1' out/fig9_scan/static_$${q}_L$$L/regular.txt; \
+	    echo 0.5000; } | sort -u > $$l; \
+	  runs/start_scan.sh $(PROG) $(FIG9_SCENE) out/fig9_scan/dynamic_$${q}_L$$L @$$l \
+	    --set coupling.quadrature=$$q --set scene.t_end=$(FIG9_CONFIRM_T) \
+	    $(FIG9_SET) || exit 1; done
+	$(PY) plots/fig9_scan.py $(call FIG9_LABELS,dynamic) -o out/fig9_confirm.png
+
+fig9-islands: $(PROG) | deps deps-plot
+	@mkdir -p out/fig9_scan
+	@printf '0.4800\n0.5025\n' > out/fig9_scan/islands.txt
+	@for L in 50 50.1; do \
+	  runs/start_scan.sh $(PROG) $(FIG9_SCENE) out/fig9_scan/islands_L$$L \
+	    @out/fig9_scan/islands.txt --set scene.t_end=$(FIG9_ISLANDS_T) \
+	    --set scene.output_every=10000 --set "film.profile_every=10 s" \
+	    || exit 1; done
+	$(PY) plots/fig9_islands.py \
+	    $(foreach L,50 50.1,$(foreach X,0.4800 0.5025,"L = $(L) cm, X = $(X) cm=out/fig9_scan/islands_L$(L)/x_$(X).h5")) \
+	    -o out/fig9_islands.png
+
 # Fig. 8C's offset of psi(0.3 cm), split: the paper's run from the analytic
 # kink; the film alone (V0 = 0), i.e. the analytic kink relaxing on the
 # grid; the balls in the film so relaxed (the discrete kink).  3 x 50 s.
@@ -731,6 +786,7 @@ figures:
 	@$(MAKE) --no-print-directory fig9
 	@$(MAKE) --no-print-directory fig8-sym
 	@$(MAKE) --no-print-directory fig9-sym
+	@$(MAKE) --no-print-directory fig9-islands
 	@$(MAKE) --no-print-directory sym-divergence
 	@$(MAKE) --no-print-directory fig-g72-ex1 fig-g72-ex1-ensemble \
 	    fig-g72-ex2 fig-g72-large fig-g73-hex fig-g73-wall

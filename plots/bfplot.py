@@ -123,3 +123,23 @@ def save(fig, out):
     fig.savefig(out, dpi=130)
     plt.close(fig)
     print("wrote", out)
+
+
+def map_fill(z, v):
+    """The share of a return map's bounding box that its points visit, as
+    `ballfilm sweep`'s return_map_fill (src/compose/sweep.c,
+    bf_sweep_map_fill): a B x B grid, B = floor(sqrt(points / 4)) clamped
+    to 5..50; NaN below two points."""
+    import math
+
+    import numpy as np
+    n = len(z)
+    if n < 2:
+        return math.nan
+    B = min(max(int(math.floor(math.sqrt(n / 4.0))), 5), 50)
+    z0, z1, v0, v1 = z.min(), z.max(), v.min(), v.max()
+    dz = (z1 - z0) / B if z1 > z0 else 1.0
+    dv = (v1 - v0) / B if v1 > v0 else 1.0
+    i = np.clip(((z - z0) / dz).astype(int), 0, B - 1)
+    j = np.clip(((v - v0) / dv).astype(int), 0, B - 1)
+    return len(set(zip(i.tolist(), j.tolist()))) / float(B * B)

@@ -59,6 +59,7 @@
 #include "coupling/coupling.h"
 
 #include "coupling/mk.h"
+#include "coupling/nodes.h"
 
 #include <float.h>
 #include <math.h>
@@ -118,6 +119,7 @@ struct bf_coupling {
      * from prepare, for bf_coupling_mu at the same positions */
     double *xe, *ele, *ere;
     size_t nballs;
+    bf_coupling_nodes *nodes; /* quadrature = nodes (nodes.h), else NULL */
     unsigned long long n_exact, n_taylor;
 };
 
@@ -172,6 +174,12 @@ bf_status bf_coupling_create(bf_coupling **out, const bf_coupling_params *p,
     c->rowmem = alloc64((size_t)NROW * (size_t)c->n8);
     c->row_of = malloc(3 * n * sizeof *c->row_of);
     c->zrow = alloc64((size_t)c->n8);
+    if (p->quad == BF_COUPLING_NODES &&
+        !(c->nodes = bf_coupling_nodes_create(c->grid.N, c->grid.x0,
+                                              c->grid.dx, p->r0))) {
+        bf_coupling_free(c);
+        return bf_fail(err, BF_EINTERNAL, "out of memory");
+    }
     if (!c->g || !c->m || !c->lc || !c->rc || !c->grid.pw || !c->grid.pwr ||
         !c->tl || !c->tw || !c->tmp || !c->anc || !c->xe || !c->ele ||
         !c->ere || !c->rowmem || !c->row_of || !c->zrow) {
@@ -249,6 +257,7 @@ void bf_coupling_free(bf_coupling *c)
     free(c->rowmem);
     free(c->row_of);
     free(c->zrow);
+    bf_coupling_nodes_free(c->nodes);
     free(c);
 }
 
@@ -343,6 +352,8 @@ void bf_coupling_refresh(bf_coupling *c)
     c->ncache = 0;
     for (size_t p = 0; p < c->nballs; p++)
         c->anc[p].valid = c->anc[p].fresh = 0;
+    if (c->nodes)
+        bf_coupling_nodes_invalidate(c->nodes);
 }
 
 /* ---------------------------------------------------------------- rows */
@@ -619,8 +630,12 @@ void bf_coupling_integral(bf_coupling *c, double r, double *I, double *dI)
     long j;
     double t, L, R;
     lr_part w;
-    exact_lr(c, r, &j, &t, &L, &R, &w);
     c->n_exact++;
+    if (c->nodes) {
+        bf_coupling_nodes_eval(c->nodes, c->g, r, I, dI);
+        return;
+    }
+    exact_lr(c, r, &j, &t, &L, &R, &w);
     *I = L + R;
     *dI = (R - L) / c->p.r0;
 }
@@ -737,7 +752,7 @@ static void prepare_anchors(bf_coupling *c, size_t nb, const double *x)
 
 void bf_coupling_prepare(bf_coupling *c, size_t nb, const double *x)
 {
-    if (c->p.taylor_radius > 0)
+    if (c->p.taylor_radius > 0 && !c->nodes)
         prepare_anchors(c, nb, x);
 }
 
@@ -745,7 +760,7 @@ void bf_coupling_integral_ball(bf_coupling *c, size_t p, double r, double *I,
                                double *dI)
 {
     anchor *a = &c->anc[p];
-    if (c->p.taylor_radius > 0) {
+    if (c->p.taylor_radius > 0 && !c->nodes) {
         if (a->fresh) {
             a->fresh = 0;
             if (r == a->r) { /* the anchor of prepare_anchors */

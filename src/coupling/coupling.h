@@ -12,7 +12,8 @@
  * The integrand g = h (psi - psi_s)^2 is taken on the film's nodes and
  * interpolated by the natural cubic spline (the paper's "third-order
  * spline"; `quadrature = linear` drops the spline's curvature terms), and
- * integrated exactly against the kernel, piecewise on each side of r (the
+ * integrated exactly against the kernel (`quadrature = nodes` instead
+ * splines the integral's node sums, nodes.h), piecewise on each side of r (the
  * kernel has a kink there): I = L + R with
  *   L(r) = integral_{x < r} g exp(-(r - x)/r0) dx,
  *   R(r) = integral_{x > r} g exp(-(x - r)/r0) dx,
@@ -26,7 +27,8 @@
  * The folder src/coupling holds one job per file: this header and
  * coupling.c, the quadrature of F and dF/dr (the bf_coupling object: cell
  * and row moments, the integral, the Taylor anchors, its checkpoint), with
- * mk.h, the kernel's moments m_k(z) it integrates with;
+ * mk.h, the kernel's moments m_k(z) it integrates with; nodes.h, the
+ * quadrature `nodes`;
  * mu_cpl.h, the chemical potential (3.11) the balls add to the film;
  * force.h, the effect "coupling" that applies -M dF/dr to the ball system
  * (its `self` is the bf_coupling), with the keys of [coupling].  Both use
@@ -44,7 +46,9 @@
 
 typedef enum bf_coupling_quad {
     BF_COUPLING_SPLINE = 0, /* natural cubic spline of g (default) */
-    BF_COUPLING_LINEAR      /* piecewise linear g */
+    BF_COUPLING_LINEAR,     /* piecewise linear g */
+    BF_COUPLING_NODES       /* the integral summed at the nodes, then
+                               splined (nodes.h) */
 } bf_coupling_quad;
 
 typedef struct bf_coupling_params {

@@ -20,8 +20,10 @@ static const bf_param coupling_params[] = {
      "order parameter of the ball surface", BF_MIN | BF_MAX, -1, 1, NULL},
     {"quadrature", BF_AT(bf_coupling_keys, quadrature, BF_ENUM), "", "spline",
      "interpolation of g = h (psi - psi_s)^2 for the integral (3.10): "
-     "spline (natural cubic, the paper's) or linear",
-     0, 0, 0, "spline|linear"},
+     "spline (natural cubic, the paper's) or linear; nodes: the integral "
+     "summed at the nodes, F_i = sum_j h_j V(x_j - x_i) (psi_j - psi_s)^2 dx, "
+     "and the natural cubic spline through the F_i",
+     0, 0, 0, "spline|linear|nodes"},
     {"taylor", BF_AT(bf_coupling_keys, taylor, BF_BOOL), "", "true",
      "reuse a 5th-order expansion of the integral around each ball's first "
      "position per film level (exact to 1e-17 within 2e-3 r0)",

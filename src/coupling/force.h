@@ -15,7 +15,7 @@
 /* The keys of [coupling] (the coupling effect's section). */
 typedef struct bf_coupling_keys {
     double V0, r0, mobility, psi_s;
-    int quadrature; /* 0 spline, 1 linear */
+    int quadrature; /* 0 spline, 1 linear, 2 nodes */
     int taylor;
 } bf_coupling_keys;
 extern const bf_section_spec bf_coupling_spec;
