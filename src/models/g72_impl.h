@@ -33,7 +33,8 @@ typedef struct g72 {
     bf_repulsion_work rw;
     double *ax, *ay, *g, *x0, *y0;
     uint8_t *kind;
-    int acc_valid; /* ax, ay, g, kind are those of the current positions */
+    int acc_valid; /* a(x) (ax, ay, g, kind, or over ranks the exchange
+                    * buffer) is that of the current positions */
     /* after a restart: the next a(x) recomputes one the interrupted run
      * had computed (and counted) already */
     int acc_replay;
@@ -51,8 +52,15 @@ typedef struct g72 {
 } g72;
 
 /* g72_ranks.c: a(x) of the own particles of this rank, gathered from
- * every rank into ax, ay, g and kind of all particles. */
+ * every rank into its exchange buffer (not into ax, ay, g, kind), and
+ * the counts of the kinds of g. */
 bf_status bf_g72_accel_ranks(g72 *m, bf_err *err);
+/* The leapfrog (eqs 2.1-2.4) of every particle with the a(x) of the last
+ * bf_g72_accel_ranks; the walls follow. */
+void bf_g72_leapfrog_ranks(g72 *m, double h, double dt);
+/* Particles of each kind of g (BF_SUP_*) at the current a(x), in one
+ * process or over ranks. */
+void bf_g72_kind_counts(const g72 *m, unsigned long long kinds[4]);
 void bf_g72_ranks_free(g72_ranks *r);
 
 #endif

@@ -15,11 +15,13 @@
  * bf_support_reach (one column more for the rounding of a column index).
  *
  * Every rank holds the whole state: after each a(x) the ranks exchange
- * what their own particles got (ax, ay, g, kind), and every rank then
- * takes the same leapfrog step and wall rule on every particle, writes
- * the same diagnostics, and the one that writes the output (rank 0) has
- * all of it.  The work of a(x) falls as 1/R (plus the halo); the state,
- * the step and the exchange stay O(N) on every rank.
+ * what their own particles got (ax, ay, g) and how many of them got each
+ * kind of g, and every rank then takes the same leapfrog step, reading
+ * the accelerations straight from the exchange's buffer (no copy into
+ * arrays of N), and the same wall rule on every particle, writes the same
+ * diagnostics, and the one that writes the output (rank 0) has all of
+ * it.  The work of a(x) falls as 1/R (plus the halo); the state, the step
+ * and the exchange stay O(N) on every rank.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -36,11 +38,16 @@ struct g72_ranks {
     double *lx, *ly, *lm;     /* [n]: local positions and masses */
     double *lax, *lay, *lg;   /* [n]: local results */
     uint8_t *lkind;           /* [n] */
-    double *send, *recv;      /* [4 n + 3], [4 n + 3 size] */
+    double *send, *recv;      /* [3 n + 7], [3 n + 7 size] */
     size_t *counts, *at;      /* [size] */
+    /* particles of each kind of g (BF_SUP_*) at the last a(x): sums of
+     * integers, exact in any order */
+    unsigned long long kinds[4];
 };
 
-enum { PER = 4, TRAILER = 3 }; /* doubles a particle; status, bi, bj */
+/* doubles a particle (ax, ay, g); the trailer: status, bi, bj and the
+ * counts of the four kinds of g of the rank's own particles */
+enum { PER = 3, TRAILER = 7 };
 
 void bf_g72_ranks_free(g72_ranks *r)
 {
@@ -144,6 +151,13 @@ bf_status bf_greenspan72_over_ranks(void *model, const bf_ranks *comm,
     }
     bf_g72_ranks_free(m->ranks);
     m->ranks = r;
+    /* the a(x) of the set-up was one process's, in arrays that the steps
+     * over ranks do not read: computed again over ranks, and not counted
+     * twice */
+    if (m->acc_valid) {
+        m->acc_valid = 0;
+        m->acc_replay = 1;
+    }
     return BF_OK;
 }
 
@@ -166,35 +180,38 @@ static size_t gather_local(g72_ranks *r, const bf_particles *p)
 }
 
 /* The own particles' results into send (index order), then the trailer:
- * 1 and the pair if two particles coincide, else 0. */
+ * 1 and the pair if two particles coincide, else 0; the counts of the
+ * kinds of g. */
 static size_t pack_own(g72_ranks *r, size_t nl, int bad, size_t bi,
                        size_t bj)
 {
     const int me = r->comm.rank;
-    size_t w = 0;
+    size_t w = 0, kinds[4] = {0, 0, 0, 0};
     for (size_t l = 0; l < nl; l++) {
         if (r->sl.rank_of[r->col[r->lid[l]]] != me)
             continue;
         r->send[w++] = r->lax[l];
         r->send[w++] = r->lay[l];
         r->send[w++] = r->lg[l];
-        r->send[w++] = (double)r->lkind[l];
+        kinds[r->lkind[l]]++;
     }
     r->send[w++] = bad;
     r->send[w++] = bad ? (double)r->lid[bi] : 0.0;
     r->send[w++] = bad ? (double)r->lid[bj] : 0.0;
+    for (int k = 0; k < 4; k++) /* below 2^53: exact */
+        r->send[w++] = (double)kinds[k];
     return w;
 }
 
-/* Every rank's results into ax, ay, g, kind of all particles; 1 and the
- * pair of the lowest rank that found two coincident particles. */
-static int unpack_all(g72_ranks *r, g72 *m, size_t *bi, size_t *bj)
+/* The trailers of every rank: the counts of the kinds of g (summed), 1
+ * and the pair of the lowest rank that found two coincident particles.
+ * The results stay in recv, read by bf_g72_leapfrog_ranks. */
+static int read_trailers(g72_ranks *r, size_t *bi, size_t *bj)
 {
-    const int size = r->comm.size;
     size_t off = 0;
     int bad = 0;
-    for (int q = 0; q < size; q++) {
-        r->at[q] = off;
+    memset(r->kinds, 0, sizeof r->kinds);
+    for (int q = 0; q < r->comm.size; q++) {
         off += r->counts[q];
         const double *t = r->recv + off - TRAILER;
         if (!bad && t[0] != 0) {
@@ -202,18 +219,46 @@ static int unpack_all(g72_ranks *r, g72 *m, size_t *bi, size_t *bj)
             *bi = (size_t)t[1];
             *bj = (size_t)t[2];
         }
+        for (int k = 0; k < 4; k++)
+            r->kinds[k] += (unsigned long long)t[3 + k];
     }
-    if (bad)
-        return 1;
-    for (size_t i = 0; i < m->p.n; i++) {
-        const double *v = r->recv + r->at[r->sl.rank_of[r->col[i]]];
-        r->at[r->sl.rank_of[r->col[i]]] += PER;
-        m->ax[i] = v[0];
-        m->ay[i] = v[1];
-        m->g[i] = v[2];
-        m->kind[i] = (uint8_t)v[3];
+    return bad;
+}
+
+void bf_g72_kind_counts(const g72 *m, unsigned long long kinds[4])
+{
+    if (m->ranks) {
+        memcpy(kinds, m->ranks->kinds, sizeof m->ranks->kinds);
+        return;
     }
-    return 0;
+    kinds[0] = kinds[1] = kinds[2] = kinds[3] = 0;
+    for (size_t i = 0; i < m->p.n; i++)
+        kinds[m->kind[i]]++;
+}
+
+/* Eqs 2.1-2.4 as in g72_leapfrog (greenspan72.c), the same operations in
+ * the same order, with a(x) of particle i read from the part of recv of
+ * the rank that owns it (its particles in index order). */
+void bf_g72_leapfrog_ranks(g72 *m, double h, double dt)
+{
+    g72_ranks *r = m->ranks;
+    bf_particles *p = &m->p;
+    size_t off = 0;
+    for (int q = 0; q < r->comm.size; q++) {
+        r->at[q] = off;
+        off += r->counts[q];
+    }
+    for (size_t i = 0; i < p->n; i++) {
+        const int q = r->sl.rank_of[r->col[i]];
+        const double *v = r->recv + r->at[q];
+        r->at[q] += PER;
+        p->vx[i] += h * v[0];
+        p->vy[i] += h * (v[1] + v[2]);
+        m->x0[i] = p->x[i];
+        m->y0[i] = p->y[i];
+        p->x[i] += dt * p->vx[i];
+        p->y[i] += dt * p->vy[i];
+    }
 }
 
 bf_status bf_g72_accel_ranks(g72 *m, bf_err *err)
@@ -234,7 +279,7 @@ bf_status bf_g72_accel_ranks(g72 *m, bf_err *err)
         r->counts[q] = PER * r->sl.own[q] + TRAILER;
     if (r->comm.allgather(r->comm.ctx, r->send, w, r->recv, r->counts))
         return bf_fail(err, BF_EIO, "the exchange between ranks failed");
-    if (unpack_all(r, m, &bi, &bj))
+    if (read_trailers(r, &bi, &bj))
         return bf_fail(err, BF_EUNSTABLE,
                        "particles %zu and %zu coincide at (%.9g, %.9g) with "
                        "xi = 0: the repulsion has no direction",

@@ -531,8 +531,10 @@ static bf_status g72_step(void *self, long n, double t, double dt, bf_err *err)
     bf_status st;
     if (!m->acc_valid && (st = g72_accel(m, err)))
         return st;
-    for (size_t i = 0; i < p->n; i++)
-        m->kind_total[m->kind[i]]++;
+    unsigned long long kinds[4];
+    bf_g72_kind_counts(m, kinds);
+    for (int k = 0; k < 4; k++)
+        m->kind_total[k] += kinds[k];
     const double h = n == 0 ? 0.5 * dt : dt; /* eqs 2.1-2.2: half step first */
     const size_t np = p->n;
     if (m->ode) {
@@ -541,6 +543,8 @@ static bf_status g72_step(void *self, long n, double t, double dt, bf_err *err)
         m->acc_valid = 0;
         if ((st = bf_g72_ode_step(m->ode, t, dt, err)))
             return st;
+    } else if (m->ranks) {
+        bf_g72_leapfrog_ranks(m, h, dt);
     } else if (m->nthr > 1 && np >= 16384) {
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static) num_threads(m->nthr)
@@ -668,11 +672,13 @@ static bf_status g72_output_row(void *self, long n, double t, bf_err *err)
     bf_pdiag_group l = bf_pdiag_group_of(p, TAG_LIGHT);
     double kin[3] = {h.kin + l.kin, h.kin, l.kin};
     double mean[2] = {h.mean_y, l.mean_y};
-    double lay[8], kinds[4] = {0, 0, 0, 0}, crit[NSETTLE];
+    double lay[8], kinds[4], crit[NSETTLE];
+    unsigned long long kc[4];
     bf_pdiag_layers(p, TAG_HEAVY, 0.0, m->height, 4, lay);
     bf_pdiag_layers(p, TAG_LIGHT, 0.0, m->height, 4, lay + 4);
-    for (size_t i = 0; i < p->n; i++)
-        kinds[m->kind[i]] += 1.0;
+    bf_g72_kind_counts(m, kc);
+    for (int k = 0; k < 4; k++) /* below 2^53: the sum of ones, exactly */
+        kinds[k] = (double)kc[k];
     g72_settle(m, crit);
     /* criterion (c) holds when at most one heavy particle is off the
      * bottom ("at least three of the four stay at the bottom") */
