@@ -48,27 +48,11 @@ static const double R0 = 0.5;
 static const double PI = 3.14159265358979323846;
 
 /* a film of length L with psi = tanh(x/sqrt 2), h = 1 */
+static double one(double x) { (void)x; return 1.0; }
+static double kink(double x) { return tanh(x / sqrt(2.0)); }
 static bf_film *kink_film(double L, double dx)
 {
-    bf_film_params p = {.length = L, .dx = dx, .rho_d = 1, .rho_c = 1,
-                        .nu = 0.01, .g = 980, .a = 1, .b = 1, .gamma = 1,
-                        .mu_taylor = BF_FILM_MU_MIDPOINT,
-                        .limit_positive = 1, .vanish = 1e-8};
-    bf_film *f;
-    bf_err err = {0};
-    ck_assert(bf_film_create(&f, &p, &err) == BF_OK);
-    size_t n = bf_film_nodes(f);
-    double *h = malloc(n * sizeof *h), *psi = malloc(n * sizeof *psi),
-           *z = calloc(n, sizeof *z);
-    for (size_t i = 0; i < n; i++) {
-        h[i] = 1.0;
-        psi[i] = tanh(bf_film_x(f)[i] / sqrt(2.0));
-    }
-    ck_assert(bf_film_set_state(f, h, psi, z, z, &err) == BF_OK);
-    free(h);
-    free(psi);
-    free(z);
-    return f;
+    return tu_film(L, dx, one, kink);
 }
 
 static bf_coupling *make_cpl(const bf_film *f, bf_coupling_quad q,

@@ -40,25 +40,7 @@ static double g_of(double x)
 
 static bf_film *smooth_film(double L, double dx)
 {
-    bf_film_params p = {.length = L, .dx = dx, .rho_d = 1, .rho_c = 1,
-                        .nu = 0.01, .g = 980, .a = 1, .b = 1, .gamma = 1,
-                        .mu_taylor = BF_FILM_MU_MIDPOINT,
-                        .limit_positive = 1, .vanish = 1e-8};
-    bf_film *f;
-    bf_err err = {0};
-    ck_assert(bf_film_create(&f, &p, &err) == BF_OK);
-    size_t n = bf_film_nodes(f);
-    double *h = malloc(n * sizeof *h), *psi = malloc(n * sizeof *psi),
-           *z = calloc(n, sizeof *z);
-    for (size_t i = 0; i < n; i++) {
-        h[i] = h_of(bf_film_x(f)[i]);
-        psi[i] = psi_of(bf_film_x(f)[i]);
-    }
-    ck_assert(bf_film_set_state(f, h, psi, z, z, &err) == BF_OK);
-    free(h);
-    free(psi);
-    free(z);
-    return f;
+    return tu_film(L, dx, h_of, psi_of);
 }
 
 static bf_coupling *make_cpl(const bf_film *f, bf_coupling_quad q)

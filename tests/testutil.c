@@ -619,3 +619,29 @@ size_t tu_wait_for_rows(const char *path, const char *dset, size_t rows)
                      dset, rows, seen);
     return seen;
 }
+
+bf_film *tu_film(double L, double dx, double (*h_of)(double),
+                 double (*psi_of)(double))
+{
+    bf_film_params p = {.length = L, .dx = dx, .rho_d = 1, .rho_c = 1,
+                        .nu = 0.01, .g = 980, .a = 1, .b = 1, .gamma = 1,
+                        .mu_taylor = BF_FILM_MU_MIDPOINT,
+                        .limit_positive = 1, .vanish = 1e-8};
+    bf_film *f;
+    bf_err err = {0};
+    ck_assert_msg(bf_film_create(&f, &p, &err) == BF_OK, "%s", err.msg);
+    size_t n = bf_film_nodes(f);
+    double *h = malloc(n * sizeof *h), *psi = malloc(n * sizeof *psi),
+           *z = calloc(n, sizeof *z);
+    ck_assert(h && psi && z);
+    for (size_t i = 0; i < n; i++) {
+        h[i] = h_of(bf_film_x(f)[i]);
+        psi[i] = psi_of(bf_film_x(f)[i]);
+    }
+    ck_assert_msg(bf_film_set_state(f, h, psi, z, z, &err) == BF_OK, "%s",
+                  err.msg);
+    free(h);
+    free(psi);
+    free(z);
+    return f;
+}

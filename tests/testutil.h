@@ -11,6 +11,7 @@
 #include <stddef.h>
 
 #include "models/ballsys.h"
+#include "ballfilm/film.h"
 #include "ballfilm/integrator.h"
 #include "ballfilm/scene.h"
 #include "ballfilm/sim.h"
@@ -84,6 +85,11 @@ bf_integrator *tu_integrator(const char *name, const char *keys, size_t n);
 /* A ball system (balls, effects, integrator) from scene text; fails the
  * test on error.  Free it with bf_ballsys_free. */
 bf_ballsys *tu_ballsys(const char *text);
+/* A film of length L (cm) and cell dx (cm) with the Yasuda sec. 3.5
+ * parameters (rho 1, nu 0.01, g 980, a = b = gamma = 1) at rest, with
+ * h = h_of(x) and psi = psi_of(x) at its nodes. */
+bf_film *tu_film(double L, double dx, double (*h_of)(double),
+                 double (*psi_of)(double));
 
 /* x'' = -x for one unknown (a bf_accel_fn; ctx, t and v unused). */
 int tu_accel_harmonic(void *ctx, double t, const double *x, const double *v,
