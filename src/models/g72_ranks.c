@@ -15,7 +15,7 @@
  * bf_support_reach (one column more for the rounding of a column index).
  *
  * Every rank holds the whole state: after each a(x) the ranks exchange
- * what their own particles got (ax, ay, g) and how many of them got each
+ * what their own particles got (ax and ay + g) and how many of them got each
  * kind of g, and every rank then takes the same leapfrog step, reading
  * the accelerations straight from the exchange's buffer (no copy into
  * arrays of N), and the same wall rule on every particle, writes the same
@@ -38,16 +38,16 @@ struct g72_ranks {
     double *lx, *ly, *lm;     /* [n]: local positions and masses */
     double *lax, *lay, *lg;   /* [n]: local results */
     uint8_t *lkind;           /* [n] */
-    double *send, *recv;      /* [3 n + 7], [3 n + 7 size] */
+    double *send, *recv;      /* [2 n + 7], [2 n + 7 size] */
     size_t *counts, *at;      /* [size] */
     /* particles of each kind of g (BF_SUP_*) at the last a(x): sums of
      * integers, exact in any order */
     unsigned long long kinds[4];
 };
 
-/* doubles a particle (ax, ay, g); the trailer: status, bi, bj and the
+/* doubles a particle (ax, ay + g); the trailer: status, bi, bj and the
  * counts of the four kinds of g of the rank's own particles */
-enum { PER = 3, TRAILER = 7 };
+enum { PER = 2, TRAILER = 7 };
 
 void bf_g72_ranks_free(g72_ranks *r)
 {
@@ -115,7 +115,7 @@ bf_status bf_greenspan72_over_ranks(void *model, const bf_ranks *comm,
     if (st)
         return st;
     const size_t n = m->p.n, k = n ? n : 1, size = (size_t)comm->size;
-    if (n > (size_t)INT32_MAX / PER)
+    if (n > ((size_t)INT32_MAX - TRAILER) / PER)
         return bf_fail_key(err, BF_EINPUT, "greenspan72", "grid_nx",
                            "%zu particles are too many for a run over ranks",
                            n);
@@ -191,8 +191,9 @@ static size_t pack_own(g72_ranks *r, size_t nl, int bad, size_t bi,
         if (r->sl.rank_of[r->col[r->lid[l]]] != me)
             continue;
         r->send[w++] = r->lax[l];
-        r->send[w++] = r->lay[l];
-        r->send[w++] = r->lg[l];
+        /* the leapfrog's ay + g (eq 2.2), added here as it would add
+         * them: the same bits, a third less to exchange */
+        r->send[w++] = r->lay[l] + r->lg[l];
         kinds[r->lkind[l]]++;
     }
     r->send[w++] = bad;
@@ -253,7 +254,7 @@ void bf_g72_leapfrog_ranks(g72 *m, double h, double dt)
         const double *v = r->recv + r->at[q];
         r->at[q] += PER;
         p->vx[i] += h * v[0];
-        p->vy[i] += h * (v[1] + v[2]);
+        p->vy[i] += h * v[1];
         m->x0[i] = p->x[i];
         m->y0[i] = p->y[i];
         p->x[i] += dt * p->vx[i];
