@@ -56,7 +56,14 @@
  * the bodies part or u turns positive again, located as well), and the
  * maximum where u is 0 at the start (outside the contact).  The branches
  * are the maximum again between steps, so that any evaluation outside a
- * step sees the clipped force. */
+ * step sees the clipped force.  A branch that changes at a located event
+ * bumps the force epoch: the force cached at the piece's start (the root
+ * finder's last trial, on the old branch) is not the new piece's.
+ *
+ * Two events at the same instant (mirror-symmetric impacts: bit-identical
+ * gaps) are located once: an event already at its zero to round-off where
+ * another was located is left to the next piece's start_sides, and the
+ * search for an earlier crossing stops after m + 1 locations. */
 enum { MAX_PIECES = 100000, MAX_TRIALS = 60 };
 
 /* which gaps the effects make (every ball system: the coupled model's
@@ -235,16 +242,20 @@ static void start_sides(const bf_ballsys *s, const double *g,
  * that piece must not feel the force: delta^{1/4} is far from smooth
  * there), else the side of its release event (BF_BRANCH_PUSH, _FREE,
  * _CLIP are +1, -1, 0); NULL: the maximum (between steps) */
-static void set_branches(bf_ballsys *s, const int *sa)
+static int set_branches(bf_ballsys *s, const int *sa)
 {
     const int n = (int)s->b.n;
+    int changed = 0;
     for (int c = 0; c < s->nrel; c++) {
         const int gap = s->rel_floor && c < n ? c
                         : (s->gap_floor ? n : 0) + c - (s->rel_floor ? n : 0);
-        s->branch[c] = (signed char)(!sa ? BF_BRANCH_CLIP
-                                     : sa[gap] > 0 ? BF_BRANCH_FREE
-                                                   : sa[s->ngaps + c]);
+        const signed char b = (signed char)(!sa ? BF_BRANCH_CLIP
+                                            : sa[gap] > 0 ? BF_BRANCH_FREE
+                                                          : sa[s->ngaps + c]);
+        changed |= b != s->branch[c];
+        s->branch[c] = b;
     }
+    return changed;
 }
 
 /* the integrator's step (specialised or generic), without splitting */
@@ -415,25 +426,39 @@ bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
                 j = (int)k;
             }
         }
-        if (pieces >= MAX_PIECES)
-            break; /* (a safety net: never reached in the tests) */
+        if (pieces >= MAX_PIECES) {
+            /* (a safety net: a step that ends before t + dt is a failure,
+             * never a silent success) */
+            st = bf_fail(err, BF_EUNSTABLE, "more than %d event pieces in "
+                         "one step at t = %.9g s (contacts chattering: a "
+                         "smaller [scene] dt)", (int)MAX_PIECES, t);
+            break;
+        }
         if (j >= 0) {
             memcpy(w.xh, s->b.x, n * sizeof *w.xh);
             memcpy(w.vh, s->b.v, n * sizeof *w.vh);
             double ghi = w.gb[j], guess = first;
-            for (;;) {
+            for (size_t pass = 0;; pass++) {
                 if ((st = locate(s, &w, j, th, ghi, w.ga[j], guess, &th,
                                  err)))
                     break;
                 /* did another event cross before? (its zero comes
-                 * first) */
-                events(s, w.ta + th * w.h, w.xh, w.vh, w.gb, NULL);
+                 * first; one at its zero here is simultaneous) */
+                const double tz = w.ta + th * w.h;
+                events(s, tz, w.xh, w.vh, w.gb, NULL);
                 int k2 = -1;
                 for (size_t k = 0; k < m; k++)
-                    if ((int)k != j && sa[k] * side(w.gb[k]) < 0)
+                    if ((int)k != j && sa[k] * side(w.gb[k]) < 0 &&
+                        fabs(w.gb[k]) > event_tol(s, tz, w.xh, w.vh, (int)k))
                         k2 = (int)k;
                 if (k2 < 0)
                     break;
+                if (pass > m) {
+                    st = bf_fail(err, BF_EUNSTABLE, "the contact events "
+                                 "at t = %.9g s could not be ordered (%zu "
+                                 "locations)", tz, pass);
+                    break;
+                }
                 j = k2;
                 ghi = w.gb[j];
                 guess = 0.5;
@@ -456,7 +481,8 @@ bf_status bf_ballsys_step_split(bf_ballsys *s, double t, double dt,
         start_sides(s, w.ga, w.ra, m, sa);
         if (j >= 0)
             sa[j] = far;
-        set_branches(s, sa);
+        if (set_branches(s, sa))
+            s->ode.epoch++;
         if (!(rest > 0))
             break;
     }
