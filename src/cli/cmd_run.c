@@ -39,7 +39,7 @@ static int ranks_allgather(void *ctx, const double *send, size_t n,
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     size_t off = 0;
     for (int q = 0; q < size; q++) {
-        /* bf_greenspan72_over_ranks keeps 4 N + 3 below INT_MAX */
+        /* bf_greenspan72_over_ranks keeps 2 N + 7 R below INT_MAX */
         c->cnt[q] = (int)counts[q];
         c->dsp[q] = (int)off;
         off += counts[q];

@@ -115,7 +115,10 @@ bf_status bf_greenspan72_over_ranks(void *model, const bf_ranks *comm,
     if (st)
         return st;
     const size_t n = m->p.n, k = n ? n : 1, size = (size_t)comm->size;
-    if (n > ((size_t)INT32_MAX - TRAILER) / PER)
+    /* the exchange's counts and displacements are ints (MPI): the last
+     * displacement is PER n + TRAILER (size - 1) */
+    if (size > (size_t)INT32_MAX / TRAILER ||
+        n > ((size_t)INT32_MAX - TRAILER * size) / PER)
         return bf_fail_key(err, BF_EINPUT, "greenspan72", "grid_nx",
                            "%zu particles are too many for a run over ranks",
                            n);
