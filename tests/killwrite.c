@@ -14,7 +14,14 @@
  * With BF_KILL_IN=SUFFIX only writes to files whose name ends in SUFFIX
  * count, from the first (".ckpt.tmp": a kill while a checkpoint is being
  * written, between two flushes of the output).  Without BF_KILL_AT_WRITE,
- * every write passes. */
+ * every write passes.
+ *
+ * With BF_FREEZE_COARSE_CLOCK=1 the kernel's coarse monotonic clock (by
+ * which the program decides when a flush is due and when the output
+ * enters SWMR mode, src/base/clock.h) stands still at its first reading,
+ * so that those decisions no longer depend on how fast the machine runs:
+ * a test that kills "before SWMR mode" then does so on a loaded machine
+ * and under the sanitizers too. */
 #define _GNU_SOURCE /* RTLD_NEXT */
 #include <dlfcn.h>
 #include <signal.h>
@@ -22,6 +29,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/types.h>
+#include <time.h>
 #include <unistd.h>
 
 typedef ssize_t (*pwrite_fn)(int, const void *, size_t, off_t);
@@ -89,4 +97,28 @@ ssize_t pwrite64(int fd, const void *buf, size_t n, off_t off)
 {
     static pwrite_fn next;
     return forward(&next, "pwrite64", fd, buf, n, off);
+}
+
+typedef int (*clock_gettime_fn)(clockid_t, struct timespec *);
+
+int clock_gettime(clockid_t id, struct timespec *ts)
+{
+    static clock_gettime_fn next;
+    static struct timespec frozen;
+    static int have_frozen;
+    if (!next)
+        next = (clock_gettime_fn)dlsym(RTLD_NEXT, "clock_gettime");
+#ifdef CLOCK_MONOTONIC_COARSE
+    if (id == CLOCK_MONOTONIC_COARSE && getenv("BF_FREEZE_COARSE_CLOCK")) {
+        if (!have_frozen) {
+            int r = next(id, &frozen);
+            if (r)
+                return r;
+            have_frozen = 1;
+        }
+        *ts = frozen;
+        return 0;
+    }
+#endif
+    return next(id, ts);
 }
