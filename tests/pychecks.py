@@ -1,7 +1,27 @@
 """pychecks.py: the pass/fail bookkeeping of the Python tests
-(test_movies.py, test_xdmf.py): one line per check, a closing
-'NAME: N passed, N failed' line, and helpers to run the program."""
+(test_movies.py, test_xdmf.py, test_export.py): one line per check, a
+closing 'NAME: N passed, N failed' line, helpers to run the program, and
+one short run of each model for the tests that read every model's
+output."""
 import subprocess
+
+# A short run of each model: a scene of runs/ and its --set overrides
+# (a few output rows, the film's profiles included, seconds in all).
+MODEL_RUNS = {
+    "film": ("runs/kink_steady.ini", ["scene.t_end=1",
+                                      "scene.output_every=0.1 s",
+                                      "film.profile_every=0.1 s"]),
+    "balls": ("runs/two_balls_B.ini", ["scene.t_end=0.5",
+                                       "scene.output_every=200"]),
+    "coupled": ("runs/coupled_fig8.ini", ["scene.t_end=0.03",
+                                          "scene.output_every=100",
+                                          "film.profile_every=0.004 s"]),
+    "greenspan72": ("runs/greenspan72_ex2.ini", ["scene.t_end=1",
+                                                 "scene.output_every=5"]),
+    "greenspan73": ("runs/greenspan73_wall_friction.ini",
+                    ["scene.output_every=10"]),
+    "mac": ("runs/stratres.ini", ["scene.t_end=1", "scene.output_every=2"]),
+}
 
 
 class Checks:

@@ -31,21 +31,9 @@ import warnings
 import h5py
 import numpy as np
 
-from pychecks import Checks, run, run_scene
+from pychecks import MODEL_RUNS, Checks, run, run_scene
 
-RUNS = {
-    "balls": ("runs/two_balls_B.ini", ["scene.t_end=0.5",
-                                       "scene.output_every=200"]),
-    "coupled": ("runs/coupled_fig8.ini", ["scene.t_end=0.02",
-                                          "scene.output_every=100",
-                                          "film.profile_every=0.004 s"]),
-    "greenspan72": ("runs/greenspan72_ex2.ini", ["scene.t_end=1",
-                                                 "scene.output_every=5"]),
-    "greenspan73": ("runs/greenspan73_wall_friction.ini",
-                    ["scene.output_every=10"]),
-    "mac": ("runs/stratres.ini", ["scene.t_end=1", "scene.output_every=2"]),
-    "film": ("runs/kink_steady.ini", ["scene.t_end=0.1"]),
-}
+RUNS = MODEL_RUNS
 
 CK = Checks("export")
 check = CK.check

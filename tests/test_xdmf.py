@@ -27,24 +27,10 @@ import sys
 import h5py
 import numpy as np
 
-from pychecks import Checks, run, run_scene
+from pychecks import MODEL_RUNS, Checks, run, run_scene
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-RUNS = {
-    "film": ("runs/kink_steady.ini", ["scene.t_end=1",
-                                      "scene.output_every=0.1 s",
-                                      "film.profile_every=0.1 s"]),
-    "balls": ("runs/two_balls_B.ini", ["scene.t_end=0.5",
-                                       "scene.output_every=200"]),
-    "coupled": ("runs/coupled_fig8.ini", ["scene.t_end=0.03",
-                                          "scene.output_every=100",
-                                          "film.profile_every=0.004 s"]),
-    "greenspan72": ("runs/greenspan72_ex2.ini", ["scene.t_end=1",
-                                                 "scene.output_every=5"]),
-    "greenspan73": ("runs/greenspan73_wall_friction.ini",
-                    ["scene.output_every=10"]),
-    "mac": ("runs/stratres.ini", ["scene.t_end=1", "scene.output_every=2"]),
-}
+RUNS = MODEL_RUNS
 READERS = ("open", "legacy")
 
 CK = Checks("xdmf")
