@@ -94,6 +94,11 @@ bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
 /* Buffer one row (ncols values, or 1 if ncols == 0). */
 bf_status bf_series_append(bf_series *s, const double *row);
 bf_status bf_series_append_i64(bf_series *s, const int64_t *row);
+/* Buffer the next n values of the row being built (float64 series); the
+ * row is added when all its values are there.  For a row that comes in
+ * parts (a run split over ranks gathers it a block of particles at a
+ * time); a whole append or a flush in the middle of one fails. */
+bf_status bf_series_append_part(bf_series *s, const double *vals, size_t n);
 size_t bf_series_rows(const bf_series *s); /* written + buffered */
 const char *bf_series_path(const bf_series *s);
 size_t bf_series_width(const bf_series *s); /* values per row */

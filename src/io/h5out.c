@@ -70,7 +70,7 @@ static void quiet_hdf5(void)
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
 }
 
-static hid_t lcpl_intermediate(void)
+hid_t bf_out_lcpl_(void)
 {
     hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
     H5Pset_create_intermediate_group(lcpl, 1);
@@ -478,7 +478,7 @@ bf_series *bf_out_series(bf_out *out, const char *path, size_t ncols,
     hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
     H5Pset_chunk(dcpl, rank, chunk);
     add_filters(out, dcpl);
-    hid_t lcpl = lcpl_intermediate();
+    hid_t lcpl = bf_out_lcpl_();
     s->dset = H5Dcreate2(out->file, path,
                          is_int ? H5T_STD_I64LE : H5T_IEEE_F64LE, sp, lcpl, dcpl,
                          dapl);
@@ -522,7 +522,8 @@ static void series_unbuffer(bf_series *s, size_t rows)
         *s->buffered -= rows * 8 * s->width;
 }
 
-static bf_status append_raw(bf_series *s, const void *row)
+/* room in the buffer for row nbuf */
+static bf_status series_room(bf_series *s)
 {
     size_t rowbytes = 8 * s->width;
     if (s->nbuf == s->capbuf) {
@@ -538,6 +539,14 @@ static bf_status append_raw(bf_series *s, const void *row)
         s->buf = nb;
         s->capbuf = cap;
     }
+    return BF_OK;
+}
+
+static bf_status append_raw(bf_series *s, const void *row)
+{
+    size_t rowbytes = 8 * s->width;
+    if (s->partial || series_room(s))
+        return BF_EINTERNAL;
     unsigned char *dst = s->buf + s->nbuf * rowbytes;
     /* the usual widths with a constant size: a move, not a call */
     if (s->width == 1)
@@ -560,6 +569,22 @@ bf_status bf_series_append(bf_series *s, const double *row)
 bf_status bf_series_append_i64(bf_series *s, const int64_t *row)
 {
     return append_raw(s, row);
+}
+
+bf_status bf_series_append_part(bf_series *s, const double *vals, size_t n)
+{
+    const size_t rowbytes = 8 * s->width;
+    if (n > s->width - s->partial || (!s->partial && series_room(s)))
+        return BF_EINTERNAL;
+    memcpy(s->buf + s->nbuf * rowbytes + 8 * s->partial, vals, 8 * n);
+    s->partial += n;
+    if (s->partial == s->width) {
+        s->partial = 0;
+        s->nbuf++;
+        if (s->buffered)
+            *s->buffered += rowbytes;
+    }
+    return BF_OK;
 }
 
 size_t bf_series_rows(const bf_series *s) { return s->written + s->nbuf; }
@@ -598,8 +623,7 @@ bf_status bf_series_truncate(bf_series *s, size_t rows, bf_err *err)
     return BF_OK;
 }
 
-/* After a failed write nothing more reaches the file. */
-static bf_status failed_before(const bf_out *out, bf_err *err)
+bf_status bf_out_failed_before_(const bf_out *out, bf_err *err)
 {
     return bf_fail(err, BF_EIO, "%s: not written: an earlier write failed",
                    out->path);
@@ -674,6 +698,8 @@ static void close_refused(bf_out *out)
 
 static bf_status series_flush(bf_out *out, bf_series *s, bf_err *err)
 {
+    if (s->partial)
+        return bf_fail(err, BF_EINTERNAL, "%s: a row is half built", s->path);
     if (!s->nbuf)
         return BF_OK;
     int rank = s->ncols ? 2 : 1;
@@ -759,7 +785,7 @@ static bf_status write_array(bf_out *out, const char *path, const void *data,
                              const char *doc, bf_err *err)
 {
     if (out->failed)
-        return failed_before(out, err);
+        return bf_out_failed_before_(out, err);
     if (bf_out_before_metadata_(out, err))
         return BF_EIO;
     int rank = n1 ? 2 : 1;
@@ -767,7 +793,7 @@ static bf_status write_array(bf_out *out, const char *path, const void *data,
     if (out->append && H5Lexists(out->file, path, H5P_DEFAULT) > 0)
         H5Ldelete(out->file, path, H5P_DEFAULT);
     hid_t sp = H5Screate_simple(rank, dims, NULL);
-    hid_t lcpl = lcpl_intermediate();
+    hid_t lcpl = bf_out_lcpl_();
     hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
     if (out->deflate > 0 && 8.0 * (double)n0 * (double)(n1 ? n1 : 1) >
                                 COMPRESS_ARRAY_BYTES) {
@@ -811,82 +837,4 @@ bf_status bf_out_array_i64(bf_out *out, const char *path, const int64_t *data,
                            const char *doc, bf_err *err)
 {
     return write_array(out, path, data, n0, n1, 1, unit, doc, err);
-}
-
-/* The object obj of the file (created as a group if it does not exist),
- * to be given back with close_obj. */
-static hid_t open_obj(bf_out *out, const char *obj)
-{
-    if (!strcmp(obj, "/"))
-        return out->root >= 0 ? out->root
-                              : H5Oopen(out->file, "/", H5P_DEFAULT);
-    if (H5Lexists(out->file, obj, H5P_DEFAULT) > 0)
-        return H5Oopen(out->file, obj, H5P_DEFAULT);
-    hid_t lcpl = lcpl_intermediate();
-    hid_t g = H5Gcreate2(out->file, obj, lcpl, H5P_DEFAULT, H5P_DEFAULT);
-    H5Pclose(lcpl);
-    return g;
-}
-
-static void close_obj(bf_out *out, hid_t o)
-{
-    if (o != out->root)
-        H5Oclose(o);
-}
-
-bf_status bf_out_attr_str(bf_out *out, const char *obj, const char *name,
-                          const char *value, bf_err *err)
-{
-    if (out->failed)
-        return failed_before(out, err);
-    if (bf_out_before_metadata_(out, err))
-        return BF_EIO;
-    hid_t o = open_obj(out, obj);
-    if (o < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot open %s", out->path, obj);
-    bf_status st = bf_out_str_attr_(o, name, value);
-    close_obj(out, o);
-    if (st)
-        return bf_fail(err, BF_EIO, "%s: cannot write attribute %s of %s",
-                       out->path, name, obj);
-    return BF_OK;
-}
-
-static bf_status num_attr(bf_out *out, const char *obj, const char *name,
-                          hid_t ftype, hid_t mtype, const void *v, bf_err *err)
-{
-    if (out->failed)
-        return failed_before(out, err);
-    if (bf_out_before_metadata_(out, err))
-        return BF_EIO;
-    hid_t o = open_obj(out, obj);
-    if (o < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot open %s", out->path, obj);
-    if (H5Aexists(o, name) > 0)
-        H5Adelete(o, name);
-    hid_t sp = H5Screate(H5S_SCALAR);
-    hid_t a = H5Acreate2(o, name, ftype, sp, H5P_DEFAULT, H5P_DEFAULT);
-    herr_t rc = a >= 0 ? H5Awrite(a, mtype, v) : -1;
-    if (a >= 0)
-        H5Aclose(a);
-    H5Sclose(sp);
-    close_obj(out, o);
-    if (rc < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot write attribute %s of %s",
-                       out->path, name, obj);
-    return BF_OK;
-}
-
-bf_status bf_out_attr_real(bf_out *out, const char *obj, const char *name,
-                           double value, bf_err *err)
-{
-    return num_attr(out, obj, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value,
-                    err);
-}
-
-bf_status bf_out_attr_int(bf_out *out, const char *obj, const char *name,
-                          int64_t value, bf_err *err)
-{
-    return num_attr(out, obj, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value,
-                    err);
 }

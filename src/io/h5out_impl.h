@@ -1,4 +1,4 @@
-/* h5out_impl.h: what h5out.c and h5swmr.c share of an output file
+/* h5out_impl.h: what h5out.c, h5attr.c and h5swmr.c share of an output file
  * (private to src/io; the interface is include/ballfilm/h5out.h). */
 #ifndef BALLFILM_IO_H5OUT_IMPL_H
 #define BALLFILM_IO_H5OUT_IMPL_H
@@ -22,6 +22,7 @@ struct bf_series {
     size_t written;  /* rows on disk */
     size_t rpc;      /* rows per chunk */
     size_t nbuf, capbuf;
+    size_t partial;  /* values of the row being built (bf_series_append_part) */
     unsigned char *buf;
     char *path;
     size_t *buffered; /* the output's count of bytes in every buffer */
@@ -62,6 +63,10 @@ struct bf_out {
 /* h5out.c */
 /* The writer's file-access list (append: to continue a killed run). */
 hid_t bf_out_fapl_(int append);
+/* A link-creation list that creates the groups of a path. */
+hid_t bf_out_lcpl_(void);
+/* After a failed write nothing more reaches the file: BF_EIO saying so. */
+bf_status bf_out_failed_before_(const bf_out *out, bf_err *err);
 /* A series' dataset-access list: its chunk cache. */
 hid_t bf_out_series_dapl_(size_t rows_per_chunk, size_t ncols);
 /* A UTF-8 string attribute written (or written over). */

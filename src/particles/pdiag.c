@@ -4,31 +4,53 @@
 #include <math.h>
 #include <string.h>
 
-bf_pdiag_group bf_pdiag_group_of(const bf_particles *p, int tag)
+bf_pdiag_acc bf_pdiag_acc_start(void)
 {
-    bf_pdiag_group g = {0, 0.0, NAN, INFINITY, -INFINITY};
-    double sy = 0.0;
+    return (bf_pdiag_acc){{0, 0.0, NAN, INFINITY, -INFINITY}, 0.0};
+}
+
+void bf_pdiag_acc_add(bf_pdiag_acc *a, const bf_particles *p, int tag)
+{
+    bf_pdiag_group *g = &a->g;
     for (size_t i = 0; i < p->n; i++) {
         if (p->tag[i] != tag)
             continue;
-        g.count++;
-        sy += p->y[i];
-        if (p->y[i] < g.min_y)
-            g.min_y = p->y[i];
-        if (p->y[i] > g.max_y)
-            g.max_y = p->y[i];
+        g->count++;
+        a->sy += p->y[i];
+        if (p->y[i] < g->min_y)
+            g->min_y = p->y[i];
+        if (p->y[i] > g->max_y)
+            g->max_y = p->y[i];
         if (!(p->flags[i] & BF_PART_FIXED))
-            g.kin += 0.5 * p->m[i] * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]);
+            g->kin += 0.5 * p->m[i] * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]);
     }
+}
+
+bf_pdiag_group bf_pdiag_acc_end(const bf_pdiag_acc *a)
+{
+    bf_pdiag_group g = a->g;
     if (g.count)
-        g.mean_y = sy / (double)g.count;
+        g.mean_y = a->sy / (double)g.count;
     return g;
+}
+
+bf_pdiag_group bf_pdiag_group_of(const bf_particles *p, int tag)
+{
+    bf_pdiag_acc a = bf_pdiag_acc_start();
+    bf_pdiag_acc_add(&a, p, tag);
+    return bf_pdiag_acc_end(&a);
 }
 
 void bf_pdiag_layers(const bf_particles *p, int tag, double y0, double y1,
                      size_t nl, double *counts)
 {
     memset(counts, 0, nl * sizeof *counts);
+    bf_pdiag_layers_add(p, tag, y0, y1, nl, counts);
+}
+
+void bf_pdiag_layers_add(const bf_particles *p, int tag, double y0,
+                         double y1, size_t nl, double *counts)
+{
     const double scale = (double)nl / (y1 - y0);
     for (size_t i = 0; i < p->n; i++) {
         if (tag >= 0 && p->tag[i] != tag)

@@ -153,6 +153,14 @@ static int reflect_fortran(const bf_walls *w, double x1, double y1, double *px,
 bf_status bf_walls_apply(const bf_walls *w, bf_particles *p, double *x0,
                          double *y0, unsigned long long *hits, bf_err *err)
 {
+    return bf_walls_apply_ids(w, p, x0, y0, NULL, hits, NULL, err);
+}
+
+bf_status bf_walls_apply_ids(const bf_walls *w, bf_particles *p, double *x0,
+                             double *y0, const uint32_t *ids,
+                             unsigned long long *hits, size_t *bad,
+                             bf_err *err)
+{
     const bf_box *b = &w->box;
     unsigned long long total = 0;
     for (size_t i = 0; i < p->n; i++) {
@@ -163,13 +171,15 @@ bf_status bf_walls_apply(const bf_walls *w, bf_particles *p, double *x0,
                                       &p->vx[i], &p->vy[i])
                     : reflect_clean(w, x0[i], y0[i], &p->x[i], &p->y[i],
                                     &p->vx[i], &p->vy[i]);
+        if (h < 0 && bad)
+            *bad = i;
         if (h < 0)
             return bf_fail(err, BF_EUNSTABLE,
                            "particle %zu cannot be brought back into the box "
                            "(from (%.9g, %.9g) to (%.9g, %.9g): non-finite, or "
                            "more than %d wall hits in one step)",
-                           i + 1, x0[i], y0[i], p->x[i], p->y[i],
-                           BF_WALLS_MAX_HITS);
+                           (ids ? (size_t)ids[i] : i) + 1, x0[i], y0[i],
+                           p->x[i], p->y[i], BF_WALLS_MAX_HITS);
         total += (unsigned long long)h;
     }
     if (hits)

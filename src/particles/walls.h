@@ -66,6 +66,13 @@ void bf_walls_from_keys(bf_walls *w, const bf_walls_keys *k, bf_box box);
  * them, as WALCOL does).  Adds the number of reflections to *hits. */
 bf_status bf_walls_apply(const bf_walls *w, bf_particles *p, double *x0,
                          double *y0, unsigned long long *hits, bf_err *err);
+/* The same, naming particle ids[i] + 1 (not i + 1) in the error, for a
+ * rank's share of the particles (ids NULL: i), and on failure the index i
+ * of the particle in *bad (may be NULL). */
+bf_status bf_walls_apply_ids(const bf_walls *w, bf_particles *p, double *x0,
+                             double *y0, const uint32_t *ids,
+                             unsigned long long *hits, size_t *bad,
+                             bf_err *err);
 
 /* 1 if every particle is in the closed box, else 0 with *bad its index. */
 int bf_box_contains_all(const bf_box *b, const bf_particles *p, size_t *bad);
