@@ -67,6 +67,10 @@ typedef struct bf_model_setup {
     const bf_effect_type *const *effects;
     const void *const *effect_params;
     size_t neffects;
+    /* processes that will run the model split between them (bf_sim_opts
+     * nranks; <= 1: one process): a model that can be split allocates its
+     * work for its share only, once it is split */
+    int nranks;
 } bf_model_setup;
 
 /* The values of a section of the setup (*count: how many; may be NULL),

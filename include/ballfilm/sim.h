@@ -96,6 +96,15 @@ typedef struct bf_sim_opts {
      * output file, so that bf_sim_results has them (model.h, bf_run_ctx
      * keep_map; 16 B a point): what a sweep's result columns need. */
     int keep_map_points;
+    /* This process is rank `rank` of `nranks` that run one model split
+     * between them (models that support it: greenspan72; nranks <= 1: one
+     * process).  The model is built for the split (it does not allocate
+     * its work for all particles), and only rank 0 writes: on the others
+     * the model's output rows and checkpoints are still taken at the
+     * steps where rank 0 takes them, with no file (the model gathers its
+     * state there for rank 0), so rank 0 must open an output (or none of
+     * the ranks run with nranks > 1). */
+    int rank, nranks;
 } bf_sim_opts;
 
 /* Where the run comes from, for the output's provenance and for

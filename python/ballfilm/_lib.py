@@ -36,7 +36,8 @@ class Err(ctypes.Structure):
 class SimOpts(ctypes.Structure):
     _fields_ = [("progress", c_int), ("stop_flag", POINTER(c_int)),
                 ("stop_after", c_long), ("keep_checkpoint", c_int),
-                ("step_by_step", c_int), ("keep_map_points", c_int)]
+                ("step_by_step", c_int), ("keep_map_points", c_int),
+                ("rank", c_int), ("nranks", c_int)]
 
 
 class StateVar(ctypes.Structure):

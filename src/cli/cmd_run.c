@@ -5,6 +5,7 @@
  * output file is created, so a bad scene never truncates an earlier result.
  */
 #include <errno.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,42 +23,103 @@
 #include "models/greenspan.h"
 
 /* The stop flag of a run over ranks: the OR of every rank's bf_cli_stop,
- * agreed at each exchange, so that every rank stops after the same step
- * (a signal reaches the ranks at different moments). */
+ * agreed at each exchange of particles (every step has two), so that every
+ * rank stops after the same step (a signal reaches the ranks at different
+ * moments). */
 static volatile sig_atomic_t ranks_stop;
 
 typedef struct ranks_ctx {
-    int *cnt, *dsp; /* MPI_Allgatherv's counts and displacements */
+    /* MPI's counts and displacements, sent and received */
+    int *cnt, *dsp, *rcnt, *rdsp;
+    int *pair, *rpair; /* [2 size]: a count and the stop flag, each rank */
 } ranks_ctx;
+
+/* An exchange that cannot go on (its sizes beyond MPI's ints, or no
+ * memory to receive): the other ranks are waiting in it, so the whole run
+ * stops, with status 1. */
+static void ranks_abort(const char *why)
+{
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    fprintf(stderr, "ballfilm: rank %d: %s\n", rank, why);
+    MPI_Abort(MPI_COMM_WORLD, BF_EINTERNAL);
+}
+
+/* Counts and their displacements as MPI's ints. */
+static void ranks_ints(const size_t *counts, int size, int *cnt, int *dsp)
+{
+    size_t off = 0;
+    for (int q = 0; q < size; q++) {
+        if (counts[q] > INT_MAX || off > INT_MAX)
+            ranks_abort("an exchange beyond MPI's int counts");
+        cnt[q] = (int)counts[q];
+        dsp[q] = (int)off;
+        off += counts[q];
+    }
+}
 
 /* bf_ranks.allgather over MPI_COMM_WORLD (models/greenspan.h) */
 static int ranks_allgather(void *ctx, const double *send, size_t n,
                            double *recv, const size_t *counts)
 {
     ranks_ctx *c = ctx;
-    int size, stop = bf_cli_stop != 0, any = 0;
+    int size;
     MPI_Comm_size(MPI_COMM_WORLD, &size);
-    size_t off = 0;
-    for (int q = 0; q < size; q++) {
-        /* bf_greenspan72_over_ranks keeps 2 N + 7 R below INT_MAX */
-        c->cnt[q] = (int)counts[q];
-        c->dsp[q] = (int)off;
-        off += counts[q];
-    }
-    if (MPI_Allreduce(&stop, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD) ||
-        MPI_Allgatherv(send, (int)n, MPI_DOUBLE, recv, c->cnt, c->dsp,
-                       MPI_DOUBLE, MPI_COMM_WORLD))
-        return 1;
-    if (any)
-        ranks_stop = 1;
-    return 0;
+    ranks_ints(counts, size, c->cnt, c->dsp);
+    return MPI_Allgatherv(send, (int)n, MPI_DOUBLE, recv, c->cnt, c->dsp,
+                          MPI_DOUBLE, MPI_COMM_WORLD) != MPI_SUCCESS;
 }
 
-/* Split the run over the ranks when there are several: only greenspan72
- * runs so (the other models' state is not split); refusals are
- * BF_EINPUT naming the key. */
-static bf_status ranks_attach(bf_sim *sim, int rank, int size, ranks_ctx *c,
-                              bf_err *err)
+/* bf_ranks.alltoallv: the counts first, each with the stop flag
+ * (MPI_Alltoall: no collective of its own for the flag), then the data */
+static int ranks_alltoallv(void *ctx, const double *send,
+                           const size_t *scounts, double **recv,
+                           size_t *rcap, size_t *rcounts)
+{
+    ranks_ctx *c = ctx;
+    int size;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    ranks_ints(scounts, size, c->cnt, c->dsp);
+    for (int q = 0; q < size; q++) {
+        c->pair[2 * q] = c->cnt[q];
+        c->pair[2 * q + 1] = bf_cli_stop != 0;
+    }
+    if (MPI_Alltoall(c->pair, 2, MPI_INT, c->rpair, 2, MPI_INT,
+                     MPI_COMM_WORLD))
+        return 1;
+    size_t total = 0;
+    for (int q = 0; q < size; q++) {
+        rcounts[q] = (size_t)c->rpair[2 * q];
+        total += rcounts[q];
+        if (c->rpair[2 * q + 1])
+            ranks_stop = 1;
+    }
+    ranks_ints(rcounts, size, c->rcnt, c->rdsp);
+    if (total > *rcap) {
+        double *b = realloc(*recv, total * sizeof *b);
+        if (!b)
+            ranks_abort("out of memory for an exchange between ranks");
+        *recv = b;
+        *rcap = total;
+    }
+    return MPI_Alltoallv(send, c->cnt, c->dsp, MPI_DOUBLE, *recv, c->rcnt,
+                         c->rdsp, MPI_DOUBLE, MPI_COMM_WORLD) != MPI_SUCCESS;
+}
+
+/* bf_ranks.allsum */
+static int ranks_allsum(void *ctx, double *v, size_t n)
+{
+    (void)ctx;
+    if (n > INT_MAX)
+        ranks_abort("a sum beyond MPI's int counts");
+    return MPI_Allreduce(MPI_IN_PLACE, v, (int)n, MPI_DOUBLE, MPI_SUM,
+                         MPI_COMM_WORLD) != MPI_SUCCESS;
+}
+
+/* Whether the run can be split over the ranks: only greenspan72 runs so
+ * (the other models' state is not split), and not with every option;
+ * refusals are BF_EINPUT naming the key. */
+static bf_status ranks_can_split(bf_sim *sim, int size, bf_err *err)
 {
     const char *name = bf_sim_model_type(sim)->name;
     if (strcmp(name, "greenspan72"))
@@ -66,34 +128,64 @@ static bf_status ranks_attach(bf_sim *sim, int rank, int size, ranks_ctx *c,
                            "given); the models that do: greenspan72.  Run "
                            "it with one rank",
                            name, size);
+    return bf_greenspan72_ranks_refuse(bf_sim_model(sim), err);
+}
+
+static bf_status ranks_attach(bf_sim *sim, int rank, int size, ranks_ctx *c,
+                              bf_err *err)
+{
     c->cnt = calloc((size_t)size, sizeof *c->cnt);
     c->dsp = calloc((size_t)size, sizeof *c->dsp);
-    if (!c->cnt || !c->dsp)
+    c->rcnt = calloc((size_t)size, sizeof *c->rcnt);
+    c->rdsp = calloc((size_t)size, sizeof *c->rdsp);
+    c->pair = calloc(2 * (size_t)size, sizeof *c->pair);
+    c->rpair = calloc(2 * (size_t)size, sizeof *c->rpair);
+    if (!c->cnt || !c->dsp || !c->rcnt || !c->rdsp || !c->pair || !c->rpair)
         return bf_fail(err, BF_EINTERNAL, "out of memory");
-    bf_ranks r = {rank, size, c, ranks_allgather};
+    bf_ranks r = {rank, size, c, ranks_allgather, ranks_alltoallv,
+                  ranks_allsum, 0};
     return bf_greenspan72_over_ranks(bf_sim_model(sim), &r, err);
 }
 
 static void print_setup_error(bf_status st, const char *msg);
 
-/* After the set-up (status st) of a run over ranks: split it, and the
- * worst status of all ranks (a rank that failed alone must not leave the
- * others waiting in the run's exchanges).  Every rank reads the scene (or
- * checkpoint) and builds the whole model: the same failures everywhere,
- * said once by rank 0 (an allocation may fail alone, and says so). */
-static bf_status ranks_split(bf_status st, bf_run *run, const char *what,
-                             int rank, int nranks, ranks_ctx *c, bf_err *err)
+/* The worst status of all ranks (a rank that failed alone must not leave
+ * the others waiting in the run's exchanges). */
+static bf_status ranks_worst(bf_status st)
 {
-    if (st && (!rank || st == BF_EINTERNAL))
-        print_setup_error(st, err->msg);
-    else if (!st && (st = ranks_attach(bf_run_sim(run), rank, nranks, c,
-                                       err)) &&
-             (!rank || st == BF_EINTERNAL))
-        fprintf(stderr, "ballfilm: error: %s: [%s] %s: %s\n", what,
-                err->section, err->key, err->msg);
     int mine = (int)st, worst = 0;
     MPI_Allreduce(&mine, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
     return (bf_status)worst;
+}
+
+/* After the set-up (status st) of a run over ranks: whether it can be
+ * split, agreed.  Every rank reads the scene (or checkpoint) and builds
+ * the whole model: the same failures everywhere, said once by rank 0 (an
+ * allocation may fail alone, and says so). */
+static bf_status ranks_check(bf_status st, bf_run *run, const char *what,
+                             int rank, int nranks, bf_err *err)
+{
+    if (st && (!rank || st == BF_EINTERNAL))
+        print_setup_error(st, err->msg);
+    else if (!st && (st = ranks_can_split(bf_run_sim(run), nranks, err)) &&
+             !rank)
+        fprintf(stderr, "ballfilm: error: %s: [%s] %s: %s\n", what,
+                err->section, err->key, err->msg);
+    return ranks_worst(st);
+}
+
+/* After rank 0 opened the output (status st there): the split, each rank
+ * keeping its particles, agreed.  The whole model was there until now, so
+ * that rank 0 could write the particles' static datasets. */
+static bf_status ranks_split(bf_status st, bf_run *run, int rank, int nranks,
+                             ranks_ctx *c, bf_err *err)
+{
+    if ((st = ranks_worst(st)))
+        return st;
+    if ((st = ranks_attach(bf_run_sim(run), rank, nranks, c, err)) &&
+        (!rank || st == BF_EINTERNAL))
+        print_setup_error(st, err->msg);
+    return ranks_worst(st);
 }
 #endif
 
@@ -353,6 +445,8 @@ int bf_cmd_run(int argc, char **argv)
         .stop_flag = stop_flag,
         .stop_after = stop_after,
         .keep_checkpoint = keep_ckpt,
+        .rank = rank,
+        .nranks = nranks,
     };
     bf_status st;
     if (restart) {
@@ -364,8 +458,9 @@ int bf_cmd_run(int argc, char **argv)
                                            restart, sets, (size_t)nset,
                                            &opts, &err);
 #ifdef BF_MPI
-        if (nranks > 1 && (st = ranks_split(st, run, restart, rank, nranks,
-                                            &rctx, &err)))
+        if (nranks > 1 &&
+            ((st = ranks_check(st, run, restart, rank, nranks, &err)) ||
+             (st = ranks_split(BF_OK, run, rank, nranks, &rctx, &err))))
             goto done;
 #endif
         if (st) {
@@ -379,8 +474,8 @@ int bf_cmd_run(int argc, char **argv)
     st = bf_run_load(&run, bf_catalog_builtin(), scene_path, sets,
                      (size_t)nset, &opts, &err);
 #ifdef BF_MPI
-    if (nranks > 1 && (st = ranks_split(st, run, scene_path, rank, nranks,
-                                        &rctx, &err)))
+    if (nranks > 1 &&
+        (st = ranks_check(st, run, scene_path, rank, nranks, &err)))
         goto done;
 #endif
     if (st) {
@@ -389,29 +484,32 @@ int bf_cmd_run(int argc, char **argv)
     }
     sim = bf_run_sim(run);
     /* interrupted while the scene was read and the model built: nothing
-     * has been written yet, and nothing will be */
-    if (*stop_flag || bf_cli_stop) {
-        if (writer)
-            fprintf(stderr, "ballfilm: interrupted during set-up; nothing "
-                            "was written\n");
+     * has been written yet, and nothing will be (over ranks the ranks
+     * agree on a stop at the first step) */
+    if (nranks == 1 && (*stop_flag || bf_cli_stop)) {
+        fprintf(stderr, "ballfilm: interrupted during set-up; nothing was "
+                        "written\n");
         st = BF_INTERRUPTED;
         goto done;
     }
-    if (!writer)
-        goto run;
-    if (!out_path) {
+    /* rank 0 creates the output while it holds every particle (their
+     * static datasets), then the ranks split them */
+    if (writer && !out_path) {
         out_path = defout = default_output(scene_path);
         if (!defout) {
             fprintf(stderr, "ballfilm: error: cannot create directory 'out': %s\n",
                     strerror(errno));
             st = BF_EIO;
-            goto done;
         }
     }
-    if ((st = bf_run_open_output(run, out_path, &err))) {
+    if (writer && !st && (st = bf_run_open_output(run, out_path, &err)))
         print_setup_error(st, err.msg);
+#ifdef BF_MPI
+    if (nranks > 1)
+        st = ranks_split(st, run, rank, nranks, &rctx, &err);
+#endif
+    if (st)
         goto done;
-    }
 run:;
     if (writer)
         warn_disk_space(sim, out_path);
@@ -419,8 +517,22 @@ run:;
     bf_status run_st = bf_sim_run(sim, &err);
     bf_err cerr = {0};
     bf_status close_st = bf_sim_close_output(sim, run_st, &err, &cerr);
+#ifdef BF_MPI
+    /* the model's failures over ranks that its exchanges found (a step
+     * that is unstable) and a stop are every rank's, and rank 0 says
+     * them; any other (memory, the output's I/O, the final state's check
+     * of one rank's particles) may be one rank's, and the others may be
+     * waiting for it in the next exchange: the run is aborted with its
+     * status after rank 0 has closed its output and said what it knows */
+    const int alone = nranks > 1 && run_st && run_st != BF_INTERRUPTED &&
+                      !bf_greenspan72_failed_together(bf_sim_model(sim));
+    if (alone && !writer) {
+        fprintf(stderr, "ballfilm: rank %d: %s: %s\n", rank,
+                bf_status_name(run_st), err.msg);
+        MPI_Abort(MPI_COMM_WORLD, (int)run_st);
+    }
+#endif
     if (!writer) {
-        /* the model's failures are every rank's, and rank 0 says them */
         st = run_st;
         goto done;
     }
@@ -450,9 +562,7 @@ run:;
         st = close_st;
     }
 #ifdef BF_MPI
-    /* a failure of the output (I/O, or memory for its buffers) is rank
-     * 0's alone: the other ranks wait in the next exchange */
-    if (nranks > 1 && (run_st == BF_EIO || run_st == BF_EINTERNAL))
+    if (alone)
         MPI_Abort(MPI_COMM_WORLD, (int)run_st);
 #endif
     if (close_st && run_st != BF_EIO)
@@ -469,6 +579,10 @@ done:
 #ifdef BF_MPI
     free(rctx.cnt);
     free(rctx.dsp);
+    free(rctx.rcnt);
+    free(rctx.rdsp);
+    free(rctx.pair);
+    free(rctx.rpair);
     MPI_Finalize();
 #endif
     return (int)st;

@@ -107,6 +107,8 @@ static bf_status sim_from_scene(bf_sim **out, const bf_catalog *c,
         run.keep_map = opts->keep_map_points;
     if (!st)
         st = bf_setup_create(&setup, c, sc, &run, err);
+    if (!st && opts)
+        bf_setup_set_nranks(setup, opts->nranks);
     if (!st)
         st = bf_setup_build_model(setup, sc, &model, err);
     char *sets = st ? NULL : join_sets(sc);

@@ -36,4 +36,8 @@ bf_status bf_compose_setup(bf_setup **setup, const bf_catalog *c,
 size_t bf_catalog_analyses_of(const bf_catalog *c, const bf_model_type *mt,
                               const bf_analysis_type *const **list);
 
+/* The processes that will run the setup's model split between them
+ * (bf_model_setup nranks; bf_sim_opts nranks). */
+void bf_setup_set_nranks(bf_setup *s, int nranks);
+
 #endif

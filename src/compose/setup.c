@@ -44,6 +44,8 @@ void bf_setup_free(bf_setup *s)
 }
 
 const bf_model_setup *bf_setup_model(const bf_setup *s) { return &s->pub; }
+
+void bf_setup_set_nranks(bf_setup *s, int nranks) { s->pub.nranks = nranks; }
 const bf_model_type *bf_setup_model_type(const bf_setup *s) { return s->mt; }
 
 /* One struct of spec filled from section `name` (NULL for a spec with no

@@ -349,8 +349,22 @@ bf_status bf_sim_open_output(bf_sim *s, const char *path, bf_err *err)
     H5_LOCKED(open_output(s, path, err));
 }
 
+/* A follower's row: the model's part of it, which writes nothing. */
+static bf_status follow_row(bf_sim *s, bf_err *err)
+{
+    bf_status st = BF_OK;
+    if (s->mt->output_row)
+        st = bf_sim_hook_status_(s->mt->output_row(s->model, s->n,
+                                                   (double)s->n * s->dt, err),
+                                 "model", s->mt->name, "output_row", err);
+    s->last_row = s->n;
+    return st;
+}
+
 static bf_status write_row(bf_sim *s, bf_err *err)
 {
+    if (!s->out && bf_sim_follower_(s) && s->last_row != s->n)
+        return follow_row(s, err);
     if (!s->out || s->last_row == s->n)
         return BF_OK;
     double t = (double)s->n * s->dt;
@@ -416,14 +430,14 @@ static void progress(bf_sim *s, double t0, int final)
 static bf_status interrupt(bf_sim *s, bf_err *err)
 {
     double t = (double)s->n * s->dt;
-    if (s->out && bf_sim_can_checkpoint(s)) {
+    if ((s->out || bf_sim_follower_(s)) && bf_sim_can_checkpoint(s)) {
         bf_status st = bf_sim_checkpoint_write(s, s->ckpt_path, err);
         if (st)
             return st;
         return bf_fail(err, BF_INTERRUPTED,
                        "interrupted at step %ld (t = %.9g s); checkpoint "
                        "written; continue with: ballfilm run --restart %s",
-                       s->n, t, bf_out_path(s->out));
+                       s->n, t, s->out ? bf_out_path(s->out) : "OUT.h5");
     }
     return bf_fail(err, BF_INTERRUPTED,
                    "interrupted at step %ld (t = %.9g s); this %s cannot be "
@@ -459,8 +473,9 @@ static due_steps due_after(const bf_sim *s, long n)
     d.energy = s->has_energy && s->energy_every
                    ? next_multiple(n, s->energy_every)
                    : LONG_MAX;
-    d.ckpt = s->ckpt_every && s->out ? next_multiple(n, s->ckpt_every)
-                                     : LONG_MAX;
+    d.ckpt = s->ckpt_every && (s->out || bf_sim_follower_(s))
+                 ? next_multiple(n, s->ckpt_every)
+                 : LONG_MAX;
     return d;
 }
 

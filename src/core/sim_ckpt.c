@@ -102,6 +102,9 @@ static bf_status checkpoint_write(bf_sim *s, const char *path, bf_err *err)
     if (!bf_sim_can_checkpoint(s))
         return bf_fail(err, BF_EINPUT, "model '%s' cannot write checkpoints",
                        s->mt->name);
+    /* a follower's part: the model's, with no file (bf_sim_opts) */
+    if (!s->out && bf_sim_follower_(s))
+        return s->mt->checkpoint_save(s->model, NULL, err);
     bf_status st = check_target(s, path, err);
     if (st)
         return st;

@@ -105,6 +105,12 @@ int bf_sim_status_valid_(bf_status st);
  * name NULL: none) returned, made a status of error.h with a cause:
  * BF_EINTERNAL for a value that is none, the status named for a failure
  * without a message. */
+/* A rank other than 0 of a run split over ranks (bf_sim_opts): it takes
+ * the model's rows and checkpoints with rank 0, and writes nothing. */
+static inline int bf_sim_follower_(const bf_sim *s)
+{
+    return s->opts.nranks > 1 && s->opts.rank > 0;
+}
 bf_status bf_sim_hook_status_(bf_status st, const char *kind,
                               const char *name, const char *hook,
                               bf_err *err);

@@ -1,6 +1,7 @@
 /* g72_impl.h: the state of model "greenspan72" (private to
  * src/models/greenspan72.c and src/models/g72_ranks.c, its run over
- * ranks).
+ * ranks, where p and the other per-particle arrays hold the particles of
+ * one rank).
  */
 #ifndef BALLFILM_MODELS_G72_IMPL_H
 #define BALLFILM_MODELS_G72_IMPL_H
@@ -15,6 +16,8 @@
 #include "particles/walls.h"
 
 enum { NSETTLE = 4 };
+enum { TAG_HEAVY = 1, TAG_LIGHT = 2 };
+enum { OUT_ALL = 0, OUT_POSITIONS = 1, OUT_DIAG = 2 };
 
 typedef struct g72_ranks g72_ranks; /* g72_ranks.c */
 
@@ -49,18 +52,41 @@ typedef struct g72 {
      * failed (-1: never) */
     long settle_first[NSETTLE], settle_lastfail[NSETTLE], settle_last_row;
     g72_ranks *ranks; /* the run over ranks (NULL: one process) */
+    int split_ready;  /* built for a split: the work allocated by it */
 } g72;
 
-/* g72_ranks.c: a(x) of the own particles of this rank, gathered from
- * every rank into its exchange buffer (not into ax, ay, g, kind), and
- * the counts of the kinds of g. */
+/* g72_out.c: the model's series and its output hooks (model.h). */
+extern const bf_series_table *const bf_g72_tables[];
+bf_status bf_g72_output_open(void *self, bf_out *out, bf_err *err);
+bf_status bf_g72_output_row(void *self, long n, double t, bf_err *err);
+bf_status bf_g72_output_close(void *self, bf_out *out, bf_err *err);
+/* greenspan72.c: a(x) of every particle, here or split over ranks (the
+ * same bits), counted in m->evals unless it replays one (acc_replay). */
+bf_status bf_g72_accel(g72 *m, bf_err *err);
+/* g72_ranks.c, over ranks (m->ranks; m->p holds this rank's particles):
+ * a(x) of the own particles after the migration and the halo exchange,
+ * and the counts of the kinds of g over all ranks. */
 bf_status bf_g72_accel_ranks(g72 *m, bf_err *err);
-/* The leapfrog (eqs 2.1-2.4) of every particle with the a(x) of the last
- * bf_g72_accel_ranks; the walls follow. */
-void bf_g72_leapfrog_ranks(g72 *m, double h, double dt);
+/* The wall rule on the own particles (after their leapfrog step), the
+ * wall hits summed over the ranks into m->wall_hits; a failure on any
+ * rank is every rank's, with the message of the lowest such rank. */
+bf_status bf_g72_walls_ranks(g72 *m, bf_err *err);
+/* Collective: rank 0 gets particles a..b-1 (at most BF_G72_BLOCK) of the
+ * whole state in *blk (its buffers, valid until the next call; NULL on
+ * the other ranks, which send theirs). */
+enum { BF_G72_BLOCK = 1 << 16 };
+bf_status bf_g72_gather_block(g72 *m, size_t a, size_t b,
+                              const bf_particles **blk, bf_err *err);
+/* Collective: rank 0 gets the whole state in index order in *all (to
+ * free with bf_particles_free), a block at a time; the other ranks send
+ * theirs (*all empty). */
+bf_status bf_g72_gather(g72 *m, bf_particles *all, bf_err *err);
 /* Particles of each kind of g (BF_SUP_*) at the current a(x), in one
  * process or over ranks. */
 void bf_g72_kind_counts(const g72 *m, unsigned long long kinds[4]);
+/* The particles of the run (over ranks: of all ranks) and this rank. */
+size_t bf_g72_total(const g72 *m);
+int bf_g72_rank(const g72 *m);
 void bf_g72_ranks_free(g72_ranks *r);
 
 #endif

@@ -22,24 +22,50 @@ int bf_greenspan72_adaptive(const bf_model_setup *s);
 /* Its support-set gravity workspace. */
 bf_support *bf_greenspan72_support(void *model);
 
-/* A greenspan72 run split over ranks (g72_ranks.c).  Every rank holds
- * the whole state and computes a(x) of the particles of its x-slab (with
- * a halo), then all ranks exchange their results; the library does not
- * link MPI: the program gives the exchange.  allgather: this rank's n
- * doubles `send`, every rank's into `recv` one after the other in rank
- * order (counts[r] from rank r); 0 on success. */
+/* A greenspan72 run split over ranks (g72_ranks.c).  Each rank holds the
+ * particles of its x-slab (in index order) and receives those of a halo
+ * from the ranks beside it; the library does not link MPI: the program
+ * gives the exchanges, which every rank calls in the same order (each
+ * returns 0 on success).
+ *   allgather: this rank's n doubles `send`, every rank's into `recv`
+ *     one after the other in rank order (counts[r] from rank r);
+ *   alltoallv: scounts[q] doubles of `send` (one part after the other in
+ *     rank order) to rank q; the parts from every rank into *recv, one
+ *     after the other in rank order, with their sizes in rcounts (*recv
+ *     is grown with realloc to *rcap doubles when it is too small);
+ *   allsum: v[0..n-1] summed over the ranks, in place (the callers sum
+ *     integers below 2^53: exact in any order).
+ * recut_every: evaluations of a(x) between two placements of the slabs'
+ * cuts by particle counts (0: 256); any cuts give the same bits. */
 typedef struct bf_ranks {
     int rank, size;
     void *ctx;
     int (*allgather)(void *ctx, const double *send, size_t n, double *recv,
                      const size_t *counts);
+    int (*alltoallv)(void *ctx, const double *send, const size_t *scounts,
+                     double **recv, size_t *rcap, size_t *rcounts);
+    int (*allsum)(void *ctx, double *v, size_t n);
+    long recut_every;
 } bf_ranks;
-/* Split the run of `model` (a greenspan72 model) over the ranks of r
- * (kept).  Refuses (BF_EINPUT, naming the key) what the split does not
- * support: integrator arkode, [hertz], a repulsion without a cell list,
- * the naive support method. */
+/* Whether the run of `model` (a greenspan72 model) can be split over
+ * ranks: BF_EINPUT naming the key for what the split does not support
+ * (integrator arkode, [hertz], a repulsion without a cell list, the
+ * naive support method). */
+bf_status bf_greenspan72_ranks_refuse(void *model, bf_err *err);
+/* Split the run of `model` over the ranks of r (kept): keep this rank's
+ * particles and free the rest.  After it, output rows and checkpoints are
+ * collective (every rank takes them at the same steps: bf_sim_opts
+ * follower), and only rank 0 writes. */
 bf_status bf_greenspan72_over_ranks(void *model, const bf_ranks *r,
                                     bf_err *err);
+/* Over ranks: 1 if the run's failure was found in an exchange and is every
+ * rank's (an unstable step, particles that coincide); 0 if it may be this
+ * rank's alone (memory, the output), and the other ranks may be waiting
+ * for it. */
+int bf_greenspan72_failed_together(void *model);
+/* Over ranks: the particle number (from 0) of each of this rank's
+ * particles (bf_greenspan72_particles), increasing; NULL in one process. */
+const uint32_t *bf_greenspan72_ids(void *model);
 
 /* The particles of a greenspan73 model (time t_k). */
 bf_particles *bf_greenspan73_particles(void *model);
@@ -79,6 +105,10 @@ bf_status bf_particles_output_open(bf_particle_out *po, bf_out *out,
                                    bf_err *err);
 /* Append the state to the series that are open (the step axis gets
  * `step`); nonzero when a buffer could not grow. */
+/* The same for a row that comes in blocks of particles in index order:
+ * the step with the first block (first = 1), then each block. */
+int bf_particles_output_part(const bf_particle_out *po, const bf_particles *p,
+                             int first, int64_t step);
 int bf_particles_output_row(const bf_particle_out *po, const bf_particles *p,
                             int64_t step);
 

@@ -55,8 +55,6 @@
 #include "io/dataset_paths.h"
 #include "models/g72_impl.h"
 
-enum { TAG_HEAVY = 1, TAG_LIGHT = 2 };
-enum { OUT_ALL = 0, OUT_POSITIONS = 1, OUT_DIAG = 2 };
 
 /* The keys of [greenspan72]. */
 typedef struct g72_keys {
@@ -219,6 +217,12 @@ static void g72_memory(const bf_model_setup *setup, bf_mem_need *need)
         return;
     double n = g72_count(k), threads = k->threads > 1 ? (double)k->threads : 1;
     double per = 54.0 + 2.0 * threads;
+    /* split over R ranks: the particles (7 doubles) whole until the
+     * split, the rest for a rank's share, counted as 2/R of them for the
+     * halo's margin */
+    const double R = setup->nranks;
+    if (R > 2)
+        per = 7.0 + (per - 7.0) * 2.0 / R;
     need->bytes = 8.0 * per * n;
     snprintf(need->what, sizeof need->what, "%.3g particles x %.0f doubles",
              n, per);
@@ -330,11 +334,10 @@ static bf_status g72_initial(g72 *m, const g72_keys *k72, bf_err *err)
     return BF_OK;
 }
 
-static bf_status g72_accel(g72 *m, bf_err *err);
 /* a(x) for the ODE of integrator = arkode (g72_ode.h) */
 static bf_status g72_accel_cb(void *m, bf_err *err)
 {
-    return g72_accel(m, err);
+    return bf_g72_accel(m, err);
 }
 
 static bf_status g72_create(void **self, const bf_model_setup *setup,
@@ -383,7 +386,16 @@ static bf_status g72_create(void **self, const bf_model_setup *setup,
     if (m->bottom == 0)
         m->bottom = sp.dx;
     const size_t n = m->p.n;
-    if ((st = bf_support_create(&m->sup, &sp, n, err)))
+    /* built to be split over ranks (g72_ranks.c): the work for all
+     * particles (about 400 of the 450 bytes a particle) is allocated for
+     * each rank's share once it is split; the split refuses what it does
+     * not support, on a model built whole */
+    const int split = setup->nranks > 1 && m->rep.use_cells &&
+                      sp.method != BF_SUPPORT_NAIVE && !kh->enabled &&
+                      k72->integrator != INT_ARKODE;
+    const size_t cap = split ? 1 : n;
+    m->split_ready = split;
+    if ((st = bf_support_create(&m->sup, &sp, cap, err)))
         goto fail;
     m->need_cells = m->rep.use_cells || sp.method != BF_SUPPORT_NAIVE;
     if (m->need_cells) {
@@ -398,10 +410,10 @@ static bf_status g72_create(void **self, const bf_model_setup *setup,
                                                         : m->rep.cutoff)
                                     : sp.dx;
         if ((st = bf_cells_init(&m->cells, 0.0, 0.0, m->width, m->height, h,
-                                n, err)))
+                                cap, err)))
             goto fail;
     }
-    size_t k = n ? n : 1;
+    size_t k = cap ? cap : 1;
     m->ax = malloc(k * sizeof *m->ax);
     m->ay = malloc(k * sizeof *m->ay);
     m->g = malloc(k * sizeof *m->g);
@@ -413,7 +425,7 @@ static bf_status g72_create(void **self, const bf_model_setup *setup,
         goto fail;
     }
     if (m->rep.use_cells &&
-        (st = bf_repulsion_work_init(&m->rw, n, m->threads, err)))
+        (st = bf_repulsion_work_init(&m->rw, cap, m->threads, err)))
         goto fail;
     for (int c = 0; c < NSETTLE; c++) {
         m->settle_first[c] = -1;
@@ -421,8 +433,9 @@ static bf_status g72_create(void **self, const bf_model_setup *setup,
     }
     m->settle_last_row = -1;
     /* a(x) at t = 0, which the first row or step would compute: particles
-     * that coincide at the start are the scene's fault, not the run's */
-    if ((st = g72_accel(m, err))) {
+     * that coincide at the start are the scene's fault, not the run's
+     * (over ranks it is computed by the split) */
+    if (!split && (st = bf_g72_accel(m, err))) {
         bf_err_prefix(err, "at t = 0");
         err->status = st = BF_EINPUT;
         bf_err_set_key(err, "greenspan72",
@@ -497,10 +510,11 @@ static bf_status g72_forces(g72 *m, bf_err *err)
     return BF_OK;
 }
 
-/* a(x) of every particle, here or split over ranks (g72_ranks.c: the same
- * bits) */
-static bf_status g72_accel(g72 *m, bf_err *err)
+bf_status bf_g72_accel(g72 *m, bf_err *err)
 {
+    if (m->split_ready && !m->ranks)
+        return bf_fail(err, BF_EINTERNAL, "greenspan72: built to be split "
+                       "over ranks (bf_sim_opts nranks) but not split");
     bf_status st = m->ranks ? bf_g72_accel_ranks(m, err) : g72_forces(m, err);
     if (st)
         return st;
@@ -529,7 +543,7 @@ static bf_status g72_step(void *self, long n, double t, double dt, bf_err *err)
     g72 *m = self;
     bf_particles *p = &m->p;
     bf_status st;
-    if (!m->acc_valid && (st = g72_accel(m, err)))
+    if (!m->acc_valid && (st = bf_g72_accel(m, err)))
         return st;
     unsigned long long kinds[4];
     bf_g72_kind_counts(m, kinds);
@@ -543,8 +557,6 @@ static bf_status g72_step(void *self, long n, double t, double dt, bf_err *err)
         m->acc_valid = 0;
         if ((st = bf_g72_ode_step(m->ode, t, dt, err)))
             return st;
-    } else if (m->ranks) {
-        bf_g72_leapfrog_ranks(m, h, dt);
     } else if (m->nthr > 1 && np >= 16384) {
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static) num_threads(m->nthr)
@@ -556,6 +568,14 @@ static bf_status g72_step(void *self, long n, double t, double dt, bf_err *err)
             g72_leapfrog(m, i, h, dt);
     }
     m->acc_valid = 0;
+    if (m->ranks) {
+        /* over ranks (np: this rank's particles): the walls and the box
+         * checked on each rank, their failures agreed */
+        if ((st = bf_g72_walls_ranks(m, err)))
+            return st;
+        m->steps++;
+        return bf_g72_accel(m, err);
+    }
     if ((st = bf_walls_apply(&m->walls, p, m->x0, m->y0, &m->wall_hits, err)))
         return st;
     /* the invariant (a non-finite position would fail it too: the wall
@@ -567,163 +587,7 @@ static bf_status g72_step(void *self, long n, double t, double dt, bf_err *err)
                        "the wall rule)",
                        bad + 1, p->x[bad], p->y[bad]);
     m->steps++;
-    return g72_accel(m, err);
-}
-
-static const bf_series_spec g72_series[] = {
-    {.path = BF_DS_DIAG_KINETIC, .unit = "erg", .ncols = 3,
-     .columns = "all, heavy (L1), light (L2)",
-     .doc = "kinetic energy sum m|v|^2/2 with the half-step velocities: all, "
-            "heavy (L1), light (L2)",
-     .slot = BF_SLOT(g72, s_kin)},
-    {.path = "/diag/mean_y", .unit = "cm", .ncols = 2,
-     .columns = "heavy (L1), light (L2)",
-     .doc = "mean height of the heavy (L1) and light (L2) particles",
-     .slot = BF_SLOT(g72, s_mean)},
-    {.path = "/diag/quarters", .unit = "1", .ncols = 8,
-     .columns = "heavy q1, heavy q2, heavy q3, heavy q4, light q1, light q2, "
-                "light q3, light q4",
-     .doc = "particles per horizontal quarter of the box, bottom to top: "
-            "heavy q1..q4, then light q1..q4",
-     .slot = BF_SLOT(g72, s_layers)},
-    {.path = "/diag/support_kinds", .unit = "1", .ncols = 4,
-     .columns = "resting, partial, free fall, antigravity",
-     .doc = "particles whose support-set gravity is: resting (g = 0), "
-            "partial, free fall (g = -g0), antigravity (g > 0)",
-     .slot = BF_SLOT(g72, s_kinds)},
-    {.path = "/diag/settle", .unit = "1", .ncols = 4,
-     .columns = "a, b, c, d",
-     .doc = "(a) 1 if every heavy particle is below every light one; (b) 1 if "
-            "every heavy one is below 'bottom'; (c) heavy particles below "
-            "'bottom'; (d) 1 if the mean height of the heavy is below that of "
-            "the light",
-     .slot = BF_SLOT(g72, s_settle)},
-    {.path = BF_DS_PARTICLES_TAG, .unit = "1", .kind = BF_SK_STATIC,
-     .role = BF_SR_PROPERTY, .per = "particle",
-     .doc = "1: heavy fluid L1 (started above the interface), 2: light fluid "
-            "L2"},
-};
-enum { G72_TAG = BF_NSERIES(g72_series) - 1 };
-static const bf_series_table g72_table = {"greenspan72", g72_series,
-                                          BF_NSERIES(g72_series)};
-static const bf_series_table *const g72_tables[] = {&bf_particle_series,
-                                                    &g72_table, NULL};
-
-static bf_status g72_output_open(void *self, bf_out *out, bf_err *err)
-{
-    g72 *m = self;
-    const size_t n = m->p.n;
-    unsigned on = 0;
-    if (m->out_mode != OUT_DIAG)
-        on |= BF_PO_STEP | BF_PO_POS;
-    if (m->out_mode == OUT_ALL)
-        on |= m->ode ? BF_PO_VEL : BF_PO_VEL_HALF;
-    const bf_series_extent ext[] = {{"particle", n}};
-    bf_status st = bf_particles_output_open(&m->po, out, &m->p, on, err);
-    if (!st)
-        st = bf_out_open_table(out, g72_series, BF_NSERIES(g72_series), m,
-                               ext, 1, 0, err);
-    if (st)
-        return st;
-    double *tag = malloc((n ? n : 1) * sizeof *tag);
-    if (!tag)
-        return bf_fail(err, BF_EINTERNAL, "out of memory");
-    for (size_t i = 0; i < n; i++)
-        tag[i] = m->p.tag[i];
-    st = bf_out_table_array(out, &g72_series[G72_TAG], tag, n, err);
-    free(tag);
-    if (!st)
-        st = bf_out_attr_real(out, "/diag", "bottom", m->bottom, err);
-    return st;
-}
-
-/* The four settling criteria at the current positions (how far the heavy
- * fluid has sunk; docs/models/greenspan72.md, settling): (a) 1 if every
- * heavy particle is below every light one, (b) 1 if every heavy one is
- * below 'bottom', (c) the number of heavy ones below 'bottom' (it holds,
- * in g72_output_row, when at most one is above), (d) 1 if the mean height
- * of the heavy is below that of the light. */
-static void g72_settle(const g72 *m, double crit[NSETTLE])
-{
-    bf_pdiag_group h = bf_pdiag_group_of(&m->p, TAG_HEAVY);
-    bf_pdiag_group l = bf_pdiag_group_of(&m->p, TAG_LIGHT);
-    size_t below = 0;
-    for (size_t i = 0; i < m->p.n; i++)
-        below += m->p.tag[i] == TAG_HEAVY && m->p.y[i] < m->bottom;
-    crit[0] = h.max_y < l.min_y;
-    crit[1] = below == h.count;
-    crit[2] = (double)below;
-    crit[3] = h.mean_y < l.mean_y;
-}
-
-static bf_status g72_output_row(void *self, long n, double t, bf_err *err)
-{
-    (void)t;
-    g72 *m = self;
-    bf_particles *p = &m->p;
-    bf_status st;
-    if (!m->acc_valid && (st = g72_accel(m, err)))
-        return st;
-    int fail = 0;
-    if (m->rows++ % m->particles_every == 0) {
-        fail |= bf_particles_output_row(&m->po, p, (int64_t)n);
-    }
-    bf_pdiag_group h = bf_pdiag_group_of(p, TAG_HEAVY);
-    bf_pdiag_group l = bf_pdiag_group_of(p, TAG_LIGHT);
-    double kin[3] = {h.kin + l.kin, h.kin, l.kin};
-    double mean[2] = {h.mean_y, l.mean_y};
-    double lay[8], kinds[4], crit[NSETTLE];
-    unsigned long long kc[4];
-    bf_pdiag_layers(p, TAG_HEAVY, 0.0, m->height, 4, lay);
-    bf_pdiag_layers(p, TAG_LIGHT, 0.0, m->height, 4, lay + 4);
-    bf_g72_kind_counts(m, kc);
-    for (int k = 0; k < 4; k++) /* below 2^53: the sum of ones, exactly */
-        kinds[k] = (double)kc[k];
-    g72_settle(m, crit);
-    /* criterion (c) holds when at most one heavy particle is off the
-     * bottom ("at least three of the four stay at the bottom") */
-    int holds[NSETTLE] = {crit[0] > 0, crit[1] > 0,
-                          crit[2] + 1.0 >= (double)m->n_heavy, crit[3] > 0};
-    for (int c = 0; c < NSETTLE; c++) {
-        if (holds[c] && m->settle_first[c] < 0)
-            m->settle_first[c] = n;
-        if (!holds[c])
-            m->settle_lastfail[c] = n;
-    }
-    m->settle_last_row = n;
-    fail |= bf_series_append(m->s_kin, kin) | bf_series_append(m->s_mean, mean) |
-            bf_series_append(m->s_layers, lay) |
-            bf_series_append(m->s_kinds, kinds) |
-            bf_series_append(m->s_settle, crit);
-    if (fail)
-        return bf_fail(err, BF_EINTERNAL, "out of memory");
-    return BF_OK;
-}
-
-static bf_status g72_output_close(void *self, bf_out *out, bf_err *err)
-{
-    g72 *m = self;
-    static const char *names[NSETTLE] = {"a_heavy_below_light",
-                                         "b_all_heavy_at_bottom",
-                                         "c_all_but_one_heavy_at_bottom",
-                                         "d_mean_heavy_below_light"};
-    bf_status st = bf_out_attr_int(out, "/", "wall_hits",
-                                   (int64_t)m->wall_hits, err);
-    for (int c = 0; !st && c < NSETTLE; c++) {
-        char nm[96];
-        snprintf(nm, sizeof nm, "settle_%s_first_step", names[c]);
-        st = bf_out_attr_int(out, "/diag", nm, m->settle_first[c], err);
-        if (!st) {
-            /* first step from which it held at every later row (-1: not at
-             * the last row) */
-            long from = m->settle_lastfail[c] == m->settle_last_row
-                            ? -1
-                            : m->settle_lastfail[c] + 1;
-            snprintf(nm, sizeof nm, "settle_%s_holds_from", names[c]);
-            st = bf_out_attr_int(out, "/diag", nm, from, err);
-        }
-    }
-    return st;
+    return bf_g72_accel(m, err);
 }
 
 static void g72_counters(const void *self, bf_counters *c)
@@ -749,8 +613,8 @@ static void g72_report(const void *self, FILE *f)
     unsigned long long tot = 0;
     for (int k = 0; k < 4; k++)
         tot += m->kind_total[k];
-    fprintf(f, "particles:         %zu (%zu heavy), wall hits %llu\n", m->p.n,
-            m->n_heavy, m->wall_hits);
+    fprintf(f, "particles:         %zu (%zu heavy), wall hits %llu\n",
+            bf_g72_total(m), m->n_heavy, m->wall_hits);
     if (tot)
         fprintf(f, "support gravity:   resting %.3f, partial %.3f, free fall "
                    "%.3f, antigravity %.3f (fractions of particle-steps)\n",
@@ -792,10 +656,27 @@ static const bf_field g72_state[] = {
     BF_FIELD(g72, acc_valid, BF_F_INT, "1"),
 };
 
+/* Over ranks every rank takes the checkpoint (bf_sim_opts follower; ck
+ * NULL but on rank 0): rank 0 gathers the whole state and saves it in
+ * index order, which any number of ranks continues. */
 static bf_status g72_save(const void *self, bf_ckpt *ck, bf_err *err)
 {
-    const g72 *m = self;
-    bf_status st = bf_particles_save(&m->p, ck, "g72.p", err);
+    g72 *m = (g72 *)self; /* over ranks: the exchange's buffers */
+    bf_particles all;
+    const bf_particles *p = &m->p;
+    bf_status st;
+    if (m->ranks) {
+        if ((st = bf_g72_gather(m, &all, err)))
+            return st;
+        if (bf_g72_rank(m) != 0 || !ck) {
+            bf_particles_free(&all);
+            return BF_OK;
+        }
+        p = &all;
+    }
+    st = bf_particles_save(p, ck, "g72.p", err);
+    if (p == &all)
+        bf_particles_free(&all);
     if (!st)
         st = bf_ckpt_put_fields(ck, "g72", g72_state, BF_NFIELDS(g72_state),
                                 m, err);
@@ -836,6 +717,9 @@ static bf_status g72_set_state(void *self, const char *name, const double *v,
                                size_t n, bf_err *err)
 {
     g72 *m = self;
+    if (m->ranks)
+        return bf_fail(err, BF_EINPUT, "the state of a run over ranks is "
+                       "split between them: set %s before the split", name);
     m->acc_valid = 0; /* the forces of the new positions */
     return bf_particles_set_var(&m->p, &m->walls.box, name, v, n, err);
 }
@@ -846,7 +730,7 @@ static const bf_section_spec *const g72_specs[] = {
 
 const bf_model_type bf_model_greenspan72 = {
     .name = "greenspan72",
-    .series = g72_tables,
+    .series = bf_g72_tables,
     .doc = "two fluids mixing: support-set gravity, repulsion, damped walls "
            "(Greenspan 1972)",
     .flags = 0,
@@ -855,9 +739,9 @@ const bf_model_type bf_model_greenspan72 = {
     .destroy = g72_destroy,
     .memory = g72_memory,
     .step = g72_step,
-    .output_open = g72_output_open,
-    .output_row = g72_output_row,
-    .output_close = g72_output_close,
+    .output_open = bf_g72_output_open,
+    .output_row = bf_g72_output_row,
+    .output_close = bf_g72_output_close,
     .counters = g72_counters,
     .report = g72_report,
     .checkpoint_save = g72_save,

@@ -75,6 +75,21 @@ int bf_particles_output_row(const bf_particle_out *po, const bf_particles *p,
     return fail;
 }
 
+int bf_particles_output_part(const bf_particle_out *po, const bf_particles *p,
+                             int first, int64_t step)
+{
+    int fail = 0;
+    if (first && po->step)
+        fail |= bf_series_append_i64(po->step, &step) != BF_OK;
+    if (po->x)
+        fail |= (bf_series_append_part(po->x, p->x, p->n) |
+                 bf_series_append_part(po->y, p->y, p->n)) != BF_OK;
+    if (po->vx)
+        fail |= (bf_series_append_part(po->vx, p->vx, p->n) |
+                 bf_series_append_part(po->vy, p->vy, p->n)) != BF_OK;
+    return fail;
+}
+
 /* the state's names are the datasets' without the leading slash */
 static const char *const names[4] = {P_X + 1, P_Y + 1, P_VX + 1, P_VY + 1};
 

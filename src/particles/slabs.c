@@ -37,11 +37,16 @@ void bf_slabs_free(bf_slabs *s)
 
 void bf_slabs_balance(bf_slabs *s, const int32_t *col, size_t n)
 {
-    const int nx = s->nx, size = s->size;
-    memset(s->cnt, 0, (size_t)nx * sizeof *s->cnt);
-    memset(s->own, 0, (size_t)size * sizeof *s->own);
+    memset(s->cnt, 0, (size_t)s->nx * sizeof *s->cnt);
     for (size_t i = 0; i < n; i++)
         s->cnt[col[i]]++;
+    bf_slabs_cut(s, n);
+}
+
+void bf_slabs_cut(bf_slabs *s, size_t n)
+{
+    const int nx = s->nx, size = s->size;
+    memset(s->own, 0, (size_t)size * sizeof *s->own);
     /* rank r starts at the first column before which at least r n / size
      * particles lie (integers: no rounding) */
     size_t before = 0;

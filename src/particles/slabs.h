@@ -35,6 +35,9 @@ void bf_slabs_free(bf_slabs *s);
  * count reaches r n / size (col[i]: the column of particle i, in 0..nx-1);
  * fills rank_of, cnt and own. */
 void bf_slabs_balance(bf_slabs *s, const int32_t *col, size_t n);
+/* The same cuts from the particles per column already in cnt (a sum over
+ * ranks of their counts), n in all. */
+void bf_slabs_cut(bf_slabs *s, size_t n);
 
 /* The columns [*c0, *c1) that rank r reads: its own and its halo. */
 static inline void bf_slabs_reads(const bf_slabs *s, int r, int *c0, int *c1)
