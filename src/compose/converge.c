@@ -15,6 +15,7 @@
 #include "compose/compose.h"
 #include "compose/converge_impl.h"
 #include "diag/energy.h"
+#include "core/model_energy.h"
 #include "integrators/stop.h"
 
 /* A resolved clone of the scene with the method string
@@ -102,33 +103,15 @@ typedef struct invariants {
     bf_energy_diag d[4];
 } invariants;
 
-/* The model's energy, erg, and with iv->work the balance
- * E + W_dissipated - W_injected (model.h, work), which is what stays
- * constant when forces dissipate or drive. */
-static double conserved_energy(const bf_model_type *mt, void *model,
-                               const invariants *iv, double t)
-{
-    double k, p, wd = 0.0, wi = 0.0;
-    mt->energy(model, t, &k, &p);
-    if (iv->work)
-        mt->work(model, &wd, &wi);
-    return k + p + wd - wi;
-}
-
-/* Does the model track the work of non-conservative forces? */
-static int tracks_work(const bf_model_type *mt, void *model)
-{
-    double wd, wi;
-    return mt->work && mt->work(model, &wd, &wi);
-}
-
 static double invariant_now(const bf_model_type *mt, void *model,
                             const bf_study_type *S, invariants *iv, double t)
 {
     if (!iv->n)
         return NAN;
+    double k, p;
     if (iv->energy)
-        return bf_energy_check(&iv->d[0], conserved_energy(mt, model, iv, t));
+        return bf_energy_check(&iv->d[0],
+                               bf_model_balance(mt, model, t, iv->work, &k, &p));
     bf_study_view v;
     S->view(model, &v);
     double e = 0.0;
@@ -234,8 +217,10 @@ static bf_status run_steps(const bf_converge_priv *P, const bf_scene *sc,
     } else if (mt->energy) {
         iv.n = 1;
         iv.energy = 1;
-        iv.work = tracks_work(mt, model);
-        bf_energy_start(&iv.d[0], conserved_energy(mt, model, &iv, 0.0));
+        iv.work = bf_model_tracks_work(mt, model);
+        double k, p;
+        bf_energy_start(&iv.d[0],
+                        bf_model_balance(mt, model, 0.0, iv.work, &k, &p));
     }
     const long R = P->R;
     const int sync = nper > 0 || (flags & BF_RUN_SYNC);
@@ -420,7 +405,7 @@ static bf_status layout(bf_converge_result *r, const bf_scene *sc,
                  v.g[g].unit);
         r->groups[g].n = P->len[g];
     }
-    if (!v.ninv && b.mt->energy && tracks_work(b.mt, b.model))
+    if (!v.ninv && b.mt->energy && bf_model_tracks_work(b.mt, b.model))
         snprintf(r->invariant, sizeof r->invariant,
                  "energy balance (E + W_diss - W_inj)");
     unbuild(&b);

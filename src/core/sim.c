@@ -234,11 +234,7 @@ bf_status bf_sim_create(bf_sim **out, const bf_sim_keys *k,
     }
     s->last_row = -1;
     s->has_energy = s->mt->energy != NULL;
-    {
-        double wd, wi;
-        s->has_work = s->has_energy && s->mt->work &&
-                      s->mt->work(s->model, &wd, &wi);
-    }
+    s->has_work = s->has_energy && bf_model_tracks_work(s->mt, s->model);
     bf_energy_start(&s->en, 0.0);
     if (s->has_energy) {
         double kk, p;

@@ -6,6 +6,7 @@
 
 #include "ballfilm/sim.h"
 #include "diag/energy.h"
+#include "core/model_energy.h"
 
 typedef struct heartbeat {
     long every; /* steps; 0: after every output row */

@@ -155,12 +155,7 @@ double bf_sim_initial_energy(const bf_sim *s)
 
 double bf_sim_balance_(const bf_sim *s, double t, double *k, double *p)
 {
-    double wd, wi;
-    s->mt->energy(s->model, t, k, p);
-    if (!s->has_work)
-        return *k + *p;
-    s->mt->work(s->model, &wd, &wi);
-    return *k + *p + wd - wi;
+    return bf_model_balance(s->mt, s->model, t, s->has_work, k, p);
 }
 
 /* The state of step s->n against finiteness and the energy bound, the

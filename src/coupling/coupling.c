@@ -175,8 +175,8 @@ bf_status bf_coupling_create(bf_coupling **out, const bf_coupling_params *p,
     c->row_of = malloc(3 * n * sizeof *c->row_of);
     c->zrow = alloc64((size_t)c->n8);
     if (p->quad == BF_COUPLING_NODES &&
-        !(c->nodes = bf_coupling_nodes_create(c->grid.N, c->grid.x0,
-                                              c->grid.dx, p->r0))) {
+        !(c->nodes = bf_coupling_nodes_create(c->grid.N, c->grid.dx,
+                                              p->r0))) {
         bf_coupling_free(c);
         return bf_fail(err, BF_EINTERNAL, "out of memory");
     }
@@ -632,7 +632,8 @@ void bf_coupling_integral(bf_coupling *c, double r, double *I, double *dI)
     lr_part w;
     c->n_exact++;
     if (c->nodes) {
-        bf_coupling_nodes_eval(c->nodes, c->g, r, I, dI);
+        j = bf_coupling_locate(&c->grid, r, &t);
+        bf_coupling_nodes_eval(c->nodes, c->g, j, t, I, dI);
         return;
     }
     exact_lr(c, r, &j, &t, &L, &R, &w);

@@ -8,7 +8,7 @@
 
 struct bf_coupling_nodes {
     long N;          /* intervals: nodes 0..N */
-    double x0, dx;   /* cm */
+    double dx;       /* cm */
     double E;        /* exp(-dx/r0) */
     int valid;       /* I and M belong to the current level */
     double *I;       /* node values, cm */
@@ -16,8 +16,7 @@ struct bf_coupling_nodes {
     double *a, *b;   /* the two recurrences; b also the Thomas scratch */
 };
 
-bf_coupling_nodes *bf_coupling_nodes_create(long N, double x0, double dx,
-                                            double r0)
+bf_coupling_nodes *bf_coupling_nodes_create(long N, double dx, double r0)
 {
     if (N < 1)
         return NULL;
@@ -26,7 +25,6 @@ bf_coupling_nodes *bf_coupling_nodes_create(long N, double x0, double dx,
         return NULL;
     const size_t n = (size_t)N + 1;
     q->N = N;
-    q->x0 = x0;
     q->dx = dx;
     q->E = exp(-dx / r0);
     q->I = calloc(n, sizeof *q->I);
@@ -101,26 +99,10 @@ static void update(bf_coupling_nodes *q, const double *g)
     q->valid = 1;
 }
 
-const double *bf_coupling_nodes_values(bf_coupling_nodes *q, const double *g)
+void bf_coupling_nodes_eval(bf_coupling_nodes *q, const double *g, long j,
+                            double t, double *I, double *dI)
 {
     update(q, g);
-    return q->I;
-}
-
-void bf_coupling_nodes_eval(bf_coupling_nodes *q, const double *g, double r,
-                            double *I, double *dI)
-{
-    update(q, g);
-    /* cell j and t = (r - x_j)/dx, clamped as bf_coupling_locate (a NaN
-     * or huge r gives j = 0 and a NaN or huge t, never an undefined
-     * conversion) */
-    const double u = (r - q->x0) / q->dx;
-    long j = 0;
-    if (u >= (double)(q->N - 1))
-        j = q->N - 1;
-    else if (u > 0)
-        j = (long)u;
-    const double t = u - (double)j;
     const double tc = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t, sc = 1.0 - tc;
     const double h = q->dx, I0 = q->I[j], I1 = q->I[j + 1];
     const double M0 = q->M[j], M1 = q->M[j + 1];

@@ -31,19 +31,17 @@ typedef struct bf_coupling_nodes bf_coupling_nodes;
 
 /* For nodes x_i = x0 + i dx, i = 0..N (N >= 1), kernel range r0 > 0.
  * NULL: out of memory. */
-bf_coupling_nodes *bf_coupling_nodes_create(long N, double x0, double dx,
-                                            double r0);
+bf_coupling_nodes *bf_coupling_nodes_create(long N, double dx, double r0);
 void bf_coupling_nodes_free(bf_coupling_nodes *q);
 
 /* The film has a new level: the node values are recomputed at the next
  * evaluation. */
 void bf_coupling_nodes_invalidate(bf_coupling_nodes *q);
 
-/* I(r) and dI/dr from g on the nodes (the g of the current level). */
-void bf_coupling_nodes_eval(bf_coupling_nodes *q, const double *g, double r,
-                            double *I, double *dI);
-
-/* The node values I_i of the current level (N + 1 of them; for tests). */
-const double *bf_coupling_nodes_values(bf_coupling_nodes *q, const double *g);
+/* I(r) and dI/dr from g on the nodes (the g of the current level), r in
+ * cell j at t = (r - x_j)/dx (bf_coupling_locate: t outside [0, 1]
+ * beyond the end nodes). */
+void bf_coupling_nodes_eval(bf_coupling_nodes *q, const double *g, long j,
+                            double t, double *I, double *dI);
 
 #endif

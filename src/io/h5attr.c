@@ -4,19 +4,28 @@
 
 #include "io/h5out_impl.h"
 
-/* The object obj of the file (created as a group if it does not exist),
- * to be given back with close_obj. */
-static hid_t open_obj(bf_out *out, const char *obj)
+/* The object obj of the file (created as a group if it does not exist)
+ * in *o, to be given back with close_obj, once the file may take
+ * metadata. */
+static bf_status open_obj(bf_out *out, const char *obj, hid_t *o,
+                          bf_err *err)
 {
-    if (!strcmp(obj, "/"))
-        return out->root >= 0 ? out->root
-                              : H5Oopen(out->file, "/", H5P_DEFAULT);
-    if (H5Lexists(out->file, obj, H5P_DEFAULT) > 0)
-        return H5Oopen(out->file, obj, H5P_DEFAULT);
-    hid_t lcpl = bf_out_lcpl_();
-    hid_t g = H5Gcreate2(out->file, obj, lcpl, H5P_DEFAULT, H5P_DEFAULT);
-    H5Pclose(lcpl);
-    return g;
+    if (out->failed)
+        return bf_out_failed_before_(out, err);
+    if (bf_out_before_metadata_(out, err))
+        return BF_EIO;
+    if (!strcmp(obj, "/")) {
+        *o = out->root >= 0 ? out->root : H5Oopen(out->file, "/", H5P_DEFAULT);
+    } else if (H5Lexists(out->file, obj, H5P_DEFAULT) > 0) {
+        *o = H5Oopen(out->file, obj, H5P_DEFAULT);
+    } else {
+        hid_t lcpl = bf_out_lcpl_();
+        *o = H5Gcreate2(out->file, obj, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+        H5Pclose(lcpl);
+    }
+    if (*o < 0)
+        return bf_fail(err, BF_EIO, "%s: cannot open %s", out->path, obj);
+    return BF_OK;
 }
 
 static void close_obj(bf_out *out, hid_t o)
@@ -28,14 +37,11 @@ static void close_obj(bf_out *out, hid_t o)
 bf_status bf_out_attr_str(bf_out *out, const char *obj, const char *name,
                           const char *value, bf_err *err)
 {
-    if (out->failed)
-        return bf_out_failed_before_(out, err);
-    if (bf_out_before_metadata_(out, err))
-        return BF_EIO;
-    hid_t o = open_obj(out, obj);
-    if (o < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot open %s", out->path, obj);
-    bf_status st = bf_out_str_attr_(o, name, value);
+    hid_t o;
+    bf_status st = open_obj(out, obj, &o, err);
+    if (st)
+        return st;
+    st = bf_out_str_attr_(o, name, value);
     close_obj(out, o);
     if (st)
         return bf_fail(err, BF_EIO, "%s: cannot write attribute %s of %s",
@@ -46,13 +52,10 @@ bf_status bf_out_attr_str(bf_out *out, const char *obj, const char *name,
 static bf_status num_attr(bf_out *out, const char *obj, const char *name,
                           hid_t ftype, hid_t mtype, const void *v, bf_err *err)
 {
-    if (out->failed)
-        return bf_out_failed_before_(out, err);
-    if (bf_out_before_metadata_(out, err))
-        return BF_EIO;
-    hid_t o = open_obj(out, obj);
-    if (o < 0)
-        return bf_fail(err, BF_EIO, "%s: cannot open %s", out->path, obj);
+    hid_t o;
+    bf_status st = open_obj(out, obj, &o, err);
+    if (st)
+        return st;
     if (H5Aexists(o, name) > 0)
         H5Adelete(o, name);
     hid_t sp = H5Screate(H5S_SCALAR);

@@ -137,7 +137,7 @@ static void gaps(const bf_ballsys *s, double t, const double *x,
     const double *R = s->b.R;
     int m = 0;
     double h = 0, hd = 0;
-    const int driven = s->floor && s->floor->amplitude > 0;
+    const int driven = s->floor && (s->floor->law & BF_LAW_DRIVEN);
     if (driven)
         bf_floor_height(s->floor, t, &h, &hd);
     if (s->gap_floor)

@@ -153,8 +153,7 @@ static bf_status row_ranks(g72 *m, long n, bf_err *err)
     const size_t total = bf_g72_total(m);
     row_sums a = row_start();
     int fail = 0;
-    for (size_t at = 0; at < total || (at == 0 && !total);
-         at += BF_G72_BLOCK) {
+    for (size_t at = 0; at < total; at += BF_G72_BLOCK) {
         const size_t b = total - at < BF_G72_BLOCK ? total : at + BF_G72_BLOCK;
         const bf_particles *blk;
         bf_status st = bf_g72_gather_block(m, at, b, &blk, err);
@@ -166,8 +165,6 @@ static bf_status row_ranks(g72 *m, long n, bf_err *err)
             fail |= bf_particles_output_part(&m->po, blk, at == 0,
                                              (int64_t)n);
         row_add(m, &a, blk);
-        if (!total)
-            break;
     }
     return root ? row_finish(m, &a, n, fail, err) : BF_OK;
 }

@@ -9,8 +9,8 @@
  * particles and its halo, and steps its own particles.  Sums over all
  * particles are either of integers (the counts of the kinds of g, the
  * wall hits: exact in any order, summed over the ranks) or taken by rank
- * 0 in index order on the whole state it gathers for an output row or a
- * checkpoint (g72_output_row, g72_save).
+ * 0 in index order on the state it gathers for an output row or a
+ * checkpoint (g72_out.c, g72_gather.c).
  *
  * Why the same bits: the acceleration of a particle is a sum of terms
  * from the particles near it, taken in an order that the serial code

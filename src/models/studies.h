@@ -26,8 +26,6 @@ void bf_study_particles_view(const bf_particles *p, int velocities,
 /* Shared by the balls and coupled studies (study_balls.c): the balls'
  * groups x (cm) and v (cm/s) appended to v. */
 void bf_study_balls_groups(const bf_balls *b, bf_study_view *v);
-/* Whether the setup's effects have Hertz contacts (floor or contact). */
-int bf_study_hertz(const bf_model_setup *s);
 /* The largest internal step of adaptive ball runs: 10 x [scene] dt on a
  * scene with Hertz contacts, else 0 (none). */
 double bf_study_hertz_max_step(const bf_model_setup *s);

@@ -31,9 +31,9 @@ static int balls_adaptive(const bf_model_setup *s)
     return s->integrator && (s->integrator->flags & BF_INT_ADAPTIVE);
 }
 
-/* floor and contact are the effects with Hertz contacts (recognised by
- * their descriptors, like the ball system's kernels) */
-int bf_study_hertz(const bf_model_setup *s)
+/* Whether the setup's effects have Hertz contacts: floor and contact
+ * (recognised by their descriptors, like the ball system's kernels). */
+static int study_hertz(const bf_model_setup *s)
 {
     for (size_t k = 0; k < s->neffects; k++)
         if (s->effects[k] == &bf_effect_floor ||
@@ -58,7 +58,7 @@ static bf_status balls_reference(const bf_model_setup *s,
 
 double bf_study_hertz_max_step(const bf_model_setup *s)
 {
-    return bf_study_hertz(s) ? 10 * s->run.dt : 0.0;
+    return study_hertz(s) ? 10 * s->run.dt : 0.0;
 }
 
 void bf_study_balls_groups(const bf_balls *b, bf_study_view *v)
@@ -121,7 +121,7 @@ static void *balls_watch(void *self, bf_study_energy_fn check, void *ctx)
 
 static void balls_notes(const bf_model_setup *s, char *buf, size_t cap)
 {
-    if (!bf_study_hertz(s))
+    if (!study_hertz(s))
         return;
     snprintf(buf + strlen(buf), cap - strlen(buf),
              "note: the scene has Hertz contacts.  The contact force "

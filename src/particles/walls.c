@@ -171,15 +171,16 @@ bf_status bf_walls_apply_ids(const bf_walls *w, bf_particles *p, double *x0,
                                       &p->vx[i], &p->vy[i])
                     : reflect_clean(w, x0[i], y0[i], &p->x[i], &p->y[i],
                                     &p->vx[i], &p->vy[i]);
-        if (h < 0 && bad)
-            *bad = i;
-        if (h < 0)
+        if (h < 0) {
+            if (bad)
+                *bad = i;
             return bf_fail(err, BF_EUNSTABLE,
                            "particle %zu cannot be brought back into the box "
                            "(from (%.9g, %.9g) to (%.9g, %.9g): non-finite, or "
                            "more than %d wall hits in one step)",
                            (ids ? (size_t)ids[i] : i) + 1, x0[i], y0[i],
                            p->x[i], p->y[i], BF_WALLS_MAX_HITS);
+        }
         total += (unsigned long long)h;
     }
     if (hits)
